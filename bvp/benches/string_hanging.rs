@@ -1,0 +1,32 @@
+//! Criterion benchmarks: the `string-hanging` BVP solve (homotopy included) at tolerances
+//! 1e-6 and 1e-10, by collocation (orders 4 and 6) and by shooting.
+
+use bvp::collocation::Scheme;
+use bvp::string_hanging::{solve, Method, StringHanging, StringHangingOptions};
+use criterion::{criterion_group, criterion_main, Criterion};
+use std::hint::black_box;
+use std::time::Duration;
+
+fn scene() -> StringHanging {
+    StringHanging { radius: 0.08, centre_distance: 0.45, length: 1.41, axial_stiffness: 2.0e4, mass_per_length: 0.12, gravity: 9.81 }
+}
+
+fn bench(c: &mut Criterion) {
+    let mut g = c.benchmark_group("string_hanging");
+    g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
+    let methods = [
+        ("gauss4", Method::Collocation(Scheme::Gauss4)),
+        ("gauss6", Method::Collocation(Scheme::Gauss6)),
+        ("shooting", Method::Shooting),
+    ];
+    for (name, method) in methods {
+        for tol in [1e-6, 1e-10] {
+            let opts = StringHangingOptions { method, tolerance: tol, ..Default::default() };
+            g.bench_function(format!("{name}/tol={tol:.0e}"), |b| b.iter(|| solve(black_box(&scene()), &opts).expect("solves")));
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

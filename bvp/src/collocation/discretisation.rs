@@ -1,0 +1,521 @@
+//! The collocation equations on a fixed mesh: unknown layout, residual, sparse
+//! Jacobian, dense output and the residual estimate used for mesh control.
+//!
+//! # Unknowns (vector z of length [`Discretisation::n`])
+//!
+//! Segment k with mesh 0 = x_0 < … < x_{N_k} = 1 and dimension n = n_k owns the block
+//!
+//! ```text
+//!     [ y_0, Y_{0,1}, …, Y_{0,s}, y_1, Y_{1,1}, …, Y_{N−1,s}, y_N ]      ((N(s+1) + 1) n entries)
+//! ```
+//!
+//! (node values y_i, stage values Y_{i,j} ≈ y(x_i + c_j h_i)); the n_p parameters come
+//! after the last segment. The continuation parameter η is not part of z.
+//!
+//! # Equations (rows)
+//!
+//! Interval i of segment k gives (s + 1) n rows, in this order:
+//!
+//! ```text
+//!     Y_{i,j} − y_i − h Σ_l a_jl f_k(x_i + c_l h, Y_{i,l}, p, η) = 0,   j = 1..s   (stage equations)
+//!     y_{i+1} − y_i − h Σ_l b_l  f_k(x_i + c_l h, Y_{i,l}, p, η) = 0              (continuity)
+//! ```
+//!
+//! and the Σ n_k + n_p boundary rows g(y_0(0), y_0(1), …, p, η) = 0 come last, so the
+//! system is square.
+
+use super::scheme::{horner, Scheme, Tableau};
+use crate::error::BvpError;
+use crate::jacobian::{bc_jacobian, rhs_jacobian};
+use crate::problem::{JacobianMode, Problem};
+use crate::solution::{SegmentSolution, Solution, Stats};
+use std::cell::Cell;
+use std::rc::Rc;
+
+/// 5-point Lobatto quadrature on [0, 1] (exact for degree 7): nodes and weights.
+const LOBATTO5_T: [f64; 5] = [
+    0.0,
+    0.172_673_164_646_011_4, // (1 − √(3/7)) / 2
+    0.5,
+    0.827_326_835_353_988_6, // (1 + √(3/7)) / 2
+    1.0,
+];
+const LOBATTO5_W: [f64; 5] = [1.0 / 20.0, 49.0 / 180.0, 16.0 / 45.0, 49.0 / 180.0, 1.0 / 20.0];
+
+/// Check a mesh: at least two nodes, finite, strictly increasing, from 0 to 1.
+pub(crate) fn validate_mesh(mesh: &[f64], what: &str) -> Result<(), BvpError> {
+    if mesh.len() < 2 {
+        return Err(BvpError::InvalidInput(format!("{what}: a mesh needs at least 2 nodes")));
+    }
+    if mesh.iter().any(|x| !x.is_finite()) {
+        return Err(BvpError::NonFinite { what: format!("{what} mesh") });
+    }
+    if mesh.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(BvpError::InvalidInput(format!("{what}: mesh not strictly increasing")));
+    }
+    let (a, b) = (mesh[0], mesh[mesh.len() - 1]);
+    if a.abs() > 1e-12 || (b - 1.0).abs() > 1e-12 {
+        return Err(BvpError::InvalidInput(format!("{what}: mesh must span [0, 1], spans [{a}, {b}]")));
+    }
+    Ok(())
+}
+
+/// The collocation system of a problem on a fixed set of meshes.
+pub(crate) struct Discretisation<'a, P: Problem> {
+    pub problem: &'a P,
+    pub scheme: Scheme,
+    pub tab: Tableau,
+    pub mode: JacobianMode,
+    /// One mesh per segment.
+    pub meshes: Vec<Vec<f64>>,
+    /// n_k per segment.
+    pub dims: Vec<usize>,
+    /// First unknown of each segment block; `offsets[m]` is the first parameter.
+    pub offsets: Vec<usize>,
+    /// First collocation row of each segment; `row_offsets[m]` is the first BC row.
+    pub row_offsets: Vec<usize>,
+    pub n_params: usize,
+    /// Number of unknowns (= equations).
+    pub n: usize,
+    /// Right-hand-side evaluations with f64 arguments (including those inside
+    /// finite-difference Jacobians), shared by all discretisations derived with
+    /// [`Self::with_meshes`].
+    pub rhs_evals: Rc<Cell<usize>>,
+}
+
+impl<'a, P: Problem> Discretisation<'a, P> {
+    pub fn new(problem: &'a P, scheme: Scheme, mode: JacobianMode, meshes: Vec<Vec<f64>>) -> Result<Self, BvpError> {
+        Self::with_counter(problem, scheme, mode, meshes, Rc::new(Cell::new(0)))
+    }
+
+    fn with_counter(
+        problem: &'a P,
+        scheme: Scheme,
+        mode: JacobianMode,
+        meshes: Vec<Vec<f64>>,
+        rhs_evals: Rc<Cell<usize>>,
+    ) -> Result<Self, BvpError> {
+        let m = problem.n_segments();
+        if m == 0 {
+            return Err(BvpError::InvalidInput("problem has no segments".into()));
+        }
+        if meshes.len() != m {
+            return Err(BvpError::InvalidInput(format!("{} meshes for {m} segments", meshes.len())));
+        }
+        let mut meshes = meshes;
+        for (k, mesh) in meshes.iter_mut().enumerate() {
+            validate_mesh(mesh, &format!("segment {k}"))?;
+            let last = mesh.len() - 1;
+            mesh[0] = 0.0;
+            mesh[last] = 1.0;
+        }
+        let dims: Vec<usize> = (0..m).map(|k| problem.dim(k)).collect();
+        if dims.contains(&0) {
+            return Err(BvpError::InvalidInput("a segment has ODE dimension 0".into()));
+        }
+        let n_params = problem.n_params();
+        let tab = Tableau::new(scheme);
+        let s = tab.s;
+        let mut offsets = vec![0];
+        let mut row_offsets = vec![0];
+        for k in 0..m {
+            let intervals = meshes[k].len() - 1;
+            offsets.push(offsets[k] + (intervals * (s + 1) + 1) * dims[k]);
+            row_offsets.push(row_offsets[k] + intervals * (s + 1) * dims[k]);
+        }
+        let n = offsets[m] + n_params;
+        let n_bc = problem.n_bc();
+        if row_offsets[m] + n_bc != n {
+            return Err(BvpError::InvalidInput(format!(
+                "problem has {n_bc} boundary conditions, needs Σ n_k + n_p = {}",
+                dims.iter().sum::<usize>() + n_params
+            )));
+        }
+        Ok(Self { problem, scheme, tab, mode, meshes, dims, offsets, row_offsets, n_params, n, rhs_evals })
+    }
+
+    /// The same problem and scheme on other meshes.
+    pub fn with_meshes(&self, meshes: Vec<Vec<f64>>) -> Result<Self, BvpError> {
+        Self::with_counter(self.problem, self.scheme, self.mode, meshes, self.rhs_evals.clone())
+    }
+
+    pub fn n_segments(&self) -> usize {
+        self.dims.len()
+    }
+
+    /// Total number of mesh nodes over all segments.
+    pub fn n_nodes(&self) -> usize {
+        self.meshes.iter().map(Vec::len).sum()
+    }
+
+    /// Index of y_i (node i) of segment k in z.
+    pub fn node(&self, k: usize, i: usize) -> usize {
+        self.offsets[k] + i * (self.tab.s + 1) * self.dims[k]
+    }
+
+    /// Index of the stage value Y_{i,j} of segment k in z.
+    pub fn stage(&self, k: usize, i: usize, j: usize) -> usize {
+        self.node(k, i) + (j + 1) * self.dims[k]
+    }
+
+    /// First row of interval i of segment k.
+    fn row(&self, k: usize, i: usize) -> usize {
+        self.row_offsets[k] + i * (self.tab.s + 1) * self.dims[k]
+    }
+
+    /// Parameters p inside z.
+    pub fn params<'z>(&self, z: &'z [f64]) -> &'z [f64] {
+        &z[self.offsets[self.n_segments()]..]
+    }
+
+    fn count(&self, evals: usize) {
+        self.rhs_evals.set(self.rhs_evals.get() + evals);
+    }
+
+    /// f_k at stage (i, j) with f64 arguments.
+    fn stage_rhs(&self, z: &[f64], eta: f64, k: usize, i: usize, out: &mut [f64]) {
+        let n = self.dims[k];
+        let s = self.tab.s;
+        let mesh = &self.meshes[k];
+        let h = mesh[i + 1] - mesh[i];
+        let p = self.params(z);
+        for j in 0..s {
+            let y = &z[self.stage(k, i, j)..self.stage(k, i, j) + n];
+            self.problem.rhs(k, mesh[i] + self.tab.c[j] * h, y, p, eta, &mut out[j * n..(j + 1) * n]);
+        }
+        self.count(s);
+    }
+
+    /// End states y_k(0), y_k(1) of all segments.
+    fn ends<'z>(&self, z: &'z [f64]) -> (Vec<&'z [f64]>, Vec<&'z [f64]>) {
+        let m = self.n_segments();
+        let ya = (0..m).map(|k| &z[self.node(k, 0)..self.node(k, 0) + self.dims[k]]).collect();
+        let yb = (0..m)
+            .map(|k| {
+                let i = self.node(k, self.meshes[k].len() - 1);
+                &z[i..i + self.dims[k]]
+            })
+            .collect();
+        (ya, yb)
+    }
+
+    /// Residual F(z, η) of the module documentation into `r` (length n).
+    pub fn residual(&self, z: &[f64], eta: f64, r: &mut [f64]) {
+        let s = self.tab.s;
+        let mut f = Vec::new();
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            f.resize(s * n, 0.0);
+            let mesh = &self.meshes[k];
+            for i in 0..mesh.len() - 1 {
+                let h = mesh[i + 1] - mesh[i];
+                self.stage_rhs(z, eta, k, i, &mut f);
+                let yi = self.node(k, i);
+                let yn = self.node(k, i + 1);
+                let row = self.row(k, i);
+                for j in 0..s {
+                    let yj = self.stage(k, i, j);
+                    for a in 0..n {
+                        let mut acc = 0.0;
+                        for l in 0..s {
+                            acc += self.tab.a[j * s + l] * f[l * n + a];
+                        }
+                        r[row + j * n + a] = z[yj + a] - z[yi + a] - h * acc;
+                    }
+                }
+                for a in 0..n {
+                    let mut acc = 0.0;
+                    for l in 0..s {
+                        acc += self.tab.b[l] * f[l * n + a];
+                    }
+                    r[row + s * n + a] = z[yn + a] - z[yi + a] - h * acc;
+                }
+            }
+        }
+        let (ya, yb) = self.ends(z);
+        let m = self.n_segments();
+        self.problem.bc(&ya, &yb, self.params(z), eta, &mut r[self.row_offsets[m]..]);
+    }
+
+    /// The boundary residual g alone.
+    pub fn bc_residual(&self, z: &[f64], eta: f64) -> Vec<f64> {
+        let (ya, yb) = self.ends(z);
+        let mut g = vec![0.0; self.problem.n_bc()];
+        self.problem.bc(&ya, &yb, self.params(z), eta, &mut g);
+        g
+    }
+
+    /// Jacobian ∂F/∂z as triplets (appended to `rows`, `cols`, `vals` after clearing
+    /// them; the pattern depends only on the mesh) and the dense column ∂F/∂η into
+    /// `jeta` (length n).
+    pub fn jacobian(
+        &self,
+        z: &[f64],
+        eta: f64,
+        rows: &mut Vec<usize>,
+        cols: &mut Vec<usize>,
+        vals: &mut Vec<f64>,
+        jeta: &mut Vec<f64>,
+    ) {
+        rows.clear();
+        cols.clear();
+        vals.clear();
+        jeta.clear();
+        jeta.resize(self.n, 0.0);
+        let s = self.tab.s;
+        let np = self.n_params;
+        let pofs = self.offsets[self.n_segments()];
+        let p = self.params(z).to_vec();
+        let mut push = |r: usize, c: usize, v: f64| {
+            rows.push(r);
+            cols.push(c);
+            vals.push(v);
+        };
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            let per_call = match self.mode {
+                JacobianMode::Ad => 1,
+                JacobianMode::FiniteDifference => 1 + 2 * (n + np + 1),
+            };
+            let mesh = &self.meshes[k];
+            let mut jac = Vec::with_capacity(s);
+            for i in 0..mesh.len() - 1 {
+                let h = mesh[i + 1] - mesh[i];
+                jac.clear();
+                for j in 0..s {
+                    let y = &z[self.stage(k, i, j)..self.stage(k, i, j) + n];
+                    let x = mesh[i] + self.tab.c[j] * h;
+                    jac.push(rhs_jacobian(self.problem, self.mode, k, x, y, &p, eta));
+                }
+                self.count(s * per_call);
+                let yi = self.node(k, i);
+                let yn = self.node(k, i + 1);
+                let row = self.row(k, i);
+                // s stage rows (weights a_j·) and the continuity row (weights b).
+                for j in 0..=s {
+                    let w: &[f64] = if j < s { &self.tab.a[j * s..(j + 1) * s] } else { &self.tab.b };
+                    for a in 0..n {
+                        let r = row + j * n + a;
+                        push(r, yi + a, -1.0);
+                        if j == s {
+                            push(r, yn + a, 1.0);
+                        }
+                        for l in 0..s {
+                            let dfdy = &jac[l].1;
+                            let ys = self.stage(k, i, l);
+                            for b in 0..n {
+                                let mut v = -h * w[l] * dfdy[a * n + b];
+                                if l == j && a == b {
+                                    v += 1.0;
+                                }
+                                push(r, ys + b, v);
+                            }
+                        }
+                        for q in 0..np {
+                            let v: f64 = (0..s).map(|l| w[l] * jac[l].2[a * np + q]).sum();
+                            push(r, pofs + q, -h * v);
+                        }
+                        jeta[r] = -h * (0..s).map(|l| w[l] * jac[l].3[a]).sum::<f64>();
+                    }
+                }
+            }
+        }
+        // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
+        let (ya, yb) = self.ends(z);
+        let (_, dg) = bc_jacobian(self.problem, self.mode, &ya, &yb, self.params(z), eta);
+        let m = self.n_segments();
+        let mut colmap = Vec::new();
+        for k in 0..m {
+            let a0 = self.node(k, 0);
+            let b0 = self.node(k, self.meshes[k].len() - 1);
+            colmap.extend(a0..a0 + self.dims[k]);
+            colmap.extend(b0..b0 + self.dims[k]);
+        }
+        colmap.extend(pofs..pofs + np);
+        let nu = colmap.len() + 1;
+        let r0 = self.row_offsets[m];
+        for i in 0..self.problem.n_bc() {
+            for (c, &col) in colmap.iter().enumerate() {
+                push(r0 + i, col, dg[i * nu + c]);
+            }
+            jeta[r0 + i] = dg[i * nu + nu - 1];
+        }
+    }
+
+    /// Stage slopes K_{i,l} = f_k(x_i + c_l h, Y_{i,l}) of segment k, laid out
+    /// `[i][l][a]` (length N s n).
+    fn slopes(&self, z: &[f64], eta: f64, k: usize) -> Vec<f64> {
+        let n = self.dims[k];
+        let s = self.tab.s;
+        let intervals = self.meshes[k].len() - 1;
+        let mut out = vec![0.0; intervals * s * n];
+        for i in 0..intervals {
+            self.stage_rhs(z, eta, k, i, &mut out[i * s * n..(i + 1) * s * n]);
+        }
+        out
+    }
+
+    /// Collocation polynomials (dense output) of segment k: power-basis coefficients
+    /// `poly[i][a][m]`, u_a(x_i + t h) = Σ_m c_m t^m, degree s.
+    fn polys(&self, z: &[f64], slopes: &[f64], k: usize) -> Vec<Vec<Vec<f64>>> {
+        let n = self.dims[k];
+        let s = self.tab.s;
+        let mesh = &self.meshes[k];
+        (0..mesh.len() - 1)
+            .map(|i| {
+                let h = mesh[i + 1] - mesh[i];
+                let yi = self.node(k, i);
+                (0..n)
+                    .map(|a| {
+                        let mut c = vec![0.0; s + 1];
+                        c[0] = z[yi + a];
+                        for l in 0..s {
+                            let kl = slopes[(i * s + l) * n + a];
+                            for (m, &lm) in self.tab.lagrange[l].iter().enumerate() {
+                                c[m + 1] += h * kl * lm / (m + 1) as f64;
+                            }
+                        }
+                        c
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The discrete solution as a [`Solution`] with the collocation polynomials as
+    /// dense output.
+    pub fn to_solution(&self, z: &[f64], eta: f64, stats: Stats) -> Solution {
+        let segments = (0..self.n_segments())
+            .map(|k| {
+                let n = self.dims[k];
+                let slopes = self.slopes(z, eta, k);
+                let poly = self.polys(z, &slopes, k);
+                let nodes =
+                    (0..self.meshes[k].len()).map(|i| z[self.node(k, i)..self.node(k, i) + n].to_vec()).collect();
+                SegmentSolution { mesh: self.meshes[k].clone(), nodes, poly }
+            })
+            .collect();
+        Solution { segments, params: self.params(z).to_vec(), eta, stats }
+    }
+
+    /// Unknowns z on this discretisation from the dense output of `source` (node and
+    /// stage values sampled from `source.eval`, parameters copied).
+    pub fn sample(&self, source: &Solution) -> Result<Vec<f64>, BvpError> {
+        validate_solution(self.problem, source, "solution to sample")?;
+        let mut z = vec![0.0; self.n];
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            let mesh = &self.meshes[k];
+            let seg = &source.segments[k];
+            for (i, &x) in mesh.iter().enumerate() {
+                z[self.node(k, i)..self.node(k, i) + n].copy_from_slice(&seg.eval(x));
+                if i + 1 < mesh.len() {
+                    let h = mesh[i + 1] - x;
+                    for j in 0..self.tab.s {
+                        let at = self.stage(k, i, j);
+                        z[at..at + n].copy_from_slice(&seg.eval(x + self.tab.c[j] * h));
+                    }
+                }
+            }
+        }
+        let pofs = self.offsets[self.n_segments()];
+        z[pofs..].copy_from_slice(&source.params);
+        if z.iter().any(|v| !v.is_finite()) {
+            return Err(BvpError::NonFinite { what: "sampled initial guess".into() });
+        }
+        Ok(z)
+    }
+
+    /// Residual estimate per interval and the boundary residual.
+    ///
+    /// ρ_i = ( ∫_0^1 Σ_a [ (u_a'(x) − f_a(x, u(x))) / (1 + |f_a(x, u(x))|) ]² dt )^{1/2},
+    /// x = x_i + t h_i, by 5-point Lobatto quadrature (u: collocation polynomial);
+    /// the boundary residual is max_i |g_i|. Returns (ρ per segment per interval,
+    /// boundary residual).
+    pub fn residual_norms(&self, z: &[f64], eta: f64) -> Result<(Vec<Vec<f64>>, f64), BvpError> {
+        let s = self.tab.s;
+        let p = self.params(z);
+        let mut rho = Vec::with_capacity(self.n_segments());
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            let mesh = &self.meshes[k];
+            let slopes = self.slopes(z, eta, k);
+            let polys = self.polys(z, &slopes, k);
+            let mut u = vec![0.0; n];
+            let mut f = vec![0.0; n];
+            let mut rk = Vec::with_capacity(mesh.len() - 1);
+            for i in 0..mesh.len() - 1 {
+                let h = mesh[i + 1] - mesh[i];
+                let mut acc = 0.0;
+                for (&t, &w) in LOBATTO5_T.iter().zip(&LOBATTO5_W) {
+                    for a in 0..n {
+                        u[a] = horner(&polys[i][a], t);
+                    }
+                    self.problem.rhs(k, mesh[i] + t * h, &u, p, eta, &mut f);
+                    for a in 0..n {
+                        let du: f64 =
+                            (0..s).map(|l| slopes[(i * s + l) * n + a] * horner(&self.tab.lagrange[l], t)).sum();
+                        let r = (du - f[a]) / (1.0 + f[a].abs());
+                        acc += w * r * r;
+                    }
+                }
+                let value = acc.sqrt();
+                if !value.is_finite() {
+                    return Err(BvpError::NonFinite {
+                        what: format!("collocation residual on segment {k}, interval {i}"),
+                    });
+                }
+                rk.push(value);
+            }
+            self.count(LOBATTO5_T.len() * (mesh.len() - 1));
+            rho.push(rk);
+        }
+        let g = self.bc_residual(z, eta);
+        let bc = g.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if !bc.is_finite() {
+            return Err(BvpError::NonFinite { what: "boundary residual".into() });
+        }
+        Ok((rho, bc))
+    }
+}
+
+/// Check that a solution/guess fits the problem: segment count, dimensions, parameter
+/// count, meshes, dense output shapes and finiteness.
+pub(crate) fn validate_solution<P: Problem>(problem: &P, sol: &Solution, what: &str) -> Result<(), BvpError> {
+    let m = problem.n_segments();
+    if sol.segments.len() != m {
+        return Err(BvpError::InvalidInput(format!("{what}: {} segments, problem has {m}", sol.segments.len())));
+    }
+    if sol.params.len() != problem.n_params() {
+        return Err(BvpError::InvalidInput(format!(
+            "{what}: {} parameters, problem has {}",
+            sol.params.len(),
+            problem.n_params()
+        )));
+    }
+    if sol.params.iter().any(|v| !v.is_finite()) || !sol.eta.is_finite() {
+        return Err(BvpError::NonFinite { what: format!("{what}: parameters or eta") });
+    }
+    for (k, seg) in sol.segments.iter().enumerate() {
+        validate_mesh(&seg.mesh, &format!("{what}, segment {k}"))?;
+        let n = problem.dim(k);
+        let intervals = seg.mesh.len() - 1;
+        let shapes_ok = seg.nodes.len() == seg.mesh.len()
+            && seg.nodes.iter().all(|v| v.len() == n)
+            && seg.poly.len() == intervals
+            && seg.poly.iter().all(|p| p.len() == n && p.iter().all(|c| !c.is_empty()));
+        if !shapes_ok {
+            return Err(BvpError::InvalidInput(format!(
+                "{what}, segment {k}: node or dense-output shapes do not match dimension {n} \
+                 and {} mesh nodes",
+                seg.mesh.len()
+            )));
+        }
+        let finite = seg.nodes.iter().flatten().all(|v| v.is_finite())
+            && seg.poly.iter().flatten().flatten().all(|v| v.is_finite());
+        if !finite {
+            return Err(BvpError::NonFinite { what: format!("{what}, segment {k}") });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,520 @@
+//! Collocation with residual control and adaptive mesh (Gauss–Legendre, orders 4, 6, 8).
+//!
+//! `run` reads as the algorithm ([`solve`]):
+//! 1. sample the guess's dense output on its own mesh (node and stage values),
+//! 2. solve the collocation equations (implicit Runge–Kutta form with node and stage
+//!    values as unknowns, all segments and the parameters in one sparse system) by the
+//!    damped Newton method of [`crate::newton`] on faer's sparse LU,
+//! 3. estimate the residual on every interval ([`CollocationOptions::tolerance`]),
+//! 4. insert nodes where it exceeds the tolerance, remove nodes where it is far below
+//!    (rules below), carry the solution over with its dense output, and repeat.
+//!
+//! Mesh rules, with residual order q ([`Scheme::residual_order`], ρ ∝ h^q):
+//! - an interval with ρ_i > tol gets one new node (midpoint) if ρ_i ≤ 2^q tol, else two
+//!   (thirds);
+//! - when every interval passes, two neighbouring intervals (widths h_1, h_2,
+//!   H = h_1 + h_2) are merged if the predicted residual of the merged interval,
+//!   max(ρ_1 (H/h_1)^q, ρ_2 (H/h_2)^q), is ≤ tol / 2^q — a safety margin of 2^q below the
+//!   insertion threshold. If the coarser mesh nevertheless fails, the last accepted
+//!   mesh and solution are returned, so insertion and removal cannot alternate.
+//!
+//! Compare scipy's `solve_bvp` (Kierzenka & Shampine, "A BVP solver based on residual
+//! control and the MATLAB PSE", ACM TOMS 27, 2001), which uses the 4th-order
+//! Lobatto IIIA scheme with the same residual measure.
+
+pub(crate) mod discretisation;
+pub(crate) mod mesh;
+pub mod scheme;
+
+pub use scheme::Scheme;
+
+use crate::error::BvpError;
+use crate::newton::{self, NewtonOptions, NewtonReport, NewtonSystem, SparseLu};
+use crate::problem::{JacobianMode, Problem};
+use crate::solution::{Solution, Stats};
+use discretisation::{validate_solution, Discretisation};
+use std::time::Instant;
+
+/// Options of [`solve`]. Serialisable so that a run can be reproduced.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
+pub struct CollocationOptions {
+    /// Collocation scheme. Default [`Scheme::Gauss6`].
+    pub scheme: Scheme,
+    /// Residual tolerance tol. Valid range [1e-13, 0.1]; default 1e-6.
+    ///
+    /// A solution is accepted when, on every interval [x_i, x_i + h_i] of every segment,
+    ///
+    /// ```text
+    ///     ρ_i = ( (1/h_i) ∫ Σ_a [ (u_a'(x) − f_a(x, u(x))) / (1 + |f_a(x, u(x))|) ]² dx )^{1/2} < tol,
+    /// ```
+    ///
+    /// u the collocation polynomial (the dense output), the integral evaluated by the
+    /// 5-point Lobatto rule (exact for degree 7), a the ODE component (the RMS over the
+    /// interval of the Euclidean norm of the componentwise relative residual, as in
+    /// scipy's `solve_bvp`), **and** the boundary residual max_i |g_i| < tol. The
+    /// Newton iteration on each mesh must meet its own test first (see
+    /// `newton_tolerance_factor`).
+    ///
+    /// ρ = O(h^q), q = [`Scheme::residual_order`]; the node values are more accurate,
+    /// O(h^{2s}) ([`Scheme::order`]).
+    pub tolerance: f64,
+    /// Cap on the total number of mesh nodes over all segments; exceeding it returns
+    /// [`BvpError::MeshCapReached`]. Default 100 000; valid ≥ 2 per segment and at
+    /// least the number of nodes of the guess.
+    pub max_nodes: usize,
+    /// Newton iterations per mesh. Default 30; valid 1..=10 000.
+    pub max_newton_iterations: usize,
+    /// The Newton iteration on a mesh converges when the scaled correction
+    /// max_i |Δz_i| / (1 + |z_i|) ≤ max(newton_tolerance_factor · tol, 1e-13)
+    /// ([`crate::newton`]). Default 1e-2; valid (0, 1].
+    pub newton_tolerance_factor: f64,
+    /// Smallest Newton damping factor. Default 1e-4; valid (0, 1].
+    pub min_damping: f64,
+    /// Jacobians by automatic differentiation or finite differences. Default AD.
+    pub jacobian: JacobianMode,
+    /// Adapt the mesh. With `false` the equations are solved on the guess's mesh only
+    /// and the residual is reported in [`Stats::max_residual`] without being enforced
+    /// (for convergence studies on fixed meshes). Default `true`.
+    pub adapt_mesh: bool,
+    /// Remove nodes where the residual is far below the tolerance (module
+    /// documentation). Default `true`.
+    pub remove_nodes: bool,
+    /// Maximum number of mesh adaptation passes (insertions plus removals) before
+    /// [`BvpError::RefinementLimit`]. Default 50; valid ≥ 1.
+    pub max_refinements: usize,
+}
+
+impl Default for CollocationOptions {
+    fn default() -> Self {
+        Self {
+            scheme: Scheme::Gauss6,
+            tolerance: 1e-6,
+            max_nodes: 100_000,
+            max_newton_iterations: 30,
+            newton_tolerance_factor: 1e-2,
+            min_damping: 1e-4,
+            jacobian: JacobianMode::Ad,
+            adapt_mesh: true,
+            remove_nodes: true,
+            max_refinements: 50,
+        }
+    }
+}
+
+impl CollocationOptions {
+    /// Check the documented ranges.
+    pub fn validate(&self) -> Result<(), BvpError> {
+        let bad = |m: String| Err(BvpError::InvalidInput(m));
+        if !(1e-13..=0.1).contains(&self.tolerance) {
+            return bad(format!("collocation tolerance {} outside [1e-13, 0.1]", self.tolerance));
+        }
+        if self.max_nodes < 2 {
+            return bad(format!("max_nodes {} < 2", self.max_nodes));
+        }
+        if !(1..=10_000).contains(&self.max_newton_iterations) {
+            return bad(format!("max_newton_iterations {} outside 1..=10000", self.max_newton_iterations));
+        }
+        if !(self.newton_tolerance_factor > 0.0 && self.newton_tolerance_factor <= 1.0) {
+            return bad(format!("newton_tolerance_factor {} outside (0, 1]", self.newton_tolerance_factor));
+        }
+        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
+            return bad(format!("min_damping {} outside (0, 1]", self.min_damping));
+        }
+        if self.max_refinements == 0 {
+            return bad("max_refinements must be ≥ 1".into());
+        }
+        Ok(())
+    }
+
+    /// The Newton options used on each mesh.
+    pub fn newton(&self) -> NewtonOptions {
+        NewtonOptions {
+            tolerance: (self.newton_tolerance_factor * self.tolerance).max(1e-13),
+            max_iterations: self.max_newton_iterations,
+            min_damping: self.min_damping,
+        }
+    }
+}
+
+/// Solve `problem` by collocation starting from `guess` (at η = `guess.eta`), on the
+/// guess's own mesh at first.
+///
+/// The guess is sampled with its dense output (node and stage values; a
+/// [`Solution::from_fn`] guess is piecewise linear). The returned [`Solution`] holds
+/// node values, the collocation polynomials as dense output and the work counters; it
+/// meets the tolerance defined at [`CollocationOptions::tolerance`] (unless
+/// `adapt_mesh` is off).
+///
+/// Errors: [`BvpError::InvalidInput`] (options, guess shape), Newton failures on a mesh
+/// ([`BvpError::NewtonDiverged`], [`BvpError::SingularJacobian`],
+/// [`BvpError::NonFinite`]), [`BvpError::MeshCapReached`],
+/// [`BvpError::RefinementLimit`].
+pub fn solve<P: Problem>(problem: &P, guess: &Solution, opts: &CollocationOptions) -> Result<Solution, BvpError> {
+    validate_solution(problem, guess, "guess")?;
+    let meshes: Vec<Vec<f64>> = guess.segments.iter().map(|s| s.mesh.clone()).collect();
+    solve_on_meshes(problem, guess, meshes, opts)
+}
+
+/// As [`solve`], but starting on the given initial meshes (one per segment, each from 0
+/// to 1, strictly increasing, ≥ 2 nodes): the guess is interpolated onto them with its
+/// dense output.
+pub fn solve_on_meshes<P: Problem>(
+    problem: &P,
+    guess: &Solution,
+    meshes: Vec<Vec<f64>>,
+    opts: &CollocationOptions,
+) -> Result<Solution, BvpError> {
+    let start = Instant::now();
+    opts.validate()?;
+    validate_solution(problem, guess, "guess")?;
+    check_node_cap(&meshes, opts)?;
+    let disc = Discretisation::new(problem, opts.scheme, opts.jacobian, meshes)?;
+    let z = disc.sample(guess)?;
+    let mut stats = Stats::default();
+    let mut corrector = FixedEta::new(opts);
+    let done = adapt(disc, z, guess.eta, &mut corrector, opts, &mut stats)?;
+    Ok(done.into_solution(stats, start, 0))
+}
+
+pub(crate) fn check_node_cap(meshes: &[Vec<f64>], opts: &CollocationOptions) -> Result<(), BvpError> {
+    let nodes: usize = meshes.iter().map(Vec::len).sum();
+    if nodes > opts.max_nodes {
+        return Err(BvpError::InvalidInput(format!(
+            "the initial mesh has {nodes} nodes, more than max_nodes = {}",
+            opts.max_nodes
+        )));
+    }
+    Ok(())
+}
+
+/// Converges the discrete equations on one mesh (fixed η, or with η unknown under a
+/// continuation constraint), and carries its own data over when the mesh changes.
+pub(crate) trait Corrector<P: Problem> {
+    /// Newton on `disc` from (`z`, `eta`), overwriting them with the converged point.
+    fn correct(
+        &mut self,
+        disc: &Discretisation<'_, P>,
+        z: &mut Vec<f64>,
+        eta: &mut f64,
+    ) -> Result<NewtonReport, BvpError>;
+    /// The mesh changes from `old` (converged point `old_z`, `old_eta`) to `new`.
+    fn transfer(
+        &mut self,
+        old: &Discretisation<'_, P>,
+        old_z: &[f64],
+        old_eta: f64,
+        new: &Discretisation<'_, P>,
+    ) -> Result<(), BvpError>;
+}
+
+/// The plain solve: Newton on F(z; η) = 0 with η fixed.
+pub(crate) struct FixedEta {
+    lu: SparseLu,
+    newton: NewtonOptions,
+}
+
+impl FixedEta {
+    pub fn new(opts: &CollocationOptions) -> Self {
+        Self { lu: SparseLu::new(), newton: opts.newton() }
+    }
+}
+
+struct FixedEtaSystem<'s, 'a, P: Problem> {
+    disc: &'s Discretisation<'a, P>,
+    eta: f64,
+    lu: &'s mut SparseLu,
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    vals: Vec<f64>,
+    jeta: Vec<f64>,
+}
+
+impl<P: Problem> NewtonSystem for FixedEtaSystem<'_, '_, P> {
+    fn size(&self) -> usize {
+        self.disc.n
+    }
+    fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), BvpError> {
+        self.disc.residual(z, self.eta, r);
+        Ok(())
+    }
+    fn factorize(&mut self, z: &[f64]) -> Result<(), BvpError> {
+        self.disc.jacobian(z, self.eta, &mut self.rows, &mut self.cols, &mut self.vals, &mut self.jeta);
+        self.lu.factorize(self.disc.n, &self.rows, &self.cols, &self.vals)
+    }
+    fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError> {
+        self.lu.solve_in_place(b)
+    }
+}
+
+impl<P: Problem> Corrector<P> for FixedEta {
+    fn correct(
+        &mut self,
+        disc: &Discretisation<'_, P>,
+        z: &mut Vec<f64>,
+        eta: &mut f64,
+    ) -> Result<NewtonReport, BvpError> {
+        let mut system = FixedEtaSystem {
+            disc,
+            eta: *eta,
+            lu: &mut self.lu,
+            rows: Vec::new(),
+            cols: Vec::new(),
+            vals: Vec::new(),
+            jeta: Vec::new(),
+        };
+        newton::solve(&mut system, z, &self.newton)
+    }
+    fn transfer(
+        &mut self,
+        _old: &Discretisation<'_, P>,
+        _old_z: &[f64],
+        _old_eta: f64,
+        _new: &Discretisation<'_, P>,
+    ) -> Result<(), BvpError> {
+        Ok(())
+    }
+}
+
+/// A converged point on an adapted mesh.
+pub(crate) struct Adapted<'a, P: Problem> {
+    pub disc: Discretisation<'a, P>,
+    pub z: Vec<f64>,
+    pub eta: f64,
+    /// max(max_i ρ_i, boundary residual).
+    pub max_residual: f64,
+}
+
+impl<P: Problem> Adapted<'_, P> {
+    /// The solution with its statistics completed (unknowns, nodes, residual, time
+    /// since `start`, right-hand-side evaluations counted since the shared counter read
+    /// `rhs_baseline`).
+    pub fn solution(&self, mut stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
+        stats.unknowns = self.disc.n;
+        stats.mesh_nodes = self.disc.n_nodes();
+        stats.max_residual = self.max_residual;
+        let mut sol = self.disc.to_solution(&self.z, self.eta, Stats::default());
+        stats.rhs_evaluations = self.disc.rhs_evals.get() - rhs_baseline;
+        stats.wall_seconds = start.elapsed().as_secs_f64();
+        sol.stats = stats;
+        sol
+    }
+
+    /// [`Self::solution`], consuming the point.
+    pub fn into_solution(self, stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
+        self.solution(stats, start, rhs_baseline)
+    }
+}
+
+/// Carry a converged point over to `meshes` with its dense output.
+pub(crate) fn remesh<'a, P: Problem>(
+    disc: &Discretisation<'a, P>,
+    z: &[f64],
+    eta: f64,
+    meshes: Vec<Vec<f64>>,
+) -> Result<(Discretisation<'a, P>, Vec<f64>), BvpError> {
+    let new = disc.with_meshes(meshes)?;
+    let sol = disc.to_solution(z, eta, Stats::default());
+    let z_new = new.sample(&sol)?;
+    Ok((new, z_new))
+}
+
+/// The adaptive loop: correct, estimate, insert or remove nodes, repeat.
+///
+/// Removal is tried only on a mesh that meets the tolerance; if the coarser mesh fails
+/// (Newton failure or residual above tolerance) the last accepted mesh and solution
+/// are returned, so insertion and removal cannot alternate. `stats` receives Newton
+/// iterations, Jacobian evaluations and refinement passes.
+pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
+    mut disc: Discretisation<'a, P>,
+    mut z: Vec<f64>,
+    mut eta: f64,
+    corrector: &mut C,
+    opts: &CollocationOptions,
+    stats: &mut Stats,
+) -> Result<Adapted<'a, P>, BvpError> {
+    let q = opts.scheme.residual_order();
+    let tol = opts.tolerance;
+    let mut accepted: Option<Adapted<'a, P>> = None;
+    let mut passes = 0;
+    loop {
+        let report = match corrector.correct(&disc, &mut z, &mut eta) {
+            Ok(r) => r,
+            Err(e) => {
+                if let BvpError::NewtonDiverged { iterations, .. } = e {
+                    stats.newton_iterations += iterations;
+                    stats.jacobian_evaluations += iterations;
+                }
+                return accepted.ok_or(e);
+            }
+        };
+        stats.newton_iterations += report.iterations;
+        stats.jacobian_evaluations += report.iterations;
+        let (rho, bc) = match disc.residual_norms(&z, eta) {
+            Ok(v) => v,
+            Err(e) => return accepted.ok_or(e),
+        };
+        let max_rho = rho.iter().flatten().fold(0.0_f64, |m, &r| m.max(r));
+        let max_residual = max_rho.max(bc);
+        if !opts.adapt_mesh {
+            return Ok(Adapted { disc, z, eta, max_residual });
+        }
+        if max_rho < tol {
+            if bc >= tol {
+                return accepted.ok_or(BvpError::NewtonDiverged {
+                    iterations: report.iterations,
+                    residual: bc,
+                    tolerance: tol,
+                });
+            }
+            if opts.remove_nodes && passes < opts.max_refinements {
+                let coarse: Vec<Option<Vec<f64>>> =
+                    disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::coarsen(m, r, tol, q)).collect();
+                if coarse.iter().any(Option::is_some) {
+                    let meshes =
+                        coarse.into_iter().zip(&disc.meshes).map(|(c, m)| c.unwrap_or_else(|| m.clone())).collect();
+                    let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
+                    corrector.transfer(&disc, &z, eta, &new_disc)?;
+                    accepted = Some(Adapted { disc, z, eta, max_residual });
+                    disc = new_disc;
+                    z = new_z;
+                    passes += 1;
+                    stats.refinements += 1;
+                    continue;
+                }
+            }
+            return Ok(Adapted { disc, z, eta, max_residual });
+        }
+        if let Some(a) = accepted {
+            return Ok(a);
+        }
+        let meshes: Vec<Vec<f64>> = disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::refine(m, r, tol, q)).collect();
+        let nodes: usize = meshes.iter().map(Vec::len).sum();
+        if nodes > opts.max_nodes {
+            return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
+        }
+        if passes >= opts.max_refinements {
+            return Err(BvpError::RefinementLimit { passes, residual: max_rho, tolerance: tol });
+        }
+        let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
+        corrector.transfer(&disc, &z, eta, &new_disc)?;
+        disc = new_disc;
+        z = new_z;
+        passes += 1;
+        stats.refinements += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::problem::Scalar;
+
+    /// Two segments with a parameter and η everywhere, nonlinear in all arguments:
+    /// segment 0: y' = p0 (y1, −η sin y0 + y0 y1 x), segment 1: y' = p0 (cos y0 + η, y0²),
+    /// with interface continuity, y_0(0) = (0.1, ·), and an integral-like condition on p.
+    struct Test2;
+
+    impl Problem for Test2 {
+        fn n_segments(&self) -> usize {
+            2
+        }
+        fn dim(&self, _k: usize) -> usize {
+            2
+        }
+        fn n_params(&self) -> usize {
+            1
+        }
+        fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
+            if k == 0 {
+                f[0] = p[0] * y[1];
+                f[1] = p[0] * (-(eta * y[0].sin()) + y[0] * y[1] * x);
+            } else {
+                f[0] = p[0] * (y[0].cos() + eta);
+                f[1] = p[0] * y[0] * y[0];
+            }
+        }
+        fn bc<D: Scalar>(&self, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, r: &mut [D]) {
+            r[0] = ya[0][0] - 0.1;
+            r[1] = ya[1][0] - yb[0][0];
+            r[2] = ya[1][1] - yb[0][1];
+            r[3] = yb[1][0] * eta - 0.3;
+            r[4] = p[0] * p[0] - 1.0 - ya[0][1] * yb[1][1];
+        }
+    }
+
+    /// Deterministic pseudo-random numbers in [−1, 1) (64-bit LCG).
+    fn lcg(state: &mut u64) -> f64 {
+        *state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        ((*state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+
+    /// The assembled Jacobian ∂F/∂z and ∂F/∂η against central differences of the
+    /// residual at a random state, for every scheme and both Jacobian modes.
+    /// Tolerance: central differences with step 1e-6 have truncation error
+    /// O(h² |F'''|) ~ 1e-12 and round-off ~ ε/h ~ 1e-10 on entries of size O(1);
+    /// 1e-7 relative to the largest entry leaves a margin of 10³ while a wrong entry
+    /// (a missing h, a sign, a wrong column) is O(h_mesh) ≥ 1e-2.
+    #[test]
+    fn jacobian_matches_central_differences() {
+        let mut state = 7u64;
+        for scheme in Scheme::ALL {
+            for mode in [JacobianMode::Ad, JacobianMode::FiniteDifference] {
+                let meshes = vec![vec![0.0, 0.3, 1.0], vec![0.0, 0.5, 0.6, 1.0]];
+                let disc = Discretisation::new(&Test2, scheme, mode, meshes).unwrap();
+                let n = disc.n;
+                let z: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
+                let eta = 0.7 + 0.2 * lcg(&mut state);
+                let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
+                disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
+                let mut dense = vec![0.0; n * (n + 1)];
+                for ((&r, &c), &v) in rows.iter().zip(&cols).zip(&vals) {
+                    dense[r * (n + 1) + c] += v;
+                }
+                for r in 0..n {
+                    dense[r * (n + 1) + n] = jeta[r];
+                }
+                let step = 1e-6;
+                let mut fd = vec![0.0; n * (n + 1)];
+                let (mut rp, mut rm) = (vec![0.0; n], vec![0.0; n]);
+                for c in 0..=n {
+                    let (mut zp, mut zm) = (z.clone(), z.clone());
+                    let (mut ep, mut em) = (eta, eta);
+                    if c < n {
+                        zp[c] += step;
+                        zm[c] -= step;
+                    } else {
+                        ep += step;
+                        em -= step;
+                    }
+                    disc.residual(&zp, ep, &mut rp);
+                    disc.residual(&zm, em, &mut rm);
+                    for r in 0..n {
+                        fd[r * (n + 1) + c] = (rp[r] - rm[r]) / (2.0 * step);
+                    }
+                }
+                let scale = fd.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let err = dense.iter().zip(&fd).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+                assert!(err < 1e-7 * scale, "{scheme} {mode:?}: max |J − J_fd| = {err:e} (scale {scale})");
+            }
+        }
+    }
+
+    #[test]
+    fn options_are_validated() {
+        let guess = Solution::from_fn(2, 3, vec![1.0], 0.5, |_, _| vec![0.0, 0.0]);
+        for opts in [
+            CollocationOptions { tolerance: 0.0, ..Default::default() },
+            CollocationOptions { tolerance: f64::NAN, ..Default::default() },
+            CollocationOptions { max_nodes: 1, ..Default::default() },
+            CollocationOptions { max_newton_iterations: 0, ..Default::default() },
+            CollocationOptions { max_refinements: 0, ..Default::default() },
+        ] {
+            assert!(matches!(solve(&Test2, &guess, &opts), Err(BvpError::InvalidInput(_))));
+        }
+        let wrong = Solution::from_fn(1, 3, vec![1.0], 0.5, |_, _| vec![0.0, 0.0]);
+        assert!(matches!(solve(&Test2, &wrong, &CollocationOptions::default()), Err(BvpError::InvalidInput(_))));
+        let nan = Solution::from_fn(2, 3, vec![1.0], 0.5, |_, _| vec![f64::NAN, 0.0]);
+        assert!(matches!(solve(&Test2, &nan, &CollocationOptions::default()), Err(BvpError::NonFinite { .. })));
+    }
+}

@@ -1,0 +1,36 @@
+//! Failures of the BVP engine. Each variant carries the numbers a user needs.
+
+use thiserror::Error;
+
+/// Why a BVP solve or continuation did not produce a solution.
+#[derive(Debug, Clone, Error)]
+pub enum BvpError {
+    /// The damped Newton iteration did not reach the tolerance.
+    #[error("Newton iteration did not converge: residual {residual:.3e} after {iterations} iterations (tolerance {tolerance:.1e})")]
+    NewtonDiverged { iterations: usize, residual: f64, tolerance: f64 },
+    /// The Jacobian was singular (numerically) at the current iterate.
+    #[error("singular Jacobian at Newton iteration {iteration}: {detail}")]
+    SingularJacobian { iteration: usize, detail: String },
+    /// Mesh adaptation hit the node cap before the residual met the tolerance.
+    #[error("mesh cap of {max_nodes} nodes reached with scaled residual {residual:.3e} above tolerance {tolerance:.1e}")]
+    MeshCapReached { max_nodes: usize, residual: f64, tolerance: f64 },
+    /// Mesh adaptation used its maximum number of passes without meeting the
+    /// tolerance (collocation `max_refinements`).
+    #[error("mesh adaptation stopped after {passes} passes with scaled residual {residual:.3e} above tolerance {tolerance:.1e}")]
+    RefinementLimit { passes: usize, residual: f64, tolerance: f64 },
+    /// A fold could not be located between two branch points.
+    #[error("fold location between eta = {eta_a:.9e} and eta = {eta_b:.9e} failed: {detail}")]
+    FoldLocationFailed { eta_a: f64, eta_b: f64, detail: String },
+    /// The ODE integrator (shooting) failed.
+    #[error("ODE integration failed on segment {segment} near x = {x:.6}: {detail}")]
+    IntegrationFailed { segment: usize, x: f64, detail: String },
+    /// Continuation could not advance: step size fell below its minimum.
+    #[error("continuation stalled at eta = {eta:.9e}: step {step:.3e} below minimum {min_step:.1e} ({cause})")]
+    ContinuationStalled { eta: f64, step: f64, min_step: f64, cause: String },
+    /// A residual or state became non-finite.
+    #[error("non-finite value in {what}")]
+    NonFinite { what: String },
+    /// Options or guess inconsistent with the problem.
+    #[error("invalid input: {0}")]
+    InvalidInput(String),
+}

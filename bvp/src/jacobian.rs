@@ -1,0 +1,174 @@
+//! Jacobians of the problem functions by forward-mode AD (`num_dual::Dual64`) or by
+//! central finite differences (for tests and as a cross-check).
+//!
+//! Matrices are dense, row-major `Vec<f64>`.
+
+use crate::problem::{JacobianMode, Problem};
+use num_dual::Dual64;
+
+/// Central-difference step for argument value `u`: ε^{1/3} · max(1, |u|), ε = 2^-52.
+fn fd_step(u: f64) -> f64 {
+    f64::EPSILON.cbrt() * u.abs().max(1.0)
+}
+
+/// Value and derivatives of f_k at (x, y, p, η).
+///
+/// Returns `(f, dfdy, dfdp, dfdeta)`: `f` has n_k entries, `dfdy` is n_k × n_k,
+/// `dfdp` is n_k × n_p (both row-major) and `dfdeta` has n_k entries.
+pub fn rhs_jacobian<P: Problem>(
+    problem: &P,
+    mode: JacobianMode,
+    k: usize,
+    x: f64,
+    y: &[f64],
+    p: &[f64],
+    eta: f64,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = y.len();
+    let np = p.len();
+    let mut f = vec![0.0; n];
+    problem.rhs(k, x, y, p, eta, &mut f);
+    let mut dfdy = vec![0.0; n * n];
+    let mut dfdp = vec![0.0; n * np];
+    let mut dfdeta = vec![0.0; n];
+    // Column j of the full derivative [∂f/∂y | ∂f/∂p | ∂f/∂η].
+    let column = |j: usize, out: &mut [f64]| match mode {
+        JacobianMode::Ad => {
+            let yd: Vec<Dual64> = y
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| if i == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
+                .collect();
+            let pd: Vec<Dual64> = p
+                .iter()
+                .enumerate()
+                .map(|(i, &v)| if i + n == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
+                .collect();
+            let ed = if j == n + np { Dual64::from_re(eta).derivative() } else { Dual64::from_re(eta) };
+            let mut fd = vec![Dual64::from_re(0.0); n];
+            problem.rhs(k, x, &yd, &pd, ed, &mut fd);
+            for (o, v) in out.iter_mut().zip(&fd) {
+                *o = v.eps;
+            }
+        }
+        JacobianMode::FiniteDifference => {
+            let mut yv = y.to_vec();
+            let mut pv = p.to_vec();
+            let mut ev = eta;
+            let slot: &mut f64 = if j < n {
+                &mut yv[j]
+            } else if j < n + np {
+                &mut pv[j - n]
+            } else {
+                &mut ev
+            };
+            let u0 = *slot;
+            let h = fd_step(u0);
+            *slot = u0 + h;
+            let mut fp = vec![0.0; n];
+            problem.rhs(k, x, &yv, &pv, ev, &mut fp);
+            let slot: &mut f64 = if j < n {
+                &mut yv[j]
+            } else if j < n + np {
+                &mut pv[j - n]
+            } else {
+                &mut ev
+            };
+            *slot = u0 - h;
+            let mut fm = vec![0.0; n];
+            problem.rhs(k, x, &yv, &pv, ev, &mut fm);
+            for i in 0..n {
+                out[i] = (fp[i] - fm[i]) / (2.0 * h);
+            }
+        }
+    };
+    let mut col = vec![0.0; n];
+    for j in 0..n + np + 1 {
+        column(j, &mut col);
+        for i in 0..n {
+            if j < n {
+                dfdy[i * n + j] = col[i];
+            } else if j < n + np {
+                dfdp[i * np + (j - n)] = col[i];
+            } else {
+                dfdeta[i] = col[i];
+            }
+        }
+    }
+    (f, dfdy, dfdp, dfdeta)
+}
+
+/// Value and full derivative of the boundary residual g.
+///
+/// Arguments are the stacked end states `ya[k] = y_k(0)`, `yb[k] = y_k(1)`.
+/// Returns `(g, dg)` with `dg` of shape n_bc × (2 Σ n_k + n_p + 1), row-major, columns
+/// ordered [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
+pub fn bc_jacobian<P: Problem>(
+    problem: &P,
+    mode: JacobianMode,
+    ya: &[&[f64]],
+    yb: &[&[f64]],
+    p: &[f64],
+    eta: f64,
+) -> (Vec<f64>, Vec<f64>) {
+    // Flatten all arguments into one vector u so that one column loop serves both modes.
+    let dims: Vec<usize> = ya.iter().map(|s| s.len()).collect();
+    let mut u: Vec<f64> = Vec::new();
+    for k in 0..dims.len() {
+        u.extend_from_slice(ya[k]);
+        u.extend_from_slice(yb[k]);
+    }
+    let ny = u.len();
+    u.extend_from_slice(p);
+    u.push(eta);
+    let nu = u.len();
+    let nbc = problem.n_bc();
+
+    fn eval_at<P: Problem, D: crate::problem::Scalar>(problem: &P, dims: &[usize], u: &[D], ny: usize, out: &mut [D]) {
+        let mut ya: Vec<&[D]> = Vec::with_capacity(dims.len());
+        let mut yb: Vec<&[D]> = Vec::with_capacity(dims.len());
+        let mut off = 0;
+        for &n in dims {
+            ya.push(&u[off..off + n]);
+            yb.push(&u[off + n..off + 2 * n]);
+            off += 2 * n;
+        }
+        let nu = u.len();
+        problem.bc(&ya, &yb, &u[ny..nu - 1], u[nu - 1], out);
+    }
+
+    let mut g = vec![0.0; nbc];
+    eval_at(problem, &dims, &u, ny, &mut g);
+    let mut dg = vec![0.0; nbc * nu];
+    for j in 0..nu {
+        match mode {
+            JacobianMode::Ad => {
+                let ud: Vec<Dual64> = u
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &v)| if i == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
+                    .collect();
+                let mut gd = vec![Dual64::from_re(0.0); nbc];
+                eval_at(problem, &dims, &ud, ny, &mut gd);
+                for i in 0..nbc {
+                    dg[i * nu + j] = gd[i].eps;
+                }
+            }
+            JacobianMode::FiniteDifference => {
+                let h = fd_step(u[j]);
+                let mut up = u.clone();
+                up[j] += h;
+                let mut um = u.clone();
+                um[j] -= h;
+                let mut gp = vec![0.0; nbc];
+                let mut gm = vec![0.0; nbc];
+                eval_at(problem, &dims, &up, ny, &mut gp);
+                eval_at(problem, &dims, &um, ny, &mut gm);
+                for i in 0..nbc {
+                    dg[i * nu + j] = (gp[i] - gm[i]) / (2.0 * h);
+                }
+            }
+        }
+    }
+    (g, dg)
+}

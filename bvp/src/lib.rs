@@ -1,0 +1,30 @@
+//! `bvp`: a generic multi-segment boundary value problem engine and the belt problems
+//! written as BVPs.
+//!
+//! Layers (each one file or folder):
+//! - [`problem`]: the standard form (segments on [0, 1], parameters, boundary residual),
+//! - [`solution`]: a solved problem with dense output and work statistics,
+//! - [`error`]: failures carrying their numbers,
+//! - `collocation`: collocation with residual control and adaptive mesh, damped Newton
+//!   on faer's sparse LU,
+//! - `shooting`: multiple shooting on diffsol,
+//! - `continuation`: natural-parameter and pseudo-arclength continuation, fold detection,
+//! - `analytical`: closed forms used by tests and examples,
+//! - `string_hanging`: the extensible string on two pulleys.
+
+pub mod error;
+pub mod jacobian;
+pub mod problem;
+pub mod solution;
+pub mod elliptic;
+pub mod shooting;
+pub mod analytical;
+pub mod collocation;
+pub mod continuation;
+pub mod newton;
+pub mod scene;
+pub mod string_hanging;
+
+pub use error::BvpError;
+pub use problem::{JacobianMode, Problem, Scalar};
+pub use solution::{SegmentSolution, Solution, Stats};

@@ -1,0 +1,162 @@
+//! From a validated scene to a BVP run: which belt problem the scene is, which method and
+//! tolerance solve it, and the outcome as a [`SolutionView`] with its summary and cost.
+
+use drive::scene::{Analysis, Contact, Scene, Theory};
+use drive::summary::Summary;
+use drive::view::SolutionView;
+use thiserror::Error;
+
+use crate::collocation::Scheme;
+use crate::problem::JacobianMode;
+use crate::solution::Stats;
+use crate::string_hanging::{self, Method, StringHanging, StringHangingError, StringHangingOptions};
+
+/// The two BVP methods.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub enum BvpMethod {
+    #[serde(rename = "bvp-collocation")]
+    /// Collocation with residual control (`bvp-collocation`).
+    Collocation,
+    /// Multiple shooting (`bvp-shooting`).
+    #[serde(rename = "bvp-shooting")]
+    Shooting,
+}
+
+impl BvpMethod {
+    /// The method's name in scenes and results.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Collocation => "bvp-collocation",
+            Self::Shooting => "bvp-shooting",
+        }
+    }
+}
+
+/// Options of a BVP run; defaults come from the scene's `bvp` block (DESIGN.md).
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct BvpRunOptions {
+    /// Method (scene `bvp.method`; default collocation).
+    pub method: BvpMethod,
+    /// Final tolerance (scene `bvp.tolerance`; default 1e-8).
+    pub tolerance: f64,
+    /// Collocation scheme (scene `bvp.scheme`; default gauss6).
+    pub scheme: Scheme,
+    /// Collocation mesh cap (scene `bvp.max_nodes`; default 20 000).
+    pub max_nodes: usize,
+    /// Shooting intervals per segment (scene `bvp.shooting_intervals`; default 8).
+    pub shooting_intervals: usize,
+    /// Jacobians (AD by default).
+    pub jacobian: JacobianMode,
+}
+
+/// Why a scene has no BVP solution.
+#[derive(Debug, Error)]
+pub enum SceneSolveError {
+    /// The scene asks for a model the BVP crate does not have (yet).
+    #[error("no BVP model for this scene: {0}")]
+    Unsupported(String),
+    /// An option of the scene's `bvp` block is invalid.
+    #[error("scene field `bvp.{field}`: {reason}")]
+    InvalidOption { field: &'static str, reason: String },
+    /// The `string-hanging` problem failed.
+    #[error(transparent)]
+    StringHanging(#[from] StringHangingError),
+}
+
+impl BvpRunOptions {
+    /// Defaults overridden by the scene's `bvp` block.
+    pub fn from_scene(scene: &Scene) -> Result<Self, SceneSolveError> {
+        let b = scene.bvp_settings();
+        Ok(Self {
+            method: match b.method {
+                drive::scene::BvpMethod::Collocation => BvpMethod::Collocation,
+                drive::scene::BvpMethod::Shooting => BvpMethod::Shooting,
+            },
+            tolerance: b.tolerance,
+            scheme: b
+                .scheme
+                .parse()
+                .map_err(|e: String| SceneSolveError::InvalidOption { field: "scheme", reason: e })?,
+            max_nodes: b.max_nodes,
+            shooting_intervals: b.shooting_intervals,
+            jacobian: JacobianMode::Ad,
+        })
+    }
+}
+
+/// A BVP run: the solution behind the common view, its summary, cost, and diagnostics.
+pub struct BvpRun {
+    /// The solution, sampled through the common view.
+    pub view: Box<dyn SolutionView + Send + Sync>,
+    /// The summary (computed once).
+    pub summary: Summary,
+    /// Work counters and wall time of the whole run (homotopy included).
+    pub stats: Stats,
+    /// `bvp-collocation` or `bvp-shooting`.
+    pub method: String,
+    /// Scheme and tolerance in words.
+    pub method_detail: String,
+    /// Options used (written into results so a run can be reproduced).
+    pub options: serde_json::Value,
+    /// Diagnostics worth printing (closure defect, homotopy steps, invariant drift).
+    pub notes: Vec<String>,
+}
+
+/// The physical data of a `string-hanging` scene.
+pub fn string_hanging_data(scene: &Scene) -> StringHanging {
+    StringHanging {
+        radius: scene.drive.pulley_radius,
+        centre_distance: scene.drive.centre_distance,
+        length: scene.belt.length,
+        axial_stiffness: scene.belt.axial_stiffness,
+        mass_per_length: scene.belt.mass_per_length,
+        gravity: scene.effects.gravity.unwrap_or(0.0),
+    }
+}
+
+/// Solve a scene by the BVP method of `opts`.
+pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneSolveError> {
+    let static_string = matches!(scene.belt.theory, Theory::String)
+        && matches!(scene.analysis, Analysis::Static)
+        && matches!(scene.effects.contact, Contact::Frictionless)
+        && scene.drive.driver_speed == 0.0
+        && scene.drive.driven_torque == 0.0;
+    if !static_string {
+        return Err(SceneSolveError::Unsupported(format!(
+            "theory {:?}, analysis {:?}, contact {:?}: only the static string on frictionless pulleys (string-hanging) has a BVP model so far",
+            scene.belt.theory, scene.analysis, scene.effects.contact
+        )));
+    }
+    let data = string_hanging_data(scene);
+    let sh_opts = StringHangingOptions {
+        method: match opts.method {
+            BvpMethod::Collocation => Method::Collocation(opts.scheme),
+            BvpMethod::Shooting => Method::Shooting,
+        },
+        tolerance: opts.tolerance,
+        max_nodes: opts.max_nodes,
+        shooting_intervals: opts.shooting_intervals,
+        jacobian: opts.jacobian,
+        ..StringHangingOptions::default()
+    };
+    let sol = string_hanging::solve(&data, &sh_opts)?;
+    let summary = sol.summary();
+    let method_detail = match opts.method {
+        BvpMethod::Collocation => format!("{}, tolerance {:.0e}", opts.scheme.name(), opts.tolerance),
+        BvpMethod::Shooting => format!("{} intervals per segment, tolerance {:.0e}", opts.shooting_intervals, opts.tolerance),
+    };
+    let notes = vec![
+        format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
+        format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+    ];
+    let options = serde_json::to_value(opts).unwrap_or(serde_json::Value::Null);
+    Ok(BvpRun {
+        stats: sol.stats.clone(),
+        view: Box::new(sol),
+        summary,
+        method: opts.method.name().to_string(),
+        method_detail,
+        options,
+        notes,
+    })
+}

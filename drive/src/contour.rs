@@ -1,0 +1,507 @@
+//! The compound contour g(σ) of a two-pulley drive and its MEL coordinate system
+//! (§5 of the reference, eqs. 27 and 38).
+//!
+//! # Conventions (DESIGN.md)
+//! - Pulley centres at (−H/2, 0) (driver, left) and (+H/2, 0) (driven, right);
+//!   H = centre distance, R = pulley radius to the belt centreline; lengths in m.
+//! - σ ∈ [0, L_geom), L_geom = 2H + 2πR, starts at the top of the driver (−H/2, R) and
+//!   runs clockwise:
+//!
+//!   | region | σ range | shape | α |
+//!   |---|---|---|---|
+//!   | [`Region::UpperSpan`] | [0, H) | left → right at y = R | 0 |
+//!   | [`Region::DrivenArc`] | [H, H + πR) | top → bottom of the driven pulley | 1/R |
+//!   | [`Region::LowerSpan`] | [H + πR, 2H + πR) | right → left at y = −R | 0 |
+//!   | [`Region::DriverArc`] | [2H + πR, 2H + 2πR) | bottom → top of the driver | 1/R |
+//!
+//! - t_g is the unit tangent in the direction of increasing σ; n_g is the **outward**
+//!   unit normal, n_g = (−t_g,y, t_g,x) (t_g turned 90° counter-clockwise): (0, 1) on the
+//!   upper span, radially outward on the arcs, (0, −1) on the lower span. With these
+//!   signs eq. (38) holds: ∂σ g = t_g, ∂σ t_g = −α n_g, ∂σ n_g = α t_g.
+//! - A point of the belt is r = g(σ) + ν n_g(σ) (eq. 27, planar): ν is the transverse
+//!   deflection, positive away from the pulleys; on an arc R + ν is the distance from
+//!   the pulley centre, so ν = 0 is contact with the pulley surface of the centreline
+//!   contour and the map is one-to-one for ν > −R.
+//!
+//! Every function accepts any σ ∈ ℝ and wraps it periodically; a non-finite σ or
+//! point gives NaN results (never a panic).
+
+use std::f64::consts::PI;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::SceneError;
+
+/// One of the two pulleys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Pulley {
+    /// Left pulley, centre (−H/2, 0), turned at the driver speed ω₁.
+    Driver,
+    /// Right pulley, centre (+H/2, 0), loaded by the driven torque M₂.
+    Driven,
+}
+
+impl Pulley {
+    /// Both pulleys, driver first (the order of the result format).
+    pub const ALL: [Pulley; 2] = [Pulley::Driver, Pulley::Driven];
+
+    /// The key of this pulley in the result format (`driver`, `driven`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Pulley::Driver => "driver",
+            Pulley::Driven => "driven",
+        }
+    }
+}
+
+/// The four regions of the compound coordinate σ, in the order σ meets them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Region {
+    /// σ ∈ [0, H): Cartesian, y = R, running in +x.
+    UpperSpan,
+    /// σ ∈ [H, H + πR): polar about the driven centre.
+    DrivenArc,
+    /// σ ∈ [H + πR, 2H + πR): Cartesian, y = −R, running in −x.
+    LowerSpan,
+    /// σ ∈ [2H + πR, 2H + 2πR): polar about the driver centre.
+    DriverArc,
+}
+
+impl Region {
+    /// All regions in the order of increasing σ.
+    pub const ALL: [Region; 4] = [
+        Region::UpperSpan,
+        Region::DrivenArc,
+        Region::LowerSpan,
+        Region::DriverArc,
+    ];
+
+    /// True for the arcs (α = 1/R), false for the spans (α = 0).
+    pub fn is_polar(self) -> bool {
+        matches!(self, Region::DrivenArc | Region::DriverArc)
+    }
+
+    /// The pulley an arc belongs to; `None` for a span.
+    pub fn pulley(self) -> Option<Pulley> {
+        match self {
+            Region::DrivenArc => Some(Pulley::Driven),
+            Region::DriverArc => Some(Pulley::Driver),
+            Region::UpperSpan | Region::LowerSpan => None,
+        }
+    }
+}
+
+/// The geometric contour of a deflection-less belt on two equal pulleys: the line
+/// g(σ) of eq. (27) with length L_geom = 2H + 2πR.
+///
+/// Built by [`Contour::new`] (validated) or [`crate::Scene::contour`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Contour {
+    radius: f64,
+    centre_distance: f64,
+}
+
+impl Contour {
+    /// A contour with pulley radius R (m, > 0) and centre distance H (m, > 2R).
+    ///
+    /// # Errors
+    /// [`SceneError::NotPositive`] / [`SceneError::NotFinite`] naming
+    /// `drive.pulley_radius` or `drive.centre_distance`, or
+    /// [`SceneError::PulleysOverlap`] when H ≤ 2R.
+    pub fn new(radius: f64, centre_distance: f64) -> Result<Self, SceneError> {
+        crate::scene::check_positive("drive.pulley_radius", radius)?;
+        crate::scene::check_positive("drive.centre_distance", centre_distance)?;
+        if centre_distance <= 2.0 * radius {
+            return Err(SceneError::PulleysOverlap {
+                centre_distance,
+                pulley_radius: radius,
+            });
+        }
+        Ok(Contour {
+            radius,
+            centre_distance,
+        })
+    }
+
+    /// Without checks: for a [`crate::Scene`] that has been validated. An invalid
+    /// pair gives meaningless numbers, never a panic.
+    pub(crate) fn new_unchecked(radius: f64, centre_distance: f64) -> Self {
+        Contour {
+            radius,
+            centre_distance,
+        }
+    }
+
+    /// Pulley radius R to the belt centreline, m.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Centre distance H, m.
+    pub fn centre_distance(&self) -> f64 {
+        self.centre_distance
+    }
+
+    /// L_geom = 2H + 2πR, m: the period of σ.
+    pub fn length(&self) -> f64 {
+        2.0 * self.centre_distance + 2.0 * PI * self.radius
+    }
+
+    /// σ wrapped into [0, L_geom).
+    pub fn wrap(&self, sigma: f64) -> f64 {
+        let l = self.length();
+        let w = sigma.rem_euclid(l);
+        // rem_euclid of a tiny negative number rounds to l itself
+        if w >= l {
+            0.0
+        } else {
+            w
+        }
+    }
+
+    /// The σ at which each region starts, in the order of [`Region::ALL`]:
+    /// [0, H, H + πR, 2H + πR]. These are the Cartesian/polar transitions where α
+    /// jumps (the driver arc ends at L_geom ≡ 0).
+    pub fn transitions(&self) -> [f64; 4] {
+        let (h, pr) = (self.centre_distance, PI * self.radius);
+        [0.0, h, h + pr, 2.0 * h + pr]
+    }
+
+    /// The σ interval [σ₀, σ₁) of a region (σ₁ = L_geom for the driver arc).
+    pub fn region_bounds(&self, region: Region) -> (f64, f64) {
+        let t = self.transitions();
+        match region {
+            Region::UpperSpan => (t[0], t[1]),
+            Region::DrivenArc => (t[1], t[2]),
+            Region::LowerSpan => (t[2], t[3]),
+            Region::DriverArc => (t[3], self.length()),
+        }
+    }
+
+    /// The region containing σ (wrapped periodically; a region owns its start point).
+    pub fn region(&self, sigma: f64) -> Region {
+        self.locate(sigma).0
+    }
+
+    /// Region and local coordinate u = σ − σ₀ ≥ 0 within it.
+    fn locate(&self, sigma: f64) -> (Region, f64) {
+        let w = self.wrap(sigma);
+        let t = self.transitions();
+        if w < t[1] {
+            (Region::UpperSpan, w)
+        } else if w < t[2] {
+            (Region::DrivenArc, w - t[1])
+        } else if w < t[3] {
+            (Region::LowerSpan, w - t[2])
+        } else {
+            // also NaN lands here and propagates
+            (Region::DriverArc, w - t[3])
+        }
+    }
+
+    /// α(σ) of eq. (38): 0 on the spans, 1/R on the arcs, 1/m.
+    pub fn alpha(&self, sigma: f64) -> f64 {
+        if self.region(sigma).is_polar() {
+            1.0 / self.radius
+        } else {
+            0.0
+        }
+    }
+
+    /// Centre of a pulley, m: (−H/2, 0) for the driver, (+H/2, 0) for the driven.
+    pub fn pulley_centre(&self, pulley: Pulley) -> [f64; 2] {
+        let half = 0.5 * self.centre_distance;
+        match pulley {
+            Pulley::Driver => [-half, 0.0],
+            Pulley::Driven => [half, 0.0],
+        }
+    }
+
+    /// g(σ), m: the point of the contour at σ (eq. 27 with ν = 0).
+    pub fn g(&self, sigma: f64) -> [f64; 2] {
+        let (h, r) = (self.centre_distance, self.radius);
+        let (region, u) = self.locate(sigma);
+        match region {
+            Region::UpperSpan => [-0.5 * h + u, r],
+            Region::LowerSpan => [0.5 * h - u, -r],
+            Region::DrivenArc | Region::DriverArc => {
+                let c = self.pulley_centre(region.pulley().unwrap_or(Pulley::Driver));
+                let n = self.n_g(sigma);
+                [c[0] + r * n[0], c[1] + r * n[1]]
+            }
+        }
+    }
+
+    /// t_g(σ) = ∂σ g: unit tangent in the direction of increasing σ (eq. 38).
+    pub fn t_g(&self, sigma: f64) -> [f64; 2] {
+        let n = self.n_g(sigma);
+        // n = (−t_y, t_x)  ⇔  t = (n_y, −n_x)
+        [n[1], -n[0]]
+    }
+
+    /// n_g(σ): outward unit normal (eq. 38). On an arc with clockwise angle
+    /// φ = (σ − σ₀)/R from the arc's start: driven (sin φ, cos φ), driver
+    /// (−sin φ, −cos φ).
+    pub fn n_g(&self, sigma: f64) -> [f64; 2] {
+        let (region, u) = self.locate(sigma);
+        match region {
+            Region::UpperSpan => [0.0, 1.0],
+            Region::LowerSpan => [0.0, -1.0],
+            Region::DrivenArc => {
+                let phi = u / self.radius;
+                [phi.sin(), phi.cos()]
+            }
+            Region::DriverArc => {
+                let phi = u / self.radius;
+                [-phi.sin(), -phi.cos()]
+            }
+        }
+    }
+
+    /// r = g(σ) + ν n_g(σ), m (eq. 27, planar).
+    pub fn position(&self, sigma: f64, nu: f64) -> [f64; 2] {
+        let g = self.g(sigma);
+        let n = self.n_g(sigma);
+        [g[0] + nu * n[0], g[1] + nu * n[1]]
+    }
+
+    /// The inverse of [`Contour::position`]: (σ, ν) with σ ∈ [0, L_geom) such that
+    /// `position(σ, ν) == point`.
+    ///
+    /// Assignment of a point (x, y), so that every point of the plane has exactly one
+    /// answer:
+    /// - x > H/2 (the driven pulley's half-plane): polar map about the driven centre,
+    ///   ν = |p − c| − R, σ = H + R·φ with φ ∈ [0, π] the clockwise angle from the top;
+    /// - x < −H/2: the same about the driver centre, σ = 2H + πR + R·φ, φ ∈ [0, π]
+    ///   measured clockwise from the bottom;
+    /// - −H/2 ≤ x ≤ H/2 (the strip between the centres): the vertical normal line;
+    ///   y ≥ 0 → upper span (σ = x + H/2, ν = y − R), y < 0 → lower span
+    ///   (σ = H + πR + H/2 − x, ν = −y − R).
+    ///
+    /// Both maps agree on the lines x = ±H/2, so the assignment is continuous there;
+    /// it is discontinuous only across y = 0 inside the strip (ν = −R, the centre line
+    /// between the pulleys) and at the pulley centres, points no belt reaches
+    /// (|ν| < R is the physical range). The round trip holds for ν > −R.
+    pub fn sigma_nu(&self, point: [f64; 2]) -> (f64, f64) {
+        let (h, r) = (self.centre_distance, self.radius);
+        let [x, y] = point;
+        let half = 0.5 * h;
+        if x > half {
+            let (dx, dy) = (x - half, y);
+            let phi = dx.atan2(dy); // clockwise from +y, in (0, π] here
+            (self.wrap(h + r * phi), dx.hypot(dy) - r)
+        } else if x < -half {
+            let (dx, dy) = (x + half, y);
+            let phi = (-dx).atan2(-dy); // clockwise from −y
+            (self.wrap(2.0 * h + PI * r + r * phi), dx.hypot(dy) - r)
+        } else if y >= 0.0 {
+            (self.wrap(x + half), y - r)
+        } else {
+            (self.wrap(h + PI * r + half - x), -y - r)
+        }
+    }
+
+    /// Polar angle atan2(y − y_c, x − x_c) of a point about a pulley centre, rad, in
+    /// (−π, π] (the convention of `contact_start`/`contact_end` in the result format).
+    pub fn polar_angle(&self, pulley: Pulley, point: [f64; 2]) -> f64 {
+        let c = self.pulley_centre(pulley);
+        (point[1] - c[1]).atan2(point[0] - c[0])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Eq. (38) by central finite differences, continuity at the transitions,
+    //! the (σ, ν) round trip and periodicity. Geometry: R = 0.08 m, H = 0.45 m
+    //! (the `string-hanging` scene of DESIGN.md).
+    use super::*;
+
+    const R: f64 = 0.08;
+    const H: f64 = 0.45;
+
+    fn contour() -> Contour {
+        Contour::new(R, H).unwrap()
+    }
+
+    /// Deterministic uniform numbers in [0, 1) (xorshift64*).
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
+        (a[0] - b[0]).hypot(a[1] - b[1])
+    }
+
+    #[test]
+    fn length_and_transitions() {
+        let c = contour();
+        assert!((c.length() - (2.0 * H + 2.0 * PI * R)).abs() < 1e-15);
+        let t = c.transitions();
+        assert_eq!(t[0], 0.0);
+        for (k, region) in Region::ALL.iter().enumerate() {
+            let (a, b) = c.region_bounds(*region);
+            assert_eq!(a, t[k]);
+            assert_eq!(c.region(a), *region);
+            assert_eq!(c.region(0.5 * (a + b)), *region);
+        }
+        assert_eq!(c.region_bounds(Region::DriverArc).1, c.length());
+        // the points named in DESIGN.md
+        assert!(dist(c.g(0.0), [-H / 2.0, R]) < 1e-15);
+        assert!(dist(c.g(H), [H / 2.0, R]) < 1e-15);
+        assert!(dist(c.g(H + 0.5 * PI * R), [H / 2.0 + R, 0.0]) < 1e-15);
+        assert!(dist(c.g(H + PI * R), [H / 2.0, -R]) < 1e-15);
+        assert!(dist(c.g(2.0 * H + PI * R), [-H / 2.0, -R]) < 1e-15);
+        assert!(dist(c.g(2.0 * H + 1.5 * PI * R), [-H / 2.0 - R, 0.0]) < 1e-15);
+        assert_eq!(c.t_g(0.1), [1.0, 0.0]);
+        assert_eq!(c.n_g(0.1), [0.0, 1.0]);
+        assert_eq!(c.n_g(H + PI * R + 0.1), [0.0, -1.0]);
+        assert_eq!(c.alpha(0.1), 0.0);
+        assert_eq!(c.alpha(H + 0.1), 1.0 / R);
+    }
+
+    /// Eq. (38): ∂σ g = t_g, ∂σ t_g = −α n_g, ∂σ n_g = α t_g, checked by central
+    /// differences with step h = 1e-6 m at 50 random σ per region (kept ≥ 2h from the
+    /// transitions). Truncation error h²/6·|f'''| ≤ h²/(6R³) ≈ 3e-10 (f = t_g, n_g;
+    /// 3e-11 for g); round-off ≈ ε·|f|/h ≤ 1e-10: tolerance 1e-8.
+    #[test]
+    fn eq38_by_finite_differences() {
+        let c = contour();
+        let h = 1e-6;
+        let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+        for region in Region::ALL {
+            let (a, b) = c.region_bounds(region);
+            for _ in 0..50 {
+                let s = a + 2.0 * h + (b - a - 4.0 * h) * rng.next();
+                let a_s = c.alpha(s);
+                let fd = |f: &dyn Fn(f64) -> [f64; 2]| {
+                    let (p, m) = (f(s + h), f(s - h));
+                    [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)]
+                };
+                let (t, n) = (c.t_g(s), c.n_g(s));
+                let dg = fd(&|x| c.g(x));
+                let dt = fd(&|x| c.t_g(x));
+                let dn = fd(&|x| c.n_g(x));
+                assert!(dist(dg, t) < 1e-8, "{region:?} σ={s}: ∂g {dg:?} vs t {t:?}");
+                assert!(
+                    dist(dt, [-a_s * n[0], -a_s * n[1]]) < 1e-8,
+                    "{region:?} σ={s}: ∂t"
+                );
+                assert!(
+                    dist(dn, [a_s * t[0], a_s * t[1]]) < 1e-8,
+                    "{region:?} σ={s}: ∂n"
+                );
+                // orthonormal, n = t turned +90°
+                assert!((t[0].hypot(t[1]) - 1.0).abs() < 1e-14);
+                assert!((n[0] - (-t[1])).abs() < 1e-15 && (n[1] - t[0]).abs() < 1e-15);
+            }
+        }
+    }
+
+    /// g, t_g and n_g are continuous at every transition (the contour is C¹; only
+    /// α jumps). With ε = 1e-9: |g(σ+ε) − g(σ−ε)| ≤ 2ε, |Δt| ≤ 2ε/R.
+    #[test]
+    fn continuity_at_transitions() {
+        let c = contour();
+        let eps = 1e-9;
+        let mut ts = c.transitions().to_vec();
+        ts.push(c.length());
+        for s in ts {
+            assert!(dist(c.g(s - eps), c.g(s + eps)) < 2.5 * eps, "g at {s}");
+            assert!(
+                dist(c.t_g(s - eps), c.t_g(s + eps)) < 2.5 * eps / R + 1e-15,
+                "t_g at {s}"
+            );
+            assert!(
+                dist(c.n_g(s - eps), c.n_g(s + eps)) < 2.5 * eps / R + 1e-15,
+                "n_g at {s}"
+            );
+            assert!(c.alpha(s - eps) != c.alpha(s + eps), "α jumps at {s}");
+        }
+    }
+
+    /// sigma_nu(position(σ, ν)) = (σ, ν) for 2000 random σ and |ν| < R/2.
+    #[test]
+    fn inverse_map_round_trip() {
+        let c = contour();
+        let l = c.length();
+        let mut rng = Rng(42);
+        for _ in 0..2000 {
+            let s = l * rng.next();
+            let nu = R * (rng.next() - 0.5);
+            let (s2, nu2) = c.sigma_nu(c.position(s, nu));
+            let ds = (s2 - s).abs();
+            let ds = ds.min(l - ds); // periodic distance
+            assert!(
+                ds < 1e-12 && (nu2 - nu).abs() < 1e-12,
+                "σ={s} ν={nu} → σ={s2} ν={nu2}"
+            );
+            assert!((0.0..l).contains(&s2));
+        }
+        // exactly at the transitions
+        for s in c.transitions() {
+            for nu in [-0.3 * R, 0.0, 0.3 * R] {
+                let (s2, nu2) = c.sigma_nu(c.position(s, nu));
+                let ds = (s2 - s).abs();
+                assert!(ds.min(l - ds) < 1e-12 && (nu2 - nu).abs() < 1e-12);
+            }
+        }
+    }
+
+    #[test]
+    fn periodic_wrap() {
+        let c = contour();
+        let l = c.length();
+        for s in [0.0, 0.1, H + 0.01, 2.0 * H + PI * R + 0.02] {
+            for k in [-3.0, -1.0, 1.0, 7.0] {
+                let w = s + k * l;
+                assert!(dist(c.g(w), c.g(s)) < 1e-12);
+                assert_eq!(c.region(w), c.region(s));
+            }
+        }
+        assert_eq!(c.wrap(l), 0.0);
+        assert_eq!(c.wrap(-1e-300), 0.0);
+        assert!((0.0..l).contains(&c.wrap(-1e-17)));
+        assert!(c.g(f64::NAN)[0].is_nan());
+        assert!(c.sigma_nu([f64::NAN, 0.0]).0.is_nan());
+        // the pulley centres themselves: no panic, ν = −R
+        assert!((c.sigma_nu(c.pulley_centre(Pulley::Driven)).1 + R).abs() < 1e-15);
+    }
+
+    #[test]
+    fn polar_angles() {
+        let c = contour();
+        let top_driver = c.g(0.0);
+        assert!((c.polar_angle(Pulley::Driver, top_driver) - PI / 2.0).abs() < 1e-15);
+        let right_of_driven = c.g(H + 0.5 * PI * R);
+        assert!(c.polar_angle(Pulley::Driven, right_of_driven).abs() < 1e-15);
+        // exactly on the negative x-axis of the driver: +π (the branch cut of atan2)
+        let left_of_driver = [-H / 2.0 - R, 0.0];
+        assert_eq!(c.polar_angle(Pulley::Driver, left_of_driver), PI);
+        let bottom_of_driven = c.g(H + PI * R);
+        assert!((c.polar_angle(Pulley::Driven, bottom_of_driven) + PI / 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn construction_errors() {
+        assert!(matches!(
+            Contour::new(0.1, 0.2),
+            Err(SceneError::PulleysOverlap { .. })
+        ));
+        assert!(matches!(
+            Contour::new(-0.1, 1.0),
+            Err(SceneError::NotPositive { .. })
+        ));
+        assert!(matches!(
+            Contour::new(f64::NAN, 1.0),
+            Err(SceneError::NotFinite { .. })
+        ));
+    }
+}

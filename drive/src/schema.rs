@@ -1,0 +1,535 @@
+//! The schema walk of a scene: the JSON value is checked against the list of
+//! allowed keys of each block before serde sees it, so that every message names the
+//! full field path — unknown keys (with the nearest valid name), missing required
+//! fields, wrong JSON types, unknown enumeration values. Optional fields given as
+//! `null` are removed (= absent, so serde fills their defaults).
+//!
+//! The tables below mirror the structs of [`crate::scene`]; a unit test checks that
+//! every table accepts what serde writes for a fully populated scene.
+
+use serde_json::Value;
+
+use crate::error::SceneError;
+use crate::suggest::nearest;
+
+/// What a value must be.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Kind {
+    /// A JSON number (ranges are checked later by `validate`).
+    Number,
+    /// A non-negative integer that fits `usize`.
+    Count,
+    /// `true` / `false`.
+    Bool,
+    /// Any string.
+    Text,
+    /// One of a fixed list of strings.
+    Choice {
+        what: &'static str,
+        variants: &'static [&'static str],
+    },
+    /// A nested block.
+    Object(&'static [Field]),
+    /// An array of counts.
+    CountList,
+    /// An array of strings.
+    TextList,
+    /// An object of numbers with free keys.
+    NumberMap,
+    /// `effects.contact`: `"frictionless"`, `{"coulomb": μ}`, `{"elastic_layer": {..}}`.
+    Contact,
+}
+
+impl Kind {
+    fn expected(self) -> String {
+        match self {
+            Kind::Number => "a number".into(),
+            Kind::Count => "a non-negative integer".into(),
+            Kind::Bool => "true or false".into(),
+            Kind::Text => "a string".into(),
+            Kind::Choice { variants, .. } => {
+                let v: Vec<String> = variants.iter().map(|v| format!("\"{v}\"")).collect();
+                format!("one of {}", v.join(", "))
+            }
+            Kind::Object(_) | Kind::NumberMap => "an object".into(),
+            Kind::CountList => "an array of non-negative integers".into(),
+            Kind::TextList => "an array of strings".into(),
+            Kind::Contact => r#""frictionless", {"coulomb": μ} or {"elastic_layer": {...}}"#.into(),
+        }
+    }
+}
+
+/// One allowed key of a block.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Field {
+    pub name: &'static str,
+    pub kind: Kind,
+    pub required: bool,
+    /// What the field is, with unit (for "missing field" messages).
+    pub what: &'static str,
+}
+
+const fn req(name: &'static str, kind: Kind, what: &'static str) -> Field {
+    Field {
+        name,
+        kind,
+        required: true,
+        what,
+    }
+}
+
+const fn opt(name: &'static str, kind: Kind, what: &'static str) -> Field {
+    Field {
+        name,
+        kind,
+        required: false,
+        what,
+    }
+}
+
+pub(crate) const THEORIES: &[&str] = &["string", "kirchhoff", "cosserat", "shell"];
+pub(crate) const ANALYSES: &[&str] = &["static", "steady", "transient"];
+pub(crate) const BVP_METHODS: &[&str] = &["bvp-collocation", "bvp-shooting"];
+pub(crate) const CONTACT_MODELS: &[&str] = &["frictionless", "coulomb", "elastic_layer"];
+
+pub(crate) const DRIVE: &[Field] = &[
+    req(
+        "pulley_radius",
+        Kind::Number,
+        "pulley radius R to the belt centreline, m",
+    ),
+    req(
+        "centre_distance",
+        Kind::Number,
+        "centre distance H of the pulleys, m",
+    ),
+    req(
+        "driver_speed",
+        Kind::Number,
+        "driver speed ω₁, rad/s, clockwise positive",
+    ),
+    req(
+        "driven_torque",
+        Kind::Number,
+        "torque M₂ resisting the driven pulley, N·m",
+    ),
+    opt(
+        "driven_damping",
+        Kind::Number,
+        "viscous damping of the driven pulley, N·m·s",
+    ),
+];
+
+pub(crate) const BELT: &[Field] = &[
+    req(
+        "theory",
+        Kind::Choice {
+            what: "belt theory",
+            variants: THEORIES,
+        },
+        "belt theory",
+    ),
+    req("length", Kind::Number, "unstretched belt length L, m"),
+    req("axial_stiffness", Kind::Number, "axial stiffness EA, N"),
+    opt(
+        "bending_stiffness",
+        Kind::Number,
+        "bending stiffness EI, N·m²",
+    ),
+    opt("shear_stiffness", Kind::Number, "shear stiffness GA, N"),
+    req(
+        "mass_per_length",
+        Kind::Number,
+        "mass per unit length ρ, kg/m",
+    ),
+];
+
+pub(crate) const ELASTIC_LAYER: &[Field] = &[
+    req(
+        "normal_stiffness",
+        Kind::Number,
+        "interlayer normal stiffness P, N/m³",
+    ),
+    req(
+        "tangential_stiffness",
+        Kind::Number,
+        "interlayer tangential stiffness P_⊥, N/m³",
+    ),
+];
+
+pub(crate) const EFFECTS: &[Field] = &[
+    opt(
+        "gravity",
+        Kind::Number,
+        "gravitational acceleration g, m/s²",
+    ),
+    opt("inertia", Kind::Bool, "transport inertia of steady motion"),
+    req(
+        "contact",
+        Kind::Contact,
+        r#"contact model: "frictionless", {"coulomb": μ} or {"elastic_layer": {...}}"#,
+    ),
+];
+
+pub(crate) const BVP: &[Field] = &[
+    opt(
+        "method",
+        Kind::Choice {
+            what: "BVP method",
+            variants: BVP_METHODS,
+        },
+        "BVP method",
+    ),
+    opt("tolerance", Kind::Number, "relative tolerance"),
+    opt("scheme", Kind::Text, "collocation scheme"),
+    opt("max_nodes", Kind::Count, "maximum collocation nodes"),
+    opt(
+        "shooting_intervals",
+        Kind::Count,
+        "shooting intervals per segment",
+    ),
+];
+
+pub(crate) const FEM: &[Field] = &[
+    opt("elements", Kind::Count, "number of elements"),
+    opt(
+        "mesh_sequence",
+        Kind::CountList,
+        "element counts of a convergence study",
+    ),
+    opt("formulations", Kind::TextList, "element formulations"),
+    opt("penalty", Kind::Number, "contact penalty factor, N/m²"),
+];
+
+pub(crate) const GATE: &[Field] = &[
+    opt(
+        "tolerances",
+        Kind::NumberMap,
+        "relative tolerance per quantity",
+    ),
+    opt("min_order", Kind::Number, "minimum observed order"),
+];
+
+pub(crate) const SCENE: &[Field] = &[
+    req("name", Kind::Text, "scene name"),
+    opt("description", Kind::Text, "description"),
+    req("drive", Kind::Object(DRIVE), "pulley geometry and loads"),
+    req("belt", Kind::Object(BELT), "belt theory and stiffnesses"),
+    req("effects", Kind::Object(EFFECTS), "effects to simulate"),
+    req(
+        "analysis",
+        Kind::Choice {
+            what: "analysis",
+            variants: ANALYSES,
+        },
+        r#""static", "steady" or "transient""#,
+    ),
+    opt("bvp", Kind::Object(BVP), "BVP settings"),
+    opt("fem", Kind::Object(FEM), "finite element settings"),
+    opt("gate", Kind::Object(GATE), "gate tolerances"),
+];
+
+/// Walks a whole scene document (root path `<scene>`).
+pub(crate) fn check_scene(value: &mut Value) -> Result<(), SceneError> {
+    check_object(value, SCENE, "")
+}
+
+/// `path.key`; a key that is empty or has characters other than ASCII letters,
+/// digits, `_`, `-`, `.` is written JSON-quoted (`belt."axial stiffness"`).
+fn join(path: &str, key: &str) -> String {
+    let plain = !key.is_empty()
+        && key
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    let key = if plain {
+        key.to_string()
+    } else {
+        serde_json::Value::from(key).to_string()
+    };
+    if path.is_empty() {
+        key
+    } else {
+        format!("{path}.{key}")
+    }
+}
+
+fn shown(path: &str) -> String {
+    if path.is_empty() {
+        "<scene>".to_string()
+    } else {
+        path.to_string()
+    }
+}
+
+/// A short description of a JSON value for "found ..." messages.
+fn describe(v: &Value) -> String {
+    fn clip(s: &str) -> String {
+        if s.chars().count() > 40 {
+            format!("{}…", s.chars().take(40).collect::<String>())
+        } else {
+            s.to_string()
+        }
+    }
+    match v {
+        Value::Null => "null".into(),
+        Value::Bool(b) => format!("a boolean ({b})"),
+        Value::Number(n) => format!("a number ({})", clip(&n.to_string())),
+        Value::String(s) => format!("a string ({:?})", clip(s)),
+        Value::Array(a) => format!("an array of {} elements", a.len()),
+        Value::Object(_) => "an object".into(),
+    }
+}
+
+fn wrong_type(path: &str, kind: Kind, v: &Value) -> SceneError {
+    SceneError::WrongType {
+        path: shown(path),
+        expected: kind.expected(),
+        found: describe(v),
+    }
+}
+
+fn check_object(value: &mut Value, fields: &'static [Field], path: &str) -> Result<(), SceneError> {
+    let Value::Object(map) = value else {
+        return Err(wrong_type(path, Kind::Object(fields), value));
+    };
+    if let Some(key) = map
+        .keys()
+        .find(|k| !fields.iter().any(|f| f.name == k.as_str()))
+    {
+        return Err(unknown_field(path, key, fields));
+    }
+    for f in fields {
+        let p = join(path, f.name);
+        match map.get(f.name) {
+            None if f.required => {
+                return Err(SceneError::MissingField {
+                    path: p,
+                    what: f.what.into(),
+                })
+            }
+            None => {}
+            Some(Value::Null) if f.required => {
+                return Err(SceneError::WrongType {
+                    path: p,
+                    expected: f.kind.expected(),
+                    found: "null".into(),
+                })
+            }
+            Some(Value::Null) => {
+                map.remove(f.name);
+            }
+            Some(_) => {
+                if let Some(v) = map.get_mut(f.name) {
+                    check_value(v, f.kind, &p)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_value(v: &mut Value, kind: Kind, path: &str) -> Result<(), SceneError> {
+    let ok = match kind {
+        Kind::Number => v.is_number(),
+        Kind::Count => is_count(v),
+        Kind::Bool => v.is_boolean(),
+        Kind::Text => v.is_string(),
+        Kind::Choice { what, variants } => {
+            let Value::String(s) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            if variants.contains(&s.as_str()) {
+                return Ok(());
+            }
+            return Err(unknown_variant(path, what, s, variants));
+        }
+        Kind::Object(fields) => return check_object(v, fields, path),
+        Kind::CountList => {
+            let Value::Array(items) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            for (i, item) in items.iter().enumerate() {
+                if !is_count(item) {
+                    return Err(wrong_type(&format!("{path}[{i}]"), Kind::Count, item));
+                }
+            }
+            true
+        }
+        Kind::TextList => {
+            let Value::Array(items) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            for (i, item) in items.iter().enumerate() {
+                if !item.is_string() {
+                    return Err(wrong_type(&format!("{path}[{i}]"), Kind::Text, item));
+                }
+            }
+            true
+        }
+        Kind::NumberMap => {
+            let Value::Object(map) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            for (key, item) in map.iter() {
+                if !item.is_number() {
+                    return Err(wrong_type(&join(path, key), Kind::Number, item));
+                }
+            }
+            true
+        }
+        Kind::Contact => return check_contact(v, path),
+    };
+    if ok {
+        Ok(())
+    } else {
+        Err(wrong_type(path, kind, v))
+    }
+}
+
+fn is_count(v: &Value) -> bool {
+    v.as_u64().is_some_and(|n| usize::try_from(n).is_ok())
+}
+
+fn check_contact(v: &mut Value, path: &str) -> Result<(), SceneError> {
+    match v {
+        Value::String(s) => match s.as_str() {
+            "frictionless" => Ok(()),
+            "coulomb" => Err(SceneError::Invalid {
+                path: path.into(),
+                reason: r#"contact model `coulomb` needs its friction coefficient: {"coulomb": μ}"#.into(),
+            }),
+            "elastic_layer" => Err(SceneError::Invalid {
+                path: path.into(),
+                reason: r#"contact model `elastic_layer` needs its stiffnesses: {"elastic_layer": {"normal_stiffness": P, "tangential_stiffness": P_t}}"#.into(),
+            }),
+            other => Err(unknown_variant(path, "contact model", other, CONTACT_MODELS)),
+        },
+        Value::Object(map) => {
+            if map.len() != 1 {
+                return Err(SceneError::Invalid {
+                    path: path.into(),
+                    reason: format!(
+                        r#"a contact object has exactly one key, `coulomb` or `elastic_layer`; found {} keys"#,
+                        map.len()
+                    ),
+                });
+            }
+            let Some((key, inner)) = map.iter_mut().next() else { return Ok(()) };
+            let p = join(path, key);
+            match key.as_str() {
+                "coulomb" => check_value(inner, Kind::Number, &p),
+                "elastic_layer" => check_object(inner, ELASTIC_LAYER, &p),
+                "frictionless" => Err(SceneError::Invalid {
+                    path: path.into(),
+                    reason: r#"`frictionless` takes no value: write "contact": "frictionless""#.into(),
+                }),
+                other => Err(unknown_variant(path, "contact model", other, CONTACT_MODELS)),
+            }
+        }
+        _ => Err(wrong_type(path, Kind::Contact, v)),
+    }
+}
+
+fn unknown_variant(path: &str, what: &str, value: &str, variants: &[&str]) -> SceneError {
+    SceneError::UnknownVariant {
+        path: path.into(),
+        what: what.into(),
+        value: value.into(),
+        suggestion: nearest(value, variants.iter().copied()),
+        allowed: variants.iter().map(|s| s.to_string()).collect(),
+    }
+}
+
+/// An unknown key: suggest the nearest sibling; failing that, the full path of a
+/// field of that name in another block (`drive.gravity` → `effects.gravity`).
+fn unknown_field(path: &str, key: &str, fields: &[Field]) -> SceneError {
+    let suggestion =
+        nearest(key, fields.iter().map(|f| f.name)).or_else(|| elsewhere(key, SCENE, ""));
+    SceneError::UnknownField {
+        path: join(path, key),
+        suggestion,
+        allowed: fields.iter().map(|f| f.name.to_string()).collect(),
+    }
+}
+
+fn elsewhere(key: &str, fields: &[Field], path: &str) -> Option<String> {
+    for f in fields {
+        let p = join(path, f.name);
+        if f.name.eq_ignore_ascii_case(key) {
+            return Some(p);
+        }
+        let nested = match f.kind {
+            Kind::Object(inner) => elsewhere(key, inner, &p),
+            Kind::Contact => elsewhere(key, ELASTIC_LAYER, &join(&p, "elastic_layer")),
+            _ => None,
+        };
+        if nested.is_some() {
+            return nested;
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrong_block_suggests_full_path() {
+        let fields: &[Field] = DRIVE;
+        match unknown_field("drive", "gravity", fields) {
+            SceneError::UnknownField {
+                path, suggestion, ..
+            } => {
+                assert_eq!(path, "drive.gravity");
+                assert_eq!(suggestion.as_deref(), Some("effects.gravity"));
+            }
+            e => panic!("{e}"),
+        }
+    }
+
+    #[test]
+    fn null_optional_is_removed() {
+        let mut v: Value = serde_json::json!({"gravity": null, "contact": "frictionless"});
+        check_object(&mut v, EFFECTS, "effects").unwrap();
+        assert!(v.get("gravity").is_none());
+    }
+
+    /// Everything serde writes for fully populated settings passes the walk (the
+    /// tables and the structs agree).
+    #[test]
+    fn tables_accept_serialised_structs() {
+        use crate::scene::*;
+        let bvp = serde_json::to_value(BvpSettings::default()).unwrap();
+        let fem = serde_json::to_value(FemSettings {
+            penalty: Some(1e6),
+            mesh_sequence: vec![8, 16],
+            ..Default::default()
+        })
+        .unwrap();
+        let gate = serde_json::to_value(GateSettings {
+            min_order: Some(2.0),
+            ..Default::default()
+        })
+        .unwrap();
+        for (mut v, table, name) in [(bvp, BVP, "bvp"), (fem, FEM, "fem"), (gate, GATE, "gate")] {
+            let n_keys = v.as_object().map_or(0, |m| m.len());
+            assert_eq!(
+                n_keys,
+                table.len(),
+                "{name}: struct and table differ in field count"
+            );
+            check_object(&mut v, table, name).unwrap();
+        }
+        let mut contact = serde_json::to_value(Contact::ElasticLayer(ElasticLayer {
+            normal_stiffness: 1.0,
+            tangential_stiffness: 2.0,
+        }))
+        .unwrap();
+        check_contact(&mut contact, "effects.contact").unwrap();
+        let mut contact = serde_json::to_value(Contact::Coulomb(0.3)).unwrap();
+        check_contact(&mut contact, "effects.contact").unwrap();
+        let mut contact = serde_json::to_value(Contact::Frictionless).unwrap();
+        check_contact(&mut contact, "effects.contact").unwrap();
+    }
+}

@@ -1,0 +1,219 @@
+//! No panic on any input: valid scenes are mutated key by key and value by value,
+//! and their text byte by byte; every outcome must be `Ok` or a `SceneError` with a
+//! non-empty message (a panic fails the test). Accepted scenes must round-trip and
+//! their contour must be usable. Deterministic (fixed xorshift seed).
+
+use drive::{Scene, SceneError};
+use serde_json::{json, Value};
+
+fn seeds() -> Vec<Value> {
+    vec![
+        json!({
+          "name": "string-hanging",
+          "description": "Extensible string hanging on two frictionless pulleys",
+          "drive": {"pulley_radius": 0.08, "centre_distance": 0.45, "driver_speed": 0.0, "driven_torque": 0.0},
+          "belt": {"theory": "string", "length": 1.41, "axial_stiffness": 2.0e4,
+                   "bending_stiffness": null, "shear_stiffness": null, "mass_per_length": 0.12},
+          "effects": {"gravity": 9.81, "contact": "frictionless"},
+          "analysis": "static"
+        }),
+        json!({
+          "name": "cosserat-drive",
+          "drive": {"pulley_radius": 0.1, "centre_distance": 0.6, "driver_speed": 20.0, "driven_torque": 1.0,
+                    "driven_damping": 0.01},
+          "belt": {"theory": "cosserat", "length": 1.9, "axial_stiffness": 1e5,
+                   "bending_stiffness": 0.1, "shear_stiffness": 1e4, "mass_per_length": 0.2},
+          "effects": {"gravity": 9.81, "inertia": true, "contact": {"coulomb": 0.5}},
+          "analysis": "steady",
+          "bvp": {"method": "bvp-shooting", "tolerance": 1e-9, "scheme": "gauss4", "max_nodes": 5000, "shooting_intervals": 4},
+          "fem": {"elements": 128, "mesh_sequence": [32, 64, 128], "formulations": ["a", "b"], "penalty": 1e6},
+          "gate": {"tolerances": {"y_upper_mid": 1e-3, "driver.stick_arc": 1e-2}, "min_order": 2.0}
+        }),
+        json!({
+          "name": "shell-runoff",
+          "drive": {"pulley_radius": 0.1, "centre_distance": 1.0, "driver_speed": 1.0, "driven_torque": 0.0},
+          "belt": {"theory": "shell", "length": 2.7, "axial_stiffness": 1e7, "bending_stiffness": 0.05, "mass_per_length": 0.5},
+          "effects": {"contact": {"elastic_layer": {"normal_stiffness": 1e9, "tangential_stiffness": 1e8}}},
+          "analysis": "transient"
+        }),
+    ]
+}
+
+fn replacements() -> Vec<Value> {
+    vec![
+        Value::Null,
+        json!(true),
+        json!(false),
+        json!(0),
+        json!(-0.0),
+        json!(-1),
+        json!(0.5),
+        json!(3),
+        json!(1e308),
+        json!(-1e308),
+        json!(5e-324),
+        json!(u64::MAX),
+        json!(i64::MIN),
+        json!(""),
+        json!("string"),
+        json!("frictionless"),
+        json!("bvp-collocation"),
+        json!("μ∑😀"),
+        json!("x".repeat(300)),
+        json!([]),
+        json!([1, 2, 3]),
+        json!(["a"]),
+        json!({}),
+        json!({"a": 1}),
+        json!({"coulomb": -1}),
+        json!({"coulomb": 0.3, "x": 1}),
+        json!({"elastic_layer": null}),
+        json!({"y_upper_mid": 1e-3}),
+    ]
+}
+
+/// Every path in the document: (parent pointer, key) for object members.
+fn members(v: &Value, pointer: String, out: &mut Vec<(String, String)>) {
+    match v {
+        Value::Object(map) => {
+            for (k, child) in map {
+                out.push((pointer.clone(), k.clone()));
+                members(child, format!("{pointer}/{k}"), out);
+            }
+        }
+        Value::Array(items) => {
+            for (i, child) in items.iter().enumerate() {
+                members(child, format!("{pointer}/{i}"), out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// Runs the parser; checks the invariants of either outcome.
+fn exercise(text: &str) -> bool {
+    match Scene::from_json_str(text) {
+        Ok(scene) => {
+            let back = Scene::from_json_str(&scene.to_json_pretty())
+                .expect("an accepted scene must re-parse");
+            assert_eq!(back, scene);
+            let c = scene.contour();
+            for s in [-1.0, 0.0, 0.3, c.length(), 1e6] {
+                let p = c.position(s, 0.01);
+                let _ = c.sigma_nu(p);
+                let _ = (c.t_g(s), c.alpha(s), c.region(s));
+            }
+            let _ = (scene.slack_ratio(), scene.effect_names());
+            true
+        }
+        Err(e) => {
+            let msg = e.to_string();
+            assert!(!msg.is_empty());
+            if let Some(p) = e.path() {
+                assert!(!p.is_empty(), "{e:?}");
+            }
+            assert!(
+                !matches!(e, SceneError::Invalid { ref path, .. } if path == "<scene>"),
+                "serde disagreed with the schema: {e}"
+            );
+            false
+        }
+    }
+}
+
+#[test]
+fn value_and_key_mutations_never_panic() {
+    let mut accepted = 0;
+    let mut rejected = 0;
+    for seed in seeds() {
+        assert!(exercise(&seed.to_string()), "seed must be valid");
+        let mut paths = Vec::new();
+        members(&seed, String::new(), &mut paths);
+        for (parent, key) in &paths {
+            // replace the value
+            for r in replacements() {
+                let mut v = seed.clone();
+                if let Some(Value::Object(m)) = v.pointer_mut(parent) {
+                    m.insert(key.clone(), r);
+                }
+                if exercise(&v.to_string()) {
+                    accepted += 1
+                } else {
+                    rejected += 1
+                }
+            }
+            // delete the key, misspell it, add an unknown sibling
+            let variants = [
+                None,
+                Some(key[1..].to_string()),
+                Some(format!("{key}{key}")),
+                Some(key.to_uppercase()),
+                Some(format!("{key}μ")),
+                Some(String::new()),
+            ];
+            for new_key in variants {
+                let mut v = seed.clone();
+                if let Some(Value::Object(m)) = v.pointer_mut(parent) {
+                    if let Some(val) = m.remove(key) {
+                        if let Some(k) = new_key {
+                            m.insert(k, val);
+                        }
+                    }
+                }
+                if exercise(&v.to_string()) {
+                    accepted += 1
+                } else {
+                    rejected += 1
+                }
+            }
+        }
+    }
+    // most mutations must be caught; some (e.g. a different valid number) pass
+    assert!(
+        rejected > 5 * accepted,
+        "accepted {accepted}, rejected {rejected}"
+    );
+}
+
+#[test]
+fn text_mutations_never_panic() {
+    let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut next = |n: usize| -> usize {
+        state ^= state >> 12;
+        state ^= state << 25;
+        state ^= state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 33) as usize % n.max(1)
+    };
+    let alphabet: Vec<char> = "{}[]:,\"0123456789.-eE \nabcnulltrueμ😀\\"
+        .chars()
+        .collect();
+    for seed in seeds() {
+        let base: Vec<char> = seed.to_string().chars().collect();
+        for _ in 0..1500 {
+            let mut t = base.clone();
+            for _ in 0..1 + next(3) {
+                let i = next(t.len());
+                match next(4) {
+                    0 => t.truncate(i),
+                    1 => t.insert(i.min(t.len()), alphabet[next(alphabet.len())]),
+                    2 if !t.is_empty() => {
+                        t.remove(i.min(t.len() - 1));
+                    }
+                    _ if t.len() > 1 => {
+                        let j = next(t.len());
+                        let k = i.min(t.len() - 1);
+                        t.swap(k, j);
+                    }
+                    _ => {}
+                }
+            }
+            exercise(&t.into_iter().collect::<String>());
+        }
+    }
+    // pathological documents
+    exercise("");
+    exercise("null");
+    exercise(&"[".repeat(100_000));
+    exercise(&format!("{{\"name\": \"{}\"}}", "a".repeat(1_000_000)));
+    exercise(&format!("{{\"{}\": 1}}", "k".repeat(100_000)));
+}

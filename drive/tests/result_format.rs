@@ -1,0 +1,245 @@
+//! Result JSON contract (DESIGN.md "Result format"): keys and nesting exactly as
+//! documented, absent quantities absent, round trip, no NaN written.
+
+use drive::{Cost, Fields, PulleySummary, ResultError, RunResult, Summary, SCALAR_NAMES};
+use serde_json::{json, Value};
+
+fn full_summary() -> Summary {
+    let mut s = Summary::default();
+    for (i, name) in SCALAR_NAMES.iter().enumerate() {
+        s.set(name, Some(0.5 + i as f64)).unwrap();
+    }
+    s
+}
+
+fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
+    RunResult {
+        scene: "string-hanging".into(),
+        method: "bvp-collocation".into(),
+        converged: true,
+        summary,
+        cost: Cost {
+            wall_seconds: 0.25,
+            newton_iterations: 12,
+            unknowns: 3400,
+            mesh_nodes: None,
+        },
+        fields,
+        options: None,
+    }
+}
+
+fn keys(v: &Value) -> Vec<String> {
+    v.as_object().unwrap().keys().cloned().collect::<Vec<_>>()
+}
+
+fn sorted(mut k: Vec<&str>) -> Vec<String> {
+    k.sort();
+    k.into_iter().map(String::from).collect()
+}
+
+/// The key sets of DESIGN.md's example, level by level.
+#[test]
+fn keys_and_nesting_exactly_as_design() {
+    let fields = Fields {
+        sigma: vec![0.0, 0.5],
+        x: vec![-0.2, 0.1],
+        y: vec![0.08, 0.07],
+        tension: vec![10.0, 10.5],
+        moment: Some(vec![0.0, 0.01]),
+    };
+    let v: Value = serde_json::from_str(
+        &result(full_summary(), Some(fields))
+            .to_json_pretty()
+            .unwrap(),
+    )
+    .unwrap();
+    assert_eq!(
+        keys(&v),
+        sorted(vec![
+            "scene",
+            "method",
+            "converged",
+            "summary",
+            "cost",
+            "fields"
+        ])
+    );
+    assert_eq!(
+        keys(&v["summary"]),
+        sorted(vec![
+            "y_upper_mid",
+            "y_lower_mid",
+            "tension_upper_mid",
+            "tension_lower_mid",
+            "moment_upper_mid",
+            "moment_lower_mid",
+            "tension_tight",
+            "tension_slack",
+            "driven_speed",
+            "transport_rate",
+            "driver",
+            "driven",
+        ])
+    );
+    let pulley = sorted(vec![
+        "contact_arc",
+        "contact_start",
+        "contact_end",
+        "stick_arc",
+        "slip_arc",
+        "torque",
+        "edge_force_start",
+        "edge_force_end",
+    ]);
+    assert_eq!(keys(&v["summary"]["driver"]), pulley);
+    assert_eq!(keys(&v["summary"]["driven"]), pulley);
+    assert_eq!(
+        keys(&v["cost"]),
+        sorted(vec!["wall_seconds", "newton_iterations", "unknowns"])
+    );
+    assert_eq!(
+        keys(&v["fields"]),
+        sorted(vec!["sigma", "x", "y", "tension", "moment"])
+    );
+    assert_eq!(v["scene"], json!("string-hanging"));
+    assert_eq!(v["converged"], json!(true));
+    assert_eq!(v["cost"]["newton_iterations"], json!(12));
+    assert_eq!(v["summary"]["driver"]["contact_arc"], json!(10.5));
+}
+
+#[test]
+fn design_example_result_parses() {
+    let text = r#"{
+      "scene": "string-hanging", "method": "bvp-collocation", "converged": true,
+      "summary": {"y_upper_mid": 0.0, "tension_upper_mid": 0.0,
+                  "driver": {"contact_arc": 0.0, "torque": 0.0}},
+      "cost": {"wall_seconds": 0.0, "newton_iterations": 0, "unknowns": 0},
+      "fields": {"sigma": [], "x": [], "y": [], "tension": [], "moment": []}
+    }"#;
+    let r = RunResult::from_json_str(text).unwrap();
+    assert_eq!(r.summary.get("driver.contact_arc"), Some(0.0));
+    assert_eq!(r.summary.get("driven.contact_arc"), None);
+    assert_eq!(r.fields.as_ref().unwrap().moment, Some(vec![]));
+}
+
+#[test]
+fn absent_quantities_are_absent_not_zero_or_null() {
+    let summary = Summary {
+        y_upper_mid: Some(-0.02),
+        tension_upper_mid: Some(12.0),
+        driver: Some(PulleySummary {
+            contact_arc: Some(3.3),
+            ..Default::default()
+        }),
+        ..Default::default()
+    };
+    let fields = Fields {
+        sigma: vec![0.0],
+        x: vec![0.0],
+        y: vec![0.0],
+        tension: vec![1.0],
+        moment: None,
+    };
+    let text = result(summary, Some(fields)).to_json_pretty().unwrap();
+    assert!(!text.contains("null"), "{text}");
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        keys(&v["summary"]),
+        sorted(vec!["y_upper_mid", "tension_upper_mid", "driver"])
+    );
+    assert_eq!(
+        keys(&v["summary"]["driver"]),
+        vec!["contact_arc".to_string()]
+    );
+    assert!(v["fields"].get("moment").is_none());
+    assert!(v["cost"].get("mesh_nodes").is_none());
+    assert!(v.get("options").is_none());
+    // flattened names for the harness
+    let flat = result(
+        Summary {
+            driver: Some(PulleySummary {
+                torque: Some(1.0),
+                ..Default::default()
+            }),
+            ..Default::default()
+        },
+        None,
+    )
+    .summary
+    .scalars();
+    assert_eq!(flat, vec![("driver.torque".to_string(), 1.0)]);
+}
+
+#[test]
+fn round_trip() {
+    let mut r = result(full_summary(), None);
+    r.cost.mesh_nodes = Some(801);
+    r.options = Some(json!({"tolerance": 1e-8, "scheme": "gauss6"}));
+    let back = RunResult::from_json_str(&r.to_json_pretty().unwrap()).unwrap();
+    assert_eq!(back, r);
+    let flat = back.summary.scalars();
+    assert_eq!(
+        flat.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+        SCALAR_NAMES.to_vec()
+    );
+    let rebuilt = Summary::from_scalars(flat.iter().map(|(n, v)| (n.as_str(), *v))).unwrap();
+    assert_eq!(rebuilt, r.summary);
+}
+
+#[test]
+fn nan_is_never_written() {
+    let mut s = full_summary();
+    s.set("tension_slack", Some(f64::NAN)).unwrap();
+    let e = result(s, None).to_json_pretty().unwrap_err();
+    assert!(
+        matches!(&e, ResultError::NotFinite { quantity, value } if quantity == "tension_slack" && value.is_nan()),
+        "{e}"
+    );
+    assert!(e.to_string().contains("`tension_slack`"));
+
+    let fields = Fields {
+        sigma: vec![0.0, 1.0],
+        x: vec![0.0, 0.0],
+        y: vec![0.0, 0.0],
+        tension: vec![1.0, f64::INFINITY],
+        moment: None,
+    };
+    let e = result(Summary::default(), Some(fields))
+        .to_json_pretty()
+        .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "result quantity `fields.tension[1]` is not finite (inf)"
+    );
+
+    let fields = Fields {
+        sigma: vec![0.0, 1.0],
+        x: vec![0.0],
+        y: vec![0.0, 0.0],
+        tension: vec![1.0, 1.0],
+        moment: None,
+    };
+    let e = result(Summary::default(), Some(fields))
+        .to_json_pretty()
+        .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ResultError::FieldLength {
+                len: 1,
+                expected: 2,
+                ..
+            }
+        ),
+        "{e}"
+    );
+
+    let mut r = result(Summary::default(), None);
+    r.cost.wall_seconds = f64::NAN;
+    assert!(r
+        .to_json_pretty()
+        .unwrap_err()
+        .to_string()
+        .contains("cost.wall_seconds"));
+}
