@@ -177,3 +177,26 @@ fn natural_continuation_homotopy() {
         other => panic!("expected ContinuationStalled, got {:?}", other.map(|b| b.points.len())),
     }
 }
+
+/// `natural_checked`: a step whose converged solution the acceptance test rejects is
+/// halved like a failed one. Rejecting max y > 0.5 on the lower branch (max y = 0.5 is
+/// reached at λ ≈ 2.68 by the closed form) stops the homotopy below that λ with the
+/// rejection reason as the cause, and every accepted point satisfies the test.
+#[test]
+fn natural_checked_rejects_unacceptable_steps() {
+    let opts = CollocationOptions { scheme: Scheme::Gauss6, tolerance: 1e-8, ..Default::default() };
+    let copts = ContinuationOptions { min_step: 1e-4, ..Default::default() };
+    let guess = Solution::from_fn(1, 11, vec![], 0.0, |_, _| vec![0.0, 0.0]);
+    let max_y = |s: &Solution| s.segments[0].nodes.iter().map(|y| y[0]).fold(f64::MIN, f64::max);
+    let accept = |s: &Solution| if max_y(s) <= 0.5 { Ok(()) } else { Err(format!("max y = {:.3} > 0.5", max_y(s))) };
+    match continuation::natural_checked(&Bratu, &guess, 0.1, 3.0, &copts, &opts, accept) {
+        Err(BvpError::ContinuationStalled { eta, cause, .. }) => {
+            assert!(cause.contains("max y"), "{cause}");
+            let exact = Exact::new(eta, BratuBranch::Lower).unwrap();
+            assert!(exact.midpoint() <= 0.5 + 1e-9 && eta > 1.0, "stalled at λ = {eta}");
+        }
+        other => panic!("expected ContinuationStalled, got {:?}", other.map(|b| b.points.len())),
+    }
+    // Without the test the same homotopy reaches λ = 3.
+    assert!(continuation::natural(&Bratu, &guess, 0.1, 3.0, &copts, &opts).is_ok());
+}

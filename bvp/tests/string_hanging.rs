@@ -199,3 +199,54 @@ fn impossible_scenes_are_named_errors() {
     assert!(e.to_string().contains("axial_stiffness"), "{e}");
     let _ = (LOWER_LEFT, UPPER_RIGHT);
 }
+
+/// The post-solve contact checks catch what they are for: a negative arc tension (the
+/// belt would lift off inside the arc) and a span point inside a pulley are errors.
+#[test]
+fn contact_checks_catch_violations() {
+    let sol = solve(&base(), &colloc(1e-6)).expect("solves");
+    sol.check_contact().expect("the real solution passes");
+
+    let mut lifted = sol.clone();
+    for y in lifted.solution.segments[DRIVER_ARC].nodes.iter_mut() {
+        y[0] = -y[0];
+    }
+    for c in lifted.solution.segments[DRIVER_ARC].poly.iter_mut().flatten().take(1) {
+        c[0] = -c[0].abs();
+    }
+    let e = lifted.check_contact().unwrap_err();
+    assert!(matches!(e, StringHangingError::ContactViolated(_)), "{e}");
+
+    let mut inside = sol.clone();
+    // Pull the first node after the driver's departure point into the driver pulley.
+    let seg = &mut inside.solution.segments[UPPER_LEFT];
+    let r = sol.problem.radius;
+    seg.nodes[1][0] = -0.5 + 0.5 * r;
+    seg.nodes[1][1] = 0.0;
+    for c in seg.poly[1].iter_mut().take(2).zip([-0.5 + 0.5 * r, 0.0]) {
+        c.0.iter_mut().for_each(|v| *v = 0.0);
+        c.0[0] = c.1;
+    }
+    let e = inside.check_contact().unwrap_err();
+    assert!(e.to_string().contains("driver pulley"), "{e}");
+}
+
+/// The mesh cap is reported, never a silent failure: order 4 at 1e-10 needs far more
+/// than 2000 nodes (its residual falls like h²), so the final solve names the cap.
+#[test]
+fn mesh_cap_is_reported() {
+    let o = StringHangingOptions {
+        method: Method::Collocation(Scheme::Gauss4),
+        tolerance: 1e-10,
+        max_nodes: 2000,
+        ..Default::default()
+    };
+    match solve(&base(), &o) {
+        Err(StringHangingError::Solver { stage, cause: bvp::BvpError::MeshCapReached { max_nodes, residual, tolerance } }) => {
+            assert_eq!(stage, "final solve");
+            assert_eq!(max_nodes, 2000);
+            assert!(residual > tolerance && tolerance == 1e-10);
+        }
+        other => panic!("expected the mesh cap, got {:?}", other.map(|s| s.stats.mesh_nodes)),
+    }
+}

@@ -104,8 +104,8 @@ pub enum StringHangingError {
     #[error("no unique equilibrium: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m hangs slack in any shape; add gravity or shorten the belt")]
     WeightlessSlack { length: f64, geometric_length: f64 },
     /// The solver failed (homotopy or final solve).
-    #[error("{stage}: {source}")]
-    Solver { stage: &'static str, source: BvpError },
+    #[error("{stage}: {cause}")]
+    Solver { stage: &'static str, cause: BvpError },
     /// The solution violates a contact condition of the assumed segment topology.
     #[error("contact condition violated: {0}")]
     ContactViolated(String),
@@ -277,7 +277,7 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
         &path_opts,
         physical,
     )
-    .map_err(|source| StringHangingError::Solver { stage: "homotopy from the tight weightless loop", source })?;
+    .map_err(|cause| StringHangingError::Solver { stage: "homotopy from the tight weightless loop", cause })?;
     let homotopy_steps = branch.points.len();
     add_stats(&mut total, &branch.stats);
     let at_scene = branch.last().expect("a branch ends at its target").clone();
@@ -302,7 +302,7 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
             shooting::solve(&problem, &at_scene, &o)
         }
     }
-    .map_err(|source| StringHangingError::Solver { stage: "final solve", source })?;
+    .map_err(|cause| StringHangingError::Solver { stage: "final solve", cause })?;
     add_stats(&mut total, &solution.stats);
     total.unknowns = solution.stats.unknowns;
     total.mesh_nodes = solution.stats.mesh_nodes;
