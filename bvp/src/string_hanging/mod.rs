@@ -178,7 +178,9 @@ pub fn scaled_problem(d: &StringHanging) -> (ScaledStringHanging, Scales) {
     let h = d.centre_distance;
     let weight_total = d.mass_per_length * d.gravity * d.length;
     let target = d.tight_tension();
-    let force = if d.gravity > 0.0 { weight_total } else { target };
+    // The larger of the weight and the stretched-on tension, so that scaled forces are
+    // O(1) for slack and for stretched-on belts alike.
+    let force = weight_total.max(target);
     // Starting tension of the weightless tight loop.
     let t0 = if d.gravity > 0.0 { weight_total.max(target) } else { target };
     let length_start = d.geometric_length() / (1.0 + t0 / d.axial_stiffness);
@@ -253,6 +255,7 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
     // Every accepted homotopy point must stay on the physical branch: positive tension on
     // both arcs and a closure defect far below it (docs/string-hanging.md, "Homotopy").
     let physical = |s: &Solution| -> Result<(), String> {
+        topology_check(&s.params)?;
         let t_min = [DRIVEN_ARC, DRIVER_ARC]
             .iter()
             .flat_map(|&k| s.segments[k].nodes.iter().map(|y| y[0]))
@@ -322,6 +325,37 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
     };
     sol.check_contact()?;
     Ok(sol)
+}
+
+/// The segment topology of the note: each contact angle within a quarter turn of its
+/// tight-contour value (φ₂ₐ ∈ (0, π), φ₂_b ∈ (−π, 0), φ₁ₐ ∈ (−π, 0), φ₁_b ∈ (−2π, −π)), so
+/// each contact arc lies in (0, 2π) and no span winds an extra turn round a pulley, and
+/// every span has positive length. The discrete equations have other, unphysical,
+/// solutions (a belt wound once more round a pulley, at an enormous tension): this test
+/// keeps the homotopy and the final solve off them.
+fn topology_check(p: &[f64]) -> Result<(), String> {
+    use std::f64::consts::FRAC_PI_2;
+    let ranges = [
+        ("first contact on the driven pulley", P_PHI2A, FRAC_PI_2),
+        ("last contact on the driven pulley", P_PHI2B, -FRAC_PI_2),
+        ("first contact on the driver pulley", P_PHI1A, -FRAC_PI_2),
+        ("last contact on the driver pulley", P_PHI1B, -3.0 * FRAC_PI_2),
+    ];
+    for (what, i, tight) in ranges {
+        if !((p[i] - tight).abs() < FRAC_PI_2) {
+            return Err(format!(
+                "{what} at {:.2}° is more than 90° from its tight-contour value {:.0}°",
+                p[i].to_degrees(),
+                tight.to_degrees()
+            ));
+        }
+    }
+    for &i in &P_LEN {
+        if !(p[i] > 0.0) {
+            return Err(format!("a span half has non-positive length {:.3e}", p[i]));
+        }
+    }
+    Ok(())
 }
 
 /// One point of the belt in physical units.
@@ -418,6 +452,7 @@ impl StringHangingSolution {
     /// Check the conditions the segment topology assumes (docs/string-hanging.md,
     /// "Checks"): p ≥ 0 on the arcs, T > 0, no span point inside a pulley.
     pub fn check_contact(&self) -> Result<(), StringHangingError> {
+        topology_check(&self.solution.params).map_err(StringHangingError::ContactViolated)?;
         let d = &self.data;
         let pressure_floor = -1e-9 * (d.mass_per_length * d.gravity + self.scales.force / d.radius);
         let inside = d.radius * (1.0 - 1e-6);
