@@ -8,9 +8,25 @@
 //! SVG + JSON) and the CI gate build on studies. This crate is the only place where `bvp`
 //! and `fem` meet, and only through [`drive::view::SolutionView`].
 //!
-//! Today it holds the comparison primitive that the BVP-only studies already need:
-//! [`compare_summaries`], the differences of two summaries quantity by quantity. Studies,
-//! reports and the gate come with the harness issue.
+//! Modules, in the order of the work:
+//! - [`run`]: one run (method + discretisation → sampled solution + cost); the
+//!   [`run::Method`] trait and the built-in methods (BVP variants, FE formulations
+//!   discovered from the `fem` registry);
+//! - [`measure`]: error measures, observed orders, Richardson extrapolation;
+//! - [`study`]: sequences of runs of one scene held against the reference;
+//! - [`table`]: the convergence tables (terminal text and Markdown);
+//! - [`plot`], [`report`]: SVG plots and the Markdown/JSON reports;
+//! - [`gate`]: the CI gate over the catalogue.
+//!
+//! Definitions of every measure: docs/verification.md and [`measure`].
+
+pub mod gate;
+pub mod measure;
+pub mod plot;
+pub mod report;
+pub mod run;
+pub mod study;
+pub mod table;
 
 use drive::summary::Summary;
 

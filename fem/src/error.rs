@@ -1,0 +1,90 @@
+//! Why an FE run produced no solution: error values that carry the numbers a user needs.
+
+use thiserror::Error;
+
+/// Why an FE run produced no solution.
+#[derive(Debug, Clone, Error, PartialEq)]
+pub enum FemError {
+    /// The scene asks for a model or formulation that does not exist.
+    #[error("no finite element model for this scene: {0}")]
+    Unsupported(String),
+
+    /// A formulation name that is not registered.
+    #[error("unknown element formulation `{name}`; registered: {available:?}")]
+    UnknownFormulation {
+        /// The name asked for.
+        name: String,
+        /// The registered names.
+        available: Vec<String>,
+    },
+
+    /// An option outside its documented range.
+    #[error("FE option `{field}` = {value}: {reason}")]
+    InvalidOption {
+        /// Option name (as in [`crate::FemOptions`] / [`crate::SolverSettings`]).
+        field: &'static str,
+        /// The offending value.
+        value: String,
+        /// The valid range.
+        reason: String,
+    },
+
+    /// The scene has no unique equilibrium (e.g. a weightless slack loop).
+    #[error("no unique equilibrium: belt length L = {length} m exceeds the contour length L_geom = {geometric_length} m and no gravity holds it taut (a weightless slack loop can take any shape)")]
+    IllPosed {
+        /// L, m.
+        length: f64,
+        /// L_geom = 2H + 2πR, m.
+        geometric_length: f64,
+    },
+
+    /// Newton's method did not converge at a homotopy point.
+    #[error("Newton did not converge at η = {eta} after {iterations} iterations: scaled update ‖Δ‖ = {update:.3e}, scaled residual ‖G‖ = {residual:.3e} (tolerance {tolerance:.1e}){}", if *.line_search_failed { "; the line search found no acceptable step" } else { "" })]
+    NewtonDiverged {
+        /// Homotopy parameter.
+        eta: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Last scaled update norm (docs/fem-string.md §8).
+        update: f64,
+        /// Last scaled residual norm.
+        residual: f64,
+        /// The update tolerance.
+        tolerance: f64,
+        /// True if the line search gave up (no admissible or decreasing step).
+        line_search_failed: bool,
+    },
+
+    /// The sparse tangent could not be factorised.
+    #[error("singular tangent at η = {eta}, Newton iteration {iteration}: {detail}")]
+    SingularTangent {
+        /// Homotopy parameter.
+        eta: f64,
+        /// Newton iteration.
+        iteration: usize,
+        /// What faer reported.
+        detail: String,
+    },
+
+    /// The homotopy step fell below its minimum.
+    #[error("homotopy stalled at η = {eta} (step {step:.2e} < minimum {min_step:.1e}) after {steps} accepted steps; last failure: {last_failure}")]
+    HomotopyStalled {
+        /// Last accepted η.
+        eta: f64,
+        /// Step that failed.
+        step: f64,
+        /// Minimum step.
+        min_step: f64,
+        /// Accepted steps so far.
+        steps: usize,
+        /// The last Newton failure.
+        last_failure: String,
+    },
+
+    /// A non-finite number appeared where a result was expected.
+    #[error("non-finite {what}")]
+    NonFinite {
+        /// Which quantity.
+        what: String,
+    },
+}

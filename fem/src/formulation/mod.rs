@@ -1,0 +1,567 @@
+//! Element formulations: the plug-in point of the crate (DESIGN.md "A new element
+//! formulation plugs in by implementing one trait").
+//!
+//! A formulation implements [`Formulation`]: a name, a strain measure with its energy
+//! density, and the integration rule of each energy term — or, if it needs more
+//! freedom, its whole element energy. Everything else (assembly, Newton, homotopy, the
+//! solution view, the harness) works through the object-safe [`Kernel`] that every
+//! [`Formulation`] gets by a blanket implementation: values in f64, gradients and
+//! Hessians by forward-mode AD (`num_dual::Dual2SVec64<8>`), exact.
+//!
+//! # Adding a formulation
+//! 1. A new file `fem/src/formulation/my_element.rs` with a unit struct and
+//!    `impl Formulation for MyElement { … }` (copy `string_simpson.rs`);
+//! 2. `mod my_element;` below and one line `Arc::new(my_element::MyElement),` in
+//!    [`registry`].
+//!
+//! The AD-vs-finite-difference test and the consistency checks in this module's tests
+//! run over every registered formulation, so a new one is checked without writing a test.
+
+use std::sync::Arc;
+
+use nalgebra::{Const, SVector, U1};
+use num_dual::{gradient, hessian, Dual2SVec64, Dual64, DualSVec64};
+
+use crate::kinematics::{ElementContext, PointFields, Scalar, TermParams, NDOF};
+use crate::quadrature::Rule;
+
+mod string_gauss;
+mod string_simpson;
+
+pub use string_gauss::StringGauss;
+pub use string_simpson::StringSimpson;
+
+/// The integration rule of each energy term (§7.3; docs/fem-string.md §6).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+pub struct TermRules {
+    /// Strain energy U (F8).
+    pub strain: Rule,
+    /// Gravity potential W (F9).
+    pub gravity: Rule,
+    /// Penalty contact potential V_γ (F10).
+    pub contact: Rule,
+}
+
+/// A string element formulation (implement this to add one; see the module docs).
+pub trait Formulation: Send + Sync + 'static {
+    /// Registry name, e.g. `string-gauss` (lowercase, `-` separated).
+    fn name(&self) -> &'static str;
+
+    /// One line for listings and reports.
+    fn description(&self) -> &'static str;
+
+    /// Name of the strain measure, e.g. `Biot`.
+    fn strain_measure(&self) -> &'static str;
+
+    /// The integration rule of each term.
+    fn rules(&self) -> TermRules;
+
+    /// Strain energy per unstretched length W(λ), J/m, as a function of the stretch λ
+    /// and the axial stiffness EA. The axial force is N = dW/dλ (computed by AD).
+    fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D;
+
+    /// The element energy (J) for local unknowns `q` (docs/fem-string.md F7–F10): by
+    /// default the sum of the active terms of [`standard_terms`] with [`Self::rules`].
+    /// Override only for a formulation that is not "strain density + rules".
+    fn element_energy<D: Scalar>(&self, el: &ElementContext, q: &[D; NDOF]) -> D
+    where
+        Self: Sized,
+    {
+        let rules = self.rules();
+        standard_terms(el, q, &rules, |lambda| {
+            self.strain_energy_density(lambda, el.params.axial_stiffness)
+        })
+    }
+
+    /// True (default) if [`Self::element_energy`] is the standard sum of point densities
+    /// ([`standard_terms`]): the kernel then differentiates each point density with
+    /// respect to the three point values (∂σS, ν, ∂σν) and applies the linear Hermite
+    /// map exactly (about 10× cheaper than AD over all 8 unknowns, and the same
+    /// numbers). A formulation that overrides `element_energy` must return false; its
+    /// derivatives then come from AD over the whole element energy.
+    fn pointwise(&self) -> bool {
+        true
+    }
+}
+
+/// The element energy Σ of the active terms (docs/fem-string.md §4):
+/// U (F8) with the density `w(λ)` integrated per unstretched length (× ∂σS),
+/// W (F9) if `el.params.weight` is set, V_γ (F10) if `el.params.penalty` is set, each
+/// with its rule from `rules`.
+pub fn standard_terms<D: Scalar>(
+    el: &ElementContext,
+    q: &[D; NDOF],
+    rules: &TermRules,
+    w: impl Fn(D) -> D,
+) -> D {
+    let jac = el.jacobian();
+    let mut total = D::zero();
+    for term in Term::ALL {
+        if !term.active(&el.params) {
+            continue;
+        }
+        for &(xi, wt) in term.rule(rules).points() {
+            let p = el.fields(q, xi);
+            total += term.density(el, &p, &w) * (wt * jac);
+        }
+    }
+    total
+}
+
+/// The energy terms of a string element (docs/fem-string.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Term {
+    /// Strain energy U, density W(λ) ∂σS (F8).
+    Strain,
+    /// Gravity potential W, density ρ g y ∂σS (F9).
+    Gravity,
+    /// Penalty contact V_γ, density ½ P ⟨−γ⟩² (F10).
+    Contact,
+}
+
+impl Term {
+    /// All terms, in assembly order.
+    pub const ALL: [Term; 3] = [Term::Strain, Term::Gravity, Term::Contact];
+
+    /// True if the scene calls for the term (strain always).
+    pub fn active(self, params: &TermParams) -> bool {
+        match self {
+            Term::Strain => true,
+            Term::Gravity => params.weight.is_some(),
+            Term::Contact => params.penalty.is_some(),
+        }
+    }
+
+    /// The term's rule.
+    pub fn rule(self, rules: &TermRules) -> Rule {
+        match self {
+            Term::Strain => rules.strain,
+            Term::Gravity => rules.gravity,
+            Term::Contact => rules.contact,
+        }
+    }
+
+    /// Energy per unit contour length σ at a point, J/m (a zero for an inactive term).
+    #[inline]
+    pub fn density<D: Scalar>(self, el: &ElementContext, p: &PointFields<D>, w: &impl Fn(D) -> D) -> D {
+        match self {
+            Term::Strain => w(el.stretch(p)) * p.ds,
+            Term::Gravity => el.params.weight.map_or(D::zero(), |weight| el.height(p) * p.ds * weight),
+            Term::Contact => match (el.params.penalty, el.gap(p)) {
+                (Some(penalty), Some(gap)) if gap.re() < 0.0 => gap * gap * (0.5 * penalty),
+                _ => D::zero(),
+            },
+        }
+    }
+}
+
+/// Energy and gradient of a standard element, per point by `DualSVec64<3>` as
+/// [`pointwise_derivatives`].
+fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(DualSVec64<3>) -> DualSVec64<3>) -> (f64, [f64; NDOF]) {
+    let jac = el.jacobian();
+    let mut energy = 0.0;
+    let mut grad = [0.0; NDOF];
+    for term in Term::ALL {
+        if !term.active(&el.params) {
+            continue;
+        }
+        for &(xi, wt) in term.rule(rules).points() {
+            let p = el.fields(q, xi);
+            let var = |v: f64, i: usize| DualSVec64::<3>::from_re(v).derivative(i);
+            let pd = PointFields { sigma: p.sigma, s: DualSVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2) };
+            let f = term.density(el, &pd, &w);
+            let scale = wt * jac;
+            let g3 = f.eps.unwrap_generic(Const::<3>, U1);
+            energy += scale * f.re;
+            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
+            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+                grad[i] += scale * wd[k] * g3[0];
+            }
+            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+                grad[i] += scale * (wv[k] * g3[1] + wd[k] * g3[2]);
+            }
+        }
+    }
+    (energy, grad)
+}
+
+/// Energy, gradient and Hessian of a standard element (docs/fem-string.md §7): at each
+/// integration point the density is differentiated by `Dual2SVec64<3>` with respect to
+/// u = (∂σS, ν, ∂σν), which depend linearly on q through the Hermite weights B
+/// (u = B q, B 3 × 8); then g += w Bᵀ ∂_u f and K += w Bᵀ ∂²_u f B. Exact (the chain
+/// rule through a linear map), and equal to AD over all 8 unknowns.
+fn pointwise_derivatives(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<3>) -> Dual2SVec64<3>) -> ElementDerivatives {
+    let jac = el.jacobian();
+    let mut out = ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
+    for term in Term::ALL {
+        if !term.active(&el.params) {
+            continue;
+        }
+        for &(xi, wt) in term.rule(rules).points() {
+            let p = el.fields(q, xi);
+            let var = |v: f64, i: usize| Dual2SVec64::<3>::from_re(v).derivative(i);
+            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2) };
+            let f = term.density(el, &pd, &w);
+            let scale = wt * jac;
+            let g3 = f.v1.unwrap_generic(U1, Const::<3>);
+            let h3 = f.v2.unwrap_generic(Const::<3>, Const::<3>);
+            out.energy += scale * f.re;
+            // B: row 0 = ∂σS weights on (0, 1, 4, 5), rows 1, 2 = ν, ∂σν on (2, 3, 6, 7)
+            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
+            let mut b = [[0.0; NDOF]; 3];
+            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+                b[0][i] = wd[k];
+            }
+            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+                b[1][i] = wv[k];
+                b[2][i] = wd[k];
+            }
+            // Bᵀ H, then (Bᵀ H) B
+            let mut bth = [[0.0; 3]; NDOF];
+            for i in 0..NDOF {
+                for a in 0..3 {
+                    let bi = b[a][i];
+                    if bi != 0.0 {
+                        out.gradient[i] += scale * bi * g3[a];
+                        for c in 0..3 {
+                            bth[i][c] += bi * h3[(a, c)];
+                        }
+                    }
+                }
+            }
+            for (row, bt) in out.hessian.iter_mut().zip(&bth) {
+                for (j, h) in row.iter_mut().enumerate() {
+                    *h += scale * (bt[0] * b[0][j] + bt[1] * b[1][j] + bt[2] * b[2][j]);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The Biot strain energy density ½ EA (λ − 1)², J/m (eq. 17; N = EA(λ − 1), (S1)).
+pub fn biot_density<D: Scalar>(stretch: D, axial_stiffness: f64) -> D {
+    let e = stretch - 1.0;
+    e * e * (0.5 * axial_stiffness)
+}
+
+/// Result of an element evaluation with derivatives.
+#[derive(Debug, Clone, Copy)]
+pub struct ElementDerivatives {
+    /// Energy, J.
+    pub energy: f64,
+    /// ∂E/∂q.
+    pub gradient: [f64; NDOF],
+    /// ∂²E/∂q², row-major.
+    pub hessian: [[f64; NDOF]; NDOF],
+}
+
+/// The object-safe face of a [`Formulation`], used by assembly, solvers and the view.
+/// Implemented for every [`Formulation`]; do not implement it directly.
+pub trait Kernel: Send + Sync {
+    /// See [`Formulation::name`].
+    fn name(&self) -> &'static str;
+    /// See [`Formulation::description`].
+    fn description(&self) -> &'static str;
+    /// See [`Formulation::strain_measure`].
+    fn strain_measure(&self) -> &'static str;
+    /// See [`Formulation::rules`].
+    fn rules(&self) -> TermRules;
+    /// Element energy in f64, J.
+    fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64;
+    /// Energy and gradient (forward-mode AD, `DualSVec64<8>`).
+    fn gradient(&self, el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]);
+    /// Energy, gradient and Hessian (forward-mode AD: per point for a pointwise
+    /// formulation, else over the whole element).
+    fn derivatives(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives;
+    /// Energy, gradient and Hessian by AD over the whole element energy
+    /// (`Dual2SVec64<8>`): the reference the fast path is tested against.
+    fn derivatives_full(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives;
+    /// Axial force N = dW/dλ, N (by a dual number from the energy density).
+    fn axial_force(&self, stretch: f64, axial_stiffness: f64) -> f64;
+    /// Labels of the terms assembled for `params`, e.g.
+    /// `strain energy (Biot, gauss3)`.
+    fn term_labels(&self, params: &TermParams) -> Vec<String>;
+}
+
+impl<F: Formulation> Kernel for F {
+    fn name(&self) -> &'static str {
+        Formulation::name(self)
+    }
+
+    fn description(&self) -> &'static str {
+        Formulation::description(self)
+    }
+
+    fn strain_measure(&self) -> &'static str {
+        Formulation::strain_measure(self)
+    }
+
+    fn rules(&self) -> TermRules {
+        Formulation::rules(self)
+    }
+
+    fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64 {
+        self.element_energy(el, q)
+    }
+
+    fn gradient(&self, el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]) {
+        if self.pointwise() {
+            let ea = el.params.axial_stiffness;
+            return pointwise_gradient(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+        }
+        let x = SVector::<f64, NDOF>::from_column_slice(q);
+        let (e, g) = gradient(
+            |v| {
+                let a: [_; NDOF] = std::array::from_fn(|i| v[i]);
+                self.element_energy(el, &a)
+            },
+            &x,
+        );
+        (e, std::array::from_fn(|i| g[i]))
+    }
+
+    fn derivatives(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives {
+        if self.pointwise() {
+            let ea = el.params.axial_stiffness;
+            return pointwise_derivatives(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+        }
+        self.derivatives_full(el, q)
+    }
+
+    fn derivatives_full(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives {
+        let x = SVector::<f64, NDOF>::from_column_slice(q);
+        let (e, g, h) = hessian(
+            |v| {
+                let a: [_; NDOF] = std::array::from_fn(|i| v[i]);
+                self.element_energy(el, &a)
+            },
+            &x,
+        );
+        ElementDerivatives {
+            energy: e,
+            gradient: std::array::from_fn(|i| g[i]),
+            hessian: std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])),
+        }
+    }
+
+    fn axial_force(&self, stretch: f64, axial_stiffness: f64) -> f64 {
+        let l = Dual64::from_re(stretch).derivative();
+        self.strain_energy_density(l, axial_stiffness).eps
+    }
+
+    fn term_labels(&self, params: &TermParams) -> Vec<String> {
+        let r = Formulation::rules(self);
+        let mut out = vec![format!(
+            "strain energy ({}, {}, EA = {:.6e} N)",
+            Formulation::strain_measure(self),
+            r.strain,
+            params.axial_stiffness
+        )];
+        if let Some(w) = params.weight {
+            out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", r.gravity, w));
+        }
+        if let Some(p) = params.penalty {
+            out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
+        }
+        out
+    }
+}
+
+/// Every registered formulation, default first. **Add a new formulation here** (one line).
+pub fn registry() -> Vec<Arc<dyn Kernel>> {
+    vec![Arc::new(StringSimpson), Arc::new(StringGauss)]
+}
+
+/// The registered formulation called `name`.
+pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
+    registry().into_iter().find(|k| k.name() == name)
+}
+
+#[cfg(test)]
+mod tests {
+    //! Exact derivatives: AD gradient and Hessian against central finite differences of
+    //! the f64 energy (gradient) and of the AD gradient (Hessian), for every registered
+    //! formulation, at random states of each region with every term active and the
+    //! contact term partly penetrated.
+    use super::*;
+    use crate::mesh::ElementGeometry;
+    use drive::contour::{Contour, Region};
+
+    struct Rng(u64);
+    impl Rng {
+        fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    fn context(region: Region, sa: f64, h: f64) -> ElementContext {
+        ElementContext {
+            geometry: ElementGeometry { sigma_a: sa, h, region },
+            contour: Contour::new(0.08, 0.45).unwrap(),
+            params: TermParams { axial_stiffness: 2.0e4, weight: Some(0.12 * 9.81), penalty: Some(3.0e6) },
+        }
+    }
+
+    /// Elements in each region, the span ones reaching within R of a pulley centre.
+    fn elements() -> Vec<ElementContext> {
+        vec![
+            context(Region::UpperSpan, 0.40, 0.03),
+            context(Region::DrivenArc, 0.50, 0.02),
+            context(Region::LowerSpan, 0.70, 0.04),
+            context(Region::LowerSpan, 1.10, 0.04),
+            context(Region::DriverArc, 1.20, 0.03),
+            context(Region::UpperSpan, 0.0, 0.03),
+        ]
+    }
+
+    /// A random admissible state: s' ≈ 1 ± 0.1, ν of either sign (so some points
+    /// penetrate), slopes ±0.2.
+    fn random_q(el: &ElementContext, rng: &mut Rng) -> [f64; NDOF] {
+        let sa = el.geometry.sigma_a;
+        let sb = sa + el.geometry.h;
+        let mut c = || rng.next() - 0.5;
+        [
+            sa * 0.98 + 0.01 * c(),
+            1.0 + 0.2 * c(),
+            0.004 * c(),
+            0.4 * c(),
+            sb * 0.98 + 0.01 * c(),
+            1.0 + 0.2 * c(),
+            0.004 * c(),
+            0.4 * c(),
+        ]
+    }
+
+    /// Central differences with step 1e-7 (relative to the unknown's scale 1 or 0.1 m):
+    /// truncation ≈ h²|E'''|/6 and round-off ≈ ε|E|/h; the element energies here are
+    /// O(1e-2) J with third derivatives up to O(P·h_el) ≈ 1e5, so both are ≲ 1e-7 of
+    /// the gradient scale — tolerance 1e-5 relative to max(1, |g|∞). The penalty term is
+    /// only C¹ (its second derivative jumps where γ = 0); states whose FD stencil
+    /// crosses γ = 0 are skipped for the Hessian (at most a few).
+    #[test]
+    fn ad_matches_finite_differences_for_every_formulation() {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        for kernel in registry() {
+            let mut hessian_checked = 0;
+            for el in elements() {
+                for _ in 0..20 {
+                    let q = random_q(&el, &mut rng);
+                    let d = kernel.derivatives(&el, &q);
+                    let (e1, g1) = kernel.gradient(&el, &q);
+                    let e0 = kernel.energy(&el, &q);
+                    assert!((d.energy - e0).abs() <= 1e-12 * e0.abs().max(1e-12));
+                    assert!((e1 - e0).abs() <= 1e-12 * e0.abs().max(1e-12));
+                    let scale = d.gradient.iter().fold(1.0f64, |m, g| m.max(g.abs()));
+                    let hstep = 1e-7;
+                    let mut kink = false;
+                    for i in 0..NDOF {
+                        let (mut qp, mut qm) = (q, q);
+                        qp[i] += hstep;
+                        qm[i] -= hstep;
+                        let fd = (kernel.energy(&el, &qp) - kernel.energy(&el, &qm)) / (2.0 * hstep);
+                        assert!(
+                            (fd - d.gradient[i]).abs() <= 1e-5 * scale,
+                            "{} {:?} grad[{i}]: AD {} FD {fd}",
+                            kernel.name(),
+                            el.geometry.region,
+                            d.gradient[i]
+                        );
+                        assert!((g1[i] - d.gradient[i]).abs() <= 1e-12 * scale);
+                        // Hessian column i from the AD gradient
+                        let gp = kernel.gradient(&el, &qp).1;
+                        let gm = kernel.gradient(&el, &qm).1;
+                        let hscale = d.hessian.iter().flatten().fold(1.0f64, |m, h| m.max(h.abs()));
+                        for j in 0..NDOF {
+                            let fdh = (gp[j] - gm[j]) / (2.0 * hstep);
+                            if (fdh - d.hessian[j][i]).abs() > 1e-5 * hscale {
+                                kink = true;
+                            }
+                        }
+                    }
+                    if !kink {
+                        hessian_checked += 1;
+                    }
+                    // symmetric Hessian
+                    for i in 0..NDOF {
+                        for j in 0..NDOF {
+                            assert!((d.hessian[i][j] - d.hessian[j][i]).abs() <= 1e-9 * d.hessian[i][i].abs().max(1.0));
+                        }
+                    }
+                }
+            }
+            assert!(hessian_checked >= 100, "{}: only {hessian_checked} of 120 Hessians checked", kernel.name());
+        }
+    }
+
+    /// The per-point path equals AD over the whole element (same numbers up to
+    /// round-off: both are exact derivatives).
+    #[test]
+    fn pointwise_equals_full_ad() {
+        let mut rng = Rng(77);
+        for kernel in registry() {
+            for el in elements() {
+                for _ in 0..10 {
+                    let q = random_q(&el, &mut rng);
+                    let a = kernel.derivatives(&el, &q);
+                    let b = kernel.derivatives_full(&el, &q);
+                    assert!((a.energy - b.energy).abs() <= 1e-13 * b.energy.abs().max(1e-10));
+                    let gs = b.gradient.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
+                    let hs = b.hessian.iter().flatten().fold(1e-300f64, |m, v| m.max(v.abs()));
+                    for i in 0..NDOF {
+                        assert!((a.gradient[i] - b.gradient[i]).abs() <= 1e-12 * gs, "{}", kernel.name());
+                        for j in 0..NDOF {
+                            assert!((a.hessian[i][j] - b.hessian[i][j]).abs() <= 1e-11 * hs, "{} H[{i}][{j}]", kernel.name());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// N = dW/dλ: for Biot, EA(λ − 1) (S1).
+    #[test]
+    fn axial_force_is_the_biot_law() {
+        for kernel in registry() {
+            assert_eq!(kernel.strain_measure(), "Biot");
+            for lambda in [0.99, 1.0, 1.0001, 1.2] {
+                let n = kernel.axial_force(lambda, 2.0e4);
+                assert!((n - 2.0e4 * (lambda - 1.0)).abs() < 1e-9, "{}", kernel.name());
+            }
+        }
+    }
+
+    #[test]
+    fn registry_names_are_unique_and_findable() {
+        let reg = registry();
+        assert!(reg.len() >= 2);
+        for (i, k) in reg.iter().enumerate() {
+            assert!(find(k.name()).is_some());
+            assert!(!k.description().is_empty());
+            for other in &reg[i + 1..] {
+                assert_ne!(k.name(), other.name());
+            }
+            for rule in [k.rules().strain, k.rules().gravity, k.rules().contact] {
+                rule.validate().unwrap();
+            }
+        }
+        assert!(find("no-such-element").is_none());
+    }
+
+    /// Labels list exactly the active terms.
+    #[test]
+    fn labels_follow_the_active_terms() {
+        let k = find("string-gauss").unwrap();
+        let p = TermParams { axial_stiffness: 1.0, weight: None, penalty: None };
+        assert_eq!(k.term_labels(&p).len(), 1);
+        let p = TermParams { axial_stiffness: 1.0, weight: Some(1.0), penalty: Some(1.0) };
+        let l = k.term_labels(&p);
+        assert_eq!(l.len(), 3);
+        assert!(l[0].starts_with("strain energy (Biot, gauss3"));
+        let l = find("string-simpson").unwrap().term_labels(&p);
+        assert!(l[0].starts_with("strain energy (Biot, simpson") && l[2].starts_with("penalty normal contact (simpson"));
+    }
+}

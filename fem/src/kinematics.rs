@@ -1,0 +1,216 @@
+//! MEL kinematics of one element on the compound contour (§5 of the reference;
+//! docs/fem-string.md §2, §5).
+//!
+//! An element's 8 local unknowns are q = (s_a, ∂σs_a, ν_a, ∂σν_a, s_b, ∂σs_b, ν_b,
+//! ∂σν_b) (units m, 1, m, 1). Everything here is generic over the number type `D` so that
+//! the same code gives values (f64) and exact derivatives (dual numbers).
+
+use drive::contour::{Contour, Region};
+use num_dual::DualNum;
+
+use crate::hermite;
+use crate::mesh::ElementGeometry;
+
+/// The number types element energies are evaluated with: f64 and num-dual's duals.
+pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+
+/// Number of local unknowns of a string element.
+pub const NDOF: usize = 8;
+
+/// Physical parameters of the energy terms of a scene; a term whose parameter is
+/// `None` is not assembled (docs/fem-string.md §4).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct TermParams {
+    /// EA, N (> 0). The strain energy is always present.
+    pub axial_stiffness: f64,
+    /// ρ g, N per unstretched metre, if the gravity term is assembled.
+    pub weight: Option<f64>,
+    /// Penalty factor P, N/m², if the contact term is assembled.
+    pub penalty: Option<f64>,
+}
+
+/// Everything an element's energy depends on apart from its unknowns.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElementContext {
+    /// σ-range and region.
+    pub geometry: ElementGeometry,
+    /// The contour (g, t_g, n_g of eq. 38).
+    pub contour: Contour,
+    /// The active terms and their parameters.
+    pub params: TermParams,
+}
+
+/// S, ∂σS, ν, ∂σν at one point of an element.
+#[derive(Debug, Clone, Copy)]
+pub struct PointFields<D> {
+    /// σ of the point, m.
+    pub sigma: f64,
+    /// Material coordinate S, m.
+    pub s: D,
+    /// ∂σS (> 0 for an admissible state).
+    pub ds: D,
+    /// Deflection ν, m.
+    pub nu: D,
+    /// ∂σν.
+    pub dnu: D,
+}
+
+impl ElementContext {
+    /// α of eq. (38) on this element: 0 on a span, 1/R on an arc (from the element's
+    /// region, also at its end point where the contour already belongs to the next region).
+    pub fn alpha(&self) -> f64 {
+        if self.geometry.region.is_polar() {
+            1.0 / self.contour.radius()
+        } else {
+            0.0
+        }
+    }
+
+    /// σ at local coordinate ξ.
+    pub fn sigma(&self, xi: f64) -> f64 {
+        self.geometry.sigma_a + 0.5 * (1.0 + xi) * self.geometry.h
+    }
+
+    /// Jacobian dσ/dξ = h/2.
+    pub fn jacobian(&self) -> f64 {
+        0.5 * self.geometry.h
+    }
+
+    /// The fields at ξ from the local unknowns (eq. 43).
+    #[inline]
+    pub fn fields<D: Scalar>(&self, q: &[D; NDOF], xi: f64) -> PointFields<D> {
+        let (wv, wd) = hermite::weights(xi, self.geometry.h);
+        let comb = |w: &[f64; 4], o: usize| -> D {
+            q[o] * w[0] + q[o + 1] * w[1] + q[o + 4] * w[2] + q[o + 5] * w[3]
+        };
+        PointFields {
+            sigma: self.sigma(xi),
+            s: comb(&wv, 0),
+            ds: comb(&wd, 0),
+            nu: comb(&wv, 2),
+            dnu: comb(&wd, 2),
+        }
+    }
+
+    /// ∂²σν at ξ (post-processing: curvature of the belt).
+    pub fn second_derivative_nu(&self, q: &[f64; NDOF], xi: f64) -> f64 {
+        let w = hermite::second_weights(xi, self.geometry.h);
+        q[2] * w[0] + q[3] * w[1] + q[6] * w[2] + q[7] * w[3]
+    }
+
+    /// Position r, ∂σr and ∂²σr at ξ (f64 post-processing), from (F1), (F2) and
+    /// ∂²σr = 2α ∂σν t_g + (∂²σν − α(1 + αν)) n_g (eq. 38 applied twice).
+    pub fn curve(&self, q: &[f64; NDOF], xi: f64) -> [[f64; 2]; 3] {
+        let p = self.fields(q, xi);
+        let d2 = self.second_derivative_nu(q, xi);
+        let a = self.alpha();
+        let t = self.contour.t_g(p.sigma);
+        let n = self.contour.n_g(p.sigma);
+        let r = self.position(&p);
+        let c1 = (1.0 + a * p.nu, p.dnu);
+        let c2 = (2.0 * a * p.dnu, d2 - a * (1.0 + a * p.nu));
+        [
+            r,
+            [c1.0 * t[0] + c1.1 * n[0], c1.0 * t[1] + c1.1 * n[1]],
+            [c2.0 * t[0] + c2.1 * n[0], c2.0 * t[1] + c2.1 * n[1]],
+        ]
+    }
+
+    /// |∂σ r| = √((1 + αν)² + (∂σν)²), eq. (F2).
+    #[inline]
+    pub fn tangent_length<D: Scalar>(&self, p: &PointFields<D>) -> D {
+        let a = p.nu * self.alpha() + 1.0;
+        (a * a + p.dnu * p.dnu).sqrt()
+    }
+
+    /// Stretch λ = |∂σ r| / ∂σS, eq. (F4).
+    #[inline]
+    pub fn stretch<D: Scalar>(&self, p: &PointFields<D>) -> D {
+        self.tangent_length(p) / p.ds
+    }
+
+    /// Position r = g + ν n_g (eq. 27), m.
+    #[inline]
+    pub fn position<D: Scalar>(&self, p: &PointFields<D>) -> [D; 2] {
+        let g = self.contour.g(p.sigma);
+        let n = self.contour.n_g(p.sigma);
+        [p.nu * n[0] + g[0], p.nu * n[1] + g[1]]
+    }
+
+    /// Height y = g_y + ν n_{g,y}, m.
+    #[inline]
+    pub fn height<D: Scalar>(&self, p: &PointFields<D>) -> D {
+        let g = self.contour.g(p.sigma);
+        let n = self.contour.n_g(p.sigma);
+        p.nu * n[1] + g[1]
+    }
+
+    /// Gap γ to the nearest pulley surface at the point, m (docs/fem-string.md F10):
+    /// ν on an arc; √((x − x_k)² + (R + ν)²) − R on a span point with |x − x_k| < R;
+    /// `None` where no pulley can be reached (the rest of a span).
+    #[inline]
+    pub fn gap<D: Scalar>(&self, p: &PointFields<D>) -> Option<D> {
+        span_gap(&self.contour, self.geometry.region, p.sigma, p.nu)
+    }
+}
+
+/// The gap of (F10) at σ in `region` for deflection ν (see [`ElementContext::gap`]).
+#[inline]
+pub fn span_gap<D: Scalar>(contour: &Contour, region: Region, sigma: f64, nu: D) -> Option<D> {
+    if region.is_polar() {
+        return Some(nu);
+    }
+    let r = contour.radius();
+    let x = contour.g(sigma)[0];
+    let half = 0.5 * contour.centre_distance();
+    let dx = if (x - half).abs() < r {
+        x - half
+    } else if (x + half).abs() < r {
+        x + half
+    } else {
+        return None;
+    };
+    let a = nu + r;
+    Some((a * a + dx * dx).sqrt() - r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// On an arc the position is C + (R + ν) n_g and the gap is ν; on a span near a
+    /// pulley the gap is the distance to the centre minus R.
+    #[test]
+    fn position_and_gap() {
+        let contour = Contour::new(0.08, 0.45).unwrap();
+        let r = contour.radius();
+        let ctx = |region: Region, sa: f64, h: f64| ElementContext {
+            geometry: ElementGeometry { sigma_a: sa, h, region },
+            contour,
+            params: TermParams { axial_stiffness: 1.0, weight: None, penalty: None },
+        };
+        // driven arc element, constant ν = 0.01
+        let e = ctx(Region::DrivenArc, 0.45, 0.02);
+        let q = [0.45, 1.0, 0.01, 0.0, 0.47, 1.0, 0.01, 0.0];
+        let p = e.fields(&q, 0.3);
+        let pos = e.position(&p);
+        let c = contour.pulley_centre(drive::contour::Pulley::Driven);
+        let dist = (pos[0] - c[0]).hypot(pos[1] - c[1]);
+        assert!((dist - (r + 0.01)).abs() < 1e-15);
+        assert!((e.gap(&p).unwrap() - 0.01).abs() < 1e-15);
+        // stretch with ∂σS = 1: λ = 1 + αν
+        assert!((e.stretch(&p) - (1.0 + 0.01 / r)).abs() < 1e-14);
+        // upper span element ending at the driven top: x = 0.2 is 0.025 left of the centre
+        let e = ctx(Region::UpperSpan, 0.42, 0.03);
+        let q = [0.42, 1.0, -0.001, 0.0, 0.45, 1.0, -0.001, 0.0];
+        let p = e.fields(&q, 2.0 * (0.425 - 0.42) / 0.03 - 1.0);
+        let g = e.gap(&p).unwrap();
+        let expect = (0.025f64.powi(2) + (r - 0.001).powi(2)).sqrt() - r;
+        assert!((g - expect).abs() < 1e-15, "{g} vs {expect}");
+        // mid upper span: no pulley within reach
+        let e = ctx(Region::UpperSpan, 0.2, 0.03);
+        let p = e.fields(&q, 0.0);
+        assert!(e.gap(&p).is_none());
+    }
+}

@@ -1,0 +1,318 @@
+//! The MEL mesh: nodes at fixed contour coordinates σ, element boundaries on every
+//! Cartesian/polar transition (docs/fem-string.md §5).
+//!
+//! N elements are distributed over the four regions of [`drive::contour::Region::ALL`]
+//! in proportion to the *weighted* region length (spans H, arcs w·πR, w = `arc_weight`
+//! ≥ 1 refines near the pulleys), at least one per region and symmetrically: ⌊N/2⌋ is
+//! split between one span and one arc by rounding (each ≥ 1) and mirrored to the other
+//! span and arc; an odd N puts the extra element on the upper span. Within a region the
+//! elements are uniform. Node 0 sits at
+//! σ = 0 (top of the driver); node k at the start of element k; element N − 1 ends at
+//! σ = L_c ≡ 0 (the loop closure).
+
+use drive::contour::{Contour, Region};
+
+use crate::error::FemError;
+
+/// Largest number of elements accepted (memory guard: ~1 kB per element).
+pub const MAX_ELEMENTS: usize = 1 << 20;
+
+/// One element: σ ∈ [σ_a, σ_a + h) inside one region.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ElementGeometry {
+    /// σ at the element start, m.
+    pub sigma_a: f64,
+    /// Element length in σ, m (> 0).
+    pub h: f64,
+    /// The region the element lies in.
+    pub region: Region,
+}
+
+/// Nodes and elements of a closed MEL mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mesh {
+    contour: Contour,
+    /// σ of node k (k = 0..N), strictly increasing, `nodes[0] = 0`.
+    nodes: Vec<f64>,
+    elements: Vec<ElementGeometry>,
+    /// Elements per region, in the order of [`Region::ALL`].
+    per_region: [usize; 4],
+    /// Node index of each region's first node (the transitions), order of [`Region::ALL`].
+    transition_nodes: [usize; 4],
+}
+
+impl Mesh {
+    /// A mesh of `elements` elements (≥ 4) on `contour`, with arcs weighted by
+    /// `arc_weight` (≥ 1, finite) in the distribution.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidOption`] for fewer than 4 or more than [`MAX_ELEMENTS`]
+    /// elements or an invalid weight.
+    pub fn new(contour: Contour, elements: usize, arc_weight: f64) -> Result<Mesh, FemError> {
+        if !(4..=MAX_ELEMENTS).contains(&elements) {
+            return Err(FemError::InvalidOption {
+                field: "elements",
+                value: elements.to_string(),
+                reason: format!(
+                    "need at least 4 elements (one per region of the contour) and at most {MAX_ELEMENTS}"
+                ),
+            });
+        }
+        if !(arc_weight.is_finite() && arc_weight >= 1.0) {
+            return Err(FemError::InvalidOption {
+                field: "arc_weight",
+                value: arc_weight.to_string(),
+                reason: "the arc refinement weight must be finite and ≥ 1".into(),
+            });
+        }
+        let per_region = distribute(&contour, elements, arc_weight);
+        let mut nodes = Vec::with_capacity(elements + 1);
+        let mut els = Vec::with_capacity(elements);
+        let mut transition_nodes = [0; 4];
+        for (k, region) in Region::ALL.iter().enumerate() {
+            let (a, b) = contour.region_bounds(*region);
+            let n = per_region[k];
+            transition_nodes[k] = nodes.len();
+            let h = (b - a) / n as f64;
+            for i in 0..n {
+                let sa = if i == 0 { a } else { a + i as f64 * h };
+                nodes.push(sa);
+                let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
+                els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
+            }
+        }
+        nodes.push(contour.length());
+        Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes })
+    }
+
+    /// A mesh with the topology of [`Mesh::new`] (same elements per region, so the same
+    /// unknowns and sparsity pattern) whose nodes are moved so that each of
+    /// `breakpoints` (σ, any order, wrapped) is a node: a region containing breakpoints
+    /// is split at them and its elements distributed over the pieces in proportion to
+    /// their lengths (≥ 1 each; largest remainders). A breakpoint closer than 2 % of the
+    /// region's uniform element length to a region end or another breakpoint, or one a
+    /// region has no element to spare for, is ignored (the returned list says which were
+    /// used).
+    ///
+    /// # Errors
+    /// As [`Mesh::new`].
+    pub fn fitted(contour: Contour, elements: usize, arc_weight: f64, breakpoints: &[f64]) -> Result<(Mesh, Vec<f64>), FemError> {
+        let base = Mesh::new(contour, elements, arc_weight)?;
+        let mut nodes = Vec::with_capacity(elements + 1);
+        let mut els = Vec::with_capacity(elements);
+        let mut used = Vec::new();
+        for (k, region) in Region::ALL.iter().enumerate() {
+            let (a, b) = contour.region_bounds(*region);
+            let m = base.per_region[k];
+            let h_uniform = (b - a) / m as f64;
+            let min_gap = 0.02 * h_uniform;
+            let mut cuts: Vec<f64> = breakpoints
+                .iter()
+                .map(|&s| contour.wrap(s))
+                .filter(|&s| s.is_finite() && s > a + min_gap && s < b - min_gap)
+                .collect();
+            cuts.sort_by(f64::total_cmp);
+            let mut kept: Vec<f64> = Vec::new();
+            for c in cuts {
+                if kept.last().is_none_or(|&l| c - l > min_gap) {
+                    kept.push(c);
+                }
+            }
+            kept.truncate(m.saturating_sub(1));
+            let mut edges = vec![a];
+            edges.extend(&kept);
+            edges.push(b);
+            used.extend(kept);
+            let pieces = edges.len() - 1;
+            let lengths: Vec<f64> = edges.windows(2).map(|w| w[1] - w[0]).collect();
+            let spare = (m - pieces) as f64;
+            let ideal: Vec<f64> = lengths.iter().map(|l| spare * l / (b - a)).collect();
+            let mut counts: Vec<usize> = ideal.iter().map(|x| 1 + x.floor() as usize).collect();
+            let mut order: Vec<usize> = (0..pieces).collect();
+            order.sort_by(|&i, &j| (ideal[j] - ideal[j].floor()).total_cmp(&(ideal[i] - ideal[i].floor())));
+            let mut i = 0;
+            while counts.iter().sum::<usize>() < m {
+                counts[order[i % pieces]] += 1;
+                i += 1;
+            }
+            for p in 0..pieces {
+                let (pa, pb) = (edges[p], edges[p + 1]);
+                let n = counts[p];
+                let h = (pb - pa) / n as f64;
+                for j in 0..n {
+                    let sa = if j == 0 { pa } else { pa + j as f64 * h };
+                    let sb = if j + 1 == n { pb } else { pa + (j + 1) as f64 * h };
+                    nodes.push(sa);
+                    els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
+                }
+            }
+        }
+        nodes.push(contour.length());
+        let mesh = Mesh { contour, nodes, elements: els, per_region: base.per_region, transition_nodes: base.transition_nodes };
+        Ok((mesh, used))
+    }
+
+    /// The contour.
+    pub fn contour(&self) -> &Contour {
+        &self.contour
+    }
+
+    /// Number of elements N (= number of distinct nodes, the loop being closed).
+    pub fn len(&self) -> usize {
+        self.elements.len()
+    }
+
+    /// Never true (a mesh has ≥ 4 elements); for clippy's `len_without_is_empty`.
+    pub fn is_empty(&self) -> bool {
+        self.elements.is_empty()
+    }
+
+    /// The elements in σ order.
+    pub fn elements(&self) -> &[ElementGeometry] {
+        &self.elements
+    }
+
+    /// σ of the N + 1 node positions (the last is L_c, the same node as the first).
+    pub fn node_sigmas(&self) -> &[f64] {
+        &self.nodes
+    }
+
+    /// Elements per region, in the order of [`Region::ALL`].
+    pub fn elements_per_region(&self) -> [usize; 4] {
+        self.per_region
+    }
+
+    /// Node indices of the four transitions (first node of each region).
+    pub fn transition_nodes(&self) -> [usize; 4] {
+        self.transition_nodes
+    }
+
+    /// True if node k is a region transition (where the slopes are doubled).
+    pub fn is_transition(&self, node: usize) -> bool {
+        self.transition_nodes.contains(&node)
+    }
+
+    /// The element containing σ (wrapped periodically) and the local ξ ∈ [−1, 1].
+    /// A non-finite σ gives element 0 and ξ = NaN (never a panic).
+    pub fn locate(&self, sigma: f64) -> (usize, f64) {
+        let w = self.contour.wrap(sigma);
+        if !w.is_finite() {
+            return (0, f64::NAN);
+        }
+        // last node ≤ w among nodes[0..N]
+        let n = self.elements.len();
+        let k = match self.nodes[..n].binary_search_by(|x| x.total_cmp(&w)) {
+            Ok(k) => k,
+            Err(k) => k.saturating_sub(1),
+        };
+        let e = &self.elements[k.min(n - 1)];
+        let xi = (2.0 * (w - e.sigma_a) / e.h - 1.0).clamp(-1.0, 1.0);
+        (k.min(n - 1), xi)
+    }
+
+    /// The element to the left of σ (σ ∈ (σ_a, σ_b], wrapped) and ξ: at a node, the
+    /// element that *ends* there ([`Mesh::locate`] gives the one that starts there).
+    pub fn locate_left(&self, sigma: f64) -> (usize, f64) {
+        let (k, xi) = self.locate(sigma);
+        if xi == -1.0 {
+            let n = self.elements.len();
+            ((k + n - 1) % n, 1.0)
+        } else {
+            (k, xi)
+        }
+    }
+
+    /// Mean length of the elements that meet at node k (used to scale slope residuals).
+    pub fn node_spacing(&self, node: usize) -> f64 {
+        let n = self.elements.len();
+        let prev = &self.elements[(node + n - 1) % n];
+        let next = &self.elements[node % n];
+        0.5 * (prev.h + next.h)
+    }
+}
+
+/// Elements per region: proportional to the weighted lengths, ≥ 1 each, sum = `n`,
+/// symmetric (upper = lower span, driven = driver arc) — the left–right symmetry of the
+/// drive is kept by the mesh. For odd `n` the upper span gets the extra element.
+fn distribute(contour: &Contour, n: usize, arc_weight: f64) -> [usize; 4] {
+    let span = contour.centre_distance();
+    let arc = arc_weight * std::f64::consts::PI * contour.radius();
+    let half = n / 2; // ≥ 2
+    let spans = ((half as f64 * span / (span + arc)).round() as usize).clamp(1, half - 1);
+    let arcs = half - spans;
+    [spans + n % 2, arcs, spans, arcs]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn contour() -> Contour {
+        Contour::new(0.08, 0.45).unwrap()
+    }
+
+    #[test]
+    fn distribution_and_transitions() {
+        let c = contour();
+        for n in [4, 5, 7, 16, 64, 255, 256, 1000] {
+            let m = Mesh::new(c, n, 1.0).unwrap();
+            assert_eq!(m.len(), n);
+            let per = m.elements_per_region();
+            assert_eq!(per.iter().sum::<usize>(), n);
+            assert!(per.iter().all(|&k| k >= 1));
+            // transitions are nodes
+            for (k, region) in Region::ALL.iter().enumerate() {
+                let node = m.transition_nodes()[k];
+                assert_eq!(m.node_sigmas()[node], c.region_bounds(*region).0);
+                assert!(m.is_transition(node));
+            }
+            // contiguous, positive lengths, each inside one region
+            for (k, e) in m.elements().iter().enumerate() {
+                assert!(e.h > 0.0);
+                assert_eq!(m.node_sigmas()[k], e.sigma_a);
+                assert!((m.node_sigmas()[k + 1] - (e.sigma_a + e.h)).abs() < 1e-15);
+                assert_eq!(c.region(e.sigma_a + 0.5 * e.h), e.region);
+            }
+            assert_eq!(*m.node_sigmas().last().unwrap(), c.length());
+        }
+        // proportional: H = 0.45, πR = 0.2513, 256 → spans ≈ 82, arcs ≈ 46
+        let m = Mesh::new(c, 256, 1.0).unwrap();
+        let per = m.elements_per_region();
+        assert_eq!(per[0], per[2]);
+        assert_eq!(per[1], per[3]);
+        assert!((per[0] as f64 / 256.0 - 0.45 / c.length()).abs() < 2.0 / 256.0);
+        // refinement near the pulleys
+        let r = Mesh::new(c, 256, 3.0).unwrap();
+        assert!(2 * r.elements_per_region()[1] > 3 * per[1]);
+        assert_eq!(per, [82, 46, 82, 46]);
+    }
+
+    #[test]
+    fn locate() {
+        let c = contour();
+        let m = Mesh::new(c, 64, 1.0).unwrap();
+        for k in 0..m.len() {
+            let e = m.elements()[k];
+            let (k2, xi) = m.locate(e.sigma_a + 0.25 * e.h);
+            assert_eq!(k2, k);
+            assert!((xi + 0.5).abs() < 1e-12);
+            let (k3, xi3) = m.locate(e.sigma_a);
+            assert_eq!(k3, k);
+            assert!((xi3 + 1.0).abs() < 1e-12);
+        }
+        let (k, xi) = m.locate(c.length() - 1e-12);
+        assert_eq!(k, m.len() - 1);
+        assert!(xi > 0.99);
+        assert_eq!(m.locate(-1e-300).0, 0);
+        assert!(m.locate(f64::NAN).1.is_nan());
+    }
+
+    #[test]
+    fn bad_input() {
+        assert!(Mesh::new(contour(), 3, 1.0).is_err());
+        assert!(Mesh::new(contour(), 0, 1.0).is_err());
+        assert!(Mesh::new(contour(), 64, 0.5).is_err());
+        assert!(Mesh::new(contour(), 64, f64::NAN).is_err());
+        assert!(Mesh::new(contour(), MAX_ELEMENTS + 1, 1.0).is_err());
+    }
+}

@@ -1,0 +1,577 @@
+//! The FE solution behind the common view (`drive::view::SolutionView`) and its summary
+//! (docs/fem-string.md §10).
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+use drive::contour::{Contour, Pulley, Region};
+use drive::summary::{PulleySummary, Summary};
+use drive::view::{ContactState, SolutionView};
+
+use crate::dofs::DofMap;
+use crate::formulation::Kernel;
+use crate::kinematics::{ElementContext, PointFields, TermParams, NDOF};
+use crate::mesh::Mesh;
+
+/// Sub-intervals per element scanned for sign changes of the gap.
+const GAP_SCAN: usize = 16;
+
+/// A converged MEL solution: the mesh, each element's local unknowns, the term
+/// parameters and the formulation (for the axial force).
+#[derive(Clone)]
+pub struct FemSolution {
+    mesh: Mesh,
+    local: Vec<[f64; NDOF]>,
+    params: TermParams,
+    length: f64,
+    kernel: Arc<dyn Kernel>,
+    summary: Summary,
+    /// Recovered contact zones (driver, driven).
+    zones: [Option<ContactZone>; 2],
+}
+
+/// Contact zone of one pulley (σ of entry and exit, unwrapped so that
+/// σ_start < σ_end; polar angles of the boundary points).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactZone {
+    /// σ of the first entry into contact in the direction of σ, m.
+    pub sigma_start: f64,
+    /// σ of the last exit, m.
+    pub sigma_end: f64,
+    /// Polar angle of the entry point about the pulley centre, rad, (−π, π].
+    pub angle_start: f64,
+    /// Polar angle of the exit point, rad, (−π, π].
+    pub angle_end: f64,
+    /// Separate intervals of γ < 0 found in the window (1 for a clean solution).
+    pub intervals: usize,
+    /// True if both boundaries were recovered by the tangency construction (§10); false
+    /// if a boundary is the raw zero crossing of the gap.
+    pub recovered: bool,
+}
+
+/// 8-point Gauss–Legendre rule on [−1, 1].
+const GL8: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_5),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
+];
+
+impl FemSolution {
+    /// The solution for global unknowns `z` of `dofs` on `mesh` with belt length `length`.
+    pub fn new(mesh: Mesh, dofs: &DofMap, z: &[f64], params: TermParams, length: f64, kernel: Arc<dyn Kernel>) -> Self {
+        let local = (0..mesh.len()).map(|e| dofs.gather(e, z, length)).collect();
+        let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2] };
+        if sol.params.penalty.is_some() {
+            sol.zones = [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)];
+        }
+        sol.summary = sol.compute_summary();
+        sol
+    }
+
+    /// The mesh.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
+
+    /// The term parameters of the converged state.
+    pub fn params(&self) -> &TermParams {
+        &self.params
+    }
+
+    /// Contact intervals of γ < 0 found per pulley (driver, driven): 1 for a clean
+    /// solution (0: no contact).
+    pub fn contact_intervals(&self) -> [usize; 2] {
+        [0, 1].map(|k| self.zones[k].map_or(0, |z| z.intervals))
+    }
+
+    /// The recovered contact zone of a pulley (the one the summary and the contact
+    /// state use).
+    pub fn zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        match pulley {
+            Pulley::Driver => self.zones[0],
+            Pulley::Driven => self.zones[1],
+        }
+    }
+
+    fn context(&self, e: usize) -> ElementContext {
+        ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params }
+    }
+
+    /// Element, its context and the fields at σ.
+    fn at(&self, sigma: f64) -> (ElementContext, PointFields<f64>) {
+        let (e, xi) = self.mesh.locate(sigma);
+        let el = self.context(e);
+        let p = el.fields(&self.local[e], xi);
+        (el, p)
+    }
+
+    /// Fields S, ∂σS, ν, ∂σν at σ (wrapped; S without the per-loop offset).
+    pub fn fields(&self, sigma: f64) -> PointFields<f64> {
+        self.at(sigma).1
+    }
+
+    /// Fields at σ from one side: `left` = the element ending at σ if σ is a node (the
+    /// slopes differ at a region transition), else the element containing σ.
+    pub fn one_sided_fields(&self, sigma: f64, left: bool) -> PointFields<f64> {
+        let (e, xi) = if left { self.mesh.locate_left(sigma) } else { self.mesh.locate(sigma) };
+        self.context(e).fields(&self.local[e], xi)
+    }
+
+    /// Belt length L, m.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// Axial force recovered from the strain rule's points, interpolated (see the
+    /// view's `axial_force`), N.
+    pub fn recovered_axial_force(&self, sigma: f64) -> f64 {
+        let (e, xi) = self.mesh.locate(sigma);
+        let el = self.context(e);
+        let pts = self.kernel.rules().strain.points();
+        let ea = self.params.axial_stiffness;
+        let values: Vec<(f64, f64)> = pts
+            .iter()
+            .map(|&(x, _)| {
+                let p = el.fields(&self.local[e], x);
+                (x, self.kernel.axial_force(el.stretch(&p), ea))
+            })
+            .collect();
+        lagrange(&values, xi)
+    }
+
+    /// Stretch λ at σ.
+    pub fn stretch(&self, sigma: f64) -> f64 {
+        let (el, p) = self.at(sigma);
+        el.stretch(&p)
+    }
+
+    /// Gap γ at σ (None where no pulley can be reached), m.
+    pub fn gap(&self, sigma: f64) -> Option<f64> {
+        let (el, p) = self.at(sigma);
+        el.gap(&p)
+    }
+
+    /// The frictionless invariant E = N + N²/(2EA) − ρ g y at σ (S6), N; `None` without
+    /// gravity.
+    pub fn invariant(&self, sigma: f64) -> Option<f64> {
+        let w = self.params.weight?;
+        let n = self.axial_force(sigma);
+        let y = self.position(sigma)[1];
+        Some(n + n * n / (2.0 * self.params.axial_stiffness) - w * y)
+    }
+
+    /// Largest penetration max(−γ) at the integration points of the contact rule and the
+    /// nodes, m (0 if the belt does not penetrate anywhere).
+    pub fn max_penetration(&self) -> f64 {
+        let rule = self.kernel.rules().contact;
+        let mut m: f64 = 0.0;
+        for e in 0..self.mesh.len() {
+            let el = self.context(e);
+            for xi in rule.points().iter().map(|p| p.0).chain([-1.0, 1.0]) {
+                if let Some(g) = el.gap(&el.fields(&self.local[e], xi)) {
+                    m = m.max(-g);
+                }
+            }
+        }
+        m
+    }
+
+    /// Smallest axial force at the strain rule's points and the nodes (N from the law at
+    /// the stretch there, unrecovered), with its σ.
+    pub fn min_axial_force(&self) -> (f64, f64) {
+        let rule = self.kernel.rules().strain;
+        let mut best = (0.0, f64::INFINITY);
+        for e in 0..self.mesh.len() {
+            let el = self.context(e);
+            for xi in rule.points().iter().map(|p| p.0).chain([-1.0, 1.0]) {
+                let p = el.fields(&self.local[e], xi);
+                let n = self.kernel.axial_force(el.stretch(&p), self.params.axial_stiffness);
+                if n < best.1 {
+                    best = (p.sigma, n);
+                }
+            }
+        }
+        best
+    }
+
+    /// The contact zone of a pulley: the hull of {γ < 0} in the σ-window where the gap
+    /// to that pulley is defined (its arc and the span parts with |x − x_k| < R),
+    /// boundaries by bisection on the interpolant between scan points (not snapped to
+    /// nodes). `None` if the belt does not touch the pulley.
+    pub fn contact_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let c = self.mesh.contour();
+        let arc = match pulley {
+            Pulley::Driven => Region::DrivenArc,
+            Pulley::Driver => Region::DriverArc,
+        };
+        let (a, b) = c.region_bounds(arc);
+        let (w0, w1) = (a - c.radius(), b + c.radius());
+        let l = c.length();
+        // elements overlapping the window, unwrapped (the driver's window runs past L_c)
+        let mut parts: Vec<(f64, usize, f64)> = Vec::new(); // (start, element, offset)
+        for (e, g) in self.mesh.elements().iter().enumerate() {
+            for off in [-l, 0.0, l] {
+                let (sa, sb) = (g.sigma_a + off, g.sigma_a + g.h + off);
+                if sb > w0 && sa < w1 {
+                    parts.push((sa, e, off));
+                }
+            }
+        }
+        parts.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // sign changes of γ (γ undefined = free); at the window edges |x − x_k| = R, no
+        // contact is possible, so the scan starts outside contact
+        let mut events: Vec<(f64, bool)> = Vec::new(); // (σ unwrapped, entering contact?)
+        for &(_, e, off) in &parts {
+            let el = self.context(e);
+            let gap_at = |xi: f64| -> f64 { el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY) };
+            let mut xi_prev = -1.0;
+            let mut g_prev = gap_at(-1.0);
+            for j in 1..=GAP_SCAN {
+                let xi = -1.0 + 2.0 * j as f64 / GAP_SCAN as f64;
+                let g = gap_at(xi);
+                if (g < 0.0) != (g_prev < 0.0) {
+                    let root = bisect(&gap_at, xi_prev, xi);
+                    let sigma = el.sigma(root) + off;
+                    if sigma > w0 && sigma < w1 {
+                        events.push((sigma, g < 0.0));
+                    }
+                }
+                xi_prev = xi;
+                g_prev = g;
+            }
+        }
+        let entries: Vec<f64> = events.iter().filter(|ev| ev.1).map(|ev| ev.0).collect();
+        let exits: Vec<f64> = events.iter().filter(|ev| !ev.1).map(|ev| ev.0).collect();
+        let sigma_start = entries.first().copied()?;
+        let sigma_end = exits.iter().rev().find(|&&s| s > sigma_start).copied().unwrap_or(w1);
+        Some(ContactZone {
+            sigma_start,
+            sigma_end,
+            angle_start: c.polar_angle(pulley, self.position(sigma_start)),
+            angle_end: c.polar_angle(pulley, self.position(sigma_end)),
+            intervals: entries.len().max(1),
+            recovered: false,
+        })
+    }
+
+    /// The contact zone with both boundaries recovered from the free spans (tangency
+    /// construction, docs/fem-string.md §10); a boundary that cannot be recovered keeps
+    /// its raw zero crossing of γ.
+    pub fn recovered_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let raw = self.contact_zone(pulley)?;
+        let mut z = raw;
+        let mut both = true;
+        match self.tangency(pulley, raw.sigma_start, false) {
+            Some((sigma, angle)) => {
+                z.sigma_start = sigma;
+                z.angle_start = angle;
+            }
+            None => both = false,
+        }
+        match self.tangency(pulley, raw.sigma_end, true) {
+            Some((sigma, angle)) => {
+                z.sigma_end = sigma;
+                z.angle_end = angle;
+            }
+            None => both = false,
+        }
+        if z.sigma_end <= z.sigma_start {
+            return Some(raw);
+        }
+        z.recovered = both;
+        Some(z)
+    }
+
+    /// Tangency recovery of one contact boundary near the raw boundary σ_b
+    /// (docs/fem-string.md §10). At the anchor — the middle of the span on the free side
+    /// of the boundary — the FE belt has position r_P, unit tangent t_P and the force
+    /// F_P = F_x t_P / t_x from the span's horizontal force F_x (constant in a free
+    /// span); the free belt is continued from there towards the pulley with the string's
+    /// own equilibrium (S2): F(s) = F_P + ρ g (s − s_P) e_y, r(s) = r_P + ∫ λ F/|F| ds,
+    /// λ = 1 + |F|/EA, and the boundary is the point where it is tangent to the pulley,
+    /// (r − C)·F = 0. Returns the (unwrapped) σ of the contour normal through that point
+    /// and its polar angle; `None` if the anchor is not clearly free or no tangency is
+    /// found within reach.
+    fn tangency(&self, pulley: Pulley, sigma_b: f64, leaving: bool) -> Option<(f64, f64)> {
+        let c = self.mesh.contour();
+        let centre = c.pulley_centre(pulley);
+        let (eb, _) = self.mesh.locate(sigma_b);
+        let h = self.mesh.elements()[eb].h;
+        let dir = if leaving { 1.0 } else { -1.0 };
+        // the free span on the free side of the boundary, and the anchor in its middle
+        let mut region = c.region(sigma_b);
+        if region.is_polar() {
+            let (a, b) = c.region_bounds(region);
+            region = c.region(if leaving { b + 1e-9 } else { a - 1e-9 });
+        }
+        let (sa, sb) = c.region_bounds(region);
+        let span = sb - sa;
+        let d_a = 0.5 * span;
+        let anchor = if leaving { sa + d_a } else { sb - d_a };
+        // unwrap the anchor next to σ_b
+        let l = c.length();
+        let off = (anchor - c.wrap(sigma_b)).rem_euclid(l);
+        let off = if off > 0.5 * l { off - l } else { off };
+        let sigma_p = sigma_b + off;
+        let distance = off.abs();
+        if dir * off <= 0.0 {
+            return None;
+        }
+        let (e, xi) = self.mesh.locate(sigma_p);
+        let el = self.context(e);
+        let p = el.fields(&self.local[e], xi);
+        let [r, r1, _] = el.curve(&self.local[e], xi);
+        let speed = r1[0].hypot(r1[1]);
+        let ea = self.params.axial_stiffness;
+        let t = [r1[0] / speed, r1[1] / speed];
+        // the force at the anchor from the span's horizontal force F_x (constant in a
+        // free span, (S2)), which the FE gives most accurately in the middle of the span,
+        // far from the contact edges; the local N_P only where the belt is too steep
+        let n_local = self.recovered_axial_force(sigma_p);
+        let f_p = match self.span_horizontal_force(sigma_p, dir) {
+            Some(fx) if t[0].abs() > 0.1 && fx * t[0] > 0.0 => [fx, fx * t[1] / t[0]],
+            _ => [n_local * t[0], n_local * t[1]],
+        };
+        let n_p = f_p[0].hypot(f_p[1]);
+        if !(speed > 0.0 && n_p > 0.0 && n_p.is_finite()) {
+            return None;
+        }
+        let w = self.params.weight.unwrap_or(0.0);
+        // force and position at unstretched arclength u from the anchor (u < 0: back)
+        let force = |u: f64| [f_p[0], f_p[1] + w * u];
+        let position = |u: f64| -> [f64; 2] {
+            // 8-point Gauss–Legendre of the smooth integrand λ F/|F| on [0, u]
+            let mut acc = [0.0, 0.0];
+            for &(x, wt) in GL8.iter() {
+                let f = force(0.5 * u * (1.0 + x));
+                let nf = f[0].hypot(f[1]);
+                let lam = 1.0 + nf / ea;
+                acc[0] += wt * lam * f[0] / nf;
+                acc[1] += wt * lam * f[1] / nf;
+            }
+            [r[0] + 0.5 * u * acc[0], r[1] + 0.5 * u * acc[1]]
+        };
+        let g = |u: f64| -> f64 {
+            let q = position(u);
+            let f = force(u);
+            ((q[0] - centre[0]) * f[0] + (q[1] - centre[1]) * f[1]) / f[0].hypot(f[1])
+        };
+        // on the free side the belt moves away from (leaving) or towards the pulley
+        if dir * g(0.0) <= 0.0 || g(0.0).is_nan() {
+            return None;
+        }
+        // search up to 1.5× the FE's own unstretched length from the anchor to the raw
+        // boundary (the belt can be much longer than its σ-range where it hangs far from
+        // an arc)
+        let s_length = (self.fields(sigma_p).s - self.fields(sigma_b).s).rem_euclid(self.length);
+        let s_length = if s_length > 0.5 * self.length { self.length - s_length } else { s_length };
+        let reach = 1.5 * s_length.max(distance / p.ds.max(1e-12)) + 3.0 * h;
+        let samples = 256;
+        let mut u_prev = 0.0;
+        for k in 1..=samples {
+            let u = -dir * reach * k as f64 / samples as f64;
+            if dir * g(u) <= 0.0 {
+                let root = bisect(&g, u_prev, u);
+                let q = position(root);
+                let (sigma, _) = c.sigma_nu(q);
+                let l = c.length();
+                let d = (sigma - c.wrap(sigma_b)).rem_euclid(l);
+                let d = if d > 0.5 * l { d - l } else { d };
+                return Some((sigma_b + d, c.polar_angle(pulley, q)));
+            }
+            u_prev = u;
+        }
+        None
+    }
+
+    /// The horizontal force F_x = N t_x of the span that σ lies on (or, on an arc, of
+    /// the span next to it in direction `dir`), averaged over the middle half of the
+    /// span (32 points). `None` without gravity-free span data (never for this model).
+    fn span_horizontal_force(&self, sigma: f64, dir: f64) -> Option<f64> {
+        let c = self.mesh.contour();
+        let mut region = c.region(sigma);
+        if region.is_polar() {
+            let (a, b) = c.region_bounds(region);
+            region = c.region(if dir > 0.0 { b + 1e-9 } else { a - 1e-9 });
+        }
+        let (a, b) = c.region_bounds(region);
+        let samples = 32;
+        let mut sum = 0.0;
+        for k in 0..samples {
+            let s = a + (b - a) * (0.25 + 0.5 * (k as f64 + 0.5) / samples as f64);
+            let (e, xi) = self.mesh.locate(s);
+            let el = self.context(e);
+            let [_, r1, _] = el.curve(&self.local[e], xi);
+            let speed = r1[0].hypot(r1[1]);
+            let n = self.recovered_axial_force(s);
+            sum += n * r1[0] / speed;
+        }
+        let fx = sum / samples as f64;
+        fx.is_finite().then_some(fx)
+    }
+
+    /// σ (wrapped to [0, L_c)) of the contact boundaries: driver start, driver end,
+    /// driven start, driven end (those that exist).
+    pub fn contact_boundaries(&self) -> Vec<f64> {
+        let c = self.mesh.contour();
+        let mut out = Vec::with_capacity(4);
+        for z in self.zones.iter().flatten() {
+            out.push(c.wrap(z.sigma_start));
+            out.push(c.wrap(z.sigma_end));
+        }
+        out
+    }
+
+    fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
+        match self.zone(pulley) {
+            None => PulleySummary { contact_arc: Some(0.0), ..Default::default() },
+            Some(z) => PulleySummary {
+                contact_arc: Some((z.angle_start - z.angle_end).rem_euclid(2.0 * PI)),
+                contact_start: Some(z.angle_start),
+                contact_end: Some(z.angle_end),
+                ..Default::default()
+            },
+        }
+    }
+
+    fn compute_summary(&mut self) -> Summary {
+        let c = *self.mesh.contour();
+        let h = c.centre_distance();
+        let upper = 0.5 * h;
+        let lower = h + PI * c.radius() + 0.5 * h;
+        let driver = self.pulley_summary(Pulley::Driver);
+        let driven = self.pulley_summary(Pulley::Driven);
+        let contact = self.params.penalty.is_some();
+        Summary {
+            y_upper_mid: Some(self.position(upper)[1]),
+            y_lower_mid: Some(self.position(lower)[1]),
+            tension_upper_mid: Some(self.axial_force(upper)),
+            tension_lower_mid: Some(self.axial_force(lower)),
+            driver: contact.then_some(driver),
+            driven: contact.then_some(driven),
+            ..Summary::default()
+        }
+    }
+}
+
+/// The Lagrange interpolant through the points (ξ_i, v_i), at ξ.
+fn lagrange(points: &[(f64, f64)], xi: f64) -> f64 {
+    let mut sum = 0.0;
+    for (i, &(xi_i, v)) in points.iter().enumerate() {
+        let mut w = 1.0;
+        for (j, &(xi_j, _)) in points.iter().enumerate() {
+            if i != j {
+                w *= (xi - xi_j) / (xi_i - xi_j);
+            }
+        }
+        sum += w * v;
+    }
+    sum
+}
+
+/// Root of a continuous f on [a, b] with f(a), f(b) on different sides of 0 (bisection
+/// to |b − a| < 1e-15 in ξ, i.e. 1e-15·h/2 in σ).
+fn bisect(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let neg_a = f(a) < 0.0;
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if (f(m) < 0.0) == neg_a {
+            a = m;
+        } else {
+            b = m;
+        }
+        if (b - a).abs() < 1e-15 {
+            break;
+        }
+    }
+    0.5 * (a + b)
+}
+
+impl SolutionView for FemSolution {
+    fn contour(&self) -> &Contour {
+        self.mesh.contour()
+    }
+
+    fn position(&self, sigma: f64) -> [f64; 2] {
+        let (el, p) = self.at(sigma);
+        el.position(&p)
+    }
+
+    /// The axial force recovered from the strain rule's points (docs/fem-string.md §10):
+    /// N = EA(λ − 1) (the formulation's law) is evaluated where the strain energy samples
+    /// it — the points of the strain rule — and interpolated between them by the Lagrange
+    /// polynomial through those points (quadratic for the 3-point rules).
+    fn axial_force(&self, sigma: f64) -> f64 {
+        self.recovered_axial_force(sigma)
+    }
+
+    fn bending_moment(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
+    fn transverse_force(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
+    /// The penalty pressure P⟨−γ⟩ (N per unit contour length) recovered like the axial
+    /// force: evaluated at the contact rule's points of the element (where the
+    /// formulation applies it) and interpolated between them, ≥ 0; 0 outside the
+    /// recovered contact zones; `None` without a contact term.
+    fn contact_pressure(&self, sigma: f64) -> Option<f64> {
+        let penalty = self.params.penalty?;
+        if self.contact_state(sigma) == ContactState::Free {
+            return Some(0.0);
+        }
+        let (e, xi) = self.mesh.locate(sigma);
+        let el = self.context(e);
+        let values: Vec<(f64, f64)> = self
+            .kernel
+            .rules()
+            .contact
+            .points()
+            .iter()
+            .map(|&(x, _)| (x, el.gap(&el.fields(&self.local[e], x)).map_or(0.0, |g| penalty * (-g).max(0.0))))
+            .collect();
+        Some(lagrange(&values, xi).max(0.0))
+    }
+
+    /// `Contact` inside a recovered contact zone (consistent with the summary's
+    /// boundaries), else `Free`.
+    fn contact_state(&self, sigma: f64) -> ContactState {
+        let c = self.mesh.contour();
+        let l = c.length();
+        let w = c.wrap(sigma);
+        for z in self.zones.iter().flatten() {
+            // z.sigma_start may be unwrapped below 0 or above L_c
+            let d = (w - z.sigma_start).rem_euclid(l);
+            if d <= z.sigma_end - z.sigma_start {
+                return ContactState::Contact;
+            }
+        }
+        ContactState::Free
+    }
+
+    fn material_coordinate(&self, sigma: f64) -> f64 {
+        let l = self.mesh.contour().length();
+        let loops = (sigma / l).floor();
+        let s = self.fields(sigma).s;
+        if loops.is_finite() {
+            s + loops * self.length
+        } else {
+            f64::NAN
+        }
+    }
+
+    fn deflection(&self, sigma: f64) -> f64 {
+        self.fields(sigma).nu
+    }
+
+    fn summary(&self) -> Summary {
+        self.summary.clone()
+    }
+}

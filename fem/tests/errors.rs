@@ -1,0 +1,75 @@
+//! Bad input is an error value that names the problem and carries the numbers — never a
+//! panic, never a NaN in an output.
+
+mod common;
+
+use common::*;
+use fem::{FemError, FemOptions, SolverSettings};
+
+fn opts(elements: usize) -> FemOptions {
+    FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None }
+}
+
+#[test]
+fn registry_and_defaults() {
+    assert_eq!(fem::available_formulations(), vec!["string-simpson", "string-gauss"]);
+    assert_eq!(fem::default_formulation(), "string-simpson");
+    let scene = scene("string-hanging");
+    let o = FemOptions::from_scene(&scene, "string-simpson");
+    assert_eq!((o.elements, o.formulation.as_str(), o.penalty), (256, "string-simpson", None));
+    SolverSettings::default().validate().unwrap();
+}
+
+#[test]
+fn invalid_options() {
+    let scene = scene("string-hanging");
+    let e = fem::solve_scene(&scene, &FemOptions { formulation: "string-nonsense".into(), ..opts(64) }).err().unwrap();
+    assert!(matches!(&e, FemError::UnknownFormulation { name, available } if name == "string-nonsense" && available.len() == 2), "{e}");
+    for n in [0, 3, (1 << 20) + 1] {
+        let e = fem::solve_scene(&scene, &opts(n)).err().unwrap();
+        assert!(matches!(&e, FemError::InvalidOption { field: "elements", .. }), "{n}: {e}");
+    }
+    for p in [-1.0, 0.0, f64::NAN, f64::INFINITY] {
+        let e = fem::solve_scene(&scene, &FemOptions { penalty: Some(p), ..opts(64) }).err().unwrap();
+        assert!(matches!(&e, FemError::InvalidOption { field: "penalty", .. }), "{p}: {e}");
+    }
+    let bad = SolverSettings { update_tolerance: 0.0, ..SolverSettings::default() };
+    let e = fem::solve_scene_with(&scene, &opts(64), &bad).err().unwrap();
+    assert!(matches!(&e, FemError::InvalidOption { field: "update_tolerance", .. }), "{e}");
+    let bad = SolverSettings { arc_weight: 0.5, ..SolverSettings::default() };
+    assert!(fem::solve_scene_with(&scene, &opts(64), &bad).is_err());
+}
+
+/// A weightless loop longer than the contour has no unique equilibrium: an error naming
+/// L and L_geom (as the BVP), with the gravity term absent or present with g = 0.
+#[test]
+fn weightless_slack_loop_is_ill_posed() {
+    for gravity in [None, Some(0.0)] {
+        let mut scene = scene("string-hanging");
+        scene.effects.gravity = gravity;
+        let e = fem::solve_scene(&scene, &opts(64)).err().unwrap();
+        match &e {
+            FemError::IllPosed { length, geometric_length } => {
+                assert_eq!(*length, 1.41);
+                assert!((geometric_length - scene.geometric_length()).abs() < 1e-15);
+            }
+            other => panic!("{gravity:?}: {other}"),
+        }
+        assert!(e.to_string().contains("1.41"));
+    }
+}
+
+#[test]
+fn other_models_are_unsupported() {
+    let rod = drive::Scene::from_json_str(
+        r#"{"name": "rod", "drive": {"pulley_radius": 0.08, "centre_distance": 0.45,
+            "driver_speed": 0.0, "driven_torque": 0.0},
+            "belt": {"theory": "kirchhoff", "length": 1.41, "axial_stiffness": 2e4,
+                     "bending_stiffness": 0.01, "mass_per_length": 0.12},
+            "effects": {"gravity": 9.81, "contact": "frictionless"}, "analysis": "static"}"#,
+    )
+    .unwrap();
+    let e = fem::solve_scene(&rod, &opts(64)).err().unwrap();
+    assert!(matches!(e, FemError::Unsupported(_)), "{e}");
+    assert!(e.to_string().contains("kirchhoff"));
+}

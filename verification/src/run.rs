@@ -1,0 +1,412 @@
+//! A *run* = scene + method + discretisation → solution view + summary + cost
+//! (DESIGN.md, "The verification harness").
+//!
+//! The harness reads every solution only through [`drive::view::SolutionView`]: right
+//! after the solve, [`execute`] samples the view on a uniform σ grid ([`Samples`]) and
+//! drops the solver's own data, so BVP and FE runs are held against each other by the
+//! same numbers.
+//!
+//! Methods are values behind the [`Method`] trait. The built-in ones are the BVP
+//! variants ([`BvpSolver`]) and every formulation in the `fem` registry
+//! ([`FemFormulation`], one per name of [`fem::available_formulations`]); a test or an
+//! experiment can pass its own implementor to a study.
+
+use std::fmt;
+use std::time::Instant;
+
+use bvp::collocation::Scheme;
+use bvp::scene::{BvpMethod, BvpRunOptions, SceneSolveError};
+use drive::scene::Scene;
+use drive::summary::Summary;
+use drive::view::{ContactState, SolutionView};
+use serde::Serialize;
+
+/// Which of the two independent computations a method belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Family {
+    /// Semi-analytic BVP reference (crate `bvp`): refined by tolerance.
+    Bvp,
+    /// MEL finite elements (crate `fem`): refined by mesh.
+    Fem,
+}
+
+/// The discretisation parameter of a run.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Discretisation {
+    /// BVP: the solver's relative tolerance (its norm is defined by the `bvp` crate).
+    Tolerance(f64),
+    /// FE: number of elements round the loop.
+    Elements(usize),
+}
+
+impl fmt::Display for Discretisation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Discretisation::Tolerance(t) => write!(f, "tol {}", fmt_tolerance(*t)),
+            Discretisation::Elements(n) => write!(f, "{n} el."),
+        }
+    }
+}
+
+/// A tolerance as `1e-8` (or `2.5e-8`).
+pub fn fmt_tolerance(t: f64) -> String {
+    let s = format!("{t:.1e}");
+    s.replace(".0e", "e")
+}
+
+/// Work spent on one run. Wall time is measured by the harness around the whole
+/// `solve` call (homotopy and summary included), the same way for every method.
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct RunCost {
+    /// Wall-clock time of the solve, s.
+    pub wall_seconds: f64,
+    /// Newton iterations, summed over continuation steps and refinements.
+    pub newton_iterations: usize,
+    /// Unknowns of the final discrete system.
+    pub unknowns: usize,
+    /// Mesh nodes of the final collocation / shooting mesh (BVP).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh_nodes: Option<usize>,
+    /// Elements (FE).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub elements: Option<usize>,
+}
+
+/// What a method returns for one discretisation, before the harness samples it.
+pub struct Solved {
+    /// The solution behind the common view.
+    pub view: Box<dyn SolutionView + Send + Sync>,
+    /// Named scalars.
+    pub summary: Summary,
+    /// Work counters; `wall_seconds` is overwritten by the harness's own clock.
+    pub cost: RunCost,
+    /// Options used, serialised, so the run can be reproduced.
+    pub options: serde_json::Value,
+    /// The terms (effects) the method assembled or integrated, in words; empty if the
+    /// method does not list them.
+    pub terms: Vec<String>,
+    /// Diagnostics worth keeping (homotopy steps, closure defects, …).
+    pub notes: Vec<String>,
+}
+
+/// Why a method produced no solution.
+#[derive(Debug, Clone, PartialEq, Serialize, thiserror::Error)]
+#[serde(tag = "kind", content = "message", rename_all = "snake_case")]
+pub enum RunError {
+    /// The method has no model for this scene (e.g. a formulation for another belt
+    /// theory): not a failure of the method, but nothing to compare either.
+    #[error("not applicable: {0}")]
+    NotApplicable(String),
+    /// The method was applicable and failed (no convergence, mesh cap, non-finite
+    /// output, …).
+    #[error("{0}")]
+    Failed(String),
+}
+
+/// A solution method the harness can run at any discretisation of its family.
+pub trait Method: Send + Sync {
+    /// Label in tables and plots, e.g. `bvp-collocation gauss6` or `fem string-mel`.
+    fn label(&self) -> String;
+    /// BVP (refined by tolerance) or FE (refined by mesh).
+    fn family(&self) -> Family;
+    /// Solve `scene` at `disc` (a [`Discretisation::Tolerance`] for BVP methods, a
+    /// [`Discretisation::Elements`] for FE methods).
+    ///
+    /// # Errors
+    /// [`RunError::NotApplicable`] if the method has no model for the scene,
+    /// [`RunError::Failed`] otherwise.
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError>;
+}
+
+// ---------------------------------------------------------------------------
+// The built-in methods
+
+/// A BVP variant: collocation with a given scheme, or shooting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BvpVariant {
+    /// Collocation with this Gauss–Legendre scheme.
+    Collocation(Scheme),
+    /// Multiple shooting.
+    Shooting,
+}
+
+impl BvpVariant {
+    /// `bvp-collocation gauss6`, `bvp-shooting`.
+    pub fn label(self) -> String {
+        match self {
+            BvpVariant::Collocation(s) => format!("bvp-collocation {}", s.name()),
+            BvpVariant::Shooting => "bvp-shooting".to_string(),
+        }
+    }
+}
+
+/// A BVP method of crate `bvp`, run at a tolerance. Other options (shooting intervals,
+/// Jacobians) come from the scene's `bvp` block; the collocation mesh cap is the
+/// scene's `bvp.max_nodes` unless [`BvpSolver::max_nodes`] overrides it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BvpSolver {
+    /// Collocation scheme or shooting.
+    pub variant: BvpVariant,
+    /// Override of the collocation mesh cap (`None` = the scene's).
+    pub max_nodes: Option<usize>,
+}
+
+impl BvpSolver {
+    /// The variant with the scene's mesh cap.
+    pub fn new(variant: BvpVariant) -> Self {
+        BvpSolver { variant, max_nodes: None }
+    }
+}
+
+impl Method for BvpSolver {
+    fn label(&self) -> String {
+        self.variant.label()
+    }
+
+    fn family(&self) -> Family {
+        Family::Bvp
+    }
+
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+        let Discretisation::Tolerance(tolerance) = disc else {
+            return Err(RunError::Failed(format!("{}: a BVP method is refined by tolerance, not by {disc}", self.label())));
+        };
+        let mut opts = BvpRunOptions::from_scene(scene).map_err(|e| RunError::Failed(e.to_string()))?;
+        opts.tolerance = tolerance;
+        match self.variant {
+            BvpVariant::Collocation(s) => {
+                opts.method = BvpMethod::Collocation;
+                opts.scheme = s;
+            }
+            BvpVariant::Shooting => opts.method = BvpMethod::Shooting,
+        }
+        if let Some(n) = self.max_nodes {
+            opts.max_nodes = n;
+        }
+        let run = bvp::scene::solve_scene(scene, &opts).map_err(|e| match e {
+            SceneSolveError::Unsupported(m) => RunError::NotApplicable(m),
+            other => RunError::Failed(other.to_string()),
+        })?;
+        Ok(Solved {
+            view: run.view,
+            summary: run.summary,
+            cost: RunCost {
+                wall_seconds: run.stats.wall_seconds,
+                newton_iterations: run.stats.newton_iterations,
+                unknowns: run.stats.unknowns,
+                mesh_nodes: Some(run.stats.mesh_nodes),
+                elements: None,
+            },
+            options: run.options,
+            terms: Vec::new(),
+            notes: run.notes,
+        })
+    }
+}
+
+/// One element formulation of the `fem` registry, by name.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FemFormulation {
+    /// Name from [`fem::available_formulations`].
+    pub name: String,
+    /// Contact penalty override (`None` = the scene's `fem.penalty`, else the fem
+    /// crate's choice).
+    pub penalty: Option<f64>,
+}
+
+impl FemFormulation {
+    /// Every registered formulation, in registry order: the harness discovers them, so
+    /// a newly registered formulation is studied, reported and gated with no change
+    /// here.
+    pub fn discovered() -> Vec<FemFormulation> {
+        fem::available_formulations().into_iter().map(|n| FemFormulation { name: n.to_string(), penalty: None }).collect()
+    }
+}
+
+impl Method for FemFormulation {
+    fn label(&self) -> String {
+        format!("fem {}", self.name)
+    }
+
+    fn family(&self) -> Family {
+        Family::Fem
+    }
+
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+        let Discretisation::Elements(elements) = disc else {
+            return Err(RunError::Failed(format!("{}: an FE method is refined by mesh, not by {disc}", self.label())));
+        };
+        let opts = fem::FemOptions {
+            elements,
+            formulation: self.name.clone(),
+            penalty: self.penalty.or(scene.fem_settings().penalty),
+        };
+        let run = fem::solve_scene(scene, &opts).map_err(|e| match e {
+            fem::FemError::Unsupported(m) => RunError::NotApplicable(m),
+            #[allow(unreachable_patterns)]
+            other => RunError::Failed(other.to_string()),
+        })?;
+        Ok(Solved {
+            view: run.view,
+            summary: run.summary,
+            cost: RunCost {
+                wall_seconds: run.stats.wall_seconds,
+                newton_iterations: run.stats.newton_iterations,
+                unknowns: run.stats.unknowns,
+                mesh_nodes: None,
+                elements: Some(run.stats.elements),
+            },
+            options: run.options,
+            notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
+            terms: run.terms,
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Sampling and executing
+
+/// A solution sampled through the common view at σ_i = i·L_geom/n, i = 0..n (uniform,
+/// periodic: the rectangle rule on these points is the trapezoidal rule of the loop).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct Samples {
+    /// σ, m.
+    pub sigma: Vec<f64>,
+    /// x of r(σ), m.
+    pub x: Vec<f64>,
+    /// y of r(σ), m.
+    pub y: Vec<f64>,
+    /// Transverse deflection ν(σ), m.
+    pub deflection: Vec<f64>,
+    /// Axial force N(σ), N.
+    pub tension: Vec<f64>,
+    /// Bending moment M(σ), N·m; `None` for a string.
+    pub moment: Option<Vec<f64>>,
+    /// Contact state at σ.
+    pub state: Vec<ContactState>,
+}
+
+impl Samples {
+    /// Samples `view` at `n` uniform points; the first non-finite value is an error
+    /// naming the field and σ.
+    ///
+    /// # Errors
+    /// A message such as `non-finite tension at σ = 0.3 m`.
+    pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, String> {
+        let l = view.contour().length();
+        let mut s = Samples::default();
+        let mut moment = Vec::with_capacity(n);
+        let mut has_moment = n > 0;
+        for i in 0..n {
+            let sigma = l * i as f64 / n as f64;
+            let p = view.position(sigma);
+            let nu = view.deflection(sigma);
+            let t = view.axial_force(sigma);
+            for (name, v) in [("x", p[0]), ("y", p[1]), ("deflection", nu), ("tension", t)] {
+                if !v.is_finite() {
+                    return Err(format!("non-finite {name} ({v}) at σ = {sigma:.6} m"));
+                }
+            }
+            match view.bending_moment(sigma) {
+                Some(m) if m.is_finite() => moment.push(m),
+                Some(m) => return Err(format!("non-finite moment ({m}) at σ = {sigma:.6} m")),
+                None => has_moment = false,
+            }
+            s.sigma.push(sigma);
+            s.x.push(p[0]);
+            s.y.push(p[1]);
+            s.deflection.push(nu);
+            s.tension.push(t);
+            s.state.push(view.contact_state(sigma));
+        }
+        s.moment = has_moment.then_some(moment);
+        Ok(s)
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.sigma.len()
+    }
+
+    /// True without samples.
+    pub fn is_empty(&self) -> bool {
+        self.sigma.is_empty()
+    }
+
+    /// The samples of a field by its norm prefix: `deflection`, `tension`, `moment`.
+    pub fn field(&self, name: &str) -> Option<&[f64]> {
+        match name {
+            "deflection" => Some(&self.deflection),
+            "tension" => Some(&self.tension),
+            "moment" => self.moment.as_deref(),
+            _ => None,
+        }
+    }
+}
+
+/// The outcome of a successful run, as the harness keeps it.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunData {
+    /// Named scalars.
+    pub summary: Summary,
+    /// Work spent.
+    pub cost: RunCost,
+    /// Options used.
+    pub options: serde_json::Value,
+    /// Terms the method assembled (FE), or empty.
+    pub terms: Vec<String>,
+    /// Diagnostics of the method.
+    pub notes: Vec<String>,
+    /// The solution on the harness's σ grid (not serialised: reports write the fields
+    /// they plot).
+    #[serde(skip)]
+    pub samples: Samples,
+}
+
+/// One run: method + discretisation → data or error.
+#[derive(Debug, Clone, Serialize)]
+pub struct Run {
+    /// Method label.
+    pub method: String,
+    /// BVP or FE.
+    pub family: Family,
+    /// Tolerance or elements.
+    pub discretisation: Discretisation,
+    /// Wall time of the solve call, s — also for a run that failed (failing costs time
+    /// too).
+    pub wall_seconds: f64,
+    /// The solution, or why there is none.
+    pub outcome: Result<RunData, RunError>,
+}
+
+impl Run {
+    /// The data of a successful run.
+    pub fn data(&self) -> Option<&RunData> {
+        self.outcome.as_ref().ok()
+    }
+
+    /// Wall time of the run, s (`None` only if the clock gave a non-finite number).
+    pub fn wall_seconds(&self) -> Option<f64> {
+        self.wall_seconds.is_finite().then_some(self.wall_seconds)
+    }
+}
+
+/// Runs `method` on `scene` at `disc`, timing the solve and sampling the solution at
+/// `samples` uniform σ points. A summary or sample that is not finite turns the run
+/// into a [`RunError::Failed`] (no NaN reaches a table).
+pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples: usize) -> Run {
+    let start = Instant::now();
+    let solved = method.solve(scene, disc);
+    let wall = start.elapsed().as_secs_f64();
+    let outcome = solved.and_then(|s| {
+        s.summary.check_finite().map_err(|e| RunError::Failed(format!("summary: {e}")))?;
+        let samples = Samples::of_view(s.view.as_ref(), samples).map_err(RunError::Failed)?;
+        let mut cost = s.cost;
+        cost.wall_seconds = wall;
+        Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, samples })
+    });
+    Run { method: method.label(), family: method.family(), discretisation: disc, wall_seconds: wall, outcome }
+}

@@ -1,0 +1,479 @@
+//! A *study* of one scene: the BVP over a tolerance sequence per variant, and every FE
+//! formulation over a mesh sequence, each run held against the tightest BVP run (the
+//! reference) through the common solution view.
+//!
+//! The algorithm of [`Study::run`] reads as follows:
+//! 1. solve the reference (collocation gauss6 at the tightest tolerance);
+//! 2. for each BVP variant, each tolerance: run, errors of every quantity
+//!    ([`crate::measure`]) — no orders (order against a tolerance is not meaningful);
+//! 3. for each FE formulation (discovered from the `fem` registry unless named), each
+//!    mesh: run, errors, observed orders p_k between successive meshes;
+//! 4. for each FE formulation with three or more successful meshes: Richardson
+//!    extrapolation of every quantity with its self-convergence order, and the
+//!    mutual convergence |q_R − q_ref| / |q_ref|.
+//!
+//! Runs are executed one after another so that their wall times are comparable.
+
+use bvp::collocation::Scheme;
+use drive::scene::Scene;
+use serde::Serialize;
+
+use crate::measure::{self, Quantity, QuantityKind};
+use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, Run, RunError};
+
+/// Default σ samples of the field norms: enough that the sampling error of an L2 norm
+/// (trapezoidal rule, O(n⁻²) with the kinks at contact points) stays far below the
+/// errors the tables resolve.
+pub const DEFAULT_SAMPLES: usize = 2048;
+
+/// Default BVP tolerance sequence of `converge` and `report` for gauss6 and shooting.
+pub const DEFAULT_TOLERANCES: [f64; 7] = [1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10];
+
+/// gauss4 stops earlier by default: its collocation residual converges at order 2, so
+/// tolerances below 1e-8 need more mesh nodes than the default cap on slack scenes.
+pub const DEFAULT_GAUSS4_FLOOR: f64 = 1e-8;
+
+/// Collocation mesh cap of the studies (instead of the scene's `bvp.max_nodes`, default
+/// 20 000): gauss4's residual converges at order 2 only, and on slack scenes it needs
+/// more nodes than that to reach 1e-8.
+pub const STUDY_MAX_NODES: usize = 100_000;
+
+/// Tolerance of the reference run of `converge` and `report` (collocation gauss6).
+pub const REFERENCE_TOLERANCE: f64 = 1e-11;
+
+/// A sweep of one BVP variant over tolerances.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BvpSweep {
+    /// Collocation scheme or shooting.
+    pub variant: BvpVariant,
+    /// Tolerances, loosest first.
+    pub tolerances: Vec<f64>,
+}
+
+/// Which FE formulations a study runs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulations {
+    /// Every formulation of [`fem::available_formulations`] (a formulation that returns
+    /// "not applicable" for the scene is listed as such, not failed).
+    Discovered,
+    /// These names (from `--formulation` or the scene's `fem.formulations`); each must
+    /// be registered, and "not applicable" counts as a failure.
+    Named(Vec<String>),
+}
+
+/// What a study runs.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct StudyPlan {
+    /// Reference: variant and tolerance.
+    pub reference: (BvpVariant, f64),
+    /// BVP sweeps.
+    pub bvp: Vec<BvpSweep>,
+    /// FE formulations.
+    pub formulations: Formulations,
+    /// FE element counts, strictly increasing.
+    pub meshes: Vec<usize>,
+    /// σ samples of the field norms.
+    pub samples: usize,
+    /// Override of the collocation mesh cap (`None` = the scene's `bvp.max_nodes`).
+    pub max_nodes: Option<usize>,
+}
+
+/// Why a plan cannot run.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PlanError {
+    /// A formulation name that is not registered.
+    #[error("formulation `{name}` is not registered (registered: {registered})")]
+    UnknownFormulation {
+        /// The name asked for.
+        name: String,
+        /// The registry, comma-separated, or "none".
+        registered: String,
+    },
+    /// Mesh sequence not strictly increasing or below 4 elements.
+    #[error("element counts must be ≥ 4 and strictly increasing, got {0:?}")]
+    Meshes(Vec<usize>),
+    /// A tolerance outside (0, 1).
+    #[error("tolerance {0} is not in (0, 1)")]
+    Tolerance(f64),
+}
+
+impl StudyPlan {
+    /// The convergence study of `converge` and `report`: reference gauss6 at 1e-11;
+    /// gauss4 over 1e-4 … 1e-8, gauss6 and shooting over 1e-4 … 1e-10; FE formulations
+    /// from the scene's `fem.formulations` (else discovered) over `fem.meshes()`.
+    pub fn convergence(scene: &Scene) -> StudyPlan {
+        let fem = scene.fem_settings();
+        let tol = DEFAULT_TOLERANCES.to_vec();
+        StudyPlan {
+            reference: (BvpVariant::Collocation(Scheme::Gauss6), REFERENCE_TOLERANCE),
+            bvp: vec![
+                BvpSweep {
+                    variant: BvpVariant::Collocation(Scheme::Gauss4),
+                    tolerances: tol.iter().copied().filter(|&t| t >= DEFAULT_GAUSS4_FLOOR * 0.999).collect(),
+                },
+                BvpSweep { variant: BvpVariant::Collocation(Scheme::Gauss6), tolerances: tol.clone() },
+                BvpSweep { variant: BvpVariant::Shooting, tolerances: tol },
+            ],
+            formulations: if fem.formulations.is_empty() { Formulations::Discovered } else { Formulations::Named(fem.formulations.clone()) },
+            meshes: fem.meshes(),
+            samples: DEFAULT_SAMPLES,
+            max_nodes: Some(STUDY_MAX_NODES),
+        }
+    }
+
+    /// The same tolerance sequence for every BVP variant.
+    pub fn with_tolerances(mut self, tolerances: &[f64]) -> StudyPlan {
+        for s in &mut self.bvp {
+            s.tolerances = tolerances.to_vec();
+        }
+        self
+    }
+
+    /// These FE element counts.
+    pub fn with_meshes(mut self, meshes: &[usize]) -> StudyPlan {
+        self.meshes = meshes.to_vec();
+        self
+    }
+
+    /// These formulations by name.
+    pub fn with_formulations(mut self, names: &[String]) -> StudyPlan {
+        self.formulations = Formulations::Named(names.to_vec());
+        self
+    }
+
+    /// Checks names, meshes and tolerances.
+    ///
+    /// # Errors
+    /// The first problem found.
+    pub fn validate(&self) -> Result<(), PlanError> {
+        if let Formulations::Named(names) = &self.formulations {
+            let registered = fem::available_formulations();
+            for n in names {
+                if !registered.contains(&n.as_str()) {
+                    let list = if registered.is_empty() { "none".to_string() } else { registered.join(", ") };
+                    return Err(PlanError::UnknownFormulation { name: n.clone(), registered: list });
+                }
+            }
+        }
+        if self.meshes.iter().any(|&n| n < 4) || self.meshes.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(PlanError::Meshes(self.meshes.clone()));
+        }
+        let tols = self.bvp.iter().flat_map(|s| s.tolerances.iter()).chain(std::iter::once(&self.reference.1));
+        for &t in tols {
+            if !(t > 0.0 && t < 1.0) {
+                return Err(PlanError::Tolerance(t));
+            }
+        }
+        Ok(())
+    }
+
+    /// The FE methods of the plan.
+    pub fn fem_methods(&self) -> Vec<FemFormulation> {
+        match &self.formulations {
+            Formulations::Discovered => FemFormulation::discovered(),
+            Formulations::Named(n) => n.iter().map(|name| FemFormulation { name: name.clone(), penalty: None }).collect(),
+        }
+    }
+
+    /// Number of runs (for a progress bar).
+    pub fn run_count(&self) -> usize {
+        1 + self.bvp.iter().map(|s| s.tolerances.len()).sum::<usize>() + self.fem_methods().len() * self.meshes.len()
+    }
+}
+
+/// Progress of a study, reported before each run and once at the end.
+#[derive(Debug, Clone)]
+pub struct Progress {
+    /// Runs finished.
+    pub done: usize,
+    /// Runs planned.
+    pub total: usize,
+    /// What runs next (empty at the end).
+    pub label: String,
+}
+
+/// A run with its errors and orders, aligned with [`Study::quantities`].
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    /// The run.
+    pub run: Run,
+    /// Error of each quantity against the reference (`None` = not computable).
+    pub errors: Vec<Option<f64>>,
+    /// Observed order against the previous level (FE only; `None` for BVP rows, the
+    /// first level, and undefined orders).
+    pub orders: Vec<Option<f64>>,
+    /// Max of the summary-scalar errors (`None` if any is not computable).
+    pub scalar_error: Option<f64>,
+    /// Observed order of `scalar_error` (FE only).
+    pub scalar_order: Option<f64>,
+}
+
+/// Richardson extrapolation and mutual convergence of one quantity of one FE
+/// formulation.
+#[derive(Debug, Clone, Serialize)]
+pub struct Extrapolation {
+    /// Quantity name.
+    pub quantity: String,
+    /// Value at the finest mesh (scalars only).
+    pub finest: Option<f64>,
+    /// Error at the finest mesh against the reference.
+    pub finest_error: Option<f64>,
+    /// Self-convergence order of the three finest meshes.
+    pub order: Option<f64>,
+    /// Extrapolated value (scalars only).
+    pub value: Option<f64>,
+    /// Error of the extrapolated value / field against the reference.
+    pub mutual: Option<f64>,
+}
+
+/// Whether a method was studied.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(tag = "status", content = "reason", rename_all = "snake_case")]
+pub enum SeriesStatus {
+    /// Runs were made (some may have failed).
+    Studied,
+    /// The method has no model for the scene; nothing was compared.
+    NotApplicable(String),
+}
+
+/// All runs of one method.
+#[derive(Debug, Clone, Serialize)]
+pub struct Series {
+    /// Method label.
+    pub method: String,
+    /// BVP or FE.
+    pub family: Family,
+    /// Studied or not applicable.
+    pub status: SeriesStatus,
+    /// One row per discretisation, coarsest first.
+    pub rows: Vec<Row>,
+    /// Richardson extrapolation per quantity (FE with ≥ 3 meshes), aligned with
+    /// [`Study::quantities`]; empty otherwise.
+    pub extrapolation: Vec<Extrapolation>,
+    /// Terms the method assembled (from its finest successful run).
+    pub terms: Vec<String>,
+}
+
+impl Series {
+    /// The finest row (last), if any.
+    pub fn finest(&self) -> Option<&Row> {
+        self.rows.last()
+    }
+}
+
+/// A study of one scene.
+#[derive(Debug, Clone, Serialize)]
+pub struct Study {
+    /// Scene name.
+    pub scene: String,
+    /// What was run.
+    pub plan: StudyPlan,
+    /// The quantities of the tables: the reference's summary scalars, then field norms.
+    pub quantities: Vec<Quantity>,
+    /// The reference run.
+    pub reference: Run,
+    /// BVP series first, then FE series.
+    pub series: Vec<Series>,
+    /// Formulations in the `fem` registry when the study ran.
+    pub registered_formulations: Vec<String>,
+    /// Statements a reader needs (e.g. "no FE formulation registered").
+    pub notes: Vec<String>,
+    /// Wall time of the whole study, s.
+    pub wall_seconds: f64,
+}
+
+impl Study {
+    /// Runs `plan` on `scene` (module docs), reporting progress to `progress`.
+    ///
+    /// # Errors
+    /// An invalid plan. Failed runs are not errors: they are rows with a reason.
+    pub fn run(scene: &Scene, plan: &StudyPlan, progress: &mut dyn FnMut(&Progress)) -> Result<Study, PlanError> {
+        plan.validate()?;
+        let mut bvp: Vec<(Box<dyn Method>, Vec<Discretisation>)> = Vec::new();
+        for s in &plan.bvp {
+            let solver = BvpSolver { variant: s.variant, max_nodes: plan.max_nodes };
+            bvp.push((Box::new(solver), s.tolerances.iter().map(|&t| Discretisation::Tolerance(t)).collect()));
+        }
+        let meshes: Vec<Discretisation> = plan.meshes.iter().map(|&n| Discretisation::Elements(n)).collect();
+        let mut methods = bvp;
+        for f in plan.fem_methods() {
+            methods.push((Box::new(f), meshes.clone()));
+        }
+        let strict = matches!(plan.formulations, Formulations::Named(_));
+        Ok(Study::run_methods(scene, plan, methods, strict, progress))
+    }
+
+    /// Runs the reference of `plan` and then `methods`, each over its discretisations
+    /// (the engine of [`Study::run`]; a test passes its own methods here). With
+    /// `strict_fem`, an FE method that is not applicable is studied as failed rows
+    /// instead of being set aside.
+    pub fn run_methods(
+        scene: &Scene,
+        plan: &StudyPlan,
+        methods: Vec<(Box<dyn Method>, Vec<Discretisation>)>,
+        strict_fem: bool,
+        progress: &mut dyn FnMut(&Progress),
+    ) -> Study {
+        let start = std::time::Instant::now();
+        let total = 1 + methods.iter().map(|(_, d)| d.len()).sum::<usize>();
+        let mut done = 0;
+        let (ref_variant, ref_tol) = plan.reference;
+        let ref_solver = BvpSolver { variant: ref_variant, max_nodes: plan.max_nodes };
+        progress(&Progress { done, total, label: format!("reference {} {}", ref_solver.label(), Discretisation::Tolerance(ref_tol)) });
+        let reference = execute(&ref_solver, scene, Discretisation::Tolerance(ref_tol), plan.samples);
+        done += 1;
+        let quantities = reference.data().map(Quantity::of_reference).unwrap_or_default();
+
+        let mut series = Vec::new();
+        for (method, discs) in &methods {
+            let mut rows: Vec<Row> = Vec::new();
+            let mut status = SeriesStatus::Studied;
+            for (i, &disc) in discs.iter().enumerate() {
+                progress(&Progress { done, total, label: format!("{} {disc}", method.label()) });
+                let run = execute(method.as_ref(), scene, disc, plan.samples);
+                done += 1;
+                let lenient = method.family() == Family::Bvp || !strict_fem;
+                if let (0, Err(RunError::NotApplicable(why)), true) = (i, &run.outcome, lenient) {
+                    status = SeriesStatus::NotApplicable(why.clone());
+                    done += discs.len() - 1;
+                    break;
+                }
+                let prev = rows.last();
+                rows.push(make_row(run, &reference, &quantities, prev));
+            }
+            let extrapolation = if method.family() == Family::Fem { extrapolate(&rows, &reference, &quantities) } else { Vec::new() };
+            let terms = rows.iter().rev().find_map(|r| r.run.data().map(|d| d.terms.clone())).unwrap_or_default();
+            series.push(Series { method: method.label(), family: method.family(), status, rows, extrapolation, terms });
+        }
+        progress(&Progress { done: total, total, label: String::new() });
+
+        let registered: Vec<String> = fem::available_formulations().into_iter().map(String::from).collect();
+        let mut notes = Vec::new();
+        if let Err(e) = &reference.outcome {
+            notes.push(format!("the reference could not be computed ({e}): no errors against it"));
+        }
+        if let Some(d) = reference.data() {
+            let r = scene.drive.pulley_radius;
+            let min_nu = d.samples.deflection.iter().copied().fold(f64::INFINITY, f64::min);
+            if min_nu <= -r * (1.0 - 1e-6) {
+                notes.push(format!(
+                    "the reference belt reaches ν = {min_nu:.4} m ≤ −R = −{r} m (a span sags past the pulley centres), where the map point → (σ, ν) of the contour is not one-to-one: fields sampled through the common view (and their norms) are not meaningful for this scene; compare its summary scalars"
+                ));
+            }
+        }
+        let fem_studied = series.iter().any(|s| s.family == Family::Fem && s.status == SeriesStatus::Studied);
+        if !series.iter().any(|s| s.family == Family::Fem) {
+            if registered.is_empty() {
+                notes.push("no FE formulation registered: BVP-only study (no FE rows, no mutual convergence)".to_string());
+            } else {
+                notes.push("no FE formulation selected: BVP-only study".to_string());
+            }
+        } else if !fem_studied {
+            notes.push("no registered FE formulation applies to this scene: BVP-only study".to_string());
+        }
+        Study {
+            scene: scene.name.clone(),
+            plan: plan.clone(),
+            quantities,
+            reference,
+            series,
+            registered_formulations: registered,
+            notes,
+            wall_seconds: start.elapsed().as_secs_f64(),
+        }
+    }
+
+    /// Index of a quantity by name.
+    pub fn quantity_index(&self, name: &str) -> Option<usize> {
+        self.quantities.iter().position(|q| q.name == name)
+    }
+
+    /// True if at least one FE series was studied.
+    pub fn has_fem(&self) -> bool {
+        self.series.iter().any(|s| s.family == Family::Fem && s.status == SeriesStatus::Studied)
+    }
+}
+
+/// Errors, orders and the scalar aggregate of one run.
+fn make_row(run: Run, reference: &Run, quantities: &[Quantity], prev: Option<&Row>) -> Row {
+    let errors: Vec<Option<f64>> = match (run.data(), reference.data()) {
+        (Some(d), Some(r)) => quantities.iter().map(|q| q.error(d, r)).collect(),
+        _ => vec![None; quantities.len()],
+    };
+    let scalar_errors: Vec<Option<f64>> = quantities.iter().zip(&errors).filter(|(q, _)| q.is_scalar()).map(|(_, e)| *e).collect();
+    let scalar_error = if scalar_errors.is_empty() {
+        None
+    } else {
+        scalar_errors.iter().copied().collect::<Option<Vec<f64>>>().map(|v| v.into_iter().fold(0.0, f64::max))
+    };
+    let ratio = match (prev.map(|p| p.run.discretisation), run.discretisation) {
+        (Some(Discretisation::Elements(a)), Discretisation::Elements(b)) if run.family == Family::Fem => Some(b as f64 / a as f64),
+        _ => None,
+    };
+    let (orders, scalar_order) = match (prev, ratio) {
+        (Some(p), Some(r)) => (
+            p.errors.iter().zip(&errors).map(|(a, b)| measure::observed_order(*a, *b, r)).collect(),
+            measure::observed_order(p.scalar_error, scalar_error, r),
+        ),
+        _ => (vec![None; quantities.len()], None),
+    };
+    Row { run, errors, orders, scalar_error, scalar_order }
+}
+
+/// Richardson extrapolation of the three finest rows of an FE series (all three must
+/// have succeeded, with a constant mesh ratio).
+fn extrapolate(rows: &[Row], reference: &Run, quantities: &[Quantity]) -> Vec<Extrapolation> {
+    let n = rows.len();
+    let last3 = if n >= 3 { [rows[n - 3].run.data(), rows[n - 2].run.data(), rows[n - 1].run.data()] } else { [None, None, None] };
+    let elements = |r: &Row| match r.run.discretisation {
+        Discretisation::Elements(e) => e as f64,
+        Discretisation::Tolerance(_) => f64::NAN,
+    };
+    let ratio = if n >= 3 {
+        let (r1, r2) = (elements(&rows[n - 2]) / elements(&rows[n - 3]), elements(&rows[n - 1]) / elements(&rows[n - 2]));
+        ((r1 - r2).abs() < 1e-9 * r2).then_some(r2)
+    } else {
+        None
+    };
+    quantities
+        .iter()
+        .enumerate()
+        .map(|(k, q)| {
+            let finest_row = rows.last();
+            let mut e = Extrapolation {
+                quantity: q.name.clone(),
+                finest: finest_row.and_then(|r| r.run.data()).and_then(|d| q.value(d)),
+                finest_error: finest_row.and_then(|r| r.errors[k]),
+                order: None,
+                value: None,
+                mutual: None,
+            };
+            let (Some(r), [Some(d1), Some(d2), Some(d3)], Some(refd)) = (ratio, last3, reference.data()) else {
+                return e;
+            };
+            match &q.kind {
+                QuantityKind::Scalar => {
+                    if let (Some(q1), Some(q2), Some(q3)) = (q.value(d1), q.value(d2), q.value(d3)) {
+                        e.order = measure::self_order(q1, q2, q3, r);
+                        e.value = e.order.and_then(|p| measure::richardson(q2, q3, r, p));
+                        e.mutual = match (e.value, q.value(refd)) {
+                            (Some(v), Some(qr)) => measure::relative(v, qr),
+                            _ => None,
+                        };
+                    }
+                }
+                QuantityKind::FieldNorm { norm, .. } => {
+                    let fs = (measure::field_of(&d1.samples, q), measure::field_of(&d2.samples, q), measure::field_of(&d3.samples, q));
+                    if let ((Some(f1), Some(f2), Some(f3)), Some(fr)) = (fs, measure::field_of(&refd.samples, q)) {
+                        if let Some((fx, p)) = measure::richardson_field(f1, f2, f3, r, *norm) {
+                            e.order = Some(p);
+                            e.mutual = measure::field_error(&fx, fr, *norm);
+                        }
+                    }
+                }
+            }
+            e
+        })
+        .collect()
+}
