@@ -2,28 +2,12 @@
 //! and written, and that bad input gives a named error, exit status 2 and no file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn beltcheck(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_beltcheck"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{beltcheck, stderr, stdout};
 
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("beltcheck-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    common::temp("cli", name)
 }
 
 fn read_json(path: &Path) -> serde_json::Value {

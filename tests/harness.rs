@@ -13,7 +13,6 @@
 //! Run in release mode (`cargo test --release --test harness`): the studies solve BVPs.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use drive::scene::{GateSettings, Scene};
 use drive::summary::Summary;
@@ -22,26 +21,11 @@ use verification::gate;
 use verification::run::{BvpSolver, BvpVariant, Discretisation, Family, Method, RunError, Solved};
 use verification::study::{Study, StudyPlan};
 
-fn beltcheck(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_beltcheck"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod common;
+use common::{beltcheck, stderr, stdout};
 
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("beltcheck-harness-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+    common::temp("harness", name)
 }
 
 fn catalogue_scene(name: &str) -> Scene {
