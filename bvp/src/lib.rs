@@ -24,6 +24,7 @@ pub mod continuation;
 pub mod newton;
 pub mod scene;
 pub mod string_hanging;
+pub mod rod_hanging;
 
 pub use error::BvpError;
 pub use problem::{JacobianMode, Problem, Scalar};
