@@ -307,6 +307,9 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     if let (Some(tu), Some(tl)) = (s.tension_upper_mid, s.tension_lower_mid) {
         println!("  tension at x = 0      [N]  {:>13.8} {:>14.8}", tu, tl);
     }
+    if let (Some(mu), Some(ml)) = (s.moment_upper_mid, s.moment_lower_mid) {
+        println!("  moment at x = 0     [N·m]  {:>13.6e} {:>14.6e}", mu, ml);
+    }
     if let (Some(d1), Some(d2)) = (&s.driver, &s.driven) {
         println!("                                  driver         driven");
         let row = |label: &str, a: Option<f64>, b: Option<f64>| {
@@ -317,6 +320,13 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         row("contact arc       [deg]", d1.contact_arc, d2.contact_arc);
         row("first contact     [deg]", d1.contact_start, d2.contact_start);
         row("last contact      [deg]", d1.contact_end, d2.contact_end);
+        let force = |label: &str, a: Option<f64>, b: Option<f64>| {
+            if let (Some(a), Some(b)) = (a, b) {
+                println!("  {label:<25}  {:>13.6e} {:>14.6e}", a, b);
+            }
+        };
+        force("edge force, first   [N]", d1.edge_force_start, d2.edge_force_start);
+        force("edge force, last    [N]", d1.edge_force_end, d2.edge_force_end);
     }
     for note in &run.notes {
         println!("  {note}");

@@ -10,7 +10,10 @@
 //! - `shooting`: multiple shooting on diffsol,
 //! - `continuation`: natural-parameter and pseudo-arclength continuation, fold detection,
 //! - `analytical`: closed forms used by tests and examples,
-//! - `string_hanging`: the extensible string on two pulleys.
+//! - [`sigma_map`]: the belt point at a contour coordinate σ (for the common view),
+//! - [`string_hanging`]: the extensible string on two pulleys,
+//! - [`rod_hanging`]: the Kirchhoff rod on two pulleys,
+//! - [`scene`]: from a validated scene to a BVP run.
 
 pub mod error;
 pub mod jacobian;
@@ -23,6 +26,7 @@ pub mod collocation;
 pub mod continuation;
 pub mod newton;
 pub mod scene;
+pub mod sigma_map;
 pub mod string_hanging;
 pub mod rod_hanging;
 

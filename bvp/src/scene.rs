@@ -9,6 +9,7 @@ use thiserror::Error;
 use crate::collocation::Scheme;
 use crate::problem::JacobianMode;
 use crate::solution::Stats;
+use crate::rod_hanging::{self, view::RodView, RodHanging, RodHangingError, RodHangingOptions};
 use crate::string_hanging::{self, Method, StringHanging, StringHangingError, StringHangingOptions};
 
 /// The two BVP methods.
@@ -61,6 +62,9 @@ pub enum SceneSolveError {
     /// The `string-hanging` problem failed.
     #[error(transparent)]
     StringHanging(#[from] StringHangingError),
+    /// The `rod-hanging` problem failed.
+    #[error(transparent)]
+    RodHanging(#[from] RodHangingError),
 }
 
 impl BvpRunOptions {
@@ -114,49 +118,97 @@ pub fn string_hanging_data(scene: &Scene) -> StringHanging {
     }
 }
 
-/// Solve a scene by the BVP method of `opts`.
+/// The method of `opts` in the belt problems' terms.
+fn method_of(opts: &BvpRunOptions) -> Method {
+    match opts.method {
+        BvpMethod::Collocation => Method::Collocation(opts.scheme),
+        BvpMethod::Shooting => Method::Shooting,
+    }
+}
+
+/// Scheme/intervals and tolerance in words.
+fn method_detail(opts: &BvpRunOptions) -> String {
+    match opts.method {
+        BvpMethod::Collocation => format!("{}, tolerance {:.0e}", opts.scheme.name(), opts.tolerance),
+        BvpMethod::Shooting => format!("{} intervals per segment, tolerance {:.0e}", opts.shooting_intervals, opts.tolerance),
+    }
+}
+
+/// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`) or
+/// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys.
 pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneSolveError> {
-    let static_string = matches!(scene.belt.theory, Theory::String)
-        && matches!(scene.analysis, Analysis::Static)
+    let static_frictionless = matches!(scene.analysis, Analysis::Static)
         && matches!(scene.effects.contact, Contact::Frictionless)
         && scene.drive.driver_speed == 0.0
         && scene.drive.driven_torque == 0.0;
-    if !static_string {
-        return Err(SceneSolveError::Unsupported(format!(
-            "theory {:?}, analysis {:?}, contact {:?}: only the static string on frictionless pulleys (string-hanging) has a BVP model so far",
-            scene.belt.theory, scene.analysis, scene.effects.contact
-        )));
-    }
-    let data = string_hanging_data(scene);
-    let sh_opts = StringHangingOptions {
-        method: match opts.method {
-            BvpMethod::Collocation => Method::Collocation(opts.scheme),
-            BvpMethod::Shooting => Method::Shooting,
-        },
-        tolerance: opts.tolerance,
-        max_nodes: opts.max_nodes,
-        shooting_intervals: opts.shooting_intervals,
-        jacobian: opts.jacobian,
-        ..StringHangingOptions::default()
-    };
-    let sol = string_hanging::solve(&data, &sh_opts)?;
-    let summary = sol.summary();
-    let method_detail = match opts.method {
-        BvpMethod::Collocation => format!("{}, tolerance {:.0e}", opts.scheme.name(), opts.tolerance),
-        BvpMethod::Shooting => format!("{} intervals per segment, tolerance {:.0e}", opts.shooting_intervals, opts.tolerance),
-    };
-    let notes = vec![
-        format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
-        format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
-    ];
     let options = serde_json::to_value(opts).unwrap_or(serde_json::Value::Null);
-    Ok(BvpRun {
-        stats: sol.stats.clone(),
-        view: Box::new(sol),
-        summary,
-        method: opts.method.name().to_string(),
-        method_detail,
-        options,
-        notes,
-    })
+    match scene.belt.theory {
+        Theory::String if static_frictionless => {
+            let data = string_hanging_data(scene);
+            let sh_opts = StringHangingOptions {
+                method: method_of(opts),
+                tolerance: opts.tolerance,
+                max_nodes: opts.max_nodes,
+                shooting_intervals: opts.shooting_intervals,
+                jacobian: opts.jacobian,
+                ..StringHangingOptions::default()
+            };
+            let sol = string_hanging::solve(&data, &sh_opts)?;
+            let notes = vec![
+                format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+            ];
+            Ok(BvpRun {
+                summary: sol.summary(),
+                stats: sol.stats.clone(),
+                view: Box::new(sol),
+                method: opts.method.name().to_string(),
+                method_detail: method_detail(opts),
+                options,
+                notes,
+            })
+        }
+        Theory::Kirchhoff if static_frictionless => {
+            let s = string_hanging_data(scene);
+            let data = RodHanging {
+                radius: s.radius,
+                centre_distance: s.centre_distance,
+                length: s.length,
+                axial_stiffness: s.axial_stiffness,
+                bending_stiffness: scene.belt.bending_stiffness.unwrap_or(f64::NAN),
+                mass_per_length: s.mass_per_length,
+                gravity: s.gravity,
+            };
+            let rh_opts = RodHangingOptions {
+                method: method_of(opts),
+                tolerance: opts.tolerance,
+                max_nodes: opts.max_nodes,
+                shooting_intervals: opts.shooting_intervals,
+                jacobian: opts.jacobian,
+                ..RodHangingOptions::default()
+            };
+            let sol = rod_hanging::solve(&data, &rh_opts)?;
+            let notes = vec![
+                format!(
+                    "homotopy: the string, then {} continuation steps in log EI from EI₀ = {:.3e} N·m²",
+                    sol.homotopy_steps, sol.bending_start
+                ),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+            ];
+            let view = RodView::new(sol);
+            Ok(BvpRun {
+                summary: view.summary(),
+                stats: view.solution.stats.clone(),
+                view: Box::new(view),
+                method: opts.method.name().to_string(),
+                method_detail: method_detail(opts),
+                options,
+                notes,
+            })
+        }
+        _ => Err(SceneSolveError::Unsupported(format!(
+            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys",
+            scene.belt.theory, scene.analysis, scene.effects.contact
+        ))),
+    }
 }

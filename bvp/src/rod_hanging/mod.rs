@@ -4,10 +4,13 @@
 //!
 //! [`solve`] first solves the string of the same data ([`crate::string_hanging::solve`]),
 //! builds the rod guess from it at a bending stiffness EI₀ whose boundary layer
-//! √(EI₀/T) is 5 % of H, continues in log EI to the scene's EI
-//! (`continuation::natural_checked`), then solves at the requested tolerance.
+//! √(EI₀/T) is 5 % of H, continues in log EI to the scene's EI — downwards for thin
+//! layers, upwards for stiff rods; EI(η) = EI₀^(1−η) EI^η covers both —
+//! (`continuation::natural_checked`), then solves at the requested tolerance by
+//! collocation or shooting ([`Method`]).
 
 pub mod problem;
+pub mod view;
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::time::Instant;
@@ -228,8 +231,13 @@ pub fn rod_guess(string: &Solution, rod: &ScaledRodHanging, nodes: usize) -> Sol
     })
 }
 
-/// The segment topology of the string note (contact angles within a quarter turn of the
-/// tight contour, positive span lengths).
+/// The segment topology of the string note: every contact angle less than a half turn
+/// from its tight-contour value, positive wraps on both pulleys and positive span
+/// lengths. The string's window (a quarter turn) is too narrow for the rod: a stiff rod
+/// on a slack loop leaves the pulleys earlier, and its lower span can depart above the
+/// pulley's horizontal diameter (φ₂_b > 0, heading downwards); whether such a state is
+/// physical is decided by the contact checks (edge forces, p ≥ 0, no span through a
+/// pulley), not by this window.
 fn topology_check(p: &[f64]) -> Result<(), String> {
     let ranges = [
         ("first contact on the driven pulley", P_PHI2A, FRAC_PI_2),
@@ -238,12 +246,17 @@ fn topology_check(p: &[f64]) -> Result<(), String> {
         ("last contact on the driver pulley", P_PHI1B, -3.0 * FRAC_PI_2),
     ];
     for (what, i, tight) in ranges {
-        if !((p[i] - tight).abs() < FRAC_PI_2) {
+        if !((p[i] - tight).abs() < PI) {
             return Err(format!(
-                "{what} at {:.2}° is more than 90° from its tight-contour value {:.0}°",
+                "{what} at {:.2}° is more than 180° from its tight-contour value {:.0}°",
                 p[i].to_degrees(),
                 tight.to_degrees()
             ));
+        }
+    }
+    for (what, a, b) in [("driven", P_PHI2A, P_PHI2B), ("driver", P_PHI1A, P_PHI1B)] {
+        if !(p[a] > p[b]) {
+            return Err(format!("non-positive wrap {:.3}° on the {what} pulley", (p[a] - p[b]).to_degrees()));
         }
     }
     for &i in &P_LEN {

@@ -7,7 +7,7 @@
 //! [`StringHangingSolution`], which implements the common [`SolutionView`].
 
 pub mod problem;
-mod view;
+pub mod view;
 
 use std::f64::consts::PI;
 use std::time::Instant;
@@ -140,7 +140,7 @@ pub struct StringHangingSolution {
     pub stats: Stats,
     /// Homotopy steps taken.
     pub homotopy_steps: usize,
-    sigma_table: view::SigmaTable,
+    sigma_map: crate::sigma_map::SigmaMap,
 }
 
 /// Validate the physical data.
@@ -311,8 +311,7 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
     total.mesh_nodes = solution.stats.mesh_nodes;
     total.max_residual = solution.stats.max_residual;
     total.wall_seconds = start.elapsed().as_secs_f64();
-    let sigma_table = view::SigmaTable::new(data, &problem, &scales, &solution);
-    let sol = StringHangingSolution {
+    let mut sol = StringHangingSolution {
         data: *data,
         problem,
         solution,
@@ -321,8 +320,11 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
         tolerance: opts.tolerance,
         stats: total,
         homotopy_steps,
-        sigma_table,
+        sigma_map: crate::sigma_map::SigmaMap::empty(
+            drive::contour::Contour::new(data.radius, data.centre_distance).expect("validated geometry"),
+        ),
     };
+    sol.sigma_map = sol.build_sigma_map();
     sol.check_contact()?;
     Ok(sol)
 }

@@ -1,0 +1,100 @@
+//! The belt point "at contour coordinate σ" for a multi-segment belt solution.
+//!
+//! A BVP solution is parametrised by segment k and ξ ∈ [0, 1], not by σ. The common
+//! solution view (MEL description, eq. 27) asks for the belt point on the contour normal
+//! at σ: the point whose inverse contour map (`Contour::sigma_nu`) gives σ. Along a
+//! physical belt this σ increases monotonically round the loop, so a table of σ at dense
+//! samples, unwrapped to increase, brackets any query, and bisection on the dense output
+//! refines it to ~1e-15 in ξ.
+
+use drive::contour::Contour;
+
+use crate::solution::Solution;
+
+/// σ at dense samples along the loop: (segment, ξ, σ unwrapped), in loop order.
+#[derive(Debug, Clone)]
+pub struct SigmaMap {
+    contour: Contour,
+    entries: Vec<(usize, f64, f64)>,
+}
+
+/// Samples per mesh interval in the table.
+const PER_INTERVAL: usize = 8;
+
+impl SigmaMap {
+    /// The table for `solution`, whose belt point at (k, ξ) is `point(k, ξ)` (m).
+    pub fn new(contour: Contour, solution: &Solution, point: impl Fn(usize, f64) -> [f64; 2]) -> Self {
+        let total = contour.length();
+        let mut entries = Vec::new();
+        let mut last = f64::NEG_INFINITY;
+        let mut offset = 0.0;
+        for (k, seg) in solution.segments.iter().enumerate() {
+            let mut xis: Vec<f64> = Vec::with_capacity(seg.mesh.len() * PER_INTERVAL);
+            for w in seg.mesh.windows(2) {
+                for j in 0..PER_INTERVAL {
+                    xis.push(w[0] + (w[1] - w[0]) * j as f64 / PER_INTERVAL as f64);
+                }
+            }
+            xis.push(1.0);
+            for xi in xis {
+                let (s, _) = contour.sigma_nu(point(k, xi));
+                let mut su = s + offset;
+                if last.is_finite() && su < last - 0.5 * total {
+                    offset += total;
+                    su += total;
+                }
+                last = su;
+                entries.push((k, xi, su));
+            }
+        }
+        Self { contour, entries }
+    }
+
+    /// A map with no samples yet (for two-phase construction of a solution object whose
+    /// `point` is needed to build the table); [`SigmaMap::locate`] answers (0, 0) until it
+    /// is replaced by [`SigmaMap::new`].
+    pub fn empty(contour: Contour) -> Self {
+        Self { contour, entries: Vec::new() }
+    }
+
+    /// The contour.
+    pub fn contour(&self) -> &Contour {
+        &self.contour
+    }
+
+    /// Segment and ξ of the belt point at contour coordinate `sigma` (wrapped
+    /// periodically); `point` as in [`SigmaMap::new`].
+    pub fn locate(&self, sigma: f64, point: impl Fn(usize, f64) -> [f64; 2]) -> (usize, f64) {
+        if self.entries.len() < 2 {
+            return (0, 0.0);
+        }
+        let total = self.contour.length();
+        let first = self.entries[0].2;
+        let s = first + (sigma - first).rem_euclid(total);
+        let i = self.entries.partition_point(|e| e.2 <= s).clamp(1, self.entries.len() - 1);
+        let (k0, x0, s0) = self.entries[i - 1];
+        let (k1, x1, _) = self.entries[i];
+        if k0 != k1 {
+            // The bracket joins two segments at a shared point.
+            return (k0, x0);
+        }
+        let sigma_at = |xi: f64| {
+            let (v, _) = self.contour.sigma_nu(point(k0, xi));
+            // Unwrap to the neighbourhood of the table entry.
+            v + ((s0 - v) / total).round() * total
+        };
+        let (mut a, mut b) = (x0, x1);
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if sigma_at(m) <= s {
+                a = m;
+            } else {
+                b = m;
+            }
+            if b - a < 1e-15 {
+                break;
+            }
+        }
+        (k0, 0.5 * (a + b))
+    }
+}
