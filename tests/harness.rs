@@ -101,6 +101,30 @@ fn gate_fails_on_an_impossible_tolerance() {
     assert_no_nan("gate output", &out);
 }
 
+/// `gate.bvp_tolerances` holds the BVP methods to their own limit: a limit no BVP run
+/// can meet (1e-300) fails gauss4 and shooting on that quantity, while the FE rows of
+/// the same quantity are still judged by the shared `tolerances` limit (1e-3) and pass.
+#[test]
+fn bvp_tolerances_apply_to_the_bvp_methods_only() {
+    let scene = scene_with_gate(
+        "bvp-limits.json",
+        serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"y_upper_mid": 1e-300}}),
+    );
+    let o = beltcheck(&["gate", scene.to_str().unwrap(), "--elements", "32,64"]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}\n{}", stderr(&o));
+    let failing: Vec<&str> = out.lines().filter(|l| l.contains("y_upper_mid") && l.contains("exceeds")).collect();
+    assert!(failing.iter().any(|l| l.contains("bvp-shooting")), "{out}");
+    assert!(failing.iter().any(|l| l.contains("bvp-collocation gauss4")), "{out}");
+    assert!(!failing.iter().any(|l| l.contains("fem ")), "FE rows keep the shared limit: {out}");
+    // An unknown quantity name in the block is a scene error naming the path.
+    let bad = scene_with_gate("bvp-limits-typo.json", serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"y_uper_mid": 1e-6}}));
+    let o = beltcheck(&["solve", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let text = stderr(&o);
+    assert!(text.contains("gate.bvp_tolerances.y_uper_mid") && text.contains("y_upper_mid"), "{text}");
+}
+
 /// A gated quantity that cannot be computed (a string has no moment) is a failure, not
 /// a pass; so is a scene that gates nothing.
 #[test]
@@ -191,7 +215,7 @@ fn gate_fails_on_a_perturbed_result() {
     let study = Study::run_methods(&scene, &plan, methods, false, &mut |_| {});
     // Limits 100× below the perturbation and far above the BVP error at 1e-8 (~1e-10).
     let names = ["y_upper_mid", "tension_upper_mid", "tension_lower_mid", "driver.contact_arc", "deflection_l2", "tension_max", "tension_l2"];
-    let settings = GateSettings { tolerances: names.iter().map(|n| (n.to_string(), 1e-6)).collect(), min_order: None };
+    let settings = GateSettings { tolerances: names.iter().map(|n| (n.to_string(), 1e-6)).collect(), min_order: None, ..GateSettings::default() };
     let outcome = gate::evaluate(&settings, &study);
     assert!(!outcome.passed());
     let failures: Vec<_> = outcome.failures().collect();
@@ -266,7 +290,7 @@ fn a_study_without_fe_says_so() {
     let text = verification::table::study_text(&study);
     assert!(text.contains("mutual convergence FE ↔ BVP: —"), "{text}");
     // Gate settings with a field norm on a BVP-only study: BVP rows checked, nothing FE.
-    let settings = GateSettings { tolerances: [("tension_l2".to_string(), 1e-6)].into(), min_order: Some(2.0) };
+    let settings = GateSettings { tolerances: [("tension_l2".to_string(), 1e-6)].into(), min_order: Some(2.0), ..GateSettings::default() };
     let outcome = gate::evaluate(&settings, &study);
     assert!(outcome.passed(), "{:#?}", outcome.checks);
     assert!(outcome.checks.iter().all(|c| c.measure == gate::Measure::Error));

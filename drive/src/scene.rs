@@ -360,6 +360,13 @@ pub struct GateSettings {
     /// nothing gated by value.
     #[serde(default)]
     pub tolerances: BTreeMap<String, f64>,
+    /// Limits for the BVP methods (collocation and shooting at the gate's tolerance)
+    /// where they should be held tighter than the FE: quantity name → admissible
+    /// relative error, same names and ranges as `tolerances`. A quantity listed here
+    /// replaces its `tolerances` limit for the BVP methods only; absent = the BVP methods
+    /// are held to `tolerances`. Default empty.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub bvp_tolerances: BTreeMap<String, f64>,
     /// Minimum observed order of convergence p of the FE studies, > 0. Default
     /// absent = order not gated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -765,8 +772,13 @@ impl GateSettings {
     /// # Errors
     /// The first unknown name or value out of range.
     pub fn validate(&self) -> Result<(), SceneError> {
-        for (name, &tol) in &self.tolerances {
-            let path = format!("gate.tolerances.{name}");
+        let all = self
+            .tolerances
+            .iter()
+            .map(|(n, t)| ("tolerances", n, t))
+            .chain(self.bvp_tolerances.iter().map(|(n, t)| ("bvp_tolerances", n, t)));
+        for (block, name, &tol) in all {
+            let path = format!("gate.{block}.{name}");
             let known = SCALAR_NAMES.iter().chain(FIELD_NORM_NAMES.iter());
             if !known.clone().any(|k| k == name) {
                 return Err(SceneError::UnknownField {

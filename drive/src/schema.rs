@@ -207,6 +207,11 @@ pub(crate) const GATE: &[Field] = &[
         Kind::NumberMap,
         "relative tolerance per quantity",
     ),
+    opt(
+        "bvp_tolerances",
+        Kind::NumberMap,
+        "relative tolerance per quantity for the BVP methods",
+    ),
     opt("min_order", Kind::Number, "minimum observed order"),
 ];
 
@@ -509,6 +514,7 @@ mod tests {
         .unwrap();
         let gate = serde_json::to_value(GateSettings {
             min_order: Some(2.0),
+            bvp_tolerances: [("y_upper_mid".to_string(), 1e-6)].into(),
             ..Default::default()
         })
         .unwrap();

@@ -7,7 +7,8 @@
 //! formulation is gated with no change here — over the scene's mesh sequence. Then
 //! [`evaluate`] checks, for every studied method at its finest discretisation:
 //! - every quantity of `gate.tolerances`: relative error (as defined in
-//!   [`crate::measure`]) ≤ its limit;
+//!   [`crate::measure`]) ≤ its limit — for the BVP methods the limit of
+//!   `gate.bvp_tolerances` where that names the quantity;
 //! - FE methods only, with `gate.min_order`: the observed order of every gated quantity
 //!   at the last refinement ≥ `min_order`, unless both errors are below
 //!   [`ORDER_FLOOR`] × its limit (at the error floor the order is noise).
@@ -221,7 +222,12 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
         if study.reference.data().is_none() {
             continue;
         }
-        for (name, &limit) in &settings.tolerances {
+        for (name, &shared_limit) in &settings.tolerances {
+            // The BVP methods may be held to their own, tighter, limit.
+            let limit = match s.family {
+                Family::Bvp => settings.bvp_tolerances.get(name).copied().unwrap_or(shared_limit),
+                Family::Fem => shared_limit,
+            };
             let (value, reason) = match study.quantity_index(name) {
                 None => (None, "not produced by the reference for this scene".to_string()),
                 Some(k) => match row.errors[k] {
