@@ -18,13 +18,12 @@ use std::time::Instant;
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::collocation::{self, CollocationOptions, Scheme};
+use crate::collocation::{CollocationOptions, Scheme};
 use crate::continuation::{self, ContinuationOptions};
 use crate::error::BvpError;
 use crate::problem::JacobianMode;
-use crate::shooting::{self, ShootingOptions};
 use crate::solution::{Solution, Stats};
-use crate::string_hanging::{self, StringHanging, StringHangingError, StringHangingOptions};
+use crate::string_hanging::{self, add_stats, final_solve, finish_stats, StringHanging, StringHangingError, StringHangingOptions};
 pub use crate::string_hanging::{Method, Scales};
 pub use problem::ScaledRodHanging;
 use problem::*;
@@ -188,12 +187,6 @@ fn validate(d: &RodHanging, opts: &RodHangingOptions) -> Result<(), RodHangingEr
     Ok(())
 }
 
-fn add_stats(total: &mut Stats, s: &Stats) {
-    total.newton_iterations += s.newton_iterations;
-    total.jacobian_evaluations += s.jacobian_evaluations;
-    total.rhs_evaluations += s.rhs_evaluations;
-    total.refinements += s.refinements;
-}
 
 /// Unwrap an angle into (centre − π, centre + π].
 fn unwrap(a: f64, centre: f64) -> f64 {
@@ -326,33 +319,17 @@ pub fn solve(data: &RodHanging, opts: &RodHangingOptions) -> Result<RodHangingSo
     let homotopy_steps = branch.points.len();
     add_stats(&mut total, &branch.stats);
     let at_scene = branch.last().expect("a branch ends at its target").clone();
-    let solution = match opts.method {
-        Method::Collocation(scheme) => {
-            let o = CollocationOptions {
-                scheme,
-                tolerance: opts.tolerance,
-                max_nodes: opts.max_nodes,
-                jacobian: opts.jacobian,
-                ..CollocationOptions::default()
-            };
-            collocation::solve(&problem, &at_scene, &o)
-        }
-        Method::Shooting => {
-            let o = ShootingOptions {
-                tolerance: opts.tolerance,
-                intervals_per_segment: opts.shooting_intervals,
-                jacobian: opts.jacobian,
-                ..ShootingOptions::default()
-            };
-            shooting::solve(&problem, &at_scene, &o)
-        }
-    }
+    let solution = final_solve(
+        &problem,
+        &at_scene,
+        opts.method,
+        opts.tolerance,
+        opts.max_nodes,
+        opts.shooting_intervals,
+        opts.jacobian,
+    )
     .map_err(|cause| RodHangingError::Solver { stage: "final solve", cause })?;
-    add_stats(&mut total, &solution.stats);
-    total.unknowns = solution.stats.unknowns;
-    total.mesh_nodes = solution.stats.mesh_nodes;
-    total.max_residual = solution.stats.max_residual;
-    total.wall_seconds = start.elapsed().as_secs_f64();
+    finish_stats(&mut total, &solution.stats, start);
     let sol = RodHangingSolution {
         data: *data,
         problem,

@@ -222,11 +222,51 @@ pub fn tight_guess(p: &ScaledStringHanging, nodes: usize) -> Solution {
     })
 }
 
-fn add_stats(total: &mut Stats, s: &Stats) {
+/// Add the work counters of one stage (homotopy, final solve) to a run's total.
+pub(crate) fn add_stats(total: &mut Stats, s: &Stats) {
     total.newton_iterations += s.newton_iterations;
     total.jacobian_evaluations += s.jacobian_evaluations;
     total.rhs_evaluations += s.rhs_evaluations;
     total.refinements += s.refinements;
+}
+
+/// Close a run's total with the final solve: its work, its size and residual, and the
+/// run's wall time since `start`.
+pub(crate) fn finish_stats(total: &mut Stats, last: &Stats, start: Instant) {
+    add_stats(total, last);
+    total.unknowns = last.unknowns;
+    total.mesh_nodes = last.mesh_nodes;
+    total.max_residual = last.max_residual;
+    total.wall_seconds = start.elapsed().as_secs_f64();
+}
+
+/// The final solve of a belt problem from the end point of its homotopy, by `method` at
+/// `tolerance` (collocation: mesh cap `max_nodes`; shooting: `shooting_intervals` per
+/// segment).
+pub(crate) fn final_solve<P: crate::problem::Problem>(
+    problem: &P,
+    guess: &Solution,
+    method: Method,
+    tolerance: f64,
+    max_nodes: usize,
+    shooting_intervals: usize,
+    jacobian: JacobianMode,
+) -> Result<Solution, BvpError> {
+    match method {
+        Method::Collocation(scheme) => {
+            let o = CollocationOptions { scheme, tolerance, max_nodes, jacobian, ..CollocationOptions::default() };
+            collocation::solve(problem, guess, &o)
+        }
+        Method::Shooting => {
+            let o = ShootingOptions {
+                tolerance,
+                intervals_per_segment: shooting_intervals,
+                jacobian,
+                ..ShootingOptions::default()
+            };
+            shooting::solve(problem, guess, &o)
+        }
+    }
 }
 
 /// Solve a `string-hanging` scene from its data alone (homotopy of the note, then the
@@ -284,33 +324,17 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
     let homotopy_steps = branch.points.len();
     add_stats(&mut total, &branch.stats);
     let at_scene = branch.last().expect("a branch ends at its target").clone();
-    let solution = match opts.method {
-        Method::Collocation(scheme) => {
-            let o = CollocationOptions {
-                scheme,
-                tolerance: opts.tolerance,
-                max_nodes: opts.max_nodes,
-                jacobian: opts.jacobian,
-                ..CollocationOptions::default()
-            };
-            collocation::solve(&problem, &at_scene, &o)
-        }
-        Method::Shooting => {
-            let o = ShootingOptions {
-                tolerance: opts.tolerance,
-                intervals_per_segment: opts.shooting_intervals,
-                jacobian: opts.jacobian,
-                ..ShootingOptions::default()
-            };
-            shooting::solve(&problem, &at_scene, &o)
-        }
-    }
+    let solution = final_solve(
+        &problem,
+        &at_scene,
+        opts.method,
+        opts.tolerance,
+        opts.max_nodes,
+        opts.shooting_intervals,
+        opts.jacobian,
+    )
     .map_err(|cause| StringHangingError::Solver { stage: "final solve", cause })?;
-    add_stats(&mut total, &solution.stats);
-    total.unknowns = solution.stats.unknowns;
-    total.mesh_nodes = solution.stats.mesh_nodes;
-    total.max_residual = solution.stats.max_residual;
-    total.wall_seconds = start.elapsed().as_secs_f64();
+    finish_stats(&mut total, &solution.stats, start);
     let mut sol = StringHangingSolution {
         data: *data,
         problem,
