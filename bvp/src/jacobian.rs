@@ -172,3 +172,21 @@ pub fn bc_jacobian<P: Problem>(
     }
     (g, dg)
 }
+
+/// The largest scaled difference |J_ad − J_fd| / (1 + |J_ad|) between the AD and the
+/// central-difference Jacobians, over every entry of ∂f_k/∂(y, p, η) of every segment k
+/// at (x, `ys[k]`, p, η) and of ∂g at (`ya`, `yb`, p, η). The derivative check every
+/// problem's tests run: central differences with h ~ ε^{1/3} are accurate to O(ε^{2/3})
+/// times the second-derivative scale, so a wrong AD entry (O(1)) stands far above it.
+pub fn ad_fd_mismatch<P: Problem>(problem: &P, x: f64, ys: &[Vec<f64>], ya: &[&[f64]], yb: &[&[f64]], p: &[f64], eta: f64) -> f64 {
+    let scaled = |a: &[f64], f: &[f64]| a.iter().zip(f).map(|(u, v)| (u - v).abs() / (1.0 + u.abs())).fold(0.0, f64::max);
+    let mut worst: f64 = 0.0;
+    for (k, y) in ys.iter().enumerate() {
+        let a = rhs_jacobian(problem, JacobianMode::Ad, k, x, y, p, eta);
+        let f = rhs_jacobian(problem, JacobianMode::FiniteDifference, k, x, y, p, eta);
+        worst = worst.max(scaled(&a.1, &f.1)).max(scaled(&a.2, &f.2)).max(scaled(&a.3, &f.3));
+    }
+    let (ga, da) = bc_jacobian(problem, JacobianMode::Ad, ya, yb, p, eta);
+    let (gf, df) = bc_jacobian(problem, JacobianMode::FiniteDifference, ya, yb, p, eta);
+    worst.max(scaled(&ga, &gf)).max(scaled(&da, &df))
+}

@@ -207,38 +207,4 @@ impl Problem for ScaledRodHanging {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::jacobian::{bc_jacobian, rhs_jacobian};
-    use crate::problem::JacobianMode;
-
-    fn problem() -> ScaledRodHanging {
-        ScaledRodHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length: 3.2, bending_start: 3e-3, bending: 2e-5 }
-    }
-
-    /// AD Jacobians of (R2), (R4) and the conditions agree with central differences at an
-    /// arbitrary state; 1e-6 relative is the accuracy of h ~ ε^{1/3} differences.
-    #[test]
-    fn ad_jacobians_match_finite_differences() {
-        let pb = problem();
-        let p = [0.4, 0.6, 0.5, 0.45, 1.7, -1.4, -1.8, -4.6, 0.01];
-        for k in 0..6 {
-            let y: Vec<f64> = (0..pb.dim(k)).map(|i| 0.3 + 0.17 * i as f64 - 0.05 * k as f64).collect();
-            let a = rhs_jacobian(&pb, JacobianMode::Ad, k, 0.37, &y, &p, 0.8);
-            let f = rhs_jacobian(&pb, JacobianMode::FiniteDifference, k, 0.37, &y, &p, 0.8);
-            for (u, v) in a.1.iter().chain(&a.2).chain(&a.3).zip(f.1.iter().chain(&f.2).chain(&f.3)) {
-                assert!((u - v).abs() <= 1e-6 * (1.0 + u.abs()), "segment {k}: {u} vs {v}");
-            }
-        }
-        let ys: Vec<Vec<f64>> = (0..12).map(|j| (0..pb.dim(j / 2)).map(|i| 0.2 + 0.1 * (i + j) as f64).collect()).collect();
-        let ya: Vec<&[f64]> = (0..6).map(|k| ys[2 * k].as_slice()).collect();
-        let yb: Vec<&[f64]> = (0..6).map(|k| ys[2 * k + 1].as_slice()).collect();
-        let (ga, da) = bc_jacobian(&pb, JacobianMode::Ad, &ya, &yb, &p, 0.8);
-        let (gf, df) = bc_jacobian(&pb, JacobianMode::FiniteDifference, &ya, &yb, &p, 0.8);
-        assert_eq!(ga, gf);
-        for (u, v) in da.iter().zip(&df) {
-            assert!((u - v).abs() <= 1e-6 * (1.0 + u.abs()), "{u} vs {v}");
-        }
-    }
-}
+// The AD-vs-finite-difference check of this problem is bvp/tests/rod_hanging.rs (a).
