@@ -26,7 +26,9 @@
 //! - [`string_hanging`]: the static string on frictionless pulleys — tight start (F11),
 //!   homotopy with step control, penalty continuation, contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
-//!   and contact pressure, contact boundaries recovered from the free spans, summary.
+//!   and contact pressure, contact boundaries recovered from the free spans, summary;
+//! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
+//!   against its closed form — how a penalty FE carries concentrated edge forces.
 //!
 //! Defaults: `string-simpson`, 256 elements (the scene's `fem.elements`), penalty
 //! P = 10⁵ EA/R² ([`SolverSettings`]). Measured accuracy against the BVP at 256
@@ -70,6 +72,7 @@ pub mod newton;
 mod options;
 pub mod quadrature;
 pub mod solution;
+pub mod stamp;
 pub mod string_hanging;
 
 pub use error::FemError;
