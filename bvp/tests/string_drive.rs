@@ -76,3 +76,18 @@ fn matches_belt_creep_without_gravity() {
     let sol = solve(&StringDrive { inertia: false, ..base() }, &colloc(1e-10)).expect("solves");
     against_creep(&sol, 1e-8);
 }
+
+#[test]
+fn explore() {
+    for d in [StringDrive { gravity: 9.81, ..base() }, StringDrive { gravity: 9.81, length: 1.70, ..base() }] {
+        for o in [colloc(1e-8), shoot(1e-8)] {
+            let t = std::time::Instant::now();
+            match solve(&d, &o) {
+                Ok(sol) => {
+                    println!("{:?} {:?} steps {} t {:.3}", sol.summary(), sol.power_balance(), sol.homotopy_steps, t.elapsed().as_secs_f64());
+                }
+                Err(e) => println!("ERR {e}"),
+            }
+        }
+    }
+}
