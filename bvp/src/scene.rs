@@ -242,7 +242,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let sol = string_drive::solve(&data, &sd_opts)?;
             let (input, output, dissipation) = sol.power_balance();
             let mut notes = vec![
-                format!("homotopy: {} continuation steps from the tight loop at rest (torque, then gravity and length, then speed)", sol.homotopy_steps),
+                format!("homotopy: {} continuation steps from the tight loop at rest (torque, gravity, length, speed)", sol.homotopy_steps),
                 format!(
                     "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
                     input - output - dissipation

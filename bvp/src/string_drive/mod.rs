@@ -126,8 +126,13 @@ pub enum StringDriveError {
     Creep(#[from] CreepError),
     /// With gravity: the stick zone of a pulley vanished on the homotopy path, i.e. the
     /// torque exceeds the friction capacity of the sagging belt.
-    #[error("no steady solution: driven torque {torque:.6} N·m exceeds the friction capacity; on the homotopy path (torque {torque_fraction:.3}, gravity and length {gravity_fraction:.3}, speed {speed_fraction:.3} of the scene's) {reason}")]
-    FrictionCapacityExceeded { torque: f64, torque_fraction: f64, gravity_fraction: f64, speed_fraction: f64, reason: String },
+    #[error("no steady solution: resisting torque M₂ + d₂ω₁ = {torque:.6} N·m exceeds the friction capacity; on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}", path[0], path[1], path[2], path[3])]
+    FrictionCapacityExceeded { torque: f64, path: [f64; 4], reason: String },
+    /// With gravity: a slip arc shrank to zero on the homotopy path — the resisting torque
+    /// is below the torque of the belt's own weight hanging on the pulley (≈ 2ρgR²), so
+    /// friction in the slip zone would have to reverse; that topology is not modelled.
+    #[error("no steady solution of the modelled topology: resisting torque {torque:.6} N·m is so small that on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}; the belt's weight on the pulley (≈ 2ρgR² = {weight_torque:.4e} N·m) would drive it", path[0], path[1], path[2], path[3])]
+    SlipReversed { torque: f64, weight_torque: f64, path: [f64; 4], reason: String },
     /// The solver failed (homotopy or final solve).
     #[error("{stage}: {cause}")]
     Solver { stage: &'static str, cause: BvpError },
@@ -343,13 +348,19 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
     let branch = continuation::natural_checked(&problem, &guess, 0.0, 1.0, &ContinuationOptions::default(), &path_opts, physical)
         .map_err(|cause| {
             if let BvpError::ContinuationStalled { eta, .. } = &cause {
+                let path = ScaledStringDrive::phases(*eta);
+                if let Some(reason) = last_rejection.borrow().as_ref().filter(|r| r.contains("slip arc")) {
+                    return StringDriveError::SlipReversed {
+                        torque: data.driven_torque + data.driven_damping * data.driver_speed,
+                        weight_torque: 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius,
+                        path,
+                        reason: reason.clone(),
+                    };
+                }
                 if let Some(reason) = last_rejection.borrow().as_ref().filter(|r| r.contains("stick arc")) {
-                    let [a, b, c] = ScaledStringDrive::phases(*eta);
                     return StringDriveError::FrictionCapacityExceeded {
                         torque: data.driven_torque + data.driven_damping * data.driver_speed,
-                        torque_fraction: a,
-                        gravity_fraction: b,
-                        speed_fraction: c,
+                        path,
                         reason: reason.clone(),
                     };
                 }

@@ -88,9 +88,9 @@ pub fn arc_params(k: usize) -> (usize, usize) {
     }
 }
 
-/// The scaled problem with the three-phase homotopy in η of the note:
-/// η ∈ [0, ⅓] torque and damping 0 → full; η ∈ [⅓, ⅔] gravity 0 → g and length L₀ → L;
-/// η ∈ [⅔, 1] driver speed 0 → ω₁.
+/// The scaled problem with the four-phase homotopy in η of the note:
+/// η ∈ [0, ¼] torque and damping 0 → full; [¼, ½] gravity 0 → g; [½, ¾] length L₀ → L;
+/// [¾, 1] driver speed 0 → ω₁.
 #[derive(Debug, Clone)]
 pub struct ScaledStringDrive {
     /// R / H.
@@ -109,50 +109,50 @@ pub struct ScaledStringDrive {
     pub torque: f64,
     /// d₂ V / (F_ref H²).
     pub damping: f64,
-    /// L₀ / H (η ≤ ⅓).
+    /// L₀ / H (η ≤ ½).
     pub length_start: f64,
     /// L / H.
     pub length: f64,
 }
 
 fn ramp(eta: f64, from: f64) -> f64 {
-    (3.0 * eta - from).clamp(0.0, 1.0)
+    (4.0 * eta - from).clamp(0.0, 1.0)
 }
 
 impl ScaledStringDrive {
-    /// Fraction of the torque and damping at η.
+    /// Fraction of the torque and damping at η (phase 1, η ∈ [0, ¼]).
     pub fn torque_factor<D: Scalar>(&self, eta: D) -> D {
-        if eta.re() < 1.0 / 3.0 { eta * 3.0 } else { D::from(1.0) }
+        if eta.re() < 0.25 { eta * 4.0 } else { D::from(1.0) }
     }
-    /// Weight per unstretched length at η.
+    /// Weight per unstretched length at η (phase 2, η ∈ [¼, ½]).
     pub fn weight_at<D: Scalar>(&self, eta: D) -> D {
         let e = eta.re();
-        if e <= 1.0 / 3.0 {
+        if e <= 0.25 {
             D::from(0.0)
-        } else if e < 2.0 / 3.0 {
-            (eta * 3.0 - 1.0) * self.weight
+        } else if e < 0.5 {
+            (eta * 4.0 - 1.0) * self.weight
         } else {
             D::from(self.weight)
         }
     }
-    /// Unstretched length at η.
+    /// Unstretched length at η (phase 3, η ∈ [½, ¾]).
     pub fn length_at<D: Scalar>(&self, eta: D) -> D {
         let e = eta.re();
-        if e <= 1.0 / 3.0 {
+        if e <= 0.5 {
             D::from(self.length_start)
-        } else if e < 2.0 / 3.0 {
-            (eta * 3.0 - 1.0) * (self.length - self.length_start) + self.length_start
+        } else if e < 0.75 {
+            (eta * 4.0 - 2.0) * (self.length - self.length_start) + self.length_start
         } else {
             D::from(self.length)
         }
     }
-    /// Driver speed at η.
+    /// Driver speed at η (phase 4, η ∈ [¾, 1]).
     pub fn speed_at<D: Scalar>(&self, eta: D) -> D {
-        if eta.re() <= 2.0 / 3.0 { D::from(0.0) } else { (eta * 3.0 - 2.0) * self.driver_speed }
+        if eta.re() <= 0.75 { D::from(0.0) } else { (eta * 4.0 - 3.0) * self.driver_speed }
     }
-    /// The phase fractions (torque, gravity/length, speed) at η (f64).
-    pub fn phases(eta: f64) -> [f64; 3] {
-        [ramp(eta, 0.0), ramp(eta, 1.0), ramp(eta, 2.0)]
+    /// The phase fractions (torque, gravity, length, speed) at η (f64).
+    pub fn phases(eta: f64) -> [f64; 4] {
+        [ramp(eta, 0.0), ramp(eta, 1.0), ramp(eta, 2.0), ramp(eta, 3.0)]
     }
 
     /// Stretch λ of (D2) at effective tension `t` and transport rate `c` (scaled).
@@ -360,7 +360,7 @@ mod tests {
             let ends: Vec<Vec<f64>> = (0..16).map(|j| (0..pb.dim(j / 2)).map(|i| 0.2 + 0.1 * (i + j) as f64).collect()).collect();
             let ya: Vec<&[f64]> = (0..8).map(|k| ends[2 * k].as_slice()).collect();
             let yb: Vec<&[f64]> = (0..8).map(|k| ends[2 * k + 1].as_slice()).collect();
-            for eta in [0.2, 0.5, 0.8] {
+            for eta in [0.2, 0.4, 0.6, 0.9] {
                 let worst = ad_fd_mismatch(&pb, 0.37, &ys, &ya, &yb, &p, eta);
                 assert!(worst <= 1e-6, "inertia {inertia}, eta {eta}: AD vs central differences {worst:e}");
             }
