@@ -148,7 +148,7 @@ fn fem_method_through_the_cli() {
 /// Every catalogue scene parses and solves from its file alone.
 #[test]
 fn every_catalogue_scene_solves() {
-    for name in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel", "rod-hanging", "string-drive"] {
+    for name in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel", "rod-hanging", "string-drive", "string-drive-exudyn"] {
         let o = beltcheck(&["solve", &format!("scenes/{name}.json")]);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
     }
