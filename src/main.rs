@@ -310,6 +310,15 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     if let (Some(mu), Some(ml)) = (s.moment_upper_mid, s.moment_lower_mid) {
         println!("  moment at x = 0     [N·m]  {:>13.6e} {:>14.6e}", mu, ml);
     }
+    if let (Some(tt), Some(ts)) = (s.tension_tight, s.tension_slack) {
+        println!("  tension tight / slack [N]  {:>13.8} {:>14.8}", tt, ts);
+    }
+    if let Some(w2) = s.driven_speed {
+        println!("  driven speed ω₂  [rad/s]  {:>13.8}   (driver ω₁ = {} rad/s)", w2, scene.drive.driver_speed);
+    }
+    if let Some(c) = s.transport_rate {
+        println!("  transport rate c   [m/s]  {:>13.8}", c);
+    }
     if let (Some(d1), Some(d2)) = (&s.driver, &s.driven) {
         println!("                                  driver         driven");
         let row = |label: &str, a: Option<f64>, b: Option<f64>| {
@@ -320,6 +329,14 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         row("contact arc       [deg]", d1.contact_arc, d2.contact_arc);
         row("first contact     [deg]", d1.contact_start, d2.contact_start);
         row("last contact      [deg]", d1.contact_end, d2.contact_end);
+        row("stick arc         [deg]", d1.stick_arc, d2.stick_arc);
+        row("slip arc          [deg]", d1.slip_arc, d2.slip_arc);
+        let value = |label: &str, a: Option<f64>, b: Option<f64>| {
+            if let (Some(a), Some(b)) = (a, b) {
+                println!("  {label:<25}  {:>13.8} {:>14.8}", a, b);
+            }
+        };
+        value("torque on pulley     [N·m]", d1.torque, d2.torque);
         let force = |label: &str, a: Option<f64>, b: Option<f64>| {
             if let (Some(a), Some(b)) = (a, b) {
                 println!("  {label:<25}  {:>13.6e} {:>14.6e}", a, b);

@@ -148,8 +148,67 @@ fn fem_method_through_the_cli() {
 /// Every catalogue scene parses and solves from its file alone.
 #[test]
 fn every_catalogue_scene_solves() {
-    for name in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel", "rod-hanging"] {
+    for name in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel", "rod-hanging", "string-drive", "string-drive-exudyn"] {
         let o = beltcheck(&["solve", &format!("scenes/{name}.json")]);
         assert!(o.status.success(), "{name}: {}", stderr(&o));
+    }
+}
+
+/// The steady drive (docs/string-drive.md) through the CLI: the drive quantities are
+/// printed and written (tight/slack tensions, ω₂, c, stick/slip arcs, torques), with the
+/// belt-on-pulley torque of the driven pulley equal to M₂ + d₂ω₂ (10 + 0.05 ω₂ N·m in
+/// scenes/string-drive.json; the solve tolerance 1e-8 bounds it to ~1e-8 relative, so
+/// 1e-6).
+#[test]
+fn steady_drive_through_the_cli() {
+    let path = temp("drive.json");
+    let o = beltcheck(&["solve", "scenes/string-drive.json", "--json", path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    for needle in ["tension tight / slack", "driven speed", "transport rate", "stick arc", "slip arc", "torque on pulley", "power: input"] {
+        assert!(out.contains(needle), "`{needle}` not printed: {out}");
+    }
+    let v = read_json(&path);
+    let s = &v["summary"];
+    for key in ["tension_tight", "tension_slack", "driven_speed", "transport_rate", "y_upper_mid", "tension_lower_mid"] {
+        assert!(s[key].as_f64().is_some_and(f64::is_finite), "{key} missing: {s}");
+    }
+    for pulley in ["driver", "driven"] {
+        for key in ["contact_arc", "stick_arc", "slip_arc", "torque"] {
+            assert!(s[pulley][key].as_f64().is_some_and(f64::is_finite), "{pulley}.{key} missing: {s}");
+        }
+        assert!(s[pulley].get("edge_force_start").is_none(), "a string has no edge forces");
+    }
+    let omega2 = s["driven_speed"].as_f64().unwrap();
+    let torque = s["driven"]["torque"].as_f64().unwrap();
+    assert!((torque - (10.0 + 0.05 * omega2)).abs() < 1e-6 * torque, "driven torque {torque}, ω₂ {omega2}");
+    // Input power exceeds the output by the slip losses (ω₁ = 60 rad/s in the scene).
+    assert!(-s["driver"]["torque"].as_f64().unwrap() * 60.0 > torque * omega2, "the driver supplies the output and the slip losses");
+    assert!(s["tension_tight"].as_f64().unwrap() > s["tension_slack"].as_f64().unwrap());
+}
+
+/// Drives with no steady solution: named errors with their numbers, exit status 2, no
+/// result file — torque above the friction capacity (with and without gravity), driver
+/// speed at or above critical (no gravity), no friction.
+#[test]
+fn drive_without_steady_solution_is_a_named_error() {
+    let good = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/string-drive.json")).unwrap();
+    let cases = [
+        (good.replace("\"driven_torque\": 10.0", "\"driven_torque\": 1000.0"), "exceeds the friction capacity"),
+        (good.replace("\"driven_torque\": 10.0", "\"driven_torque\": 1000.0").replace("\"gravity\": 9.81,", ""), "friction capacity 18.6"),
+        (good.replace("\"driver_speed\": 60.0", "\"driver_speed\": 500.0").replace("\"gravity\": 9.81,", ""), "critical speed 189.8"),
+        (good.replace("{\"coulomb\": 0.4}", "{\"coulomb\": 0.0}"), "μ > 0"),
+    ];
+    for (i, (text, needle)) in cases.iter().enumerate() {
+        let scene = temp(&format!("drive-bad{i}.json"));
+        std::fs::write(&scene, text).unwrap();
+        let out = temp(&format!("drive-bad{i}.out.json"));
+        let _ = std::fs::remove_file(&out);
+        let o = beltcheck(&["solve", scene.to_str().unwrap(), "--json", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "case {i}: {}", stdout(&o));
+        let err = stderr(&o);
+        assert!(err.contains(needle), "case {i}: `{needle}` not named in: {err}");
+        assert!(!err.contains("panicked"), "case {i}: {err}");
+        assert!(!out.exists(), "case {i}: a result was written");
     }
 }

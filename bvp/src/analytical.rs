@@ -368,3 +368,366 @@ pub mod bratu {
         }
     }
 }
+
+pub mod belt_creep {
+    //! Belt-creep theory of the gravity-free steady friction drive, exact for the
+    //! extensible string (docs/string-drive.md, "The gravity-free closed form"; the
+    //! reference's §6.1 and §8.2 (Paper B); Johnson, *Contact Mechanics*, §8.6, for the
+    //! classical creep picture).
+    //!
+    //! Without gravity the spans are the straight outer tangents, each contact arc is π,
+    //! each pulley has a stick zone at the incoming effective tension followed by a slip
+    //! zone over which the effective tension T̃ = T − ρc²λ changes by e^{±μ φ_slip}. The
+    //! one scalar unknown T̃_s (slack effective tension) is fixed by the **exact** total
+    //! unstretched length, solved by Brent's method (argmin); the approximation
+    //! T₁ + T₂ = 2T₀ is not used.
+
+    use std::f64::consts::PI;
+
+    use thiserror::Error;
+
+    use crate::continuation::brent_root;
+
+    /// Data of a gravity-free drive (SI units).
+    #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+    pub struct CreepData {
+        /// Pulley radius R to the belt centreline (m).
+        pub radius: f64,
+        /// Centre distance H (m).
+        pub centre_distance: f64,
+        /// Unstretched loop length L (m).
+        pub length: f64,
+        /// Axial stiffness EA (N).
+        pub axial_stiffness: f64,
+        /// Mass per unstretched length ρ (kg/m).
+        pub mass_per_length: f64,
+        /// Persistent transport inertia (the ρc² terms) on or off.
+        pub inertia: bool,
+        /// Coulomb coefficient μ ≥ 0.
+        pub friction: f64,
+        /// Driver speed ω₁ ≥ 0 (rad/s, clockwise).
+        pub driver_speed: f64,
+        /// Resisting torque M₂ ≥ 0 of the driven pulley (N·m).
+        pub driven_torque: f64,
+        /// Viscous damping d₂ ≥ 0 of the driven pulley (N·m·s): resisting torque M₂ + d₂ω₂.
+        pub driven_damping: f64,
+    }
+
+    /// Why a gravity-free drive has no steady creep solution.
+    #[derive(Debug, Clone, PartialEq, Error)]
+    pub enum CreepError {
+        /// A datum is non-finite or out of range.
+        #[error("invalid input: {name} = {value} ({reason})")]
+        InvalidInput { name: &'static str, value: f64, reason: &'static str },
+        /// The belt is not stretched on: no pretension, no torque, no unique shape.
+        #[error("no steady solution: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m has no pretension; add gravity or shorten the belt")]
+        WeightlessSlack { length: f64, geometric_length: f64 },
+        /// The driver speed reaches the critical speed (effective tension ≤ 0).
+        #[error("no steady solution: driver speed ω₁ = {driver_speed} rad/s is at or above the critical speed {critical_speed:.6} rad/s, where the effective tension T − ρc²λ of the unloaded belt vanishes")]
+        SpeedAtOrAboveCritical { driver_speed: f64, critical_speed: f64 },
+        /// The resisting torque exceeds what friction can transmit (slip arc > contact arc).
+        #[error("no steady solution: driven torque {torque:.6} N·m (M₂ + d₂ω₂) exceeds the friction capacity {capacity:.6} N·m (slip zone over the whole contact arc)")]
+        FrictionCapacityExceeded { torque: f64, capacity: f64 },
+        /// The scalar root did not converge (should not happen for valid data).
+        #[error("belt-creep root: {0}")]
+        Root(String),
+    }
+
+    /// The exact steady state of belt-creep theory.
+    #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+    pub struct CreepSolution {
+        /// Effective tension T̃ of the tight (lower) span, N.
+        pub effective_tight: f64,
+        /// Effective tension T̃ of the slack (upper) span, N.
+        pub effective_slack: f64,
+        /// Axial force of the tight span, N.
+        pub tension_tight: f64,
+        /// Axial force of the slack span, N.
+        pub tension_slack: f64,
+        /// Transport rate c (m/s of unstretched length).
+        pub transport_rate: f64,
+        /// Driven speed ω₂ = ω₁ λ_s/λ_t (rad/s).
+        pub driven_speed: f64,
+        /// Slip arc on each pulley, ln(T̃_t/T̃_s)/μ (rad); the stick arc is π − this.
+        pub slip_arc: f64,
+        /// Torque of the belt on the driven pulley, R(T̃_t − T̃_s) = M₂ + d₂ω₂ (N·m).
+        pub driven_torque: f64,
+        /// Torque of the belt on the driver, −R(T̃_t − T̃_s) (N·m, clockwise positive).
+        pub driver_torque: f64,
+        /// Stretch of the tight span.
+        pub stretch_tight: f64,
+        /// Stretch of the slack span.
+        pub stretch_slack: f64,
+    }
+
+    /// The state for a given slack effective tension (everything but the length).
+    #[derive(Debug, Clone, Copy)]
+    struct State {
+        ts: f64,
+        tt: f64,
+        c: f64,
+        k: f64,
+        phi: f64,
+    }
+
+    impl CreepData {
+        /// L_geom = 2H + 2πR.
+        pub fn geometric_length(&self) -> f64 {
+            2.0 * self.centre_distance + 2.0 * PI * self.radius
+        }
+
+        fn validate(&self) -> Result<(), CreepError> {
+            let positive = [
+                ("pulley_radius", self.radius),
+                ("centre_distance", self.centre_distance),
+                ("length", self.length),
+                ("axial_stiffness", self.axial_stiffness),
+                ("mass_per_length", self.mass_per_length),
+            ];
+            for (name, value) in positive {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(CreepError::InvalidInput { name, value, reason: "must be finite and > 0" });
+                }
+            }
+            let non_negative = [
+                ("coulomb", self.friction),
+                ("driver_speed", self.driver_speed),
+                ("driven_torque", self.driven_torque),
+                ("driven_damping", self.driven_damping),
+            ];
+            for (name, value) in non_negative {
+                if !(value.is_finite() && value >= 0.0) {
+                    return Err(CreepError::InvalidInput { name, value, reason: "must be finite and ≥ 0" });
+                }
+            }
+            Ok(())
+        }
+
+        /// ρc² if inertia is on, else 0.
+        fn inertia_force(&self, c: f64) -> f64 {
+            if self.inertia { self.mass_per_length * c * c } else { 0.0 }
+        }
+
+        /// c from (D5) at the tight effective tension: c λ_t = ω₁R with
+        /// λ = (EA + T̃)/(EA − ρc²) (D2); a quadratic in c with inertia.
+        fn rate(&self, tt: f64) -> f64 {
+            let (ea, w) = (self.axial_stiffness, self.driver_speed * self.radius);
+            let b = ea + tt;
+            if self.inertia {
+                let a = self.mass_per_length * w;
+                2.0 * w * ea / (b + (b * b + 4.0 * a * w * ea).sqrt())
+            } else {
+                w * ea / b
+            }
+        }
+
+        /// The state at slack effective tension `ts` > 0 (torque balance and kinematics).
+        fn state(&self, ts: f64) -> State {
+            let (ea, r) = (self.axial_stiffness, self.radius);
+            let a = ea + ts;
+            // R D² + (RA − M₂) D − A (M₂ + d₂ω₁) = 0, positive root (stable form).
+            let m = self.driven_torque;
+            let q = a * (m + self.driven_damping * self.driver_speed);
+            let b = r * a - m;
+            let d = if q == 0.0 { 0.0 } else { 2.0 * q / (b + (b * b + 4.0 * r * q).sqrt()) };
+            let tt = ts + d;
+            let c = self.rate(tt);
+            let k = ea - self.inertia_force(c);
+            let phi = if d == 0.0 { 0.0 } else { (tt / ts).ln() / self.friction };
+            State { ts, tt, c, k, phi }
+        }
+
+        /// The exact unstretched length ∫ ds of the state (docs: spans, stick zones with
+        /// the arcs π − φ_slip, slip zones in closed form).
+        fn length_of(&self, s: &State) -> f64 {
+            let (ea, r, h, mu) = (self.axial_stiffness, self.radius, self.centre_distance, self.friction);
+            let inv = |t: f64| s.k / (ea + t);
+            let spans = h * (inv(s.ts) + inv(s.tt));
+            let sticks = r * (PI - s.phi) * (inv(s.ts) + inv(s.tt));
+            let slip_one = if s.phi == 0.0 { 0.0 } else { r * s.k * (s.phi - ((ea + s.tt) / (ea + s.ts)).ln() / mu) / ea };
+            spans + sticks + 2.0 * slip_one
+        }
+
+        /// Critical driver speed of the unloaded belt (inertia on, belt stretched on):
+        /// T̃ = 0 with L = L_geom (EA − ρc²)/EA and c λ(0) = ω R; `None` without inertia
+        /// or without pretension.
+        pub fn critical_speed(&self) -> Option<f64> {
+            let lg = self.geometric_length();
+            if !self.inertia || self.length >= lg {
+                return None;
+            }
+            let c = (self.axial_stiffness * (1.0 - self.length / lg) / self.mass_per_length).sqrt();
+            Some(c * lg / (self.length * self.radius))
+        }
+
+        /// Solve the steady creep state (docs/string-drive.md). Errors: the variants of
+        /// [`CreepError`], raised before any iteration where the data decide them.
+        pub fn solve(&self) -> Result<CreepSolution, CreepError> {
+            self.validate()?;
+            let lg = self.geometric_length();
+            if self.length >= lg {
+                return Err(CreepError::WeightlessSlack { length: self.length, geometric_length: lg });
+            }
+            if let Some(critical_speed) = self.critical_speed() {
+                if self.driver_speed >= critical_speed {
+                    return Err(CreepError::SpeedAtOrAboveCritical { driver_speed: self.driver_speed, critical_speed });
+                }
+            }
+            let root = |e: crate::error::BvpError| CreepError::Root(e.to_string());
+            let loaded = self.driven_torque > 0.0 || (self.driven_damping > 0.0 && self.driver_speed > 0.0);
+            let ea = self.axial_stiffness;
+            // Smallest admissible T̃_s: zero unloaded; φ_slip = π loaded.
+            let ts_min = if !loaded {
+                0.0
+            } else {
+                if self.friction == 0.0 {
+                    return Err(CreepError::FrictionCapacityExceeded {
+                        torque: self.driven_torque + self.driven_damping * self.driver_speed,
+                        capacity: 0.0,
+                    });
+                }
+                let mut hi = 1e-9 * ea;
+                while self.state(hi).phi > PI {
+                    hi *= 2.0;
+                }
+                let mut lo = hi / 2.0;
+                while self.state(lo).phi <= PI && lo > 1e-300 {
+                    lo /= 2.0;
+                }
+                brent_root(|x| Ok(self.state(x).phi - PI), lo, hi, 1e-15 * hi).map_err(root)?
+            };
+            let excess = |x: f64| self.length_of(&self.state(x)) - self.length;
+            let at_min = if ts_min == 0.0 { self.length_of(&self.state(1e-300)) - self.length } else { excess(ts_min) };
+            if at_min <= 0.0 {
+                // The belt is too long for the torque: the slack side would need T̃ below
+                // the φ_slip = π limit. Capacity = R(T̃_t − T̃_s) with φ = π at this length.
+                let e = self.friction * PI;
+                let len_pi = |ts: f64| {
+                    let tt = ts * e.exp();
+                    let c = self.rate(tt);
+                    let k = ea - self.inertia_force(c);
+                    let s = State { ts, tt, c, k, phi: PI };
+                    self.length_of(&s) - self.length
+                };
+                let mut hi = 1e-9 * ea;
+                while len_pi(hi) > 0.0 {
+                    hi *= 2.0;
+                }
+                let ts = brent_root(|x| Ok(len_pi(x)), 0.0, hi, 1e-15 * hi).map_err(root)?;
+                let capacity = self.radius * ts * (e.exp() - 1.0);
+                let st = self.state(ts_min.max(1e-300));
+                let omega2 = self.driver_speed * (ea + st.ts) / (ea + st.tt);
+                return Err(CreepError::FrictionCapacityExceeded {
+                    torque: self.driven_torque + self.driven_damping * omega2,
+                    capacity,
+                });
+            }
+            let mut hi = (2.0 * ts_min).max(1e-6 * ea);
+            while excess(hi) > 0.0 {
+                hi *= 2.0;
+            }
+            let ts = brent_root(|x| Ok(excess(x)), ts_min, hi, 1e-15 * hi).map_err(root)?;
+            let s = self.state(ts);
+            let rc2 = self.inertia_force(s.c);
+            let tension = |t: f64| ea * (t + rc2) / (ea - rc2);
+            let (lt, ls) = ((ea + s.tt) / s.k, (ea + s.ts) / s.k);
+            let torque = self.radius * (s.tt - s.ts);
+            Ok(CreepSolution {
+                effective_tight: s.tt,
+                effective_slack: s.ts,
+                tension_tight: tension(s.tt),
+                tension_slack: tension(s.ts),
+                transport_rate: s.c,
+                driven_speed: self.driver_speed * ls / lt,
+                slip_arc: s.phi,
+                driven_torque: torque,
+                driver_torque: -torque,
+                stretch_tight: lt,
+                stretch_slack: ls,
+            })
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        fn data() -> CreepData {
+            CreepData {
+                radius: 0.1,
+                centre_distance: 0.5,
+                length: 1.25,
+                axial_stiffness: 1.0e4,
+                mass_per_length: 0.5,
+                inertia: true,
+                friction: 0.4,
+                driver_speed: 20.0,
+                driven_torque: 10.0,
+                driven_damping: 0.1,
+            }
+        }
+
+        /// The closed form satisfies its own defining equations: torque balance with
+        /// damping, the Euler–Eytelwein ratio, (D5) and the exact length, each to
+        /// rounding (1e-12 relative: a few operations on O(1) ratios).
+        #[test]
+        fn defining_equations_hold() {
+            let d = data();
+            let s = d.solve().unwrap();
+            let m = d.driven_torque + d.driven_damping * s.driven_speed;
+            assert!((s.driven_torque - m).abs() < 1e-12 * m, "{} vs {m}", s.driven_torque);
+            assert!(((s.effective_tight / s.effective_slack).ln() - d.friction * s.slip_arc).abs() < 1e-12);
+            assert!((s.transport_rate * s.stretch_tight - d.driver_speed * d.radius).abs() < 1e-12);
+            assert!((s.transport_rate * s.stretch_slack - s.driven_speed * d.radius).abs() < 1e-12);
+            let rc2 = d.mass_per_length * s.transport_rate.powi(2);
+            assert!((s.tension_tight - rc2 * s.stretch_tight - s.effective_tight).abs() < 1e-9 * s.tension_tight);
+            assert!((s.tension_tight - d.axial_stiffness * (s.stretch_tight - 1.0)).abs() < 1e-9 * s.tension_tight);
+            // Length by brute-force quadrature of the slip zone (composite Simpson, 2000
+            // panels: error ~1e-14 relative for this smooth integrand).
+            let n = 2000;
+            let h = s.slip_arc / n as f64;
+            let inv = |psi: f64| 1.0 / ((d.axial_stiffness + s.effective_slack * (d.friction * psi).exp()) / (d.axial_stiffness - rc2));
+            let mut slip = inv(0.0) + inv(s.slip_arc);
+            for i in 1..n {
+                slip += if i % 2 == 1 { 4.0 } else { 2.0 } * inv(i as f64 * h);
+            }
+            slip *= h / 3.0 * d.radius;
+            let stick = d.radius * (PI - s.slip_arc) * (1.0 / s.stretch_tight + 1.0 / s.stretch_slack);
+            let spans = d.centre_distance * (1.0 / s.stretch_tight + 1.0 / s.stretch_slack);
+            let total = spans + stick + 2.0 * slip;
+            assert!((total - d.length).abs() < 1e-12 * d.length, "length {total} vs {}", d.length);
+        }
+
+        /// The named no-solution cases, decided before any iteration.
+        #[test]
+        fn no_solution_cases() {
+            let mut d = data();
+            d.driven_torque = 1e4;
+            assert!(matches!(d.solve(), Err(CreepError::FrictionCapacityExceeded { .. })), "{:?}", d.solve());
+            let mut d = data();
+            d.driver_speed = 1.01 * d.critical_speed().unwrap();
+            assert!(matches!(d.solve(), Err(CreepError::SpeedAtOrAboveCritical { .. })));
+            let mut d = data();
+            d.length = 1.7;
+            assert!(matches!(d.solve(), Err(CreepError::WeightlessSlack { .. })));
+            let mut d = data();
+            d.friction = 0.0;
+            assert!(matches!(d.solve(), Err(CreepError::FrictionCapacityExceeded { capacity, .. }) if capacity == 0.0));
+        }
+
+        /// The capacity is where φ_slip reaches π: just below it the solution exists with
+        /// φ_slip close to π, just above it the error names a capacity between the two.
+        #[test]
+        fn capacity_is_sharp() {
+            let mut d = data();
+            d.driven_damping = 0.0;
+            d.driven_torque = 1e4;
+            let Err(CreepError::FrictionCapacityExceeded { capacity, .. }) = d.solve() else { panic!("expected capacity error") };
+            d.driven_torque = capacity * (1.0 - 1e-6);
+            let s = d.solve().unwrap();
+            assert!(s.slip_arc < PI && s.slip_arc > PI - 1e-4, "slip arc {}", s.slip_arc);
+            d.driven_torque = capacity * (1.0 + 1e-6);
+            assert!(d.solve().is_err());
+        }
+    }
+}

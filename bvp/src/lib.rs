@@ -13,6 +13,7 @@
 //! - [`sigma_map`]: the belt point at a contour coordinate σ (for the common view),
 //! - [`string_hanging`]: the extensible string on two pulleys,
 //! - [`rod_hanging`]: the Kirchhoff rod on two pulleys,
+//! - [`string_drive`]: the steady friction drive (stick and slip zones),
 //! - [`scene`]: from a validated scene to a BVP run.
 
 pub mod error;
@@ -28,6 +29,7 @@ pub mod newton;
 pub mod scene;
 pub mod sigma_map;
 pub mod string_hanging;
+pub mod string_drive;
 pub mod rod_hanging;
 
 pub use error::BvpError;

@@ -10,6 +10,7 @@ use crate::collocation::Scheme;
 use crate::problem::JacobianMode;
 use crate::solution::Stats;
 use crate::rod_hanging::{self, view::RodView, RodHanging, RodHangingError, RodHangingOptions};
+use crate::string_drive::{self, StringDrive, StringDriveError, StringDriveOptions};
 use crate::string_hanging::{self, Method, StringHanging, StringHangingError, StringHangingOptions};
 
 /// The two BVP methods.
@@ -65,6 +66,9 @@ pub enum SceneSolveError {
     /// The `rod-hanging` problem failed.
     #[error(transparent)]
     RodHanging(#[from] RodHangingError),
+    /// The `string-drive` problem failed (or has no steady solution).
+    #[error(transparent)]
+    StringDrive(#[from] StringDriveError),
 }
 
 impl BvpRunOptions {
@@ -118,6 +122,23 @@ pub fn string_hanging_data(scene: &Scene) -> StringHanging {
     }
 }
 
+/// The physical data of a steady `string-drive` scene with Coulomb coefficient `mu`.
+pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
+    StringDrive {
+        radius: scene.drive.pulley_radius,
+        centre_distance: scene.drive.centre_distance,
+        length: scene.belt.length,
+        axial_stiffness: scene.belt.axial_stiffness,
+        mass_per_length: scene.belt.mass_per_length,
+        gravity: scene.effects.gravity.unwrap_or(0.0),
+        inertia: scene.effects.inertia == Some(true),
+        friction: mu,
+        driver_speed: scene.drive.driver_speed,
+        driven_torque: scene.drive.driven_torque,
+        driven_damping: scene.drive.driven_damping,
+    }
+}
+
 /// The method of `opts` in the belt problems' terms.
 fn method_of(opts: &BvpRunOptions) -> Method {
     match opts.method {
@@ -135,7 +156,8 @@ fn method_detail(opts: &BvpRunOptions) -> String {
 }
 
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`) or
-/// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys.
+/// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys, or the string in
+/// steady motion with Coulomb friction (`string-drive`).
 pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneSolveError> {
     let static_frictionless = matches!(scene.analysis, Analysis::Static)
         && matches!(scene.effects.contact, Contact::Frictionless)
@@ -206,8 +228,46 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 notes,
             })
         }
+        Theory::String if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
+            let Contact::Coulomb(mu) = scene.effects.contact else { unreachable!("matched above") };
+            let data = string_drive_data(scene, mu);
+            let sd_opts = StringDriveOptions {
+                method: method_of(opts),
+                tolerance: opts.tolerance,
+                max_nodes: opts.max_nodes,
+                shooting_intervals: opts.shooting_intervals,
+                jacobian: opts.jacobian,
+                ..StringDriveOptions::default()
+            };
+            let sol = string_drive::solve(&data, &sd_opts)?;
+            let (input, output, dissipation) = sol.power_balance();
+            let mut notes = vec![
+                format!("homotopy: {} continuation steps from the tight loop at rest (torque, gravity, length, speed)", sol.homotopy_steps),
+                format!(
+                    "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
+                    input - output - dissipation
+                ),
+            ];
+            if data.gravity == 0.0 {
+                if let Ok(e) = data.creep() {
+                    notes.push(format!(
+                        "belt-creep closed form: T_tight {:.9} N, T_slack {:.9} N, ω₂ {:.9} rad/s, slip arc {:.9} rad",
+                        e.tension_tight, e.tension_slack, e.driven_speed, e.slip_arc
+                    ));
+                }
+            }
+            Ok(BvpRun {
+                summary: sol.summary(),
+                stats: sol.stats.clone(),
+                view: Box::new(sol),
+                method: opts.method.name().to_string(),
+                method_detail: method_detail(opts),
+                options,
+                notes,
+            })
+        }
         _ => Err(SceneSolveError::Unsupported(format!(
-            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys",
+            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys, and the string in steady motion with Coulomb friction",
             scene.belt.theory, scene.analysis, scene.effects.contact
         ))),
     }
