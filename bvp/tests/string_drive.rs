@@ -207,6 +207,8 @@ fn no_solution_errors() {
     assert!(matches!(e, StringDriveError::SlipReversed { weight_torque, .. } if weight_torque > 0.05), "{e}");
     let e = solve(&StringDrive { friction: 0.0, ..base() }, &colloc(1e-8)).unwrap_err();
     assert!(matches!(e, StringDriveError::InvalidInput { name: "coulomb", .. }), "{e}");
+    let e = solve(&StringDrive { driver_speed: 2000.0, gravity: 9.81, ..base() }, &colloc(1e-8)).unwrap_err();
+    assert!(matches!(e, StringDriveError::WaveSpeedReached { belt_speed, wave_speed } if belt_speed >= wave_speed), "{e}");
     let e = solve(&StringDrive { driver_speed: -1.0, ..base() }, &colloc(1e-8)).unwrap_err();
     assert!(matches!(e, StringDriveError::InvalidInput { name: "driver_speed", .. }), "{e}");
 }
