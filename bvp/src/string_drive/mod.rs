@@ -347,7 +347,7 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
     let mut total = Stats::default();
     let last_rejection: RefCell<Option<String>> = RefCell::new(None);
     let physical = |s: &Solution| -> Result<(), String> {
-        let verdict = physical_check(&problem, s, scales.force);
+        let verdict = physical_check(s, scales.force);
         if let Err(r) = &verdict {
             *last_rejection.borrow_mut() = Some(r.clone());
         }
@@ -400,13 +400,12 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
 }
 
 /// The acceptance test of every homotopy point: topology and T̃ > 0 on the arcs.
-fn physical_check(problem: &ScaledStringDrive, s: &Solution, force: f64) -> Result<(), String> {
+fn physical_check(s: &Solution, force: f64) -> Result<(), String> {
     topology_check(&s.params, 1e-9)?;
     let t_min = [DRIVEN_STICK, DRIVEN_SLIP, DRIVER_STICK, DRIVER_SLIP]
         .iter()
         .flat_map(|&k| s.segments[k].nodes.iter().map(|y| y[0]))
         .fold(f64::INFINITY, f64::min);
-    let _ = problem;
     if t_min > 0.0 {
         Ok(())
     } else {
