@@ -212,3 +212,17 @@ fn drive_without_steady_solution_is_a_named_error() {
         assert!(!out.exists(), "case {i}: a result was written");
     }
 }
+
+/// A scene's optional `peer` block (scenes/string-drive-exudyn.json) appears in its
+/// report beside the BVP reference, with the relative difference.
+#[test]
+fn report_shows_the_peer_results() {
+    let dir = temp("peer-report");
+    let o = beltcheck(&["report", "-o", dir.to_str().unwrap(), "--tolerances", "1e-6", "scenes/string-drive-exudyn.json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(dir.join("string-drive-exudyn/report.md")).expect("report written");
+    assert!(md.contains("## Published results of another code"), "{md}");
+    for row in ["| `tension_tight` | 666.5 |", "| `tension_slack` | 186.4 |", "| `driven_speed` | 11.341 |", "| `driver.torque` | -47.72 |"] {
+        assert!(md.contains(row), "`{row}` missing");
+    }
+}

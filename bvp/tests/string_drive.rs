@@ -82,12 +82,21 @@ fn scene() -> StringDrive {
     StringDrive { gravity: 9.81, driver_speed: 60.0, ..base() }
 }
 
+/// Homotopy steps and total Newton iterations (collocation, shooting) of the catalogue
+/// scene at 1e-10.
+const WORK: (usize, usize, usize) = (6, 28, 24);
+
 /// The two independent methods agree on every summary scalar. Both solve to 1e-10; the
 /// scalars are node values or parameters, accurate to ~1e-10 relative, so 1e-8.
 #[test]
 fn collocation_and_shooting_agree() {
-    let a = solve(&scene(), &colloc(1e-10)).expect("collocation").summary();
-    let b = solve(&scene(), &shoot(1e-10)).expect("shooting").summary();
+    let sa = solve(&scene(), &colloc(1e-10)).expect("collocation");
+    let sb = solve(&scene(), &shoot(1e-10)).expect("shooting");
+    // Work counters (exact, deterministic): a change in the homotopy or in Newton's
+    // convergence shows up here in review.
+    assert_eq!((sa.homotopy_steps, sb.homotopy_steps), (WORK.0, WORK.0));
+    assert_eq!((sa.stats.newton_iterations, sb.stats.newton_iterations), (WORK.1, WORK.2));
+    let (a, b) = (sa.summary(), sb.summary());
     let (sa, sb) = (a.scalars(), b.scalars());
     assert_eq!(sa.len(), sb.len());
     for ((name, x), (_, y)) in sa.iter().zip(&sb) {
@@ -207,6 +216,8 @@ fn no_solution_errors() {
     assert!(matches!(e, StringDriveError::SlipReversed { weight_torque, .. } if weight_torque > 0.05), "{e}");
     let e = solve(&StringDrive { friction: 0.0, ..base() }, &colloc(1e-8)).unwrap_err();
     assert!(matches!(e, StringDriveError::InvalidInput { name: "coulomb", .. }), "{e}");
+    let e = solve(&StringDrive { driver_speed: 2000.0, gravity: 9.81, ..base() }, &colloc(1e-8)).unwrap_err();
+    assert!(matches!(e, StringDriveError::WaveSpeedReached { belt_speed, wave_speed } if belt_speed >= wave_speed), "{e}");
     let e = solve(&StringDrive { driver_speed: -1.0, ..base() }, &colloc(1e-8)).unwrap_err();
     assert!(matches!(e, StringDriveError::InvalidInput { name: "driver_speed", .. }), "{e}");
 }

@@ -70,6 +70,59 @@ pub struct Scene {
     /// CI gate tolerances. Optional; absent = [`GateSettings::default`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gate: Option<GateSettings>,
+    /// Published results of another code for this scene, shown beside ours in the
+    /// report (never gated). Optional; absent = no peer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peer: Option<Peer>,
+}
+
+/// Published results of another code for the same physical drive (`peer` block): the
+/// report tabulates them beside the BVP reference with the relative difference. They are
+/// documentation, not a reference: models differ (friction law, bending, transient), so
+/// the gate never uses them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Peer {
+    /// Who computed them and how (code, model, discretisation, instant). Required,
+    /// non-empty.
+    pub source: String,
+    /// Where they are published (URL or citation). Optional.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub reference: String,
+    /// Summary scalar name ([`crate::summary::SCALAR_NAMES`]) → published value, in this
+    /// project's units and signs. Required, non-empty, finite values.
+    pub values: BTreeMap<String, f64>,
+    /// Why the results should differ. Optional.
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub note: String,
+}
+
+impl Peer {
+    /// Checks (paths `peer.*`): non-empty source and values, every name a summary scalar
+    /// (nearest suggested), every value finite.
+    ///
+    /// # Errors
+    /// The first violation.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        if self.source.trim().is_empty() {
+            return Err(SceneError::Invalid { path: "peer.source".into(), reason: "must not be empty".into() });
+        }
+        if self.values.is_empty() {
+            return Err(SceneError::Invalid { path: "peer.values".into(), reason: "must name at least one summary quantity".into() });
+        }
+        for (name, &v) in &self.values {
+            let path = format!("peer.values.{name}");
+            if !SCALAR_NAMES.iter().any(|k| k == name) {
+                return Err(SceneError::UnknownField {
+                    path,
+                    suggestion: nearest(name, SCALAR_NAMES.iter().copied()),
+                    allowed: SCALAR_NAMES.iter().map(|k| k.to_string()).collect(),
+                });
+            }
+            check_finite(&path, v)?;
+        }
+        Ok(())
+    }
 }
 
 /// Pulley geometry and the loads of the drive (`drive` block).
@@ -439,6 +492,9 @@ impl Scene {
         }
         if let Some(g) = &self.gate {
             g.validate()?;
+        }
+        if let Some(p) = &self.peer {
+            p.validate()?;
         }
         Ok(())
     }

@@ -215,6 +215,17 @@ pub(crate) const GATE: &[Field] = &[
     opt("min_order", Kind::Number, "minimum observed order"),
 ];
 
+pub(crate) const PEER: &[Field] = &[
+    req("source", Kind::Text, "who computed the peer results and how"),
+    opt("reference", Kind::Text, "where they are published"),
+    req(
+        "values",
+        Kind::NumberMap,
+        "published value per summary quantity",
+    ),
+    opt("note", Kind::Text, "why the results differ"),
+];
+
 pub(crate) const SCENE: &[Field] = &[
     req("name", Kind::Text, "scene name"),
     opt("description", Kind::Text, "description"),
@@ -232,6 +243,7 @@ pub(crate) const SCENE: &[Field] = &[
     opt("bvp", Kind::Object(BVP), "BVP settings"),
     opt("fem", Kind::Object(FEM), "finite element settings"),
     opt("gate", Kind::Object(GATE), "gate tolerances"),
+    opt("peer", Kind::Object(PEER), "published results of another code"),
 ];
 
 /// Walks a whole scene document (root path `<scene>`).

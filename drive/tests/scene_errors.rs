@@ -647,3 +647,20 @@ fn from_path_reports_the_file() {
     assert_eq!(Scene::from_path(&file).unwrap().name, "string-hanging");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The optional `peer` block (published results of another code, docs/string-drive.md):
+/// accepted with summary names and finite values; an unknown quantity is named with the
+/// nearest summary name; a missing `values` map is named.
+#[test]
+fn peer_block() {
+    let peer = json!({"source": "Exudyn ALE-ANCF", "values": {"tension_tight": 666.5, "driver.torque": -47.72}});
+    let text = set(base(), "peer", peer).to_string();
+    let scene = Scene::from_json_str(&text).expect("valid peer block");
+    assert_eq!(scene.peer.as_ref().unwrap().values["tension_tight"], 666.5);
+    let bad = json!({"source": "x", "values": {"tension_tigth": 1.0}});
+    let e = Scene::from_json_str(&set(base(), "peer", bad).to_string()).unwrap_err().to_string();
+    assert!(e.contains("peer.values.tension_tigth") && e.contains("tension_tight"), "{e}");
+    let missing = json!({"source": "x"});
+    let e = Scene::from_json_str(&set(base(), "peer", missing).to_string()).unwrap_err().to_string();
+    assert!(e.contains("values"), "{e}");
+}

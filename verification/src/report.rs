@@ -277,6 +277,30 @@ fn command_of(scene_file: &Path, study: &Study) -> String {
 }
 
 /// The Markdown of one scene.
+/// The scene's `peer` block beside the BVP reference: quantity, published value, ours,
+/// relative difference (ours − peer)/|peer|. Documentation only (never gated).
+fn peer_section(m: &mut String, peer: &drive::scene::Peer, study: &Study) {
+    let _ = writeln!(m, "## Published results of another code\n");
+    let _ = writeln!(m, "Peer: {}.", peer.source);
+    if !peer.reference.is_empty() {
+        let _ = writeln!(m, "Published in: {}.", peer.reference);
+    }
+    let _ = writeln!(m, "\n| quantity | peer | beltcheck reference | (ours − peer)/\\|peer\\| |\n|:--|--:|--:|--:|");
+    let ours = study.reference.data().map(|d| &d.summary);
+    for (name, &theirs) in &peer.values {
+        let mine = ours.and_then(|s| s.get(name));
+        let (mine_s, diff) = match mine {
+            Some(v) => (format!("{v:.6}"), if theirs != 0.0 { format!("{:+.2} %", 100.0 * (v - theirs) / theirs.abs()) } else { "—".into() }),
+            None => ("—".into(), "—".into()),
+        };
+        let _ = writeln!(m, "| `{name}` | {theirs} | {mine_s} | {diff} |");
+    }
+    if !peer.note.is_empty() {
+        let _ = writeln!(m, "\n{}", peer.note);
+    }
+    m.push('\n');
+}
+
 pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String {
     let mut m = String::new();
     let _ = writeln!(m, "# {}\n", scene.name);
@@ -305,6 +329,10 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         let _ = writeln!(m, "- largest error of a Richardson-extrapolated FE scalar against the BVP reference (mutual convergence; over the scalars where the extrapolation is defined): {}", fmt_error(worst_mutual(study)));
     }
     let _ = writeln!(m, "- study: {} runs in {} s (runs one after another, so wall times compare)\n", study.plan.run_count(), fmt_seconds(Some(study.wall_seconds)));
+
+    if let Some(peer) = &scene.peer {
+        peer_section(&mut m, peer, study);
+    }
 
     // Effects.
     let _ = writeln!(m, "## Effects simulated\n");

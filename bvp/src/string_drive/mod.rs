@@ -133,6 +133,10 @@ pub enum StringDriveError {
     /// friction in the slip zone would have to reverse; that topology is not modelled.
     #[error("no steady solution of the modelled topology: resisting torque {torque:.6} N·m is so small that on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}; the belt's weight on the pulley (≈ 2ρgR² = {weight_torque:.4e} N·m) would drive it", path[0], path[1], path[2], path[3])]
     SlipReversed { torque: f64, weight_torque: f64, path: [f64; 4], reason: String },
+    /// With inertia the belt speed must stay below the longitudinal wave speed √(EA/ρ)
+    /// (ρc² < EA in (D2)).
+    #[error("no steady solution: belt speed ω₁R = {belt_speed} m/s reaches the longitudinal wave speed √(EA/ρ) = {wave_speed} m/s")]
+    WaveSpeedReached { belt_speed: f64, wave_speed: f64 },
     /// The solver failed (homotopy or final solve).
     #[error("{stage}: {cause}")]
     Solver { stage: &'static str, cause: BvpError },
@@ -216,6 +220,10 @@ fn validate(d: &StringDrive) -> Result<(), StringDriveError> {
             value: d.centre_distance,
             reason: "must exceed twice the pulley radius (the pulleys overlap)",
         });
+    }
+    let wave_speed = (d.axial_stiffness / d.mass_per_length).sqrt();
+    if d.inertia && d.driver_speed * d.radius >= wave_speed {
+        return Err(StringDriveError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
     }
     Ok(())
 }
@@ -339,7 +347,7 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
     let mut total = Stats::default();
     let last_rejection: RefCell<Option<String>> = RefCell::new(None);
     let physical = |s: &Solution| -> Result<(), String> {
-        let verdict = physical_check(&problem, s, scales.force);
+        let verdict = physical_check(s, scales.force);
         if let Err(r) = &verdict {
             *last_rejection.borrow_mut() = Some(r.clone());
         }
@@ -392,13 +400,12 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
 }
 
 /// The acceptance test of every homotopy point: topology and T̃ > 0 on the arcs.
-fn physical_check(problem: &ScaledStringDrive, s: &Solution, force: f64) -> Result<(), String> {
+fn physical_check(s: &Solution, force: f64) -> Result<(), String> {
     topology_check(&s.params, 1e-9)?;
     let t_min = [DRIVEN_STICK, DRIVEN_SLIP, DRIVER_STICK, DRIVER_SLIP]
         .iter()
         .flat_map(|&k| s.segments[k].nodes.iter().map(|y| y[0]))
         .fold(f64::INFINITY, f64::min);
-    let _ = problem;
     if t_min > 0.0 {
         Ok(())
     } else {

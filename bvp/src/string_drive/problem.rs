@@ -214,7 +214,7 @@ impl Problem for ScaledStringDrive {
             f[0] = l * stretch * y[2] / t;
             f[1] = l * stretch * y[3] / t;
             f[2] = D::from(0.0);
-            f[3] = l * w;
+            f[3] = if self.weight != 0.0 { l * w } else { D::from(0.0) };
             f[4] = l;
         } else {
             // (D6), (D7) times Δφ.
@@ -225,15 +225,24 @@ impl Problem for ScaledStringDrive {
             let stretch = self.stretch(t, c);
             let r = self.radius;
             let ds = -(stretch.recip()) * r;
+            // Gravity terms only when the scene has gravity (weight ≠ 0).
+            let gravity = self.weight != 0.0;
             let dt = if is_slip(k) {
-                let pressure = t * stretch / r + w * phi.sin();
-                (pressure * (Self::slip_sign(k) * self.friction) + w * phi.cos()) * r / stretch
+                let mut pressure = t * stretch / r;
+                if gravity {
+                    pressure += w * phi.sin();
+                }
+                let mut dt = pressure * (Self::slip_sign(k) * self.friction);
+                if gravity {
+                    dt += w * phi.cos();
+                }
+                dt * r / stretch
             } else {
                 D::from(0.0)
             };
             f[0] = dphi * dt;
             f[1] = dphi * ds;
-            f[2] = dphi * (dt + w * phi.cos() * ds) * r;
+            f[2] = if gravity { dphi * (dt + w * phi.cos() * ds) * r } else { dphi * dt * r };
         }
     }
 
@@ -338,14 +347,14 @@ mod tests {
 
     /// AD Jacobians of (D3), (D6), (D7) and the 44 conditions agree with central
     /// differences at an arbitrary state, in each homotopy phase, with and without
-    /// inertia; 1e-6 relative is the accuracy of h ~ ε^{1/3} differences.
+    /// inertia and gravity; 1e-6 relative is the accuracy of h ~ ε^{1/3} differences.
     #[test]
     fn ad_jacobians_match_finite_differences() {
-        for inertia in [false, true] {
+        for (inertia, weight) in [(false, 0.7), (true, 0.7), (true, 0.0)] {
             let pb = ScaledStringDrive {
                 radius: 0.18,
                 axial_stiffness: 50.0,
-                weight: 0.7,
+                weight,
                 inertia,
                 friction: 0.6,
                 driver_speed: 0.9,
