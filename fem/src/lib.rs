@@ -70,6 +70,7 @@ pub mod newton;
 mod options;
 pub mod quadrature;
 pub mod solution;
+pub mod string_drive;
 pub mod string_hanging;
 
 pub use error::FemError;
@@ -108,6 +109,8 @@ pub struct FemRun {
     /// The energy terms assembled (the effects simulated), e.g.
     /// "strain energy (Biot, gauss3, EA = 2.000000e4 N)".
     pub terms: Vec<String>,
+    /// Time history of a drive transient (docs/fem-drive.md §8); `None` for static runs.
+    pub history: Option<drive::result::History>,
 }
 
 /// Names of the element formulations registered with the plug-in trait, default first.
@@ -162,9 +165,13 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
     })
 }
 
-/// Solve a scene with MEL finite elements.
+/// Solve a scene with MEL finite elements: the static string (`string-hanging`), or
+/// the friction drive (`string-drive`, analysis steady or transient with Coulomb
+/// contact; [`string_drive::solve`] with the scene's [`string_drive::DriveSettings`]).
 ///
 /// # Errors
+/// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
+/// [`FemError::SteadyStateNotReached`] besides the static ones below.
 /// [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
 /// [`FemError::InvalidOption`], [`FemError::IllPosed`] (weightless slack loop), and the
 /// solver failures [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
@@ -173,6 +180,15 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
     let clock = Instant::now();
     opts.validate()?;
     settings.validate()?;
+    if string_drive::applies(scene) {
+        let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
+            name: opts.formulation.clone(),
+            available: available_formulations().iter().map(|s| s.to_string()).collect(),
+        })?;
+        let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
+        drive_settings.stop_at_steady = true;
+        return string_drive::solve(scene, opts, settings, &drive_settings, kernel);
+    }
     let data = string_hanging_data(scene, opts, settings)?;
     let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
         name: opts.formulation.clone(),
@@ -209,7 +225,7 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms })
+    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None })
 }
 
 #[cfg(test)]
