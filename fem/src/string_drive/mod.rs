@@ -366,13 +366,6 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                     pt.bound = new_b;
                 }
             }
-            if std::env::var("DRIVE_DEBUG").is_ok() {
-                let count = |pl: Pulley, slip: bool| points.iter().flatten().filter(|p| p.pulley == Some(pl) && p.bound > 0.0 && p.slip == slip).count();
-                eprintln!(
-                    "step {step} AL: change {change:.3e} switches {switches} a {a:.6e} phi {phi:.6e} driver stick/slip {}/{} driven {}/{}",
-                    count(Pulley::Driver, false), count(Pulley::Driver, true), count(Pulley::Driven, false), count(Pulley::Driven, true)
-                );
-            }
             if change <= drive_settings.al_tolerance * f_ref / r && switches == 0 {
                 rec.al_converged = true;
                 break;
@@ -441,6 +434,8 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     let dissipation: f64 = points.iter().flatten().map(|p| p.weight * p.tangential * p.displacement).sum::<f64>() / dt;
     let power_in = -outs[0].torque * omega1;
     let power_out = (load_torque + damping * omega2) * omega2;
+    let max_penetration = base.max_penetration();
+    let stick_slip_max = points.iter().flatten().filter(|p| p.bound > 0.0 && !p.slip).fold(0.0f64, |m, p| m.max(p.displacement.abs()));
     let view = DriveSolution::new(base, points.concat(), summary.clone());
     let mut terms = kernel.term_labels(&params);
     terms.push(format!(
@@ -472,6 +467,9 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             "power_in": power_in,
             "power_out": power_out,
             "dissipation": dissipation,
+            "max_penetration": max_penetration,
+            "stick_slip_max": stick_slip_max,
+            "tangential_penalty": p_t,
         },
         "homotopy": report,
     });

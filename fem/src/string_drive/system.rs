@@ -256,9 +256,6 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f
     let mut last_update = f64::INFINITY;
     let allowance = 1e-13 * energy_scale;
     loop {
-        if std::env::var("DRIVE_DEBUG").is_ok() {
-            eprintln!("newton it {} last update {last_update:.3e}", report.iterations);
-        }
         let Some((energy, grad, values)) = sys.assemble(x) else {
             return Err(format!("inadmissible state (∂σS ≤ 0 or non-finite) at Newton iteration {}", report.iterations));
         };
@@ -290,9 +287,6 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f
                 lu.solve_in_place(&mut step)
             });
             if let Err(e) = solved {
-                if std::env::var("DRIVE_DEBUG").is_ok() {
-                    eprintln!("  singular at mu {mu:e}: {e}; phi {} a {}", x[n - 1], x[n - 2]);
-                }
                 if mu >= 1e2 {
                     return Err(format!("singular tangent at Newton iteration {}: {e}", report.iterations));
                 }
