@@ -91,9 +91,18 @@ fn belt_creep_theory_with_shrinking_error() {
         eprintln!("stick tensions {n1} vs {:?}, {n2} vs {:?}", s.tension_tight, s.tension_slack);
         assert!((n1 - s.tension_tight.unwrap()).abs() < 1e-3 * s.tension_tight.unwrap());
         assert!((n2 - s.tension_slack.unwrap()).abs() < 1e-3 * s.tension_slack.unwrap());
-        // slip at the exits (a quarter before each arc end)
-        assert_eq!(r.view.contact_state(2.0 * h + 1.9 * std::f64::consts::PI * rad), ContactState::Slip);
-        assert_eq!(r.view.contact_state(h + 0.95 * std::f64::consts::PI * rad), ContactState::Slip);
+        if std::env::var("DRIVE_TEST_VERBOSE").is_ok() {
+            for k in 0..=20 {
+                let f = k as f64 / 20.0;
+                let s1 = 2.0 * h + (1.0 + f) * std::f64::consts::PI * rad;
+                let s2 = h + f * std::f64::consts::PI * rad;
+                eprintln!("{f:.2}: driver {:?} N {:.4} p {:?} | driven {:?} N {:.4}", r.view.contact_state(s1), r.view.axial_force(s1), r.view.contact_pressure(s1), r.view.contact_state(s2), r.view.axial_force(s2));
+            }
+        }
+        // slip before the exits (15 % of the arc before each arc end; the slip zone is
+        // about 27 % of the arc)
+        assert_eq!(r.view.contact_state(2.0 * h + 1.85 * std::f64::consts::PI * rad), ContactState::Slip);
+        assert_eq!(r.view.contact_state(h + 0.85 * std::f64::consts::PI * rad), ContactState::Slip);
     }
     // the slip-arc error shrinks with the mesh (O(h): halving h at least 1.4× smaller)
     assert!(slip_errors[1] < slip_errors[0] / 1.4, "{slip_errors:?}");
@@ -115,11 +124,19 @@ fn torque_and_power_balance_with_damping() {
     // scaled) and the AL tolerance bound the residual far below 1e-8 relative
     assert!((torque - load).abs() < 1e-8 * load, "driven torque {torque} vs M₂ + d₂ω₂ = {load}");
     let (pin, pout, d) = (drive_option(&r, "power_in"), drive_option(&r, "power_out"), drive_option(&r, "dissipation"));
-    eprintln!("P_in {pin} P_out {pout} D {d}");
-    // at the steady state stationarity in a gives ∫τλ = 0, hence P_in = P_out + D up to
-    // the change of S̃ over the last step (steady tolerance 1e-6 per radian)
-    assert!((pin - pout - d).abs() < 1e-6 * pin, "power balance: {pin} vs {pout} + {d}");
+    let gap = pin - pout - d;
+    eprintln!("P_in {pin} P_out {pout} D {d} imbalance {gap:e}");
+    // the discrete work balance: stationarity in a gives Σ w τ_⊥ |∂σr|/∂σS̃_n(σ − d) = 0
+    // with the slope at the upstream point, the dissipation uses the travel over the
+    // step; they differ by O(d² ∂σ²S) per point, so the balance holds to O(Δt):
+    // halving Δt halves the imbalance
     assert!(d > 0.0 && d < 0.01 * pin, "slip dissipation {d} W of {pin} W");
+    assert!(gap.abs() < 1e-3 * pin, "power balance: {pin} vs {pout} + {d}");
+    let dt = drive_option(&r, "time_step");
+    let half = run(&scene, 64, None, &DriveSettings { time_step: Some(0.5 * dt), ..ds.clone() }).unwrap();
+    let gap_half = drive_option(&half, "power_in") - drive_option(&half, "power_out") - drive_option(&half, "dissipation");
+    eprintln!("imbalance at Δt/2: {gap_half:e} (ratio {})", gap / gap_half);
+    assert!(gap_half.abs() < 0.6 * gap.abs(), "O(Δt) power imbalance: {gap:e} → {gap_half:e}");
     // the driver receives the reaction (negative, clockwise positive convention)
     let t1 = s.driver.as_ref().unwrap().torque.unwrap();
     assert!(t1 < 0.0 && (t1 + load).abs() < 0.01 * load, "driver torque {t1}");
@@ -207,4 +224,88 @@ fn history_and_transient_limits() {
         Err(FemError::SteadyStateNotReached { steps: 3, .. }) => {}
         other => panic!("expected SteadyStateNotReached after 3 steps, got {:?}", other.map(|r| r.summary)),
     }
+}
+
+/// The steady state does not depend on the time step of the transient that reached it:
+/// at a steady state u = λa − RωΔt scales with Δt and the AL makes u = 0 at the stick
+/// points exactly, so ω₂, c and the tensions agree up to the AL and steady tolerances.
+#[test]
+fn steady_state_is_independent_of_the_time_step() {
+    let scene = creep_scene();
+    let base = DriveSettings::from_scene(&scene);
+    let a = run(&scene, 64, None, &base).unwrap();
+    let dt = drive_option(&a, "time_step");
+    let b = run(&scene, 64, None, &DriveSettings { time_step: Some(2.0 * dt), ..base }).unwrap();
+    for name in ["driven_speed", "transport_rate", "tension_tight", "tension_slack", "driven.torque", "driver.torque"] {
+        let (x, y) = (a.summary.get(name).unwrap(), b.summary.get(name).unwrap());
+        eprintln!("{name}: {x} vs {y} (Δt ×2)");
+        // the equations of a steady state do not contain Δt, but the node at the
+        // stick→slip front may end in either state (|τ*| just below or at b) after
+        // two different transients: measured 3e-5 in the tensions, 3e-7 in ω₂ — far
+        // below their O(h) discretisation errors (1e-3, 1e-4 relative at 64 elements)
+        // (the driver torque, the reaction, carries the O(Δt) error of the λ-weighted
+        // balance in a, see the power test: 4e-4)
+        let tol = if name.contains("speed") || name.contains("rate") {
+            1e-6
+        } else if name == "driver.torque" {
+            1e-3
+        } else {
+            1e-4
+        };
+        assert!((x - y).abs() <= tol * x.abs(), "{name}: {x} vs {y}");
+    }
+    assert!(drive_option(&b, "steps") < drive_option(&a, "steps"));
+}
+
+/// Persistent transport inertia (docs/fem-drive.md §6): the creep relations hold for the
+/// effective tension N − ρc²λ (the contact pressure is (N − ρc²λ)/R), the kinematic
+/// creep ω₂/ω₁ = λ_s/λ_t is unchanged. ω₁ = 100 rad/s and ρ = 0.5 kg/m make ρc² ≈ 32 N,
+/// a third of the tension.
+#[test]
+fn transport_inertia_acts_through_the_effective_tension() {
+    let mut scene = creep_scene();
+    scene.drive.driver_speed = 100.0;
+    scene.belt.mass_per_length = 0.5;
+    scene.effects.inertia = Some(true);
+    let ds = DriveSettings::from_scene(&scene);
+    let r = run(&scene, 64, None, &ds).unwrap();
+    let s = &r.summary;
+    let ea = scene.belt.axial_stiffness;
+    let (tt, ts) = (s.tension_tight.unwrap(), s.tension_slack.unwrap());
+    let c = s.transport_rate.unwrap();
+    let rc2 = scene.belt.mass_per_length * c * c;
+    let (lt, ls) = (1.0 + tt / ea, 1.0 + ts / ea);
+    let (et, es) = (tt - rc2 * lt, ts - rc2 * ls);
+    let theta = (et / es).ln() / 0.3;
+    let theta_plain = (tt / ts).ln() / 0.3;
+    let slip = s.driven.as_ref().unwrap().slip_arc.unwrap();
+    let speed_err = ((s.driven_speed.unwrap() / 100.0) - ls / lt).abs();
+    if std::env::var("DRIVE_TEST_VERBOSE").is_ok() {
+        let c = r.view.contour();
+        for f in [0.1, 0.3, 0.5, 0.7, 0.9] {
+            let sigma = c.centre_distance() + f * std::f64::consts::PI * c.radius();
+            let n = r.view.axial_force(sigma);
+            eprintln!("driven arc {f}: N {n} p {:?} (N/R {}, (N − ρc²λ)/R {}) state {:?}", r.view.contact_pressure(sigma), n / c.radius(), (n - rc2 * (1.0 + n / ea)) / c.radius(), r.view.contact_state(sigma));
+        }
+    }
+    eprintln!("ρc² {rc2} T_t {tt} T_s {ts} slip {slip} effective θ {theta} plain θ {theta_plain} speed err {speed_err:e}");
+    assert!(rc2 > 25.0, "inertia must matter here: ρc² = {rc2}");
+    assert!(speed_err < 1e-6);
+    // the contact pressure is the effective tension over R in the stick zones (normal
+    // balance with the centripetal term, docs/fem-drive.md §6): the AL pressure at the
+    // points against (N − ρc²λ)/R, to the interpolation error of p between points
+    let c = r.view.contour();
+    for f in [0.1, 0.3] {
+        for sigma in [c.centre_distance() + f * std::f64::consts::PI * c.radius(), 2.0 * c.centre_distance() + (1.0 + f) * std::f64::consts::PI * c.radius()] {
+            let n = r.view.axial_force(sigma);
+            let p = r.view.contact_pressure(sigma).unwrap();
+            let expect = (n - rc2 * (1.0 + n / ea)) / c.radius();
+            assert!((p - expect).abs() < 1e-3 * expect, "σ {sigma}: p {p} vs (N − ρc²λ)/R = {expect}");
+            assert!(p < 0.8 * n / c.radius(), "inertia must unload the contact");
+        }
+    }
+    // the slip arc against the effective-tension prediction (reported, O(h) as above)
+    assert!((slip - theta).abs() < 2.0 * std::f64::consts::PI / 11.0, "slip {slip} vs {theta}");
+    let torque = s.driven.as_ref().unwrap().torque.unwrap();
+    assert!((torque - 2.0).abs() < 1e-8 * 2.0);
 }

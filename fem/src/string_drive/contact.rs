@@ -37,14 +37,25 @@ pub struct StepParams {
 pub struct PointState {
     /// ξ in the element.
     pub xi: f64,
-    /// Rule weight × Jacobian (integrates per contour length), m.
+    /// Weight of the normal term (D6): contact-rule weight × Jacobian, m (0 for a
+    /// point of the friction rule only).
     pub weight: f64,
+    /// Weight of the friction term (D7): trapezoidal weight × Jacobian at ξ = ±1, else
+    /// 0, m (the mixed rule of §7.3: friction on the element edges).
+    pub friction_weight: f64,
     /// σ of the point, m.
     pub sigma: f64,
     /// The pulley the point can touch (`None`: a span point out of reach).
     pub pulley: Option<Pulley>,
-    /// S̃_n at the point (the previous step's material coordinate, gauge D1), m.
-    pub s_prev: f64,
+    /// d_ref: contour travel of the particle at σ over the previous step (the upstream
+    /// reference point is σ − d_ref), m (D2).
+    pub travel_ref: f64,
+    /// S̃_n(σ − d_ref), m.
+    pub s_ref: f64,
+    /// ∂σS̃_n(σ − d_ref).
+    pub slope_ref: f64,
+    /// |∂σr|_n(σ): physical length per contour length at the point (1 + αν on an arc).
+    pub metric: f64,
     /// Normal multiplier λ_γ, N/m.
     pub lambda_n: f64,
     /// Tangential multiplier λ_⊥, N/m.
@@ -79,12 +90,15 @@ pub fn reachable_pulley(contour: &Contour, region: Region, sigma: f64) -> Option
     }
 }
 
-/// Tangential relative displacement over the step (D2):
-/// u = λ (S̃_n − S̃_{n+1} + a) − R Δθ_k, with R Δθ₁ = `driver_advance` and Δθ₂ = φ.
+/// Tangential relative displacement over the step (D2): the particle at σ at t_{n+1},
+/// s = S̃_{n+1}(σ) − a in the gauge of step n, sat at σ' = S̃_n⁻¹(s) at t_n; with the
+/// inverse linearised about the upstream reference point σ − d_ref,
+/// σ − σ' = d_ref − (S̃_{n+1}(σ) − a − S̃_n(σ − d_ref)) / ∂σS̃_n(σ − d_ref), and
+/// u = |∂σr|_n (σ − σ') − R Δθ_k, R Δθ₁ = `driver_advance`, Δθ₂ = φ. Linear in
+/// (S̃_{n+1}(σ), a, φ): the friction force acts on the material only, upwind.
 #[inline]
-pub fn slip_displacement<D: Scalar>(el: &ElementContext, p: &PointFields<D>, a: D, phi: D, pt: &PointState, sp: &StepParams) -> D {
-    let lambda = el.stretch(p);
-    let travel = lambda * (a - p.s + pt.s_prev);
+pub fn slip_displacement<D: Scalar>(_el: &ElementContext, p: &PointFields<D>, a: D, phi: D, pt: &PointState, sp: &StepParams) -> D {
+    let travel = ((p.s - a - pt.s_ref) * (-1.0 / pt.slope_ref) + pt.travel_ref) * pt.metric;
     match pt.pulley {
         Some(Pulley::Driver) => travel - sp.driver_advance,
         Some(Pulley::Driven) => travel - phi * sp.radius,
@@ -102,24 +116,26 @@ fn friction_envelope<D: Scalar>(tau: D, bound: f64, stiffness: f64) -> D {
     }
 }
 
-/// Energy per contour length of the contact terms at one point: (D6) on the gap's
-/// domain, (D7) where the point carries a slip bound.
+/// The contact terms at one point, weighted (J): w_γ ψ_γ (D6) on the gap's domain,
+/// w_⊥ ψ_⊥ (D7) where the point carries a slip bound.
 #[inline]
 pub fn point_energy<D: Scalar>(el: &ElementContext, p: &PointFields<D>, a: D, phi: D, pt: &PointState, sp: &StepParams) -> D {
     let mut f = p.nu * 0.0;
     if pt.pulley.is_none() {
         return f;
     }
-    if let Some(gap) = el.gap(p) {
-        let t = gap * (-sp.penalty) + pt.lambda_n;
-        if t.re() > 0.0 {
-            f += t * t * (0.5 / sp.penalty);
+    if pt.weight > 0.0 {
+        if let Some(gap) = el.gap(p) {
+            let t = gap * (-sp.penalty) + pt.lambda_n;
+            if t.re() > 0.0 {
+                f += t * t * (0.5 / sp.penalty * pt.weight);
+            }
         }
     }
-    if pt.bound > 0.0 {
+    if pt.bound > 0.0 && pt.friction_weight > 0.0 {
         let u = slip_displacement(el, p, a, phi, pt, sp);
         let tau = u * sp.tangential_penalty + pt.lambda_t;
-        f += friction_envelope(tau, pt.bound, sp.tangential_penalty);
+        f += friction_envelope(tau, pt.bound, sp.tangential_penalty) * pt.friction_weight;
     }
     f
 }
@@ -146,7 +162,7 @@ pub fn element_energy<D: Scalar>(
             continue;
         }
         let p = el.fields(q, pt.xi);
-        total += point_energy(el, &p, a, phi, pt, sp) * pt.weight;
+        total += point_energy(el, &p, a, phi, pt, sp);
     }
     if let Some(rc2) = sp.inertia {
         let jac = el.jacobian();
@@ -227,7 +243,7 @@ pub fn evaluate(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, pt: &Poi
         (Some(_), Some(gap)) => (pt.lambda_n - sp.penalty * gap).max(0.0),
         _ => 0.0,
     };
-    if pt.pulley.is_none() || pt.bound <= 0.0 {
+    if pt.pulley.is_none() || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
         return Evaluation { normal, displacement: 0.0, tangential: 0.0, slip: false, trial: 0.0 };
     }
     let u = slip_displacement(el, &p, a, phi, pt, sp);
@@ -296,9 +312,13 @@ mod tests {
                         PointState {
                             xi,
                             weight: w * el.jacobian(),
+                            friction_weight: if xi.abs() == 1.0 { el.jacobian() } else { 0.0 },
                             sigma,
                             pulley: reachable_pulley(&contour, region, sigma),
-                            s_prev: p.s + 1.0e-3 * (1.0 + 0.1 * rng.next()),
+                            travel_ref: 1.0e-3 * (1.0 + 0.1 * rng.next()),
+                            s_ref: p.s - 1.0e-3 * (1.0 + 0.1 * rng.next()),
+                            slope_ref: p.ds * (1.0 + 1e-3 * rng.next()),
+                            metric: el.tangent_length(&p),
                             lambda_n: 50.0 * rng.next(),
                             lambda_t: 20.0 * (rng.next() - 0.5),
                             bound: if trial % 2 == 0 { 1e-3 } else { 1e6 },

@@ -73,7 +73,7 @@ pub struct DriveSettings {
     pub al_tolerance: f64,
     /// Outer (AL) iterations per step. Default 30; ≥ 1.
     pub max_al_iterations: usize,
-    /// κ_⊥ of the tangential penalty P_⊥ = κ_⊥ EA/R² (N/m²). Default 100; > 0. Much
+    /// κ_⊥ of the tangential penalty P_⊥ = κ_⊥ EA/R² (N/m²). Default 1000; > 0. Much
     /// softer than P_γ on purpose: the slip bound b = μτ_γ and P_⊥ set the width b/P_⊥
     /// of the stick band of (D7); a band far below the per-step slip makes the
     /// stick/slip state of the points flip from one Newton iteration to the next. The
@@ -93,7 +93,7 @@ impl Default for DriveSettings {
             friction: FrictionMethod::AugmentedLagrangian,
             al_tolerance: 1e-7,
             max_al_iterations: 30,
-            tangential_penalty_factor: 100.0,
+            tangential_penalty_factor: 1000.0,
             max_newton_iterations: 40,
         }
     }
@@ -225,16 +225,26 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     // 2. time step, point states
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
     let dt = drive_settings.time_step.unwrap_or(PI * r / arc_elements as f64 / (r * omega1));
-    let p_t = drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r);
+    let dt_first = dt;
+    // P_⊥ = κ_⊥ EA/R², capped at P_γ (a tangential penalty above the normal one makes
+    // the tangent singular at soft normal penalties)
+    let p_t = (drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r)).min(penalty);
     let al = drive_settings.friction == FrictionMethod::AugmentedLagrangian;
     let mut points: Vec<Vec<PointState>> = (0..asm.mesh().len())
         .map(|e| {
             let el = asm.context(e, &params);
             let q = asm.dofs().gather(e, &z, length);
-            contact_rule
-                .points()
-                .iter()
-                .map(|&(xi, w)| {
+            // the contact rule's points for the normal term and the element edges
+            // ξ = ±1 (trapezoidal weights) for friction: the mixed rule of §7.3
+            let mut rule: Vec<(f64, f64, f64)> = contact_rule.points().iter().map(|&(xi, w)| (xi, w, 0.0)).collect();
+            for edge in [-1.0, 1.0] {
+                match rule.iter_mut().find(|p| p.0 == edge) {
+                    Some(p) => p.2 = 1.0,
+                    None => rule.push((edge, 0.0, 1.0)),
+                }
+            }
+            rule.into_iter()
+                .map(|(xi, w, wf)| {
                     let sigma = el.sigma(xi);
                     let pulley = contact::reachable_pulley(&contour, el.geometry.region, sigma);
                     let p = el.fields(&q, xi);
@@ -245,9 +255,13 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                     PointState {
                         xi,
                         weight: w * el.jacobian(),
+                        friction_weight: wf * el.jacobian(),
                         sigma,
                         pulley,
-                        s_prev: p.s,
+                        travel_ref: r * omega1 * dt_first,
+                        s_ref: p.s,
+                        slope_ref: p.ds,
+                        metric: el.tangent_length(&p),
                         lambda_n: if al { tau } else { 0.0 },
                         lambda_t: 0.0,
                         bound: mu * tau,
@@ -261,6 +275,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
         })
         .collect();
 
+    set_references(&mut points, &asm, &z, &params, length, &contour);
     let pattern = Pattern::new(&asm);
     let mut lu = SparseLu::new();
     lu.set_pattern(asm.len() + 2, &pattern.rows, &pattern.cols)
@@ -310,7 +325,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             // capacity with the frozen bounds (docs/fem-drive.md §5)
             let demand = load_torque + damping * omega2_prev;
             for pulley in [Pulley::Driven, Pulley::Driver] {
-                let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.weight * p.bound).sum::<f64>();
+                let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
                 if demand > cap {
                     return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
                 }
@@ -323,7 +338,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                     // a pulley in full slip cannot hold the load: report it as such
                     for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
                         if outs[k].all_slip {
-                            let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.weight * p.bound).sum::<f64>();
+                            let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
                             return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
                         }
                     }
@@ -345,7 +360,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                     }
                     let ev = contact::evaluate(&el, &q, a, phi, pt, &step_params);
                     let new_n = if al { ev.normal } else { 0.0 };
-                    let new_t = if !al || pt.bound <= 0.0 {
+                    let new_t = if !al || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
                         0.0
                     } else if ev.slip {
                         mu * ev.normal * ev.trial.signum()
@@ -353,7 +368,8 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                         ev.trial
                     };
                     let new_b = mu * ev.normal;
-                    change = change.max((new_n - pt.lambda_n).abs()).max((new_t - pt.lambda_t).abs()).max((new_b - pt.bound).abs());
+                    let c3 = [(new_n - pt.lambda_n).abs(), (new_t - pt.lambda_t).abs(), (new_b - pt.bound).abs()];
+                    change = change.max(c3[0]).max(c3[1]).max(c3[2]);
                     if ev.slip != pt.slip && pt.bound > 0.0 {
                         switches += 1;
                     }
@@ -385,9 +401,14 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             let el = asm.context(e, &params);
             let q = asm.dofs().gather(e, &z, length);
             for pt in pts.iter_mut() {
-                pt.s_prev = el.fields(&q, pt.xi).s;
+                // the travel of this step becomes the reference of the next (D2)
+                if pt.pulley.is_some() && pt.bound > 0.0 {
+                    pt.travel_ref = (pt.displacement + drum_advance(pt, r * omega1 * dt, phi * r)) / pt.metric;
+                }
+                pt.metric = el.tangent_length(&el.fields(&q, pt.xi));
             }
         }
+        set_references(&mut points, &asm, &z, &params, length, &contour);
         outs = [pulley_out(&points, Pulley::Driver, r, &contour), pulley_out(&points, Pulley::Driven, r, &contour)];
         record(&mut history, time, omega2, c, &asm, &z, &params, length, &kernel, &contour, &points, &outs, rate);
         records.push(rec);
@@ -431,7 +452,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
     }
-    let dissipation: f64 = points.iter().flatten().map(|p| p.weight * p.tangential * p.displacement).sum::<f64>() / dt;
+    let dissipation: f64 = points.iter().flatten().map(|p| p.friction_weight * p.tangential * p.displacement).sum::<f64>() / dt;
     let power_in = -outs[0].torque * omega1;
     let power_out = (load_torque + damping * omega2) * omega2;
     let max_penetration = base.max_penetration();
@@ -505,6 +526,34 @@ fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
     z
 }
 
+/// R Δθ_k of the pulley of a point: `driver` for the driver, `driven` for the driven one.
+fn drum_advance(pt: &PointState, driver: f64, driven: f64) -> f64 {
+    match pt.pulley {
+        Some(Pulley::Driver) => driver,
+        Some(Pulley::Driven) => driven,
+        None => 0.0,
+    }
+}
+
+/// The upstream references of (D2) from the state z_n: S̃_n and ∂σS̃_n at σ − d_ref
+/// (unwrapped across σ = 0 with the closure S(σ + L_c) = S(σ) + L, F5).
+fn set_references(points: &mut [Vec<PointState>], asm: &Assembler, z: &[f64], params: &TermParams, length: f64, contour: &Contour) {
+    let lc = contour.length();
+    for pt in points.iter_mut().flatten() {
+        if pt.pulley.is_none() {
+            continue;
+        }
+        let at = pt.sigma - pt.travel_ref;
+        let loops = (at / lc).floor();
+        let (e, xi) = asm.mesh().locate(at - loops * lc);
+        let el = asm.context(e, params);
+        let q = asm.dofs().gather(e, z, length);
+        let f = el.fields(&q, xi);
+        pt.s_ref = f.s + loops * length;
+        pt.slope_ref = f.ds;
+    }
+}
+
 /// σ unwrapped for a pulley's contact zone: the driver's zone straddles σ = 0 (it ends
 /// on the upper span), so its σ < H/2 are moved up by L_c.
 fn unwrap(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
@@ -518,7 +567,8 @@ fn unwrap(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
 /// Torque and stick→slip transition of a pulley from its points (docs/fem-drive.md §8).
 fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: &Contour) -> PulleyOut {
     let mut pts: Vec<&PointState> = points.iter().flatten().filter(|p| p.pulley == Some(pulley)).collect();
-    let torque = radius * pts.iter().map(|p| p.weight * p.tangential).sum::<f64>();
+    let torque = radius * pts.iter().map(|p| p.friction_weight * p.tangential).sum::<f64>();
+    pts.retain(|p| p.friction_weight > 0.0);
     pts.retain(|p| p.normal > 0.0);
     pts.sort_by(|a, b| unwrap(contour, pulley, a.sigma).total_cmp(&unwrap(contour, pulley, b.sigma)));
     let all_slip = !pts.is_empty() && pts.iter().all(|p| p.slip);

@@ -14,8 +14,10 @@ use super::contact::PointState;
 #[derive(Clone)]
 pub struct DriveSolution {
     base: FemSolution,
-    /// Contact-capable points sorted by σ.
+    /// Contact-capable points of the normal term, sorted by σ.
     points: Vec<PointState>,
+    /// Friction points (element edges), sorted by σ.
+    friction: Vec<PointState>,
     summary: Summary,
 }
 
@@ -24,7 +26,9 @@ impl DriveSolution {
     pub fn new(base: FemSolution, mut points: Vec<PointState>, summary: Summary) -> DriveSolution {
         points.retain(|p| p.pulley.is_some());
         points.sort_by(|a, b| a.sigma.total_cmp(&b.sigma));
-        DriveSolution { base, points, summary }
+        let friction = points.iter().filter(|p| p.friction_weight > 0.0).copied().collect();
+        points.retain(|p| p.weight > 0.0);
+        DriveSolution { base, points, friction, summary }
     }
 
     /// The string solution.
@@ -32,23 +36,28 @@ impl DriveSolution {
         &self.base
     }
 
-    /// The contact-capable integration points (σ-sorted) with their last state.
+    /// The normal-contact integration points (σ-sorted) with their last state.
     pub fn points(&self) -> &[PointState] {
         &self.points
     }
 
-    /// The two points enclosing σ (by σ, periodic) and the interpolation weight of the
-    /// second; `None` without points.
-    fn neighbours(&self, sigma: f64) -> Option<(&PointState, &PointState, f64)> {
-        if self.points.is_empty() {
+    /// The friction points (element edges, σ-sorted) with their stick/slip state.
+    pub fn friction_points(&self) -> &[PointState] {
+        &self.friction
+    }
+
+    /// The two points of `set` enclosing σ (by σ, periodic) and the interpolation weight
+    /// of the second; `None` without points.
+    fn neighbours<'a>(&self, set: &'a [PointState], sigma: f64) -> Option<(&'a PointState, &'a PointState, f64)> {
+        if set.is_empty() {
             return None;
         }
         let l = self.base.mesh().contour().length();
         let w = self.base.mesh().contour().wrap(sigma);
-        let k = self.points.partition_point(|p| p.sigma <= w);
-        let n = self.points.len();
-        let a = &self.points[(k + n - 1) % n];
-        let b = &self.points[k % n];
+        let k = set.partition_point(|p| p.sigma <= w);
+        let n = set.len();
+        let a = &set[(k + n - 1) % n];
+        let b = &set[k % n];
         let span = (b.sigma - a.sigma).rem_euclid(l);
         let t = if span > 0.0 { ((w - a.sigma).rem_euclid(l) / span).clamp(0.0, 1.0) } else { 0.0 };
         Some((a, b, t))
@@ -82,16 +91,16 @@ impl SolutionView for DriveSolution {
         if self.base.contact_state(sigma) == ContactState::Free {
             return Some(0.0);
         }
-        Some(self.neighbours(sigma).map_or(0.0, |(a, b, t)| ((1.0 - t) * a.normal + t * b.normal).max(0.0)))
+        Some(self.neighbours(&self.points, sigma).map_or(0.0, |(a, b, t)| ((1.0 - t) * a.normal + t * b.normal).max(0.0)))
     }
 
     /// Free outside the recovered contact zones; inside, Slip or Stick as the nearer
-    /// neighbouring integration point.
+    /// neighbouring friction point.
     fn contact_state(&self, sigma: f64) -> ContactState {
         if self.base.contact_state(sigma) == ContactState::Free {
             return ContactState::Free;
         }
-        match self.neighbours(sigma) {
+        match self.neighbours(&self.friction, sigma) {
             Some((a, b, t)) => {
                 let p = if t < 0.5 { a } else { b };
                 if p.slip {
