@@ -73,7 +73,7 @@ pub struct DriveSettings {
     pub al_tolerance: f64,
     /// Outer (AL) iterations per step. Default 30; ≥ 1.
     pub max_al_iterations: usize,
-    /// κ_⊥ of the tangential penalty P_⊥ = κ_⊥ EA/R² (N/m²). Default 1000; > 0. Much
+    /// κ_⊥ of the tangential penalty P_⊥ = κ_⊥ EA/R² (N/m²). Default 300; > 0. Much
     /// softer than P_γ on purpose: the slip bound b = μτ_γ and P_⊥ set the width b/P_⊥
     /// of the stick band of (D7); a band far below the per-step slip makes the
     /// stick/slip state of the points flip from one Newton iteration to the next. The
@@ -93,7 +93,7 @@ impl Default for DriveSettings {
             friction: FrictionMethod::AugmentedLagrangian,
             al_tolerance: 1e-7,
             max_al_iterations: 30,
-            tangential_penalty_factor: 1000.0,
+            tangential_penalty_factor: 300.0,
             max_newton_iterations: 40,
         }
     }
@@ -331,7 +331,14 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                 }
             }
             let sys = StepSystem { asm: &asm, params, length, points: &points, step: step_params, load, strain_rule };
-            let res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
+            let mut res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
+            if res.is_err() {
+                // retry once from the last state itself (no secant predictor)
+                x[..nz].copy_from_slice(&z);
+                x[nz] = a_prev;
+                x[nz + 1] = phi_prev;
+                res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
+            }
             let nres = match res {
                 Ok(n) => n,
                 Err(reason) => {
