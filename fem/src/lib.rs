@@ -26,7 +26,11 @@
 //! - [`string_hanging`]: the static string on frictionless pulleys — tight start (F11),
 //!   homotopy with step control, penalty continuation, contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
-//!   and contact pressure, contact boundaries recovered from the free spans, summary.
+//!   and contact pressure, contact boundaries recovered from the free spans, summary;
+//! - [`string_drive`]: the friction drive (analyses `steady`, `transient` with Coulomb
+//!   contact) — quasistatic transient from the static solution, augmented Lagrangian
+//!   Coulomb contact of Table 1, driven rotation with its torque balance, transport
+//!   inertia, steady-state criterion, time history (docs/fem-drive.md).
 //!
 //! Defaults: `string-simpson`, 256 elements (the scene's `fem.elements`), penalty
 //! P = 10⁵ EA/R² ([`SolverSettings`]). Measured accuracy against the BVP at 256
