@@ -277,6 +277,7 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
         },
         fields,
         options: Some(run.options.clone()),
+        history: run.history.clone(),
     };
     result.check()?;
     Ok(serde_json::to_string_pretty(&result)?)

@@ -52,7 +52,7 @@ pub mod view;
 
 pub use contour::{Contour, Pulley, Region};
 pub use error::{ResultError, SceneError};
-pub use result::{Cost, Fields, RunResult, FIELD_NORM_NAMES};
+pub use result::{Cost, Fields, History, RunResult, FIELD_NORM_NAMES};
 pub use scene::{
     Analysis, Belt, BvpMethod, BvpSettings, Contact, DriveGeometry, Effects, ElasticLayer,
     FemSettings, GateSettings, Scene, Theory,

@@ -87,6 +87,87 @@ impl Fields {
     }
 }
 
+/// Time history of a transient (or of the transient run to a steady state)
+/// (`history`, optional): one entry per time step in every vector, all of the length of
+/// `time`. Quantities as in [`Summary`] (tensions are the axial forces at x = 0 of each
+/// span, torques the moment of the belt on the pulley, clockwise positive); arcs in
+/// rad. Written by FE drive runs only (docs/fem-drive.md §8).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct History {
+    /// Time t at the end of each step, s.
+    pub time: Vec<f64>,
+    /// Driven speed ω₂ over the step, rad/s.
+    pub driven_speed: Vec<f64>,
+    /// Transport rate c over the step, m/s.
+    pub transport_rate: Vec<f64>,
+    /// Axial force at x = 0 of the upper span, N.
+    pub tension_upper_mid: Vec<f64>,
+    /// Axial force at x = 0 of the lower span, N.
+    pub tension_lower_mid: Vec<f64>,
+    /// Stick arc on the driver, rad.
+    pub driver_stick_arc: Vec<f64>,
+    /// Slip arc on the driver, rad.
+    pub driver_slip_arc: Vec<f64>,
+    /// Torque of the belt on the driver, N·m.
+    pub driver_torque: Vec<f64>,
+    /// Stick arc on the driven pulley, rad.
+    pub driven_stick_arc: Vec<f64>,
+    /// Slip arc on the driven pulley, rad.
+    pub driven_slip_arc: Vec<f64>,
+    /// Torque of the belt on the driven pulley, N·m.
+    pub driven_torque: Vec<f64>,
+    /// Steady-state rate r_n: largest scaled change of the unknowns per radian of
+    /// driver rotation (docs/fem-drive.md §7), 1/rad.
+    pub change_rate: Vec<f64>,
+}
+
+impl History {
+    /// Number of recorded steps.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// True without steps.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    fn columns(&self) -> [(&'static str, &Vec<f64>); 12] {
+        [
+            ("time", &self.time),
+            ("driven_speed", &self.driven_speed),
+            ("transport_rate", &self.transport_rate),
+            ("tension_upper_mid", &self.tension_upper_mid),
+            ("tension_lower_mid", &self.tension_lower_mid),
+            ("driver_stick_arc", &self.driver_stick_arc),
+            ("driver_slip_arc", &self.driver_slip_arc),
+            ("driver_torque", &self.driver_torque),
+            ("driven_stick_arc", &self.driven_stick_arc),
+            ("driven_slip_arc", &self.driven_slip_arc),
+            ("driven_torque", &self.driven_torque),
+            ("change_rate", &self.change_rate),
+        ]
+    }
+
+    /// Checks equal lengths and finite values.
+    ///
+    /// # Errors
+    /// [`ResultError::FieldLength`] or [`ResultError::NotFinite`] naming the entry,
+    /// e.g. `history.driven_speed[3]`.
+    pub fn check(&self) -> Result<(), ResultError> {
+        let n = self.time.len();
+        for (name, v) in self.columns() {
+            if v.len() != n {
+                return Err(ResultError::FieldLength { field: format!("history.{name}"), len: v.len(), expected: n });
+            }
+            if let Some((i, &value)) = v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+                return Err(ResultError::NotFinite { quantity: format!("history.{name}[{i}]"), value });
+            }
+        }
+        Ok(())
+    }
+}
+
 /// Work spent on a run (`cost`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Cost {
@@ -121,6 +202,9 @@ pub struct RunResult {
     /// be reproduced.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub options: Option<serde_json::Value>,
+    /// Time history of a transient FE run (optional; absent for static and BVP runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub history: Option<History>,
 }
 
 impl RunResult {
@@ -138,6 +222,9 @@ impl RunResult {
         }
         if let Some(f) = &self.fields {
             f.check()?;
+        }
+        if let Some(h) = &self.history {
+            h.check()?;
         }
         Ok(())
     }

@@ -369,6 +369,19 @@ pub struct FemSettings {
     /// belt stiffness.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
+    /// Time step Δt of the quasistatic transient (analyses `steady`, `transient`), s,
+    /// > 0, finite. Default absent = the `fem` crate chooses it (the driver surface
+    /// moves by one arc element per step; docs/fem-drive.md §7).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_step: Option<f64>,
+    /// Largest number of time steps of the transient, ≥ 1. Default absent = the `fem`
+    /// crate's default (4000).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_steps: Option<usize>,
+    /// Steady-state threshold: largest scaled change of the primary unknowns per radian
+    /// of driver rotation (docs/fem-drive.md §7), 0 < tol < 1. Default absent = 1e-6.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady_tolerance: Option<f64>,
 }
 
 impl FemSettings {
@@ -398,6 +411,9 @@ impl Default for FemSettings {
             mesh_sequence: Vec::new(),
             formulations: Vec::new(),
             penalty: None,
+            time_step: None,
+            max_steps: None,
+            steady_tolerance: None,
         }
     }
 }
@@ -816,6 +832,25 @@ impl FemSettings {
         }
         if let Some(p) = self.penalty {
             check_positive("fem.penalty", p)?;
+        }
+        if let Some(dt) = self.time_step {
+            check_positive("fem.time_step", dt)?;
+        }
+        if self.max_steps == Some(0) {
+            return Err(SceneError::OutOfRange {
+                path: "fem.max_steps".into(),
+                value: 0.0,
+                range: "at least 1 time step".into(),
+            });
+        }
+        if let Some(t) = self.steady_tolerance {
+            if !(t.is_finite() && t > 0.0 && t < 1.0) {
+                return Err(SceneError::OutOfRange {
+                    path: "fem.steady_tolerance".into(),
+                    value: t,
+                    range: "0 < tolerance < 1 (change per radian of driver rotation)".into(),
+                });
+            }
         }
         Ok(())
     }

@@ -199,6 +199,9 @@ pub(crate) const FEM: &[Field] = &[
     ),
     opt("formulations", Kind::TextList, "element formulations"),
     opt("penalty", Kind::Number, "contact penalty factor, N/m²"),
+    opt("time_step", Kind::Number, "time step of the quasistatic transient, s"),
+    opt("max_steps", Kind::Count, "largest number of time steps"),
+    opt("steady_tolerance", Kind::Number, "steady-state threshold per radian of driver rotation"),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -521,6 +524,9 @@ mod tests {
         let fem = serde_json::to_value(FemSettings {
             penalty: Some(1e6),
             mesh_sequence: vec![8, 16],
+            time_step: Some(1e-3),
+            max_steps: Some(100),
+            steady_tolerance: Some(1e-6),
             ..Default::default()
         })
         .unwrap();

@@ -26,6 +26,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         },
         fields,
         options: None,
+        history: None,
     }
 }
 

@@ -87,4 +87,42 @@ pub enum FemError {
         /// Which quantity.
         what: String,
     },
+
+    /// The load on the driven pulley exceeds what friction can transmit on a pulley
+    /// (docs/fem-drive.md §5): no steady creep solution exists.
+    #[error("torque above the friction capacity at t = {time} s: the {pulley} pulley must transmit {torque:.6e} N·m but its contact can carry at most {capacity:.6e} N·m (R ∫ μ τ_γ dσ over its contact zone)")]
+    FrictionCapacityExceeded {
+        /// `driver` or `driven`.
+        pulley: String,
+        /// Torque to transmit, M₂ + d₂ω₂, N·m.
+        torque: f64,
+        /// R ∫ μ τ_γ dσ over the pulley's contact points, N·m.
+        capacity: f64,
+        /// Time of the step, s.
+        time: f64,
+    },
+
+    /// A time step of the drive transient failed (Newton did not converge).
+    #[error("time step {step} (t = {time} s) failed: {reason}")]
+    DriveStepFailed {
+        /// Step number (1-based).
+        step: usize,
+        /// Time at the end of the step, s.
+        time: f64,
+        /// The Newton failure.
+        reason: String,
+    },
+
+    /// The transient did not reach the steady state within the step limit.
+    #[error("no steady state after {steps} time steps (t = {time} s): change rate {rate:.3e} per radian of driver rotation above the tolerance {tolerance:.1e}")]
+    SteadyStateNotReached {
+        /// Steps done.
+        steps: usize,
+        /// Time reached, s.
+        time: f64,
+        /// Last change rate r_n (docs/fem-drive.md §7).
+        rate: f64,
+        /// The steady-state tolerance.
+        tolerance: f64,
+    },
 }

@@ -28,7 +28,11 @@
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
-//!   against its closed form — how a penalty FE carries concentrated edge forces.
+//!   against its closed form — how a penalty FE carries concentrated edge forces;
+//! - [`string_drive`]: the friction drive (analyses `steady`, `transient` with Coulomb
+//!   contact) — quasistatic transient from the static solution, augmented Lagrangian
+//!   Coulomb contact of Table 1, driven rotation with its torque balance, transport
+//!   inertia, steady-state criterion, time history (docs/fem-drive.md).
 //!
 //! Defaults: `string-simpson`, 256 elements (the scene's `fem.elements`), penalty
 //! P = 10⁵ EA/R² ([`SolverSettings`]). Measured accuracy against the BVP at 256
@@ -73,6 +77,7 @@ mod options;
 pub mod quadrature;
 pub mod solution;
 pub mod stamp;
+pub mod string_drive;
 pub mod string_hanging;
 
 pub use error::FemError;
@@ -111,6 +116,8 @@ pub struct FemRun {
     /// The energy terms assembled (the effects simulated), e.g.
     /// "strain energy (Biot, gauss3, EA = 2.000000e4 N)".
     pub terms: Vec<String>,
+    /// Time history of a drive transient (docs/fem-drive.md §8); `None` for static runs.
+    pub history: Option<drive::result::History>,
 }
 
 /// Names of the element formulations registered with the plug-in trait, default first.
@@ -165,9 +172,13 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
     })
 }
 
-/// Solve a scene with MEL finite elements.
+/// Solve a scene with MEL finite elements: the static string (`string-hanging`), or
+/// the friction drive (`string-drive`, analysis steady or transient with Coulomb
+/// contact; [`string_drive::solve`] with the scene's [`string_drive::DriveSettings`]).
 ///
 /// # Errors
+/// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
+/// [`FemError::SteadyStateNotReached`] besides the static ones below.
 /// [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
 /// [`FemError::InvalidOption`], [`FemError::IllPosed`] (weightless slack loop), and the
 /// solver failures [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
@@ -176,6 +187,15 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
     let clock = Instant::now();
     opts.validate()?;
     settings.validate()?;
+    if string_drive::applies(scene) {
+        let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
+            name: opts.formulation.clone(),
+            available: available_formulations().iter().map(|s| s.to_string()).collect(),
+        })?;
+        let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
+        drive_settings.stop_at_steady = true;
+        return string_drive::solve(scene, opts, settings, &drive_settings, kernel);
+    }
     let data = string_hanging_data(scene, opts, settings)?;
     let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
         name: opts.formulation.clone(),
@@ -212,7 +232,7 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms })
+    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None })
 }
 
 #[cfg(test)]

@@ -89,6 +89,8 @@ pub struct Solved {
     pub terms: Vec<String>,
     /// Diagnostics worth keeping (homotopy steps, closure defects, …).
     pub notes: Vec<String>,
+    /// Time history of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
+    pub history: Option<drive::result::History>,
 }
 
 /// Why a method produced no solution.
@@ -203,6 +205,7 @@ impl Method for BvpSolver {
             options: run.options,
             terms: Vec::new(),
             notes: run.notes,
+            history: None,
         })
     }
 }
@@ -262,6 +265,7 @@ impl Method for FemFormulation {
             options: run.options,
             notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
             terms: run.terms,
+            history: run.history,
         })
     }
 }

@@ -1,0 +1,58 @@
+//! Criterion benchmarks of the friction drive by MEL finite elements
+//! (docs/fem-drive.md §10): wall time of a whole `string_drive::solve` — static start,
+//! quasistatic transient with the augmented Lagrangian, to the steady state — against
+//! the number of elements and the time step, on the weightless creep scene
+//! (`fem/tests/scenes/drive-creep.json`) and on the Exudyn parameter set
+//! (`fem/tests/scenes/drive-exudyn.json`, gravity and inertia).
+//!
+//! - `to_steady/creep/N`: N = 32, 64, 128 elements, default Δt (one arc element of
+//!   driver rotation per step, so the step count grows like N);
+//! - `to_steady/creep_dt/k`: 64 elements with Δt = k × default, k = ½, 1, 2;
+//! - `to_steady/exudyn/N`: N = 64 (128 elements take ≈ 24 s, measured once by
+//!   `--example drive`, docs/fem-drive.md §10).
+//!
+//! Run: `cargo bench -p fem --bench string_drive`. Sample size 10.
+
+use std::path::Path;
+use std::time::Duration;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use drive::Scene;
+use fem::string_drive::{self, DriveSettings};
+use fem::{FemOptions, SolverSettings};
+
+fn scene(name: &str) -> Scene {
+    Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes").join(name)).unwrap()
+}
+
+fn solve(scene: &Scene, elements: usize, ds: &DriveSettings) -> f64 {
+    let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
+    let kernel = fem::formulation::find(&opts.formulation).unwrap();
+    let run = string_drive::solve(scene, &opts, &SolverSettings::default(), ds, kernel).expect("steady state");
+    run.summary.driven_speed.unwrap()
+}
+
+fn to_steady(c: &mut Criterion) {
+    let mut group = c.benchmark_group("to_steady");
+    group.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(3));
+    let creep = scene("drive-creep.json");
+    let ds = DriveSettings::from_scene(&creep);
+    for n in [32, 64, 128] {
+        group.bench_with_input(BenchmarkId::new("creep", n), &n, |b, &n| b.iter(|| solve(&creep, n, &ds)));
+    }
+    // default Δt at 64 elements: one arc element (π/11) of driver rotation over ω₁
+    let dt0 = std::f64::consts::PI / 11.0 / creep.drive.driver_speed;
+    for k in [0.5, 1.0, 2.0] {
+        let ds = DriveSettings { time_step: Some(k * dt0), ..ds.clone() };
+        group.bench_with_input(BenchmarkId::new("creep_dt", k), &k, |b, _| b.iter(|| solve(&creep, 64, &ds)));
+    }
+    let exudyn = scene("drive-exudyn.json");
+    let ds = DriveSettings::from_scene(&exudyn);
+    for n in [64] {
+        group.bench_with_input(BenchmarkId::new("exudyn", n), &n, |b, &n| b.iter(|| solve(&exudyn, n, &ds)));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, to_steady);
+criterion_main!(benches);

@@ -1,0 +1,659 @@
+//! The friction drive (`string-drive`, Paper B) by MEL finite elements: the string of
+//! [`crate::string_hanging`] transported in σ through a quasistatic transient — a
+//! sequence of energy minima with prescribed driver rotation increments ω₁Δt (§7.1) —
+//! with the driven pulley's rotation as an unknown under its load, Coulomb friction by
+//! the augmented Lagrangian return mapping of Table 1 (§6.1) or its penalty
+//! regularisation, and persistent transport inertia on request. Steady analyses run the
+//! transient to the steady state (no direct steady solve). Equations, signs and
+//! measured numbers: docs/fem-drive.md.
+//!
+//! Layers: [`contact`] (per-point state, D2, D6, D7, D8, exact derivatives),
+//! [`system`] (the step's global system and its Newton solver), this module (data from
+//! the scene, start, time loop with the AL outer loop, steady-state criterion,
+//! outputs), [`view`] (the common view with stick/slip states).
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+use std::time::Instant;
+
+use drive::contour::{Contour, Pulley, Region};
+use drive::result::History;
+use drive::scene::{Analysis, Contact, Scene, Theory};
+use drive::summary::PulleySummary;
+use drive::view::SolutionView;
+
+use crate::assembly::Assembler;
+use crate::error::FemError;
+use crate::formulation::Kernel;
+use crate::kinematics::{TermParams, NDOF};
+use crate::linear::SparseLu;
+use crate::mesh::Mesh;
+use crate::options::{FemOptions, SolverSettings};
+use crate::solution::FemSolution;
+use crate::string_hanging::StringHanging;
+use crate::{FemRun, FemStats};
+
+pub mod contact;
+pub mod system;
+pub mod view;
+
+use contact::{PointState, StepParams};
+use system::{Load, Pattern, StepSystem};
+pub use view::DriveSolution;
+
+/// Friction treatment (docs/fem-drive.md §5).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FrictionMethod {
+    /// Augmented Lagrangian of Table 1 (multipliers λ_γ, λ_⊥ updated per step).
+    AugmentedLagrangian,
+    /// Penalty regularisation (λ_γ = λ_⊥ = 0; only the slip bound is iterated).
+    Penalty,
+}
+
+/// Settings of the drive transient. `Default` gives the documented values; the scene's
+/// `fem.time_step`, `fem.max_steps`, `fem.steady_tolerance` override them
+/// ([`DriveSettings::from_scene`]).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct DriveSettings {
+    /// Δt, s (> 0); `None` = the driver surface moves by one arc element per step.
+    pub time_step: Option<f64>,
+    /// Largest number of time steps. Default 4000; ≥ 1.
+    pub max_steps: usize,
+    /// Steady when the change rate r_n (§7) ≤ this for 3 consecutive steps. Default
+    /// 1e-6 per radian of driver rotation; (0, 1).
+    pub steady_tolerance: f64,
+    /// `steady`: stop at the steady state (error if not reached); `transient`: also
+    /// stop there, but report the last state if `max_steps` is reached first.
+    pub stop_at_steady: bool,
+    /// Friction treatment. Default augmented Lagrangian.
+    pub friction: FrictionMethod,
+    /// AL outer loop converged when the largest multiplier change is ≤ this × F_ref/R.
+    /// Default 1e-7 (the floor is set by Newton's update tolerance times P_γ); (0, 1e-2].
+    pub al_tolerance: f64,
+    /// Outer (AL) iterations per step. Default 30; ≥ 1.
+    pub max_al_iterations: usize,
+    /// κ_⊥ of the tangential penalty P_⊥ = κ_⊥ EA/R² (N/m²). Default 300; > 0. Much
+    /// softer than P_γ on purpose: the slip bound b = μτ_γ and P_⊥ set the width b/P_⊥
+    /// of the stick band of (D7); a band far below the per-step slip makes the
+    /// stick/slip state of the points flip from one Newton iteration to the next. The
+    /// augmented Lagrangian removes the penalty error of P_⊥ (§5).
+    pub tangential_penalty_factor: f64,
+    /// Newton iteration limit per solve. Default 40; ≥ 5.
+    pub max_newton_iterations: usize,
+}
+
+impl Default for DriveSettings {
+    fn default() -> Self {
+        DriveSettings {
+            time_step: None,
+            max_steps: 4000,
+            steady_tolerance: 1e-6,
+            stop_at_steady: true,
+            friction: FrictionMethod::AugmentedLagrangian,
+            al_tolerance: 1e-7,
+            max_al_iterations: 30,
+            tangential_penalty_factor: 300.0,
+            max_newton_iterations: 40,
+        }
+    }
+}
+
+impl DriveSettings {
+    /// Defaults with the scene's `fem` block applied.
+    pub fn from_scene(scene: &Scene) -> DriveSettings {
+        let f = scene.fem_settings();
+        let d = DriveSettings::default();
+        DriveSettings {
+            time_step: f.time_step,
+            max_steps: f.max_steps.unwrap_or(d.max_steps),
+            steady_tolerance: f.steady_tolerance.unwrap_or(d.steady_tolerance),
+            ..d
+        }
+    }
+
+    /// Checks the documented ranges.
+    ///
+    /// # Errors
+    /// [`FemError::InvalidOption`] naming the field.
+    pub fn validate(&self) -> Result<(), FemError> {
+        let bad = |field: &'static str, value: String, reason: &str| Err(FemError::InvalidOption { field, value, reason: reason.into() });
+        if let Some(dt) = self.time_step {
+            if !(dt.is_finite() && dt > 0.0) {
+                return bad("time_step", dt.to_string(), "must be positive and finite (s)");
+            }
+        }
+        if self.max_steps == 0 {
+            return bad("max_steps", "0".into(), "must be ≥ 1");
+        }
+        if !(self.steady_tolerance > 0.0 && self.steady_tolerance < 1.0) {
+            return bad("steady_tolerance", self.steady_tolerance.to_string(), "must lie in (0, 1)");
+        }
+        if !(self.al_tolerance > 0.0 && self.al_tolerance <= 1e-2) {
+            return bad("al_tolerance", self.al_tolerance.to_string(), "must lie in (0, 1e-2]");
+        }
+        if self.max_al_iterations == 0 {
+            return bad("max_al_iterations", "0".into(), "must be ≥ 1");
+        }
+        if !(self.tangential_penalty_factor.is_finite() && self.tangential_penalty_factor > 0.0) {
+            return bad("tangential_penalty_factor", self.tangential_penalty_factor.to_string(), "must be positive and finite");
+        }
+        if self.max_newton_iterations < 5 {
+            return bad("max_newton_iterations", self.max_newton_iterations.to_string(), "must be ≥ 5");
+        }
+        Ok(())
+    }
+}
+
+/// True if the scene is a friction drive of a string (analysis steady or transient,
+/// Coulomb contact) — the scenes [`solve`] handles.
+pub fn applies(scene: &Scene) -> bool {
+    matches!(scene.belt.theory, Theory::String)
+        && matches!(scene.analysis, Analysis::Steady | Analysis::Transient)
+        && matches!(scene.effects.contact, Contact::Coulomb(_))
+}
+
+/// Per-step record (the history plus solver work).
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+struct StepRecord {
+    al_iterations: usize,
+    newton_iterations: usize,
+    al_converged: bool,
+}
+
+/// Outputs of the pulleys from the point states (docs/fem-drive.md §8).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct PulleyOut {
+    torque: f64,
+    /// σ of the stick→slip transition (unwrapped like the zone), if both exist.
+    slip_start: Option<f64>,
+    all_slip: bool,
+    no_slip: bool,
+}
+
+/// Solve a friction-drive scene (see [`applies`]).
+///
+/// # Errors
+/// [`FemError::Unsupported`] (ω₁ ≤ 0), [`FemError::InvalidOption`], the static start's
+/// errors, [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
+/// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
+pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
+    let clock = Instant::now();
+    drive_settings.validate()?;
+    let Contact::Coulomb(mu) = scene.effects.contact else {
+        return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
+    };
+    let omega1 = scene.drive.driver_speed;
+    if !(omega1 > 0.0) {
+        return Err(FemError::Unsupported(format!(
+            "driver_speed ω₁ = {omega1} rad/s: the FE drive transient needs the driver turning clockwise (ω₁ > 0)"
+        )));
+    }
+    let b = &scene.belt;
+    let r = scene.drive.pulley_radius;
+    let penalty = opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r));
+    // 1. the static frictionless start (fem-string.md §9)
+    let data = StringHanging {
+        radius: r,
+        centre_distance: scene.drive.centre_distance,
+        length: b.length,
+        axial_stiffness: b.axial_stiffness,
+        mass_per_length: b.mass_per_length,
+        gravity: scene.effects.gravity,
+        penalty: Some(penalty),
+    };
+    let contour = data.contour()?;
+    let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
+    let (start, report, _) = data.solve(mesh, kernel.clone(), settings)?;
+    let mut newton_total = report.newton_iterations;
+
+    let h = contour.centre_distance();
+    let s0 = start.summary();
+    let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
+    let load_torque = scene.drive.driven_torque;
+    let damping = scene.drive.driven_damping;
+    let weight = scene.effects.gravity.map_or(0.0, |g| g * b.mass_per_length);
+    let f_ref = t_static.max(load_torque.abs() / r).max(weight * b.length).max(1e-300);
+
+    let asm = Assembler::new(start.mesh().clone(), kernel.clone());
+    let mut z = transfer(&start, &asm);
+    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: scene.effects.gravity.map(|g| g * b.mass_per_length), penalty: None };
+    let length = b.length;
+    let strain_rule = kernel.rules().strain;
+    let contact_rule = kernel.rules().contact;
+
+    // 2. time step, point states
+    let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
+    let dt = drive_settings.time_step.unwrap_or(PI * r / arc_elements as f64 / (r * omega1));
+    let dt_first = dt;
+    // P_⊥ = κ_⊥ EA/R², capped at P_γ (a tangential penalty above the normal one makes
+    // the tangent singular at soft normal penalties)
+    let p_t = (drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r)).min(penalty);
+    let al = drive_settings.friction == FrictionMethod::AugmentedLagrangian;
+    let mut points: Vec<Vec<PointState>> = (0..asm.mesh().len())
+        .map(|e| {
+            let el = asm.context(e, &params);
+            let q = asm.dofs().gather(e, &z, length);
+            // the contact rule's points for the normal term and the element edges
+            // ξ = ±1 (trapezoidal weights) for friction: the mixed rule of §7.3
+            let mut rule: Vec<(f64, f64, f64)> = contact_rule.points().iter().map(|&(xi, w)| (xi, w, 0.0)).collect();
+            for edge in [-1.0, 1.0] {
+                match rule.iter_mut().find(|p| p.0 == edge) {
+                    Some(p) => p.2 = 1.0,
+                    None => rule.push((edge, 0.0, 1.0)),
+                }
+            }
+            rule.into_iter()
+                .map(|(xi, w, wf)| {
+                    let sigma = el.sigma(xi);
+                    let pulley = contact::reachable_pulley(&contour, el.geometry.region, sigma);
+                    let p = el.fields(&q, xi);
+                    let tau = match (pulley, el.gap(&p)) {
+                        (Some(_), Some(g)) => (-penalty * g).max(0.0),
+                        _ => 0.0,
+                    };
+                    PointState {
+                        xi,
+                        weight: w * el.jacobian(),
+                        friction_weight: wf * el.jacobian(),
+                        sigma,
+                        pulley,
+                        travel_ref: r * omega1 * dt_first,
+                        s_ref: p.s,
+                        slope_ref: p.ds,
+                        metric: el.tangent_length(&p),
+                        lambda_n: if al { tau } else { 0.0 },
+                        lambda_t: 0.0,
+                        bound: mu * tau,
+                        slip: false,
+                        normal: tau,
+                        tangential: 0.0,
+                        displacement: 0.0,
+                    }
+                })
+                .collect()
+        })
+        .collect();
+
+    set_references(&mut points, &asm, &z, &params, length, &contour);
+    let pattern = Pattern::new(&asm);
+    let mut lu = SparseLu::new();
+    lu.set_pattern(asm.len() + 2, &pattern.rows, &pattern.cols)
+        .map_err(|detail| FemError::SingularTangent { eta: 1.0, iteration: 0, detail })?;
+    let w_newton = system::weights(&asm, h, r, 1.0);
+    let w_steady = system::weights(&asm, h, r, f_ref / b.axial_stiffness);
+
+    // starting guesses: belt speed = driver surface speed at the mean stretch
+    let lambda0 = 1.0 + t_static / b.axial_stiffness;
+    let mut a_prev = r * omega1 * dt / lambda0;
+    let mut phi_prev = omega1 * dt;
+    let mut c_prev = a_prev / dt;
+    let mut omega2_prev = omega1;
+    let mut history = History::default();
+    let mut records: Vec<StepRecord> = Vec::new();
+    let mut quiet = 0usize;
+    let mut last_rate = f64::INFINITY;
+    let mut steady = false;
+    let mut time = 0.0;
+    let mut x: Vec<f64> = z.iter().copied().chain([a_prev, phi_prev]).collect();
+    let mut outs = [PulleyOut::default(); 2];
+    let mut z_old = z.clone();
+
+    for step in 1..=drive_settings.max_steps {
+        time = step as f64 * dt;
+        let step_params = StepParams {
+            penalty,
+            tangential_penalty: p_t,
+            driver_advance: r * omega1 * dt,
+            radius: r,
+            inertia: (scene.effects.inertia == Some(true)).then_some(b.mass_per_length * c_prev * c_prev),
+        };
+        let load = Load { torque: load_torque, damping, time_step: dt };
+        // predictor: the material keeps its motion of the last step (secant in time),
+        // x = 2 z_n − z_{n−1}; in a steady state this is z_n itself
+        let nz = z.len();
+        for i in 0..nz {
+            x[i] = 2.0 * z[i] - z_old[i];
+        }
+        if asm.energy(&x[..nz], &params, length).is_none() {
+            x[..nz].copy_from_slice(&z);
+        }
+        x[nz] = a_prev;
+        x[nz + 1] = phi_prev;
+        let mut rec = StepRecord::default();
+        for _ in 0..drive_settings.max_al_iterations {
+            // capacity with the frozen bounds (docs/fem-drive.md §5)
+            let demand = load_torque + damping * omega2_prev;
+            for pulley in [Pulley::Driven, Pulley::Driver] {
+                let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
+                if demand > cap {
+                    return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
+                }
+            }
+            let sys = StepSystem { asm: &asm, params, length, points: &points, step: step_params, load, strain_rule };
+            let mut res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
+            if res.is_err() {
+                // retry once from the last state itself (no secant predictor)
+                x[..nz].copy_from_slice(&z);
+                x[nz] = a_prev;
+                x[nz + 1] = phi_prev;
+                res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
+            }
+            let nres = match res {
+                Ok(n) => n,
+                Err(reason) => {
+                    // a pulley in full slip cannot hold the load: report it as such
+                    for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
+                        if outs[k].all_slip {
+                            let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
+                            return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
+                        }
+                    }
+                    return Err(FemError::DriveStepFailed { step, time, reason });
+                }
+            };
+            rec.newton_iterations += nres.iterations;
+            rec.al_iterations += 1;
+            // Table 1: evaluate and update every point
+            let (a, phi) = (x[nz], x[nz + 1]);
+            let mut change: f64 = 0.0;
+            let mut switches = 0usize;
+            for (e, pts) in points.iter_mut().enumerate() {
+                let el = asm.context(e, &params);
+                let q = asm.dofs().gather(e, &x[..nz], length);
+                for pt in pts.iter_mut() {
+                    if pt.pulley.is_none() {
+                        continue;
+                    }
+                    let ev = contact::evaluate(&el, &q, a, phi, pt, &step_params);
+                    let new_n = if al { ev.normal } else { 0.0 };
+                    let new_t = if !al || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
+                        0.0
+                    } else if ev.slip {
+                        mu * ev.normal * ev.trial.signum()
+                    } else {
+                        ev.trial
+                    };
+                    let new_b = mu * ev.normal;
+                    let c3 = [(new_n - pt.lambda_n).abs(), (new_t - pt.lambda_t).abs(), (new_b - pt.bound).abs()];
+                    change = change.max(c3[0]).max(c3[1]).max(c3[2]);
+                    if ev.slip != pt.slip && pt.bound > 0.0 {
+                        switches += 1;
+                    }
+                    pt.normal = ev.normal;
+                    pt.tangential = ev.tangential;
+                    pt.displacement = ev.displacement;
+                    pt.slip = ev.slip && pt.bound > 0.0;
+                    pt.lambda_n = new_n;
+                    pt.lambda_t = new_t;
+                    pt.bound = new_b;
+                }
+            }
+            if change <= drive_settings.al_tolerance * f_ref / r && switches == 0 {
+                rec.al_converged = true;
+                break;
+            }
+        }
+        newton_total += rec.newton_iterations;
+        let (a, phi) = (x[nz], x[nz + 1]);
+        let omega2 = phi / dt;
+        let c = a / dt;
+        // steady-state rate (§7)
+        let dz: Vec<f64> = x[..nz].iter().zip(&z).map(|(n, o)| n - o).collect();
+        let rate = (system::scaled_norm(&dz, &w_steady[..nz]).max((omega2 - omega2_prev).abs() / omega1).max((c - c_prev).abs() / c.abs().max(1e-300))) / (omega1 * dt);
+        z_old.copy_from_slice(&z);
+        z.copy_from_slice(&x[..nz]);
+        // the new state becomes the previous one of the points (S̃_n)
+        for (e, pts) in points.iter_mut().enumerate() {
+            let el = asm.context(e, &params);
+            let q = asm.dofs().gather(e, &z, length);
+            for pt in pts.iter_mut() {
+                // the travel of this step becomes the reference of the next (D2)
+                if pt.pulley.is_some() && pt.bound > 0.0 {
+                    pt.travel_ref = (pt.displacement + drum_advance(pt, r * omega1 * dt, phi * r)) / pt.metric;
+                }
+                pt.metric = el.tangent_length(&el.fields(&q, pt.xi));
+            }
+        }
+        set_references(&mut points, &asm, &z, &params, length, &contour);
+        outs = [pulley_out(&points, Pulley::Driver, r, &contour), pulley_out(&points, Pulley::Driven, r, &contour)];
+        record(&mut history, time, omega2, c, &asm, &z, &params, length, &kernel, &contour, &points, &outs, rate);
+        records.push(rec);
+        a_prev = a;
+        phi_prev = phi;
+        c_prev = c;
+        omega2_prev = omega2;
+        last_rate = rate;
+        quiet = if rate <= drive_settings.steady_tolerance && rec.al_converged { quiet + 1 } else { 0 };
+        if quiet >= 3 {
+            steady = true;
+            if drive_settings.stop_at_steady {
+                break;
+            }
+        }
+    }
+    if !steady && matches!(scene.analysis, Analysis::Steady) {
+        return Err(FemError::SteadyStateNotReached { steps: history.len(), time, rate: last_rate, tolerance: drive_settings.steady_tolerance });
+    }
+
+    // 3. outputs of the last state
+    let sol_params = TermParams { penalty: Some(penalty), ..params };
+    let base = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, sol_params, length, kernel.clone());
+    let omega2 = phi_prev / dt;
+    let c = a_prev / dt;
+    let mut summary = base.summary();
+    let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
+    summary.tension_tight = Some(tu.max(tl));
+    summary.tension_slack = Some(tu.min(tl));
+    summary.driven_speed = Some(omega2);
+    summary.transport_rate = Some(c);
+    for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
+        let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };
+        let ps = block.get_or_insert_with(PulleySummary::default);
+        let (arc, slip) = arcs(&base, &points, pulley, &contour, &outs[k]);
+        ps.contact_arc = ps.contact_arc.or(Some(arc));
+        ps.slip_arc = Some(slip);
+        ps.stick_arc = Some((ps.contact_arc.unwrap_or(arc) - slip).max(0.0));
+        ps.torque = Some(outs[k].torque);
+    }
+    if let Err(e) = summary.check_finite() {
+        return Err(FemError::NonFinite { what: e.to_string() });
+    }
+    let dissipation: f64 = points.iter().flatten().map(|p| p.friction_weight * p.tangential * p.displacement).sum::<f64>() / dt;
+    let power_in = -outs[0].torque * omega1;
+    let power_out = (load_torque + damping * omega2) * omega2;
+    let max_penetration = base.max_penetration();
+    let stick_slip_max = points.iter().flatten().filter(|p| p.bound > 0.0 && !p.slip).fold(0.0f64, |m, p| m.max(p.displacement.abs()));
+    let view = DriveSolution::new(base, points.concat(), summary.clone());
+    let mut terms = kernel.term_labels(&params);
+    terms.push(format!(
+        "Coulomb contact, {} (μ = {mu}, P_γ = {penalty:.6e} N/m², P_⊥ = {p_t:.6e} N/m², {contact_rule})",
+        match drive_settings.friction {
+            FrictionMethod::AugmentedLagrangian => "augmented Lagrangian (Table 1)",
+            FrictionMethod::Penalty => "penalty regularisation",
+        }
+    ));
+    terms.push(format!("driven load M₂ = {load_torque} N·m, d₂ = {damping} N·m·s"));
+    if scene.effects.inertia == Some(true) {
+        terms.push(format!("transport inertia (ρ = {} kg/m)", b.mass_per_length));
+    }
+    let resolved = FemOptions { penalty: Some(penalty), ..opts.clone() };
+    let options = serde_json::json!({
+        "method": "fem",
+        "elements": resolved.elements,
+        "formulation": resolved.formulation,
+        "penalty": resolved.penalty,
+        "settings": settings,
+        "drive": {
+            "settings": drive_settings,
+            "time_step": dt,
+            "steps": history.len(),
+            "steady": steady,
+            "final_change_rate": last_rate,
+            "al_iterations": records.iter().map(|r| r.al_iterations).sum::<usize>(),
+            "al_unconverged_steps": records.iter().filter(|r| !r.al_converged).count(),
+            "power_in": power_in,
+            "power_out": power_out,
+            "dissipation": dissipation,
+            "max_penetration": max_penetration,
+            "stick_slip_max": stick_slip_max,
+            "tangential_penalty": p_t,
+        },
+        "homotopy": report,
+    });
+    let stats = FemStats {
+        wall_seconds: clock.elapsed().as_secs_f64(),
+        newton_iterations: newton_total,
+        unknowns: asm.len() + 2,
+        elements: opts.elements,
+        homotopy_steps: report.steps,
+    };
+    Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history) })
+}
+
+/// The static solution's unknowns on `asm` (its own mesh), as string_hanging's transfer.
+fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
+    let mesh = asm.mesh();
+    let dofs = asm.dofs();
+    let mut z = vec![0.0; asm.len()];
+    for k in 0..mesh.len() {
+        let sigma = mesh.node_sigmas()[k];
+        let nd = dofs.node(k);
+        let right = sol.one_sided_fields(sigma, false);
+        let left = sol.one_sided_fields(sigma, true);
+        if let Some(i) = nd.s {
+            z[i] = right.s;
+        }
+        z[nd.nu] = right.nu;
+        z[nd.slopes_in.0] = left.ds;
+        z[nd.slopes_in.1] = left.dnu;
+        z[nd.slopes_out.0] = right.ds;
+        z[nd.slopes_out.1] = right.dnu;
+    }
+    z
+}
+
+/// R Δθ_k of the pulley of a point: `driver` for the driver, `driven` for the driven one.
+fn drum_advance(pt: &PointState, driver: f64, driven: f64) -> f64 {
+    match pt.pulley {
+        Some(Pulley::Driver) => driver,
+        Some(Pulley::Driven) => driven,
+        None => 0.0,
+    }
+}
+
+/// The upstream references of (D2) from the state z_n: S̃_n and ∂σS̃_n at σ − d_ref
+/// (unwrapped across σ = 0 with the closure S(σ + L_c) = S(σ) + L, F5).
+fn set_references(points: &mut [Vec<PointState>], asm: &Assembler, z: &[f64], params: &TermParams, length: f64, contour: &Contour) {
+    let lc = contour.length();
+    for pt in points.iter_mut().flatten() {
+        if pt.pulley.is_none() {
+            continue;
+        }
+        let at = pt.sigma - pt.travel_ref;
+        let loops = (at / lc).floor();
+        let (e, xi) = asm.mesh().locate(at - loops * lc);
+        let el = asm.context(e, params);
+        let q = asm.dofs().gather(e, z, length);
+        let f = el.fields(&q, xi);
+        pt.s_ref = f.s + loops * length;
+        pt.slope_ref = f.ds;
+    }
+}
+
+/// σ unwrapped for a pulley's contact zone: the driver's zone straddles σ = 0 (it ends
+/// on the upper span), so its σ < H/2 are moved up by L_c.
+fn unwrap(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
+    if pulley == Pulley::Driver && sigma < 0.5 * contour.centre_distance() {
+        sigma + contour.length()
+    } else {
+        sigma
+    }
+}
+
+/// Torque and stick→slip transition of a pulley from its points (docs/fem-drive.md §8).
+fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: &Contour) -> PulleyOut {
+    let mut pts: Vec<&PointState> = points.iter().flatten().filter(|p| p.pulley == Some(pulley)).collect();
+    let torque = radius * pts.iter().map(|p| p.friction_weight * p.tangential).sum::<f64>();
+    pts.retain(|p| p.friction_weight > 0.0);
+    pts.retain(|p| p.normal > 0.0);
+    pts.sort_by(|a, b| unwrap(contour, pulley, a.sigma).total_cmp(&unwrap(contour, pulley, b.sigma)));
+    let all_slip = !pts.is_empty() && pts.iter().all(|p| p.slip);
+    let no_slip = pts.iter().all(|p| !p.slip);
+    // the trailing run of slip points (slip zone before exit)
+    let last_stick = pts.iter().rposition(|p| !p.slip);
+    let slip_start = match last_stick {
+        Some(i) if i + 1 < pts.len() => Some(0.5 * (unwrap(contour, pulley, pts[i].sigma) + unwrap(contour, pulley, pts[i + 1].sigma))),
+        _ => None,
+    };
+    PulleyOut { torque, slip_start, all_slip, no_slip }
+}
+
+/// Contact arc (point-based fallback) and slip arc of a pulley, rad.
+fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour: &Contour, out: &PulleyOut) -> (f64, f64) {
+    let mut pts: Vec<f64> = points.iter().flatten().filter(|p| p.pulley == Some(pulley) && p.normal > 0.0).map(|p| unwrap(contour, pulley, p.sigma)).collect();
+    pts.sort_by(f64::total_cmp);
+    let angle = |sigma: f64| contour.polar_angle(pulley, base.position(contour.wrap(sigma)));
+    let (Some(&first), Some(&last)) = (pts.first(), pts.last()) else {
+        return (0.0, 0.0);
+    };
+    let end_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(last), |z| z.angle_end);
+    let start_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(first), |z| z.angle_start);
+    let arc = (start_angle - end_angle).rem_euclid(2.0 * PI);
+    let slip = if out.no_slip {
+        0.0
+    } else if out.all_slip {
+        arc
+    } else {
+        out.slip_start.map_or(0.0, |s| (angle(s) - end_angle).rem_euclid(2.0 * PI).min(arc))
+    };
+    (arc, slip)
+}
+
+/// Append one step to the history: raw axial force EA(λ − 1) at the span midpoints,
+/// per pulley the torque and the stick/slip arcs from the point states (contact
+/// boundaries at the first/last point carrying normal traction, O(h)).
+#[allow(clippy::too_many_arguments)]
+fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, points: &[Vec<PointState>], outs: &[PulleyOut; 2], rate: f64) {
+    let h = contour.centre_distance();
+    let at = |sigma: f64| {
+        let (e, xi) = asm.mesh().locate(contour.wrap(sigma));
+        let el = asm.context(e, params);
+        let q: [f64; NDOF] = asm.dofs().gather(e, z, length);
+        let p = el.fields(&q, xi);
+        (kernel.axial_force(el.stretch(&p), params.axial_stiffness), el.position(&p))
+    };
+    history.time.push(time);
+    history.driven_speed.push(omega2);
+    history.transport_rate.push(c);
+    history.tension_upper_mid.push(at(0.5 * h).0);
+    history.tension_lower_mid.push(at(1.5 * h + PI * contour.radius()).0);
+    for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
+        let mut pts: Vec<f64> = points.iter().flatten().filter(|p| p.pulley == Some(pulley) && p.normal > 0.0).map(|p| unwrap(contour, pulley, p.sigma)).collect();
+        pts.sort_by(f64::total_cmp);
+        let angle = |sigma: f64| contour.polar_angle(pulley, at(sigma).1);
+        let (contact, slip) = match (pts.first(), pts.last()) {
+            (Some(&a), Some(&b)) => {
+                let arc = (angle(a) - angle(b)).rem_euclid(2.0 * PI);
+                let slip = if outs[k].no_slip {
+                    0.0
+                } else if outs[k].all_slip {
+                    arc
+                } else {
+                    outs[k].slip_start.map_or(0.0, |s| (angle(s) - angle(b)).rem_euclid(2.0 * PI).min(arc))
+                };
+                (arc, slip)
+            }
+            _ => (0.0, 0.0),
+        };
+        let (stick_v, slip_v, torque_v) = if k == 0 {
+            (&mut history.driver_stick_arc, &mut history.driver_slip_arc, &mut history.driver_torque)
+        } else {
+            (&mut history.driven_stick_arc, &mut history.driven_slip_arc, &mut history.driven_torque)
+        };
+        stick_v.push((contact - slip).max(0.0));
+        slip_v.push(slip);
+        torque_v.push(outs[k].torque);
+    }
+    history.change_rate.push(if rate.is_finite() { rate } else { f64::MAX });
+}

@@ -1,0 +1,127 @@
+//! The common view of a drive state (docs/fem-drive.md §8): geometry, axial force and
+//! material coordinate of the string solution ([`FemSolution`]), the contact state
+//! Stick/Slip and the normal traction from the integration-point states.
+
+use drive::contour::Contour;
+use drive::summary::Summary;
+use drive::view::{ContactState, SolutionView};
+
+use crate::solution::FemSolution;
+
+use super::contact::PointState;
+
+/// A converged drive state behind the common view.
+#[derive(Clone)]
+pub struct DriveSolution {
+    base: FemSolution,
+    /// Contact-capable points of the normal term, sorted by σ.
+    points: Vec<PointState>,
+    /// Friction points (element edges), sorted by σ.
+    friction: Vec<PointState>,
+    summary: Summary,
+}
+
+impl DriveSolution {
+    /// The view of `base` with the point states `points` and the drive summary.
+    pub fn new(base: FemSolution, mut points: Vec<PointState>, summary: Summary) -> DriveSolution {
+        points.retain(|p| p.pulley.is_some());
+        points.sort_by(|a, b| a.sigma.total_cmp(&b.sigma));
+        let friction = points.iter().filter(|p| p.friction_weight > 0.0).copied().collect();
+        points.retain(|p| p.weight > 0.0);
+        DriveSolution { base, points, friction, summary }
+    }
+
+    /// The string solution.
+    pub fn string(&self) -> &FemSolution {
+        &self.base
+    }
+
+    /// The normal-contact integration points (σ-sorted) with their last state.
+    pub fn points(&self) -> &[PointState] {
+        &self.points
+    }
+
+    /// The friction points (element edges, σ-sorted) with their stick/slip state.
+    pub fn friction_points(&self) -> &[PointState] {
+        &self.friction
+    }
+
+    /// The two points of `set` enclosing σ (by σ, periodic) and the interpolation weight
+    /// of the second; `None` without points.
+    fn neighbours<'a>(&self, set: &'a [PointState], sigma: f64) -> Option<(&'a PointState, &'a PointState, f64)> {
+        if set.is_empty() {
+            return None;
+        }
+        let l = self.base.mesh().contour().length();
+        let w = self.base.mesh().contour().wrap(sigma);
+        let k = set.partition_point(|p| p.sigma <= w);
+        let n = set.len();
+        let a = &set[(k + n - 1) % n];
+        let b = &set[k % n];
+        let span = (b.sigma - a.sigma).rem_euclid(l);
+        let t = if span > 0.0 { ((w - a.sigma).rem_euclid(l) / span).clamp(0.0, 1.0) } else { 0.0 };
+        Some((a, b, t))
+    }
+}
+
+impl SolutionView for DriveSolution {
+    fn contour(&self) -> &Contour {
+        self.base.contour()
+    }
+
+    fn position(&self, sigma: f64) -> [f64; 2] {
+        self.base.position(sigma)
+    }
+
+    fn axial_force(&self, sigma: f64) -> f64 {
+        self.base.axial_force(sigma)
+    }
+
+    fn bending_moment(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
+    fn transverse_force(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
+    /// τ_γ interpolated linearly between the neighbouring contact points; 0 outside
+    /// the contact zones.
+    fn contact_pressure(&self, sigma: f64) -> Option<f64> {
+        if self.base.contact_state(sigma) == ContactState::Free {
+            return Some(0.0);
+        }
+        Some(self.neighbours(&self.points, sigma).map_or(0.0, |(a, b, t)| ((1.0 - t) * a.normal + t * b.normal).max(0.0)))
+    }
+
+    /// Free outside the recovered contact zones; inside, Slip or Stick as the nearer
+    /// neighbouring friction point.
+    fn contact_state(&self, sigma: f64) -> ContactState {
+        if self.base.contact_state(sigma) == ContactState::Free {
+            return ContactState::Free;
+        }
+        match self.neighbours(&self.friction, sigma) {
+            Some((a, b, t)) => {
+                let p = if t < 0.5 { a } else { b };
+                if p.slip {
+                    ContactState::Slip
+                } else {
+                    ContactState::Stick
+                }
+            }
+            None => ContactState::Contact,
+        }
+    }
+
+    fn material_coordinate(&self, sigma: f64) -> f64 {
+        self.base.material_coordinate(sigma)
+    }
+
+    fn deflection(&self, sigma: f64) -> f64 {
+        self.base.deflection(sigma)
+    }
+
+    fn summary(&self) -> Summary {
+        self.summary.clone()
+    }
+}

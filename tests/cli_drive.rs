@@ -1,0 +1,32 @@
+//! End to end: `beltcheck solve --method fem` on a friction-drive scene writes the
+//! optional `history` of the transient (docs/fem-drive.md §8) beside the summary.
+
+mod common;
+
+use common::{beltcheck, stderr, stdout, temp};
+
+#[test]
+fn fem_drive_writes_the_history() {
+    let out = temp("cli-drive", "drive.json");
+    let o = beltcheck(&["solve", "fem/tests/scenes/drive-creep.json", "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}\n{}", stdout(&o), stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let h = &v["history"];
+    let n = h["time"].as_array().unwrap().len();
+    assert!(n >= 3, "at least the three quiet steps of the steady criterion");
+    for key in ["driven_speed", "tension_upper_mid", "tension_lower_mid", "driver_slip_arc", "driven_stick_arc", "driven_torque", "change_rate"] {
+        assert_eq!(h[key].as_array().unwrap().len(), n, "history.{key}");
+    }
+    let s = &v["summary"];
+    assert_eq!(s["driven_speed"].as_f64(), h["driven_speed"][n - 1].as_f64());
+    for key in ["stick_arc", "slip_arc", "torque"] {
+        assert!(s["driven"][key].is_number(), "summary.driven.{key}");
+    }
+    assert!(s["tension_tight"].as_f64().unwrap() > s["tension_slack"].as_f64().unwrap());
+    // a static scene has no history
+    let out = temp("cli-drive", "static.json");
+    let o = beltcheck(&["solve", "scenes/string-hanging.json", "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert!(v.get("history").is_none());
+}
