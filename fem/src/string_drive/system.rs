@@ -17,6 +17,9 @@ use super::contact::{self, PointState, StepParams, NEXT};
 const ARMIJO: f64 = 1e-4;
 const MIN_ALPHA: f64 = 9.5367431640625e-7;
 
+/// Energy, gradient and Hessian of an element's extra terms in (q, a, φ).
+type ExtraDerivatives = (f64, [f64; NEXT], [[f64; NEXT]; NEXT]);
+
 /// Load of the driven pulley (D4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Load {
@@ -172,7 +175,7 @@ impl StepSystem<'_> {
         let mut g = base.gradient;
         g.extend([0.0, 0.0]);
         let mut values = base.values;
-        let per: Vec<Option<(f64, [f64; NEXT], [[f64; NEXT]; NEXT])>> = (0..self.asm.mesh().len())
+        let per: Vec<Option<ExtraDerivatives>> = (0..self.asm.mesh().len())
             .into_par_iter()
             .map(|e| {
                 if !contact::active(&self.points[e], &self.step) {
@@ -247,6 +250,7 @@ pub struct StepNewton {
 ///
 /// # Errors
 /// A message with the iteration count and the last update norm.
+#[allow(clippy::too_many_arguments)]
 pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, String> {
     let n = x.len();
     let mut step = vec![0.0; n];
