@@ -273,13 +273,17 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f
                 d[pattern.rows[k]] += v;
             }
         }
+        // D = diag |K|, floored at 1e-8 of its largest entry: a direction without
+        // stiffness (φ or a when every friction point of a pulley slides, d₂ = 0) is
+        // regularised too
+        let floor = 1e-8 * d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut mu = 0.0;
         let mut accepted = false;
         while mu <= 1e2 {
             let mut vals = values.clone();
             if mu > 0.0 {
                 for (i, &pos) in pattern.diagonal.iter().enumerate() {
-                    vals[pos] += mu * d[i].abs().max(1e-300);
+                    vals[pos] += mu * d[i].abs().max(floor).max(1e-300);
                 }
             }
             // a singular tangent (e.g. a pulley whose points all slide, d₂ = 0) is
