@@ -370,8 +370,8 @@ pub struct FemSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
     /// Time step Δt of the quasistatic transient (analyses `steady`, `transient`), s,
-    /// > 0, finite. Default absent = the `fem` crate chooses it (the driver surface
-    /// moves by one arc element per step; docs/fem-drive.md §7).
+    /// positive and finite. Default absent = the `fem` crate chooses it (the driver
+    /// surface moves by one arc element per step; docs/fem-drive.md §7).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub time_step: Option<f64>,
     /// Largest number of time steps of the transient, ≥ 1. Default absent = the `fem`

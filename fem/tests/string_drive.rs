@@ -309,3 +309,28 @@ fn transport_inertia_acts_through_the_effective_tension() {
     let torque = s.driven.as_ref().unwrap().torque.unwrap();
     assert!((torque - 2.0).abs() < 1e-8 * 2.0);
 }
+
+/// Hard cases (DESIGN.md): a torque close to the friction capacity (M₂ = 6.5 of 7.0 N·m:
+/// the slip zone covers 161° of the 180° arc) and μ ≥ 1 both reach a steady creep state
+/// that satisfies the creep relations like the moderate case.
+#[test]
+fn hard_cases_near_capacity_and_large_friction() {
+    for (mu, torque) in [(0.3, 6.5), (1.2, 6.0)] {
+        let mut scene = creep_scene();
+        scene.drive.driven_torque = torque;
+        scene.effects.contact = drive::scene::Contact::Coulomb(mu);
+        let ds = DriveSettings::from_scene(&scene);
+        let r = run(&scene, 64, None, &ds).unwrap_or_else(|e| panic!("μ = {mu}, M₂ = {torque}: {e}"));
+        let s = &r.summary;
+        let (tt, ts) = (s.tension_tight.unwrap(), s.tension_slack.unwrap());
+        let theta = (tt / ts).ln() / mu;
+        let slip = s.driven.as_ref().unwrap().slip_arc.unwrap();
+        let ea = scene.belt.axial_stiffness;
+        let speed_err = (s.driven_speed.unwrap() / 10.0 - (1.0 + ts / ea) / (1.0 + tt / ea)).abs();
+        eprintln!("μ {mu} M₂ {torque}: slip {slip} vs {theta}, speed err {speed_err:e}, steps {}", drive_option(&r, "steps"));
+        // the same tolerances as the moderate case (1.5 arc elements, 1e-6)
+        assert!((slip - theta).abs() < 1.5 * std::f64::consts::PI / 11.0);
+        assert!(speed_err < 1e-6);
+        assert!((s.driven.as_ref().unwrap().torque.unwrap() - torque).abs() < 1e-8 * torque);
+    }
+}

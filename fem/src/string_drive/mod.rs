@@ -184,7 +184,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
         return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
     };
     let omega1 = scene.drive.driver_speed;
-    if !(omega1 > 0.0) {
+    if omega1.is_nan() || omega1 <= 0.0 {
         return Err(FemError::Unsupported(format!(
             "driver_speed ω₁ = {omega1} rad/s: the FE drive transient needs the driver turning clockwise (ω₁ > 0)"
         )));

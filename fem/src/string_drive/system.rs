@@ -17,6 +17,9 @@ use super::contact::{self, PointState, StepParams, NEXT};
 const ARMIJO: f64 = 1e-4;
 const MIN_ALPHA: f64 = 9.5367431640625e-7;
 
+/// Energy, gradient and Hessian of an element's extra terms in (q, a, φ).
+type ExtraDerivatives = (f64, [f64; NEXT], [[f64; NEXT]; NEXT]);
+
 /// Load of the driven pulley (D4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Load {
@@ -172,7 +175,7 @@ impl StepSystem<'_> {
         let mut g = base.gradient;
         g.extend([0.0, 0.0]);
         let mut values = base.values;
-        let per: Vec<Option<(f64, [f64; NEXT], [[f64; NEXT]; NEXT])>> = (0..self.asm.mesh().len())
+        let per: Vec<Option<ExtraDerivatives>> = (0..self.asm.mesh().len())
             .into_par_iter()
             .map(|e| {
                 if !contact::active(&self.points[e], &self.step) {
@@ -247,6 +250,7 @@ pub struct StepNewton {
 ///
 /// # Errors
 /// A message with the iteration count and the last update norm.
+#[allow(clippy::too_many_arguments)]
 pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, String> {
     let n = x.len();
     let mut step = vec![0.0; n];
@@ -269,13 +273,17 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f
                 d[pattern.rows[k]] += v;
             }
         }
+        // D = diag |K|, floored at 1e-8 of its largest entry: a direction without
+        // stiffness (φ or a when every friction point of a pulley slides, d₂ = 0) is
+        // regularised too
+        let floor = 1e-8 * d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut mu = 0.0;
         let mut accepted = false;
         while mu <= 1e2 {
             let mut vals = values.clone();
             if mu > 0.0 {
                 for (i, &pos) in pattern.diagonal.iter().enumerate() {
-                    vals[pos] += mu * d[i].abs().max(1e-300);
+                    vals[pos] += mu * d[i].abs().max(floor).max(1e-300);
                 }
             }
             // a singular tangent (e.g. a pulley whose points all slide, d₂ = 0) is
