@@ -45,8 +45,13 @@ pub struct ContactZone {
     /// Separate intervals of γ < 0 found in the window (1 for a clean solution).
     pub intervals: usize,
     /// True if both boundaries were recovered by the tangency construction (§10); false
-    /// if a boundary is the raw zero crossing of the gap.
+    /// if a boundary is the raw zero crossing of the gap. For a rod: true if both edges
+    /// were located by the force resultant and moment of the window (docs/fem-rod.md §5).
     pub recovered: bool,
+    /// Rod only: the edge force at the entry (K10), N.
+    pub edge_force_start: Option<f64>,
+    /// Rod only: the edge force at the exit (K10), N.
+    pub edge_force_end: Option<f64>,
 }
 
 /// 8-point Gauss–Legendre rule on [−1, 1].
@@ -64,10 +69,23 @@ const GL8: [(f64, f64); 8] = [
 impl FemSolution {
     /// The solution for global unknowns `z` of `dofs` on `mesh` with belt length `length`.
     pub fn new(mesh: Mesh, dofs: &DofMap, z: &[f64], params: TermParams, length: f64, kernel: Arc<dyn Kernel>) -> Self {
-        let local = (0..mesh.len()).map(|e| dofs.gather(e, z, length)).collect();
+        // effective local unknowns: the augmented map (docs/fem-rod.md K9) applied once,
+        // so that every evaluation below sees the slopes each element actually uses
+        let separate = kernel.theory() == drive::scene::Theory::String;
+        let flags = crate::dofs::augmented_flags(&mesh, separate);
+        let local = (0..mesh.len())
+            .map(|e| {
+                let el = ElementContext { geometry: mesh.elements()[e], contour: *mesh.contour(), params, augmented: flags[e] };
+                el.effective(&dofs.gather(e, z, length))
+            })
+            .collect();
         let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2] };
         if sol.params.penalty.is_some() {
-            sol.zones = [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)];
+            sol.zones = if sol.params.bending_stiffness.is_some() {
+                [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
+            } else {
+                [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)]
+            };
         }
         sol.summary = sol.compute_summary();
         sol
@@ -99,7 +117,8 @@ impl FemSolution {
     }
 
     fn context(&self, e: usize) -> ElementContext {
-        ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params }
+        // the stored local unknowns are already effective (augmented map applied)
+        ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params, augmented: [false; 2] }
     }
 
     /// Element, its context and the fields at σ.
@@ -256,6 +275,8 @@ impl FemSolution {
             angle_end: c.polar_angle(pulley, self.position(sigma_end)),
             intervals: entries.len().max(1),
             recovered: false,
+            edge_force_start: None,
+            edge_force_end: None,
         })
     }
 
@@ -428,15 +449,170 @@ impl FemSolution {
     }
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
+        let rod = self.params.bending_stiffness.is_some();
         match self.zone(pulley) {
-            None => PulleySummary { contact_arc: Some(0.0), ..Default::default() },
+            None => PulleySummary {
+                contact_arc: Some(0.0),
+                edge_force_start: rod.then_some(0.0),
+                edge_force_end: rod.then_some(0.0),
+                ..Default::default()
+            },
             Some(z) => PulleySummary {
                 contact_arc: Some((z.angle_start - z.angle_end).rem_euclid(2.0 * PI)),
                 contact_start: Some(z.angle_start),
                 contact_end: Some(z.angle_end),
+                edge_force_start: z.edge_force_start,
+                edge_force_end: z.edge_force_end,
                 ..Default::default()
             },
         }
+    }
+
+    /// The discrete contact forces of a pulley: for every point of the contact rule in
+    /// the σ-window where the gap to that pulley is defined (its arc ± R), the unwrapped
+    /// σ and the force w·(h/2)·P⟨−γ⟩ the energy applies there (N), in σ order — the
+    /// point forces the penalty term actually exerts, so their sums are consistent with
+    /// the discrete equilibrium.
+    pub fn contact_forces(&self, pulley: Pulley) -> Vec<(f64, f64)> {
+        let Some(penalty) = self.params.penalty else { return Vec::new() };
+        let c = self.mesh.contour();
+        let arc = match pulley {
+            Pulley::Driven => Region::DrivenArc,
+            Pulley::Driver => Region::DriverArc,
+        };
+        let (a, b) = c.region_bounds(arc);
+        let (w0, w1) = (a - c.radius(), b + c.radius());
+        let l = c.length();
+        let rule = self.kernel.rules().contact;
+        let mut out = Vec::new();
+        for (e, g) in self.mesh.elements().iter().enumerate() {
+            for off in [-l, 0.0, l] {
+                let (sa, sb) = (g.sigma_a + off, g.sigma_a + g.h + off);
+                if sb <= w0 || sa >= w1 {
+                    continue;
+                }
+                let el = self.context(e);
+                for &(xi, wt) in rule.points() {
+                    let sigma = el.sigma(xi) + off;
+                    if sigma <= w0 || sigma >= w1 {
+                        continue;
+                    }
+                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    out.push((sigma, wt * el.jacobian() * penalty * (-gap).max(0.0)));
+                }
+            }
+        }
+        out.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // a node shared by two elements appears twice (Simpson): both halves are forces
+        out
+    }
+
+    /// One contact edge of a rod from the discrete contact forces (docs/fem-rod.md §5,
+    /// K10). `first`: index of the outermost loaded point; `inward`: +1 for an entry
+    /// (contact continues in +σ), −1 for an exit. In the window of length 2w around that
+    /// point (A = free end, B = contact end, w = 3 h_b) the forces have resultant F_tot
+    /// and moment M about A; with the distributed pressure p̄ measured over the next
+    /// window [B, B + 2w] and the model "edge force F at distance u from A plus p̄ on
+    /// [u, 2w]": F_tot = F + p̄(2w − u), M = F u + p̄((2w)² − u²)/2, a quadratic in u.
+    /// Returns (σ_b, F).
+    fn rod_edge(&self, forces: &[(f64, f64)], first: usize, inward: f64) -> Option<(f64, f64)> {
+        let s0 = forces[first].0;
+        let (e, _) = self.mesh.locate(s0);
+        let h = self.mesh.elements()[e].h;
+        let w = 3.0 * h;
+        let a = s0 - inward * w;
+        let len = 2.0 * w;
+        let dist = |s: f64| inward * (s - a);
+        let mut f_tot = 0.0;
+        let mut m = 0.0;
+        let mut p_sum = 0.0;
+        for &(s, f) in forces {
+            let d = dist(s);
+            if (0.0..len).contains(&d) {
+                f_tot += f;
+                m += f * d;
+            } else if (len..2.0 * len).contains(&d) {
+                p_sum += f;
+            }
+        }
+        let p_bar = p_sum / len;
+        // (p̄/2) u² + (F_tot − p̄ L) u + p̄ L²/2 − M = 0, root in [0, L]
+        let (qa, qb, qc) = (0.5 * p_bar, f_tot - p_bar * len, 0.5 * p_bar * len * len - m);
+        let u = if qa.abs() < 1e-300 {
+            -qc / qb
+        } else {
+            let disc = qb * qb - 4.0 * qa * qc;
+            if disc < 0.0 {
+                return None;
+            }
+            // the root that is the small perturbation of −qc/qb (stable form)
+            let q = -0.5 * (qb + qb.signum() * disc.sqrt());
+            let (r1, r2) = (q / qa, qc / q);
+            if (0.0..=len).contains(&r2) { r2 } else { r1 }
+        };
+        if !(u.is_finite() && (0.0..=len).contains(&u)) {
+            return None;
+        }
+        let force = f_tot - p_bar * (len - u);
+        Some((a + inward * u, force))
+    }
+
+    /// The contact zone of a rod (docs/fem-rod.md §5): the edges located and their
+    /// concentrated forces measured by [`Self::rod_edge`] from the discrete contact
+    /// forces; the raw outermost loaded points where that fails.
+    pub fn rod_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let forces = self.contact_forces(pulley);
+        let first = forces.iter().position(|f| f.1 > 0.0)?;
+        let last = forces.iter().rposition(|f| f.1 > 0.0)?;
+        let c = self.mesh.contour();
+        let start = self.rod_edge(&forces, first, 1.0);
+        let end = self.rod_edge(&forces, last, -1.0);
+        let sigma_start = start.map_or(forces[first].0, |x| x.0);
+        let sigma_end = end.map_or(forces[last].0, |x| x.0);
+        if sigma_end <= sigma_start {
+            return None;
+        }
+        let angle = |s: f64| c.polar_angle(pulley, self.position(s));
+        Some(ContactZone {
+            sigma_start,
+            sigma_end,
+            angle_start: angle(sigma_start),
+            angle_end: angle(sigma_end),
+            intervals: 1,
+            recovered: start.is_some() && end.is_some(),
+            edge_force_start: start.map(|x| x.1),
+            edge_force_end: end.map(|x| x.1),
+        })
+    }
+
+    /// Bending moment M = EI θ_σ/∂σS (docs/fem-rod.md K3, K4) and transverse force
+    /// V = −∂σM/|∂σr| (K5) in element e at ξ, by a dual number in ξ.
+    fn moment_and_shear(&self, e: usize, xi: f64, ei: f64) -> (f64, f64) {
+        use num_dual::Dual64;
+        let el = self.context(e);
+        let q = &self.local[e];
+        let x = Dual64::from_re(xi).derivative();
+        let (wv, wd, w2) = crate::hermite::weights_generic(x, el.geometry.h);
+        let comb = |w: &[Dual64; 4], o: usize| w[0] * q[o] + w[1] * q[o + 1] + w[2] * q[o + 4] + w[3] * q[o + 5];
+        let p = PointFields { sigma: el.sigma(xi), s: comb(&wv, 0), ds: comb(&wd, 0), nu: comb(&wv, 2), dnu: comb(&wd, 2), d2nu: comb(&w2, 2) };
+        let m = el.curvature(&p) * ei;
+        let speed = el.tangent_length(&p).re;
+        let dm_dsigma = m.eps * 2.0 / el.geometry.h;
+        (m.re, -dm_dsigma / speed)
+    }
+
+    /// M and V at σ: inside an element from its interpolant, at a node the mean of the
+    /// two one-sided values (∂²σν of the Hermite cubics jumps between elements).
+    fn rod_resultants(&self, sigma: f64) -> Option<(f64, f64)> {
+        let ei = self.params.bending_stiffness?;
+        let (e, xi) = self.mesh.locate(sigma);
+        let (m, v) = self.moment_and_shear(e, xi, ei);
+        if xi == -1.0 {
+            let (el, xl) = self.mesh.locate_left(sigma);
+            let (ml, vl) = self.moment_and_shear(el, xl, ei);
+            return Some((0.5 * (m + ml), 0.5 * (v + vl)));
+        }
+        Some((m, v))
     }
 
     fn compute_summary(&mut self) -> Summary {
@@ -452,6 +628,8 @@ impl FemSolution {
             y_lower_mid: Some(self.position(lower)[1]),
             tension_upper_mid: Some(self.axial_force(upper)),
             tension_lower_mid: Some(self.axial_force(lower)),
+            moment_upper_mid: self.bending_moment(upper),
+            moment_lower_mid: self.bending_moment(lower),
             driver: contact.then_some(driver),
             driven: contact.then_some(driven),
             ..Summary::default()
@@ -510,12 +688,14 @@ impl SolutionView for FemSolution {
         self.recovered_axial_force(sigma)
     }
 
-    fn bending_moment(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// M = EI θ_σ/∂σS (docs/fem-rod.md K4) for a rod, `None` for a string.
+    fn bending_moment(&self, sigma: f64) -> Option<f64> {
+        self.rod_resultants(sigma).map(|x| x.0)
     }
 
-    fn transverse_force(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// V = −∂σM/|∂σr| (docs/fem-rod.md K5) for a rod, `None` for a string.
+    fn transverse_force(&self, sigma: f64) -> Option<f64> {
+        self.rod_resultants(sigma).map(|x| x.1)
     }
 
     /// The penalty pressure P⟨−γ⟩ (N per unit contour length) recovered like the axial
