@@ -507,68 +507,109 @@ impl FemSolution {
         out
     }
 
-    /// One contact edge of a rod from the discrete contact forces (docs/fem-rod.md §5,
-    /// K10). `first`: index of the outermost loaded point; `inward`: +1 for an entry
-    /// (contact continues in +σ), −1 for an exit. In the window of length 2w around that
-    /// point (A = free end, B = contact end, w = 3 h_b) the forces have resultant F_tot
-    /// and moment M about A; with the distributed pressure p̄ measured over the next
-    /// window [B, B + 2w] and the model "edge force F at distance u from A plus p̄ on
-    /// [u, 2w]": F_tot = F + p̄(2w − u), M = F u + p̄((2w)² − u²)/2, a quadratic in u.
-    /// Returns (σ_b, F).
-    fn rod_edge(&self, forces: &[(f64, f64)], first: usize, inward: f64) -> Option<(f64, f64)> {
-        let s0 = forces[first].0;
-        let (e, _) = self.mesh.locate(s0);
-        let h = self.mesh.elements()[e].h;
-        let w = 3.0 * h;
-        let a = s0 - inward * w;
-        let len = 2.0 * w;
-        let dist = |s: f64| inward * (s - a);
-        let mut f_tot = 0.0;
-        let mut m = 0.0;
-        let mut p_sum = 0.0;
-        for &(s, f) in forces {
-            let d = dist(s);
-            if (0.0..len).contains(&d) {
-                f_tot += f;
-                m += f * d;
-            } else if (len..2.0 * len).contains(&d) {
-                p_sum += f;
-            }
-        }
-        let p_bar = p_sum / len;
-        // (p̄/2) u² + (F_tot − p̄ L) u + p̄ L²/2 − M = 0, root in [0, L]
-        let (qa, qb, qc) = (0.5 * p_bar, f_tot - p_bar * len, 0.5 * p_bar * len * len - m);
-        let u = if qa.abs() < 1e-300 {
-            -qc / qb
-        } else {
-            let disc = qb * qb - 4.0 * qa * qc;
-            if disc < 0.0 {
-                return None;
-            }
-            // the root that is the small perturbation of −qc/qb (stable form)
-            let q = -0.5 * (qb + qb.signum() * disc.sqrt());
-            let (r1, r2) = (q / qa, qc / q);
-            if (0.0..=len).contains(&r2) { r2 } else { r1 }
+    /// One contact edge of a rod (docs/fem-rod.md §5). `sigma0`: the outermost point of
+    /// the contact rule that carries a penalty force; `inward`: +1 for an entry (contact
+    /// continues in +σ), −1 for an exit.
+    ///
+    /// **Location.** At the edge the moment is continuous and equals the arc's
+    /// −EIλ/R (R3); on the free side f(σ) = M(σ) + EIλ(σ)/R > 0 grows linearly with the
+    /// distance (slope λ P_edge, the shear jump). Scanning from 8 elements on the free
+    /// side towards the pulley, the first σ_ε with f = ε = 0.02 EIλ/R is found by
+    /// bisection, and the edge is extrapolated linearly, σ_b = σ_ε + inward ε/|f′|, with
+    /// f′ from a difference over h/4 on the free side (the remainder is O(Δ²/ℓ_b) with
+    /// Δ = ε/(λ P_edge) far below ℓ_b = √(EI/N)).
+    ///
+    /// **Force.** By statics of the free span (R2), Q′ = ρ g e_y: the section force at
+    /// the edge is Q_b = Q_m + ρ g (s_b − s_m) e_y with Q_m = N t + V n at the middle of
+    /// the free span (where the FE's N and V are accurate and V ≈ 0) and s the material
+    /// coordinate. With n_r the pulley normal at the edge (= the rod's left normal) and
+    /// V_arc of (R3, R4), (R6) gives F = Q_b·n_r − V_arc at an entry and
+    /// F = V_arc − Q_b·n_r at an exit. Returns (σ_b, F).
+    fn rod_edge(&self, pulley: Pulley, sigma0: f64, inward: f64) -> Option<(f64, f64)> {
+        let ei = self.params.bending_stiffness?;
+        let c = *self.mesh.contour();
+        let r = c.radius();
+        let (e0, _) = self.mesh.locate(sigma0);
+        let h = self.mesh.elements()[e0].h;
+        let f = |s: f64| -> f64 {
+            let m = self.rod_resultants(s).map_or(f64::NAN, |x| x.0);
+            m + ei * self.stretch(s) / r
         };
-        if !(u.is_finite() && (0.0..=len).contains(&u)) {
+        let eps = 0.02 * ei / r;
+        let start = sigma0 - inward * 8.0 * h;
+        let step = h / 16.0;
+        let mut prev = start;
+        if f(prev).is_nan() || f(prev) <= eps {
             return None;
         }
-        let force = f_tot - p_bar * (len - u);
-        Some((a + inward * u, force))
+        let mut hit = None;
+        for k in 1..=(12 * 16) {
+            let s = start + inward * step * k as f64;
+            if f(s) <= eps {
+                hit = Some((prev, s));
+                break;
+            }
+            prev = s;
+        }
+        let (mut a, mut b) = hit?;
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if f(m) > eps {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        let s_eps = 0.5 * (a + b);
+        let delta = 0.25 * h;
+        let slope = (f(s_eps - inward * delta) - eps) / delta;
+        if !(slope > 0.0) {
+            return None;
+        }
+        let sigma_b = s_eps + inward * eps / slope;
+        // the free span and its middle (unwrapped next to σ_b)
+        let l = c.length();
+        let (a_arc, b_arc) = c.region_bounds(match pulley {
+            Pulley::Driven => Region::DrivenArc,
+            Pulley::Driver => Region::DriverArc,
+        });
+        let span = c.region(if inward > 0.0 { a_arc - 1e-9 } else { b_arc + 1e-9 });
+        let (sa, sb) = c.region_bounds(span);
+        let mid = 0.5 * (sa + sb);
+        let d = (mid - c.wrap(sigma_b)).rem_euclid(l);
+        let sigma_m = sigma_b + if d > 0.5 * l { d - l } else { d };
+        let (em, xm) = self.mesh.locate(sigma_m);
+        let [_, r1, _] = self.context(em).curve(&self.local[em], xm);
+        let speed = r1[0].hypot(r1[1]);
+        let (t, n) = ([r1[0] / speed, r1[1] / speed], [-r1[1] / speed, r1[0] / speed]);
+        let (nm, vm) = (self.axial_force(sigma_m), self.rod_resultants(sigma_m)?.1);
+        let w = self.params.weight.unwrap_or(0.0);
+        let ds = self.material_coordinate(sigma_b) - self.material_coordinate(sigma_m);
+        let q = [nm * t[0] + vm * n[0], nm * t[1] + vm * n[1] + w * ds];
+        let centre = c.pulley_centre(pulley);
+        let pos = self.position(sigma_b);
+        let phi = (pos[1] - centre[1]).atan2(pos[0] - centre[0]);
+        let nr = [phi.cos(), phi.sin()];
+        let ea = self.params.axial_stiffness;
+        let lambda = self.stretch(sigma_b);
+        let v_arc = -ei * w * phi.cos() / (r * ea * lambda * (1.0 + ei / (ea * r * r)));
+        let v_span = q[0] * nr[0] + q[1] * nr[1];
+        let force = inward * (v_span - v_arc);
+        (force.is_finite() && sigma_b.is_finite()).then_some((sigma_b, force))
     }
 
-    /// The contact zone of a rod (docs/fem-rod.md §5): the edges located and their
-    /// concentrated forces measured by [`Self::rod_edge`] from the discrete contact
-    /// forces; the raw outermost loaded points where that fails.
+    /// The contact zone of a rod (docs/fem-rod.md §5): both edges located and their
+    /// concentrated forces measured by [`Self::rod_edge`]; the raw outermost loaded
+    /// points of the contact rule (and no edge force) where that fails.
     pub fn rod_zone(&self, pulley: Pulley) -> Option<ContactZone> {
         let forces = self.contact_forces(pulley);
-        let first = forces.iter().position(|f| f.1 > 0.0)?;
-        let last = forces.iter().rposition(|f| f.1 > 0.0)?;
+        let first = forces.iter().find(|f| f.1 > 0.0)?.0;
+        let last = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
         let c = self.mesh.contour();
-        let start = self.rod_edge(&forces, first, 1.0);
-        let end = self.rod_edge(&forces, last, -1.0);
-        let sigma_start = start.map_or(forces[first].0, |x| x.0);
-        let sigma_end = end.map_or(forces[last].0, |x| x.0);
+        let start = self.rod_edge(pulley, first, 1.0);
+        let end = self.rod_edge(pulley, last, -1.0);
+        let sigma_start = start.map_or(first, |x| x.0);
+        let sigma_end = end.map_or(last, |x| x.0);
         if sigma_end <= sigma_start {
             return None;
         }

@@ -31,7 +31,7 @@ impl Formulation for RodSimpson {
     }
 
     fn rules(&self) -> TermRules {
-        TermRules { strain: Rule::Simpson, gravity: Rule::Simpson, contact: Rule::Simpson, bending: Rule::Gauss(3) }
+        TermRules { strain: Rule::Simpson, gravity: Rule::Gauss(3), contact: Rule::Gauss(3), bending: Rule::Gauss(3) }
     }
 
     fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {
