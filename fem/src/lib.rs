@@ -11,7 +11,9 @@
 //! from tight to slack configurations (§7.1). Solutions implement
 //! [`drive::view::SolutionView`], so the verification harness compares them with the BVP
 //! references without either crate seeing the other (`fem` never depends on `bvp`).
-//! The equations, signs and measured numbers are in `docs/fem-string.md`.
+//! The equations, signs and measured numbers are in `docs/fem-string.md` (string) and
+//! `docs/fem-rod.md` (Kirchhoff rod: bending energy, C¹ augmented approximations at the
+//! Cartesian/polar transitions, contact edges and edge forces).
 //!
 //! # Layers (in algorithm order)
 //! - [`mesh`]: nodes at fixed σ, element boundaries on the four region transitions, and
@@ -23,8 +25,9 @@
 //! - [`dofs`], [`assembly`], [`linear`], [`newton`]: numbering with loop closure and the
 //!   material gauge s(0) = 0, parallel assembly, sparse LU, Newton with line search and
 //!   Levenberg–Marquardt regularisation;
-//! - [`string_hanging`]: the static string on frictionless pulleys — tight start (F11),
-//!   homotopy with step control, penalty continuation, contact fitting;
+//! - [`string_hanging`]: the static string (or Kirchhoff rod, with EI) on frictionless
+//!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
+//!   contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
 //!   and contact pressure, contact boundaries recovered from the free spans, summary.
 //!
