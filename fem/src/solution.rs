@@ -563,7 +563,7 @@ impl FemSolution {
         let s_eps = 0.5 * (a + b);
         let delta = 0.25 * h;
         let slope = (f(s_eps - inward * delta) - eps) / delta;
-        if !(slope > 0.0) {
+        if slope.is_nan() || slope <= 0.0 {
             return None;
         }
         let sigma_b = s_eps + inward * eps / slope;

@@ -11,7 +11,6 @@ mod common;
 
 use common::{run, scene};
 use drive::contour::Region;
-use drive::view::SolutionView;
 
 /// Both rod formulations at 128 elements: every quantity a rod scene produces is present
 /// and finite, the four edge forces push (> 0), left–right mirror symmetry of the edge
