@@ -8,8 +8,8 @@ use crate::quadrature::Rule;
 /// Kirchhoff rod: membrane ½EA(λ − 1)² (Biot), bending ½EI κ², gravity and penalty
 /// contact all by 3-point Gauss — the formulation §7.3 warns about (membrane locking
 /// where elements are bent to or straightened from the pulley's curvature), kept beside
-/// `rod-simpson` to show it. Derivatives by AD over the whole element energy, which
-/// includes the augmented map (K9).
+/// `rod-simpson` to show it. Derivatives by the per-point AD path with the chain rule
+/// through the augmented map (K9).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct RodGauss;
 
@@ -36,9 +36,5 @@ impl Formulation for RodGauss {
 
     fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {
         biot_density(stretch, axial_stiffness)
-    }
-
-    fn pointwise(&self) -> bool {
-        false
     }
 }
