@@ -125,9 +125,9 @@ fn string_hanging_converges_to_the_bvp() {
 /// ≈ 0.3 below the lowest measured value: the sequence is pre-asymptotic at 64); (b) the
 /// error at 256 elements below an absolute bound ≈ 3× the larger measured value of the
 /// two formulations; (c) left–right symmetry of the mirror-image edge forces to 1e-4
-/// relative (the base mesh is symmetric, but each contact-fitting pass moves the four
-/// edge nodes independently and the fitting stops at its noise level, measured 1.3e-5;
-/// 1e-4 is still 50× below the discretisation error of the edge forces, 5e-3).
+/// relative (mesh and equations are mirror-symmetric, but the edge recovery scans in
+/// the direction of σ on a grid that is not, measured 1.3e-5; 1e-4 is still 50× below
+/// the discretisation error of the edge forces, 5e-3).
 #[test]
 fn rod_hanging_converges_to_the_bvp() {
     let scene = scene("rod-hanging");

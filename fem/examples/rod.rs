@@ -14,6 +14,8 @@ fn main() {
         match fem::solve_scene(&scene, &opts) {
             Ok(run) => {
                 println!("{formulation} N = {n}: {} Newton iterations, {:.3} s", run.stats.newton_iterations, run.stats.wall_seconds);
+                let h = &run.options["homotopy"];
+                println!("  fitting: {} passes, converged {}, last move {} m", h["fits"], h["fit_converged"], h["fit_last_move"]);
                 for (k, v) in run.summary.scalars() {
                     println!("  {k:<28} {v:+.12e}");
                 }

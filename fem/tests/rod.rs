@@ -14,8 +14,8 @@ use drive::contour::Region;
 
 /// Both rod formulations at 128 elements: every quantity a rod scene produces is present
 /// and finite, the four edge forces push (> 0), left–right mirror symmetry of the edge
-/// forces and contact angles (1e-4 relative / 1e-4 rad: the contact fitting moves the
-/// four edge nodes independently and stops at its noise level), the terms assembled
+/// forces and contact angles (1e-4 relative / 1e-4 rad: the edge recovery scans in the
+/// direction of σ on a grid that is not mirror-symmetric; measured ≈ 1e-5), the terms assembled
 /// include the bending energy, and the Newton work stays bounded (measured 155–175
 /// iterations; limit 2× the larger).
 #[test]
