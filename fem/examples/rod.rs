@@ -16,6 +16,15 @@ fn main() {
                 println!("{formulation} N = {n}: {} Newton iterations, {:.3} s", run.stats.newton_iterations, run.stats.wall_seconds);
                 let h = &run.options["homotopy"];
                 println!("  fitting: {} passes, converged {}, last move {} m", h["fits"], h["fit_converged"], h["fit_last_move"]);
+                if let Some(sol) = fem_solution(&scene, &opts) {
+                    for pulley in [drive::contour::Pulley::Driven, drive::contour::Pulley::Driver] {
+                        if let Some(z) = sol.zone(pulley) {
+                            let a = sol.window_edge_force(z.sigma_start, 1.0);
+                            let b = sol.window_edge_force(z.sigma_end, -1.0);
+                            println!("  {pulley:?} penalty-window edge forces {a:?} {b:?}");
+                        }
+                    }
+                }
                 for (k, v) in run.summary.scalars() {
                     println!("  {k:<28} {v:+.12e}");
                 }
@@ -23,4 +32,13 @@ fn main() {
             Err(e) => println!("{formulation} N = {n}: {e}"),
         }
     }
+}
+
+/// The FE solution itself (for the diagnostics only the crate's types carry).
+fn fem_solution(scene: &drive::Scene, opts: &fem::FemOptions) -> Option<fem::FemSolution> {
+    let settings = fem::SolverSettings::default();
+    let data = fem::string_hanging_data(scene, opts, &settings).ok()?;
+    let kernel = fem::formulation::find(&opts.formulation)?;
+    let mesh = fem::mesh::Mesh::new(data.contour().ok()?, opts.elements, settings.arc_weight).ok()?;
+    data.solve(mesh, kernel, &settings).ok().map(|x| x.0)
 }

@@ -626,6 +626,57 @@ impl FemSolution {
         })
     }
 
+    /// The penalty-window measure of an edge force (docs/fem-rod.md §5, K11): at the
+    /// mesh node nearest to the edge σ_b (a node after contact fitting), the contact
+    /// forces the penalty term applies (contact rule's points, w·(h/2)·P⟨−γ⟩) summed over
+    /// the 3 elements on each side of that node, minus the distributed part on the
+    /// contact side, ∫ p over those 3 elements, with p extrapolated linearly from the
+    /// mean pressures of the next two groups of 3 elements. `inward` = +1 at an entry,
+    /// −1 at an exit. `None` without a penalty.
+    pub fn window_edge_force(&self, sigma_b: f64, inward: f64) -> Option<f64> {
+        let penalty = self.params.penalty?;
+        let n = self.mesh.len();
+        let nodes = self.mesh.node_sigmas();
+        let c = self.mesh.contour();
+        let w = c.wrap(sigma_b);
+        let k = (0..n)
+            .min_by(|&a, &b| {
+                let da = (nodes[a] - w).abs().min(c.length() - (nodes[a] - w).abs());
+                let db = (nodes[b] - w).abs().min(c.length() - (nodes[b] - w).abs());
+                da.total_cmp(&db)
+            })?;
+        let rule = self.kernel.rules().contact;
+        let element_force = |e: usize| -> (f64, f64) {
+            let el = self.context(e);
+            let f: f64 = rule
+                .points()
+                .iter()
+                .map(|&(xi, wt)| {
+                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    wt * el.jacobian() * penalty * (-gap).max(0.0)
+                })
+                .sum();
+            (f, el.geometry.h)
+        };
+        // element j steps from the node: contact side j = 0, 1, …; free side j = −1, −2, −3
+        let elem = |j: i64| -> usize {
+            let idx = if inward > 0.0 { k as i64 + j } else { k as i64 - 1 - j };
+            idx.rem_euclid(n as i64) as usize
+        };
+        let group = |from: i64| -> (f64, f64) {
+            (from..from + 3).map(|j| element_force(elem(j))).fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+        };
+        let (free, _) = group(-3);
+        let (fa, la) = group(0);
+        let (fb, lb) = group(3);
+        let (fc, lc) = group(6);
+        let (pb, pc) = (fb / lb, fc / lc);
+        let (ca, cb, cc) = (0.5 * la, la + 0.5 * lb, la + lb + 0.5 * lc);
+        let pa = pb + (pc - pb) * (ca - cb) / (cc - cb);
+        let edge = free + fa - la * pa;
+        edge.is_finite().then_some(edge)
+    }
+
     /// Bending moment M = EI θ_σ/∂σS (docs/fem-rod.md K3, K4) and transverse force
     /// V = −∂σM/|∂σr| (K5) in element e at ξ, by a dual number in ξ.
     fn moment_and_shear(&self, e: usize, xi: f64, ei: f64) -> (f64, f64) {
