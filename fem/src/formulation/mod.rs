@@ -280,6 +280,7 @@ fn plain(el: &ElementContext) -> bool {
 /// f = 1 + α q_{o+2}, so J_m differs from the identity in the rows o+1, o+3 and each
 /// ∇²mᵢ has the two entries α at (o+1|o+3, o+2). Equal to AD over the whole element
 /// (tested), about an order of magnitude cheaper.
+#[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
 fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
     let qe = el.effective(q);
     let jac = el.jacobian();
