@@ -24,6 +24,8 @@ pub struct Assembler {
     rows: Vec<usize>,
     cols: Vec<usize>,
     diagonal: Vec<usize>,
+    /// Per element: augmented map at start / end node (docs/fem-rod.md §3).
+    augmented: Vec<[bool; 2]>,
 }
 
 /// Energy, gradient and Hessian values (in the order of [`Assembler::pattern`]).
@@ -40,7 +42,10 @@ pub struct Assembled {
 impl Assembler {
     /// The problem on `mesh` with formulation `kernel`.
     pub fn new(mesh: Mesh, kernel: Arc<dyn Kernel>) -> Assembler {
-        let dofs = DofMap::new(&mesh);
+        // a rod shares one (Cartesian) slope pair at each transition (docs/fem-rod.md §3)
+        let separate = kernel.theory() == drive::scene::Theory::String;
+        let dofs = DofMap::with_transition_slopes(&mesh, separate);
+        let augmented = crate::dofs::augmented_flags(&mesh, separate);
         let mut rows = Vec::with_capacity(mesh.len() * NDOF * NDOF);
         let mut cols = Vec::with_capacity(mesh.len() * NDOF * NDOF);
         for e in 0..mesh.len() {
@@ -58,7 +63,7 @@ impl Assembler {
                 diagonal[r] = k;
             }
         }
-        Assembler { mesh, dofs, kernel, rows, cols, diagonal }
+        Assembler { mesh, dofs, kernel, rows, cols, diagonal, augmented }
     }
 
     /// The mesh.
@@ -98,7 +103,12 @@ impl Assembler {
 
     /// The context of element e with the term parameters `params`.
     pub fn context(&self, e: usize, params: &TermParams) -> ElementContext {
-        ElementContext { geometry: self.mesh.elements()[e], contour: *self.contour(), params: *params }
+        ElementContext {
+            geometry: self.mesh.elements()[e],
+            contour: *self.contour(),
+            params: *params,
+            augmented: self.augmented[e],
+        }
     }
 
     fn contour(&self) -> &Contour {
@@ -114,7 +124,7 @@ impl Assembler {
         let rule = self.kernel.rules().strain;
         (0..self.mesh.len()).into_par_iter().all(|e| {
             let el = self.context(e, params);
-            let q = self.dofs.gather(e, z, length);
+            let q = el.effective(&self.dofs.gather(e, z, length));
             ADMISSIBILITY_POINTS
                 .iter()
                 .chain(rule.points().iter().map(|p| &p.0))

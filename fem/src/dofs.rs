@@ -45,8 +45,16 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// The numbering of a mesh.
+    /// The numbering of a mesh with separate slope pairs at the transitions (the string).
     pub fn new(mesh: &Mesh) -> DofMap {
+        DofMap::with_transition_slopes(mesh, true)
+    }
+
+    /// The numbering of a mesh; `separate` = two slope pairs at each transition (the
+    /// string, docs/fem-string.md §5), else one shared pair: the primary slopes of the
+    /// Cartesian side, from which the polar side's follow by the augmented map (K9) of
+    /// docs/fem-rod.md §3 (the rod; 4N − 1 unknowns).
+    pub fn with_transition_slopes(mesh: &Mesh, separate: bool) -> DofMap {
         let n = mesh.len();
         let mut nodes = Vec::with_capacity(n);
         let mut kinds = Vec::with_capacity(4 * n + 8);
@@ -66,7 +74,7 @@ impl DofMap {
                 push(DofKind::Slope, h, &mut kinds, &mut spacing),
                 push(DofKind::Slope, h, &mut kinds, &mut spacing),
             );
-            let slopes_out = if mesh.is_transition(k) {
+            let slopes_out = if separate && mesh.is_transition(k) {
                 (
                     push(DofKind::Slope, h, &mut kinds, &mut spacing),
                     push(DofKind::Slope, h, &mut kinds, &mut spacing),
@@ -95,7 +103,7 @@ impl DofMap {
         DofMap { nodes, kinds, spacing, elements }
     }
 
-    /// Number of global unknowns (4N + 7).
+    /// Number of global unknowns (4N + 7 with separate transition slopes, else 4N − 1).
     pub fn len(&self) -> usize {
         self.kinds.len()
     }
@@ -136,6 +144,21 @@ impl DofMap {
         }
         q
     }
+}
+
+/// Per element, whether the augmented map (docs/fem-rod.md §3, K9) applies at its start
+/// and end node: only with shared transition slopes (`separate = false`), on a polar
+/// element, at a node that is a region transition.
+pub fn augmented_flags(mesh: &Mesh, separate: bool) -> Vec<[bool; 2]> {
+    let n = mesh.len();
+    mesh.elements()
+        .iter()
+        .enumerate()
+        .map(|(e, g)| {
+            let on = !separate && g.region.is_polar();
+            [on && mesh.is_transition(e), on && mesh.is_transition((e + 1) % n)]
+        })
+        .collect()
 }
 
 #[cfg(test)]

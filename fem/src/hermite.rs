@@ -60,6 +60,25 @@ pub fn second_weights(xi: f64, h: f64) -> [f64; 4] {
     [a * d[0], b * d[1], a * d[2], b * d[3]]
 }
 
+/// Weights of (u, ∂σu, ∂²σu) at a generic ξ (a dual number in post-processing, to
+/// differentiate a field along the element exactly): the same polynomials as
+/// [`weights`] and [`second_weights`].
+pub fn weights_generic<D: crate::kinematics::Scalar>(xi: D, h: f64) -> ([D; 4], [D; 4], [D; 4]) {
+    let m = xi - 1.0;
+    let p = xi + 1.0;
+    let half = 0.5 * h;
+    let inv = 2.0 / h;
+    let inv2 = 4.0 / (h * h);
+    let psi = [m * m * (xi + 2.0) * 0.25, m * m * p * 0.25, p * p * (-xi + 2.0) * 0.25, p * p * m * 0.25];
+    let dpsi = [(xi * xi - 1.0) * 0.75, m * (xi * 3.0 + 1.0) * 0.25, (xi * xi - 1.0) * -0.75, p * (xi * 3.0 - 1.0) * 0.25];
+    let d2 = [xi * 1.5, xi * 1.5 - 0.5, xi * -1.5, xi * 1.5 + 0.5];
+    (
+        [psi[0], psi[1] * half, psi[2], psi[3] * half],
+        [dpsi[0] * inv, dpsi[1], dpsi[2] * inv, dpsi[3]],
+        [d2[0] * inv2, d2[1] * inv, d2[2] * inv2, d2[3] * inv],
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -28,6 +28,8 @@ pub struct TermParams {
     pub weight: Option<f64>,
     /// Penalty factor P, N/m², if the contact term is assembled.
     pub penalty: Option<f64>,
+    /// EI, N·m², if the bending energy is assembled (Kirchhoff rod, docs/fem-rod.md K7).
+    pub bending_stiffness: Option<f64>,
 }
 
 /// Everything an element's energy depends on apart from its unknowns.
@@ -39,6 +41,11 @@ pub struct ElementContext {
     pub contour: Contour,
     /// The active terms and their parameters.
     pub params: TermParams,
+    /// Augmented approximation (docs/fem-rod.md §3, K9) at the start / end node: the
+    /// element is polar, the node is a transition and its slope pair is the Cartesian
+    /// side's primary pair, so the element's slopes there are (1 + ν/R) times the
+    /// gathered ones. Always false for the string (separate slopes).
+    pub augmented: [bool; 2],
 }
 
 /// S, ∂σS, ν, ∂σν at one point of an element.
@@ -54,6 +61,8 @@ pub struct PointFields<D> {
     pub nu: D,
     /// ∂σν.
     pub dnu: D,
+    /// ∂²σν (bending, docs/fem-rod.md K2).
+    pub d2nu: D,
 }
 
 impl ElementContext {
@@ -84,13 +93,51 @@ impl ElementContext {
         let comb = |w: &[f64; 4], o: usize| -> D {
             q[o] * w[0] + q[o + 1] * w[1] + q[o + 4] * w[2] + q[o + 5] * w[3]
         };
+        let w2 = hermite::second_weights(xi, self.geometry.h);
         PointFields {
             sigma: self.sigma(xi),
             s: comb(&wv, 0),
             ds: comb(&wd, 0),
             nu: comb(&wv, 2),
             dnu: comb(&wd, 2),
+            d2nu: comb(&w2, 2),
         }
+    }
+
+    /// The effective local unknowns q̃ = m(q) of the augmented approximation
+    /// (docs/fem-rod.md §3, K9): at a flagged node the slopes (∂σs, ∂σν) are multiplied
+    /// by f = 1 + ν/R with ν that node's deflection; elsewhere q̃ = q. Generic, so that
+    /// AD through the element energy differentiates the map exactly.
+    #[inline]
+    pub fn effective<D: Scalar>(&self, q: &[D; NDOF]) -> [D; NDOF] {
+        let mut out = *q;
+        let a = self.alpha();
+        for (flag, o) in self.augmented.iter().zip([0usize, 4]) {
+            if *flag {
+                let f = q[o + 2] * a + 1.0;
+                out[o + 1] = q[o + 1] * f;
+                out[o + 3] = q[o + 3] * f;
+            }
+        }
+        out
+    }
+
+    /// Rate of the tangent angle per contour length θ_σ = (r′ × r″)/|r′|²
+    /// (docs/fem-rod.md K3), 1/m.
+    #[inline]
+    pub fn angle_rate<D: Scalar>(&self, p: &PointFields<D>) -> D {
+        let al = self.alpha();
+        let a = p.nu * al + 1.0;
+        let b = p.dnu;
+        let c = p.dnu * (2.0 * al);
+        let d = p.d2nu - a * al;
+        (a * d - b * c) / (a * a + b * b)
+    }
+
+    /// Kirchhoff curvature κ = θ_σ/∂σS per unstretched length (K4), 1/m.
+    #[inline]
+    pub fn curvature<D: Scalar>(&self, p: &PointFields<D>) -> D {
+        self.angle_rate(p) / p.ds
     }
 
     /// ∂²σν at ξ (post-processing: curvature of the belt).
@@ -188,7 +235,8 @@ mod tests {
         let ctx = |region: Region, sa: f64, h: f64| ElementContext {
             geometry: ElementGeometry { sigma_a: sa, h, region },
             contour,
-            params: TermParams { axial_stiffness: 1.0, weight: None, penalty: None },
+            params: TermParams { axial_stiffness: 1.0, weight: None, penalty: None, bending_stiffness: None },
+            augmented: [false; 2],
         };
         // driven arc element, constant ν = 0.01
         let e = ctx(Region::DrivenArc, 0.45, 0.02);
@@ -212,5 +260,70 @@ mod tests {
         let e = ctx(Region::UpperSpan, 0.2, 0.03);
         let p = e.fields(&q, 0.0);
         assert!(e.gap(&p).is_none());
+    }
+
+    /// docs/fem-rod.md §3 (K8, K9): with one shared slope pair per transition and the
+    /// augmented map on the polar side, position r, the material derivative dr/ds =
+    /// ∂σr/∂σS (stretch and direction) and the unit tangent are continuous across each of
+    /// the four Cartesian/polar transitions for random nodal values, to round-off
+    /// (1e-13 relative: a handful of operations on O(1) numbers). Without the map (the
+    /// string's separate slopes filled with independent random values) they are not —
+    /// the check can fail.
+    #[test]
+    fn augmented_transitions_are_c1_in_physical_space() {
+        use crate::dofs::{augmented_flags, DofMap};
+        use crate::mesh::Mesh;
+        let contour = Contour::new(0.08, 0.45).unwrap();
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rand = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let params = TermParams { axial_stiffness: 1.0, weight: None, penalty: None, bending_stiffness: Some(1.0) };
+        let close = |a: [f64; 2], b: [f64; 2], tol: f64| (a[0] - b[0]).hypot(a[1] - b[1]) <= tol;
+        for (n, separate) in [(8, false), (20, false), (64, false), (20, true)] {
+            let mesh = Mesh::new(contour, n, 1.0).unwrap();
+            let map = DofMap::with_transition_slopes(&mesh, separate);
+            let flags = augmented_flags(&mesh, separate);
+            let mut broken = 0;
+            for _trial in 0..25 {
+                // random nodal values: s increasing-ish, ν of either sign up to R/4, slopes O(1)
+                let z: Vec<f64> = (0..map.len()).map(|_| rand()).collect();
+                let z: Vec<f64> = z
+                    .iter()
+                    .zip(map.kinds())
+                    .map(|(v, k)| match k {
+                        crate::dofs::DofKind::Value => 0.04 * v,
+                        crate::dofs::DofKind::Slope => 1.0 + 0.8 * v,
+                    })
+                    .collect();
+                for &k in &mesh.transition_nodes() {
+                    let left = (k + n - 1) % n;
+                    let ctx = |e: usize| ElementContext { geometry: mesh.elements()[e], contour, params, augmented: flags[e] };
+                    let (cl, cr) = (ctx(left), ctx(k));
+                    let ql = cl.effective(&map.gather(left, &z, 1.3));
+                    let qr = cr.effective(&map.gather(k, &z, 1.3));
+                    let [rl, dl, _] = cl.curve(&ql, 1.0);
+                    let [rr, dr, _] = cr.curve(&qr, -1.0);
+                    let (sl, sr) = (cl.fields(&ql, 1.0).ds, cr.fields(&qr, -1.0).ds);
+                    let dsl = [dl[0] / sl, dl[1] / sl];
+                    let dsr = [dr[0] / sr, dr[1] / sr];
+                    let (tl, tr) = (dl[0].hypot(dl[1]), dr[0].hypot(dr[1]));
+                    assert!(close(rl, rr, 1e-14), "position jumps at node {k}: {rl:?} vs {rr:?}");
+                    let ok = close(dsl, dsr, 1e-13 * dsl[0].hypot(dsl[1]))
+                        && close([dl[0] / tl, dl[1] / tl], [dr[0] / tr, dr[1] / tr], 1e-13);
+                    if separate {
+                        broken += usize::from(!ok);
+                    } else {
+                        assert!(ok, "n = {n}, node {k}: dr/ds {dsl:?} vs {dsr:?}");
+                    }
+                }
+            }
+            if separate {
+                assert_eq!(broken, 100, "independent slopes should break C¹ at every transition");
+            }
+        }
     }
 }

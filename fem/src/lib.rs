@@ -11,7 +11,9 @@
 //! from tight to slack configurations (§7.1). Solutions implement
 //! [`drive::view::SolutionView`], so the verification harness compares them with the BVP
 //! references without either crate seeing the other (`fem` never depends on `bvp`).
-//! The equations, signs and measured numbers are in `docs/fem-string.md`.
+//! The equations, signs and measured numbers are in `docs/fem-string.md` (string) and
+//! `docs/fem-rod.md` (Kirchhoff rod: bending energy, C¹ augmented approximations at the
+//! Cartesian/polar transitions, contact edges and edge forces).
 //!
 //! # Layers (in algorithm order)
 //! - [`mesh`]: nodes at fixed σ, element boundaries on the four region transitions, and
@@ -23,8 +25,9 @@
 //! - [`dofs`], [`assembly`], [`linear`], [`newton`]: numbering with loop closure and the
 //!   material gauge s(0) = 0, parallel assembly, sparse LU, Newton with line search and
 //!   Levenberg–Marquardt regularisation;
-//! - [`string_hanging`]: the static string on frictionless pulleys — tight start (F11),
-//!   homotopy with step control, penalty continuation, contact fitting;
+//! - [`string_hanging`]: the static string (or Kirchhoff rod, with EI) on frictionless
+//!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
+//!   contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
@@ -125,6 +128,12 @@ pub fn available_formulations() -> Vec<&'static str> {
     formulation::registry().iter().map(|k| k.name()).collect()
 }
 
+/// Names of the registered formulations that discretise `theory` (registry order):
+/// `string-*` for strings, `rod-*` for Kirchhoff rods (docs/fem-rod.md §4).
+pub fn formulations_for(theory: Theory) -> Vec<&'static str> {
+    formulation::registry().iter().filter(|k| k.theory() == theory).map(|k| k.name()).collect()
+}
+
 /// The default formulation (`string-simpson`: the Simpson rule samples the strain where
 /// the Hermite element reproduces it best, §7.3 — its axial-force field is free of the
 /// membrane locking that `string-gauss` shows where the belt wraps a pulley inside a
@@ -147,7 +156,7 @@ pub fn solve_scene(scene: &Scene, opts: &FemOptions) -> Result<FemRun, FemError>
 /// # Errors
 /// [`FemError::Unsupported`] for any other kind of scene.
 pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSettings) -> Result<StringHanging, FemError> {
-    let supported = matches!(scene.belt.theory, Theory::String)
+    let supported = matches!(scene.belt.theory, Theory::String | Theory::Kirchhoff)
         && matches!(scene.analysis, Analysis::Static)
         && matches!(scene.effects.contact, Contact::Frictionless)
         && scene.drive.driver_speed == 0.0
@@ -155,7 +164,7 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
         && scene.effects.inertia != Some(true);
     if !supported {
         return Err(FemError::Unsupported(format!(
-            "theory {}, analysis {}, contact {:?}: only the static string on frictionless pulleys (string-hanging) has an MEL model so far",
+            "theory {}, analysis {}, contact {:?}: only the static string and Kirchhoff rod on frictionless pulleys (string-hanging, rod-hanging) have an MEL model so far",
             scene.belt.theory, scene.analysis, scene.effects.contact
         )));
     }
@@ -169,6 +178,10 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
         mass_per_length: b.mass_per_length,
         gravity: scene.effects.gravity,
         penalty: Some(opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r))),
+        bending_stiffness: match scene.belt.theory {
+            Theory::Kirchhoff => b.bending_stiffness,
+            _ => None,
+        },
     })
 }
 
@@ -201,6 +214,16 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
         name: opts.formulation.clone(),
         available: available_formulations().iter().map(|s| s.to_string()).collect(),
     })?;
+    // a formulation discretises one theory: string elements cannot carry EI, rod
+    // elements need it (docs/fem-rod.md §4); the harness prints "not applicable"
+    if kernel.theory() != scene.belt.theory {
+        return Err(FemError::Unsupported(format!(
+            "formulation `{}` discretises theory `{}`, the scene's belt is theory `{}`",
+            kernel.name(),
+            kernel.theory(),
+            scene.belt.theory
+        )));
+    }
     let contour = data.contour()?;
     let mesh = mesh::Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (solution, report, unknowns) = data.solve(mesh, kernel.clone(), settings)?;
@@ -240,7 +263,7 @@ mod tests {
     #[test]
     fn registry_lists_the_shipped_formulations() {
         let names = super::available_formulations();
-        assert_eq!(names, vec!["string-simpson", "string-gauss"]);
+        assert_eq!(names, vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss"]);
         assert_eq!(names[0], super::default_formulation());
     }
 }

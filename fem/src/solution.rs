@@ -45,8 +45,13 @@ pub struct ContactZone {
     /// Separate intervals of γ < 0 found in the window (1 for a clean solution).
     pub intervals: usize,
     /// True if both boundaries were recovered by the tangency construction (§10); false
-    /// if a boundary is the raw zero crossing of the gap.
+    /// if a boundary is the raw zero crossing of the gap. For a rod: true if both edges
+    /// were located by the force resultant and moment of the window (docs/fem-rod.md §5).
     pub recovered: bool,
+    /// Rod only: the edge force at the entry (K10), N.
+    pub edge_force_start: Option<f64>,
+    /// Rod only: the edge force at the exit (K10), N.
+    pub edge_force_end: Option<f64>,
 }
 
 /// 8-point Gauss–Legendre rule on [−1, 1].
@@ -64,10 +69,23 @@ const GL8: [(f64, f64); 8] = [
 impl FemSolution {
     /// The solution for global unknowns `z` of `dofs` on `mesh` with belt length `length`.
     pub fn new(mesh: Mesh, dofs: &DofMap, z: &[f64], params: TermParams, length: f64, kernel: Arc<dyn Kernel>) -> Self {
-        let local = (0..mesh.len()).map(|e| dofs.gather(e, z, length)).collect();
+        // effective local unknowns: the augmented map (docs/fem-rod.md K9) applied once,
+        // so that every evaluation below sees the slopes each element actually uses
+        let separate = kernel.theory() == drive::scene::Theory::String;
+        let flags = crate::dofs::augmented_flags(&mesh, separate);
+        let local = (0..mesh.len())
+            .map(|e| {
+                let el = ElementContext { geometry: mesh.elements()[e], contour: *mesh.contour(), params, augmented: flags[e] };
+                el.effective(&dofs.gather(e, z, length))
+            })
+            .collect();
         let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2] };
         if sol.params.penalty.is_some() {
-            sol.zones = [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)];
+            sol.zones = if sol.params.bending_stiffness.is_some() {
+                [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
+            } else {
+                [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)]
+            };
         }
         sol.summary = sol.compute_summary();
         sol
@@ -99,7 +117,8 @@ impl FemSolution {
     }
 
     fn context(&self, e: usize) -> ElementContext {
-        ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params }
+        // the stored local unknowns are already effective (augmented map applied)
+        ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params, augmented: [false; 2] }
     }
 
     /// Element, its context and the fields at σ.
@@ -256,6 +275,8 @@ impl FemSolution {
             angle_end: c.polar_angle(pulley, self.position(sigma_end)),
             intervals: entries.len().max(1),
             recovered: false,
+            edge_force_start: None,
+            edge_force_end: None,
         })
     }
 
@@ -428,15 +449,262 @@ impl FemSolution {
     }
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
+        let rod = self.params.bending_stiffness.is_some();
         match self.zone(pulley) {
-            None => PulleySummary { contact_arc: Some(0.0), ..Default::default() },
+            None => PulleySummary {
+                contact_arc: Some(0.0),
+                edge_force_start: rod.then_some(0.0),
+                edge_force_end: rod.then_some(0.0),
+                ..Default::default()
+            },
             Some(z) => PulleySummary {
                 contact_arc: Some((z.angle_start - z.angle_end).rem_euclid(2.0 * PI)),
                 contact_start: Some(z.angle_start),
                 contact_end: Some(z.angle_end),
+                edge_force_start: z.edge_force_start,
+                edge_force_end: z.edge_force_end,
                 ..Default::default()
             },
         }
+    }
+
+    /// The discrete contact forces of a pulley: for every point of the contact rule in
+    /// the σ-window where the gap to that pulley is defined (its arc ± R), the unwrapped
+    /// σ and the force w·(h/2)·P⟨−γ⟩ the energy applies there (N), in σ order — the
+    /// point forces the penalty term actually exerts, so their sums are consistent with
+    /// the discrete equilibrium.
+    pub fn contact_forces(&self, pulley: Pulley) -> Vec<(f64, f64)> {
+        let Some(penalty) = self.params.penalty else { return Vec::new() };
+        let c = self.mesh.contour();
+        let arc = match pulley {
+            Pulley::Driven => Region::DrivenArc,
+            Pulley::Driver => Region::DriverArc,
+        };
+        let (a, b) = c.region_bounds(arc);
+        let (w0, w1) = (a - c.radius(), b + c.radius());
+        let l = c.length();
+        let rule = self.kernel.rules().contact;
+        let mut out = Vec::new();
+        for (e, g) in self.mesh.elements().iter().enumerate() {
+            for off in [-l, 0.0, l] {
+                let (sa, sb) = (g.sigma_a + off, g.sigma_a + g.h + off);
+                if sb <= w0 || sa >= w1 {
+                    continue;
+                }
+                let el = self.context(e);
+                for &(xi, wt) in rule.points() {
+                    let sigma = el.sigma(xi) + off;
+                    if sigma <= w0 || sigma >= w1 {
+                        continue;
+                    }
+                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    out.push((sigma, wt * el.jacobian() * penalty * (-gap).max(0.0)));
+                }
+            }
+        }
+        out.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // a node shared by two elements appears twice (Simpson): both halves are forces
+        out
+    }
+
+    /// One contact edge of a rod (docs/fem-rod.md §5). `sigma0`: the outermost point of
+    /// the contact rule that carries a penalty force; `inward`: +1 for an entry (contact
+    /// continues in +σ), −1 for an exit.
+    ///
+    /// **Location.** At the edge the moment is continuous and equals the arc's
+    /// −EIλ/R (R3); on the free side f(σ) = M(σ) + EIλ(σ)/R > 0 grows linearly with the
+    /// distance (slope λ P_edge, the shear jump). Scanning from 8 elements on the free
+    /// side towards the pulley, the first σ_ε with f = ε = 0.02 EIλ/R is found by
+    /// bisection, and the edge is extrapolated linearly, σ_b = σ_ε + inward ε/|f′|, with
+    /// f′ from a difference over h/4 on the free side (the remainder is O(Δ²/ℓ_b) with
+    /// Δ = ε/(λ P_edge) far below ℓ_b = √(EI/N)).
+    ///
+    /// **Force.** By statics of the free span (R2), Q′ = ρ g e_y: the section force at
+    /// the edge is Q_b = Q_m + ρ g (s_b − s_m) e_y with Q_m = N t + V n at the middle of
+    /// the free span (where the FE's N and V are accurate and V ≈ 0) and s the material
+    /// coordinate. With n_r the pulley normal at the edge (= the rod's left normal) and
+    /// V_arc of (R3, R4), (R6) gives F = Q_b·n_r − V_arc at an entry and
+    /// F = V_arc − Q_b·n_r at an exit. Returns (σ_b, F).
+    fn rod_edge(&self, pulley: Pulley, sigma0: f64, inward: f64) -> Option<(f64, f64)> {
+        let ei = self.params.bending_stiffness?;
+        let c = *self.mesh.contour();
+        let r = c.radius();
+        let (e0, _) = self.mesh.locate(sigma0);
+        let h = self.mesh.elements()[e0].h;
+        let f = |s: f64| -> f64 {
+            let m = self.rod_resultants(s).map_or(f64::NAN, |x| x.0);
+            m + ei * self.stretch(s) / r
+        };
+        let eps = 0.02 * ei / r;
+        let start = sigma0 - inward * 8.0 * h;
+        let step = h / 16.0;
+        let mut prev = start;
+        if f(prev).is_nan() || f(prev) <= eps {
+            return None;
+        }
+        let mut hit = None;
+        for k in 1..=(12 * 16) {
+            let s = start + inward * step * k as f64;
+            if f(s) <= eps {
+                hit = Some((prev, s));
+                break;
+            }
+            prev = s;
+        }
+        let (mut a, mut b) = hit?;
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if f(m) > eps {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        let s_eps = 0.5 * (a + b);
+        let delta = 0.25 * h;
+        let slope = (f(s_eps - inward * delta) - eps) / delta;
+        if slope.is_nan() || slope <= 0.0 {
+            return None;
+        }
+        let sigma_b = s_eps + inward * eps / slope;
+        // the free span and its middle (unwrapped next to σ_b)
+        let l = c.length();
+        let (a_arc, b_arc) = c.region_bounds(match pulley {
+            Pulley::Driven => Region::DrivenArc,
+            Pulley::Driver => Region::DriverArc,
+        });
+        let span = c.region(if inward > 0.0 { a_arc - 1e-9 } else { b_arc + 1e-9 });
+        let (sa, sb) = c.region_bounds(span);
+        let mid = 0.5 * (sa + sb);
+        let d = (mid - c.wrap(sigma_b)).rem_euclid(l);
+        let sigma_m = sigma_b + if d > 0.5 * l { d - l } else { d };
+        let (em, xm) = self.mesh.locate(sigma_m);
+        let [_, r1, _] = self.context(em).curve(&self.local[em], xm);
+        let speed = r1[0].hypot(r1[1]);
+        let (t, n) = ([r1[0] / speed, r1[1] / speed], [-r1[1] / speed, r1[0] / speed]);
+        let (nm, vm) = (self.axial_force(sigma_m), self.rod_resultants(sigma_m)?.1);
+        let w = self.params.weight.unwrap_or(0.0);
+        let ds = self.material_coordinate(sigma_b) - self.material_coordinate(sigma_m);
+        let q = [nm * t[0] + vm * n[0], nm * t[1] + vm * n[1] + w * ds];
+        let centre = c.pulley_centre(pulley);
+        let pos = self.position(sigma_b);
+        let phi = (pos[1] - centre[1]).atan2(pos[0] - centre[0]);
+        let nr = [phi.cos(), phi.sin()];
+        let ea = self.params.axial_stiffness;
+        let lambda = self.stretch(sigma_b);
+        let v_arc = -ei * w * phi.cos() / (r * ea * lambda * (1.0 + ei / (ea * r * r)));
+        let v_span = q[0] * nr[0] + q[1] * nr[1];
+        let force = inward * (v_span - v_arc);
+        (force.is_finite() && sigma_b.is_finite()).then_some((sigma_b, force))
+    }
+
+    /// The contact zone of a rod (docs/fem-rod.md §5): both edges located and their
+    /// concentrated forces measured by [`Self::rod_edge`]; the raw outermost loaded
+    /// points of the contact rule (and no edge force) where that fails.
+    pub fn rod_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let forces = self.contact_forces(pulley);
+        let first = forces.iter().find(|f| f.1 > 0.0)?.0;
+        let last = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
+        let c = self.mesh.contour();
+        let start = self.rod_edge(pulley, first, 1.0);
+        let end = self.rod_edge(pulley, last, -1.0);
+        let sigma_start = start.map_or(first, |x| x.0);
+        let sigma_end = end.map_or(last, |x| x.0);
+        if sigma_end <= sigma_start {
+            return None;
+        }
+        let angle = |s: f64| c.polar_angle(pulley, self.position(s));
+        Some(ContactZone {
+            sigma_start,
+            sigma_end,
+            angle_start: angle(sigma_start),
+            angle_end: angle(sigma_end),
+            intervals: 1,
+            recovered: start.is_some() && end.is_some(),
+            edge_force_start: start.map(|x| x.1),
+            edge_force_end: end.map(|x| x.1),
+        })
+    }
+
+    /// The penalty-window measure of an edge force (docs/fem-rod.md §5, K11): at the
+    /// mesh node nearest to the edge σ_b (a node after contact fitting), the contact
+    /// forces the penalty term applies (contact rule's points, w·(h/2)·P⟨−γ⟩) summed over
+    /// the 3 elements on each side of that node, minus the distributed part on the
+    /// contact side, ∫ p over those 3 elements, with p extrapolated linearly from the
+    /// mean pressures of the next two groups of 3 elements. `inward` = +1 at an entry,
+    /// −1 at an exit. `None` without a penalty.
+    pub fn window_edge_force(&self, sigma_b: f64, inward: f64) -> Option<f64> {
+        let penalty = self.params.penalty?;
+        let n = self.mesh.len();
+        let nodes = self.mesh.node_sigmas();
+        let c = self.mesh.contour();
+        let w = c.wrap(sigma_b);
+        let k = (0..n)
+            .min_by(|&a, &b| {
+                let da = (nodes[a] - w).abs().min(c.length() - (nodes[a] - w).abs());
+                let db = (nodes[b] - w).abs().min(c.length() - (nodes[b] - w).abs());
+                da.total_cmp(&db)
+            })?;
+        let rule = self.kernel.rules().contact;
+        let element_force = |e: usize| -> (f64, f64) {
+            let el = self.context(e);
+            let f: f64 = rule
+                .points()
+                .iter()
+                .map(|&(xi, wt)| {
+                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    wt * el.jacobian() * penalty * (-gap).max(0.0)
+                })
+                .sum();
+            (f, el.geometry.h)
+        };
+        // element j steps from the node: contact side j = 0, 1, …; free side j = −1, −2, −3
+        let elem = |j: i64| -> usize {
+            let idx = if inward > 0.0 { k as i64 + j } else { k as i64 - 1 - j };
+            idx.rem_euclid(n as i64) as usize
+        };
+        let group = |from: i64| -> (f64, f64) {
+            (from..from + 3).map(|j| element_force(elem(j))).fold((0.0, 0.0), |a, b| (a.0 + b.0, a.1 + b.1))
+        };
+        let (free, _) = group(-3);
+        let (fa, la) = group(0);
+        let (fb, lb) = group(3);
+        let (fc, lc) = group(6);
+        let (pb, pc) = (fb / lb, fc / lc);
+        let (ca, cb, cc) = (0.5 * la, la + 0.5 * lb, la + lb + 0.5 * lc);
+        let pa = pb + (pc - pb) * (ca - cb) / (cc - cb);
+        let edge = free + fa - la * pa;
+        edge.is_finite().then_some(edge)
+    }
+
+    /// Bending moment M = EI θ_σ/∂σS (docs/fem-rod.md K3, K4) and transverse force
+    /// V = −∂σM/|∂σr| (K5) in element e at ξ, by a dual number in ξ.
+    fn moment_and_shear(&self, e: usize, xi: f64, ei: f64) -> (f64, f64) {
+        use num_dual::Dual64;
+        let el = self.context(e);
+        let q = &self.local[e];
+        let x = Dual64::from_re(xi).derivative();
+        let (wv, wd, w2) = crate::hermite::weights_generic(x, el.geometry.h);
+        let comb = |w: &[Dual64; 4], o: usize| w[0] * q[o] + w[1] * q[o + 1] + w[2] * q[o + 4] + w[3] * q[o + 5];
+        let p = PointFields { sigma: el.sigma(xi), s: comb(&wv, 0), ds: comb(&wd, 0), nu: comb(&wv, 2), dnu: comb(&wd, 2), d2nu: comb(&w2, 2) };
+        let m = el.curvature(&p) * ei;
+        let speed = el.tangent_length(&p).re;
+        let dm_dsigma = m.eps * 2.0 / el.geometry.h;
+        (m.re, -dm_dsigma / speed)
+    }
+
+    /// M and V at σ: inside an element from its interpolant, at a node the mean of the
+    /// two one-sided values (∂²σν of the Hermite cubics jumps between elements).
+    fn rod_resultants(&self, sigma: f64) -> Option<(f64, f64)> {
+        let ei = self.params.bending_stiffness?;
+        let (e, xi) = self.mesh.locate(sigma);
+        let (m, v) = self.moment_and_shear(e, xi, ei);
+        if xi == -1.0 {
+            let (el, xl) = self.mesh.locate_left(sigma);
+            let (ml, vl) = self.moment_and_shear(el, xl, ei);
+            return Some((0.5 * (m + ml), 0.5 * (v + vl)));
+        }
+        Some((m, v))
     }
 
     fn compute_summary(&mut self) -> Summary {
@@ -452,6 +720,8 @@ impl FemSolution {
             y_lower_mid: Some(self.position(lower)[1]),
             tension_upper_mid: Some(self.axial_force(upper)),
             tension_lower_mid: Some(self.axial_force(lower)),
+            moment_upper_mid: self.bending_moment(upper),
+            moment_lower_mid: self.bending_moment(lower),
             driver: contact.then_some(driver),
             driven: contact.then_some(driven),
             ..Summary::default()
@@ -510,12 +780,14 @@ impl SolutionView for FemSolution {
         self.recovered_axial_force(sigma)
     }
 
-    fn bending_moment(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// M = EI θ_σ/∂σS (docs/fem-rod.md K4) for a rod, `None` for a string.
+    fn bending_moment(&self, sigma: f64) -> Option<f64> {
+        self.rod_resultants(sigma).map(|x| x.0)
     }
 
-    fn transverse_force(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// V = −∂σM/|∂σr| (docs/fem-rod.md K5) for a rod, `None` for a string.
+    fn transverse_force(&self, sigma: f64) -> Option<f64> {
+        self.rod_resultants(sigma).map(|x| x.1)
     }
 
     /// The penalty pressure P⟨−γ⟩ (N per unit contour length) recovered like the axial

@@ -35,6 +35,8 @@ pub struct StringHanging {
     pub gravity: Option<f64>,
     /// P, N/m² (`None`: no contact term).
     pub penalty: Option<f64>,
+    /// EI, N·m² (`None`: a string; `Some`: a Kirchhoff rod, docs/fem-rod.md).
+    pub bending_stiffness: Option<f64>,
 }
 
 /// Work of a homotopy run.
@@ -175,6 +177,7 @@ impl StringHanging {
             axial_stiffness: self.axial_stiffness,
             weight: self.gravity.map(|g| g_scale * g * self.mass_per_length),
             penalty: self.penalty,
+            bending_stiffness: self.bending_stiffness,
         };
         (params, l)
     }
@@ -267,8 +270,12 @@ impl StringHanging {
         report: &mut HomotopyReport,
     ) -> Result<Vec<f64>, FemError> {
         // η = 0: the tight weightless loop (F11), corrected by Newton
+        // (for a rod the start is not exact: the arcs' moment −EIλ/R meets straight spans,
+        // and Newton builds the four transition boundary layers, docs/fem-rod.md §5 —
+        // hence the larger iteration limit of this first solve)
         let (p0, len0) = self.at(0.0, l0);
-        let r = newton::solve(asm, lu, &mut z, &p0, len0, scales, newton_settings)
+        let start_settings = NewtonSettings { max_iterations: newton_settings.max_iterations.max(100), ..*newton_settings };
+        let r = newton::solve(asm, lu, &mut z, &p0, len0, scales, &start_settings)
             .map_err(|f| to_error(f, 0.0, settings.update_tolerance))?;
         report.newton_iterations += r.iterations;
         report.steps = 1;
@@ -524,6 +531,16 @@ fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
         z[nd.slopes_in.1] = left.dnu;
         z[nd.slopes_out.0] = right.ds;
         z[nd.slopes_out.1] = right.dnu;
+        if nd.slopes_in == nd.slopes_out && mesh.is_transition(k) && !mesh.elements()[k].region.is_polar() {
+            // one shared pair at a rod transition: the Cartesian side's (docs/fem-rod.md §3)
+            let n = mesh.len();
+            debug_assert!(mesh.elements()[(k + n - 1) % n].region.is_polar());
+            z[nd.slopes_out.0] = right.ds;
+            z[nd.slopes_out.1] = right.dnu;
+        } else if nd.slopes_in == nd.slopes_out && mesh.is_transition(k) {
+            z[nd.slopes_in.0] = left.ds;
+            z[nd.slopes_in.1] = left.dnu;
+        }
     }
     z
 }
@@ -570,6 +587,11 @@ fn tight_state(asm: &Assembler, l0: f64, t0: f64, delta: f64, axial_stiffness: f
         z[nd.slopes_in.1] = 0.0;
         z[nd.slopes_out.0] = slope(after);
         z[nd.slopes_out.1] = 0.0;
+        if nd.slopes_in == nd.slopes_out {
+            // one shared pair at a rod transition: the Cartesian side's primary slope;
+            // the polar side's (1 − δ/R)/λ₀ follows from it by the map (docs/fem-rod.md K9)
+            z[nd.slopes_out.0] = slope(before && after);
+        }
         s += slope(after) * els[k].h;
     }
     // s now equals L₀ up to round-off (F11); the closure offset uses L₀ itself

@@ -89,7 +89,7 @@ fn tight_gravity_free_loop_closed_form() {
 #[test]
 fn upper_span_is_the_elastic_catenary() {
     let scene = scene("string-hanging");
-    for f in fem::available_formulations() {
+    for f in fem::formulations_for(drive::scene::Theory::String) {
         let e64 = catenary_distance(&scene, run(&scene, 64, f).view.as_ref(), 0.15, 300);
         let e256 = catenary_distance(&scene, run(&scene, 256, f).view.as_ref(), 0.15, 300);
         let p = 0.5 * order(e64, e256);

@@ -12,7 +12,9 @@ fn opts(elements: usize) -> FemOptions {
 
 #[test]
 fn registry_and_defaults() {
-    assert_eq!(fem::available_formulations(), vec!["string-simpson", "string-gauss"]);
+    assert_eq!(fem::available_formulations(), vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss"]);
+    assert_eq!(fem::formulations_for(drive::scene::Theory::String), vec!["string-simpson", "string-gauss"]);
+    assert_eq!(fem::formulations_for(drive::scene::Theory::Kirchhoff), vec!["rod-simpson", "rod-gauss"]);
     assert_eq!(fem::default_formulation(), "string-simpson");
     let scene = scene("string-hanging");
     let o = FemOptions::from_scene(&scene, "string-simpson");
@@ -24,7 +26,7 @@ fn registry_and_defaults() {
 fn invalid_options() {
     let scene = scene("string-hanging");
     let e = fem::solve_scene(&scene, &FemOptions { formulation: "string-nonsense".into(), ..opts(64) }).err().unwrap();
-    assert!(matches!(&e, FemError::UnknownFormulation { name, available } if name == "string-nonsense" && available.len() == 2), "{e}");
+    assert!(matches!(&e, FemError::UnknownFormulation { name, available } if name == "string-nonsense" && available.len() == 4), "{e}");
     for n in [0, 3, (1 << 20) + 1] {
         let e = fem::solve_scene(&scene, &opts(n)).err().unwrap();
         assert!(matches!(&e, FemError::InvalidOption { field: "elements", .. }), "{n}: {e}");
@@ -72,4 +74,7 @@ fn other_models_are_unsupported() {
     let e = fem::solve_scene(&rod, &opts(64)).err().unwrap();
     assert!(matches!(e, FemError::Unsupported(_)), "{e}");
     assert!(e.to_string().contains("kirchhoff"));
+    // and rod elements do not apply to a string (docs/fem-rod.md §4)
+    let e = fem::solve_scene(&scene("string-hanging"), &FemOptions { formulation: "rod-gauss".into(), ..opts(64) }).err().unwrap();
+    assert!(matches!(&e, FemError::Unsupported(m) if m.contains("rod-gauss") && m.contains("string")), "{e}");
 }

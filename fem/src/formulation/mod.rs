@@ -25,9 +25,14 @@ use num_dual::{gradient, hessian, Dual2SVec64, Dual64, DualSVec64};
 use crate::kinematics::{ElementContext, PointFields, Scalar, TermParams, NDOF};
 use crate::quadrature::Rule;
 
+mod rod_gauss;
+mod rod_simpson;
 mod string_gauss;
 mod string_simpson;
 
+pub use drive::scene::Theory;
+pub use rod_gauss::RodGauss;
+pub use rod_simpson::RodSimpson;
 pub use string_gauss::StringGauss;
 pub use string_simpson::StringSimpson;
 
@@ -40,6 +45,8 @@ pub struct TermRules {
     pub gravity: Rule,
     /// Penalty contact potential V_γ (F10).
     pub contact: Rule,
+    /// Bending energy U_b (docs/fem-rod.md K7); used only where EI is given (rods).
+    pub bending: Rule,
 }
 
 /// A string element formulation (implement this to add one; see the module docs).
@@ -52,6 +59,14 @@ pub trait Formulation: Send + Sync + 'static {
 
     /// Name of the strain measure, e.g. `Biot`.
     fn strain_measure(&self) -> &'static str;
+
+    /// The belt theory the formulation discretises (default: the string). A rod
+    /// formulation ([`Theory::Kirchhoff`]) shares one slope pair at each transition and
+    /// gets the augmented map (docs/fem-rod.md §3); the crate answers `Unsupported` when
+    /// a scene's theory differs from the formulation's.
+    fn theory(&self) -> Theory {
+        Theory::String
+    }
 
     /// The integration rule of each term.
     fn rules(&self) -> TermRules;
@@ -68,7 +83,7 @@ pub trait Formulation: Send + Sync + 'static {
         Self: Sized,
     {
         let rules = self.rules();
-        standard_terms(el, q, &rules, |lambda| {
+        standard_terms(el, &el.effective(q), &rules, |lambda| {
             self.strain_energy_density(lambda, el.params.axial_stiffness)
         })
     }
@@ -86,8 +101,9 @@ pub trait Formulation: Send + Sync + 'static {
 
 /// The element energy Σ of the active terms (docs/fem-string.md §4):
 /// U (F8) with the density `w(λ)` integrated per unstretched length (× ∂σS),
-/// W (F9) if `el.params.weight` is set, V_γ (F10) if `el.params.penalty` is set, each
-/// with its rule from `rules`.
+/// W (F9) if `el.params.weight` is set, V_γ (F10) if `el.params.penalty` is set, the
+/// bending energy (docs/fem-rod.md K7) if `el.params.bending_stiffness` is set, each
+/// with its rule from `rules`. `q` are the effective unknowns (after the augmented map).
 pub fn standard_terms<D: Scalar>(
     el: &ElementContext,
     q: &[D; NDOF],
@@ -117,11 +133,13 @@ pub enum Term {
     Gravity,
     /// Penalty contact V_γ, density ½ P ⟨−γ⟩² (F10).
     Contact,
+    /// Bending energy U_b, density ½ EI θ_σ²/∂σS (docs/fem-rod.md K7).
+    Bending,
 }
 
 impl Term {
     /// All terms, in assembly order.
-    pub const ALL: [Term; 3] = [Term::Strain, Term::Gravity, Term::Contact];
+    pub const ALL: [Term; 4] = [Term::Strain, Term::Gravity, Term::Contact, Term::Bending];
 
     /// True if the scene calls for the term (strain always).
     pub fn active(self, params: &TermParams) -> bool {
@@ -129,6 +147,7 @@ impl Term {
             Term::Strain => true,
             Term::Gravity => params.weight.is_some(),
             Term::Contact => params.penalty.is_some(),
+            Term::Bending => params.bending_stiffness.is_some(),
         }
     }
 
@@ -138,6 +157,7 @@ impl Term {
             Term::Strain => rules.strain,
             Term::Gravity => rules.gravity,
             Term::Contact => rules.contact,
+            Term::Bending => rules.bending,
         }
     }
 
@@ -151,6 +171,10 @@ impl Term {
                 (Some(penalty), Some(gap)) if gap.re() < 0.0 => gap * gap * (0.5 * penalty),
                 _ => D::zero(),
             },
+            Term::Bending => el.params.bending_stiffness.map_or(D::zero(), |ei| {
+                let k = el.angle_rate(p);
+                k * k / p.ds * (0.5 * ei)
+            }),
         }
     }
 }
@@ -168,7 +192,7 @@ fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w
         for &(xi, wt) in term.rule(rules).points() {
             let p = el.fields(q, xi);
             let var = |v: f64, i: usize| DualSVec64::<3>::from_re(v).derivative(i);
-            let pd = PointFields { sigma: p.sigma, s: DualSVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2) };
+            let pd = PointFields { sigma: p.sigma, s: DualSVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: DualSVec64::<3>::from_re(p.d2nu) };
             let f = term.density(el, &pd, &w);
             let scale = wt * jac;
             let g3 = f.eps.unwrap_generic(Const::<3>, U1);
@@ -200,7 +224,7 @@ fn pointwise_derivatives(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules
         for &(xi, wt) in term.rule(rules).points() {
             let p = el.fields(q, xi);
             let var = |v: f64, i: usize| Dual2SVec64::<3>::from_re(v).derivative(i);
-            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2) };
+            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: Dual2SVec64::<3>::from_re(p.d2nu) };
             let f = term.density(el, &pd, &w);
             let scale = wt * jac;
             let g3 = f.v1.unwrap_generic(U1, Const::<3>);
@@ -239,6 +263,113 @@ fn pointwise_derivatives(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules
     out
 }
 
+/// True if the 3-variable per-point path applies: no bending term (it needs ∂²σν) and
+/// no augmented map (nonlinear in q); otherwise the 4-variable path with the chain rule
+/// through the map ([`pointwise_derivatives_rod`]) is used.
+fn plain(el: &ElementContext) -> bool {
+    el.params.bending_stiffness.is_none() && !el.augmented.iter().any(|&a| a)
+}
+
+/// Energy, gradient and Hessian of a standard element with the bending term and/or the
+/// augmented map (docs/fem-rod.md §3, §4): the effective unknowns q̃ = m(q) (K9); at each
+/// integration point the density is differentiated by `Dual2SVec64<4>` with respect to
+/// u = (∂σS, ν, ∂σν, ∂²σν) = B q̃ (B: 4 × 8 Hermite weights), summed to g̃ = ∂E/∂q̃ and
+/// K̃ = ∂²E/∂q̃²; then the chain rule through the map, exactly:
+/// g = J_mᵀ g̃, K = J_mᵀ K̃ J_m + Σᵢ g̃ᵢ ∇²mᵢ. The map changes only the slopes of a flagged
+/// node (offset o = 0 or 4): m_{o+1} = q_{o+1} f, m_{o+3} = q_{o+3} f with
+/// f = 1 + α q_{o+2}, so J_m differs from the identity in the rows o+1, o+3 and each
+/// ∇²mᵢ has the two entries α at (o+1|o+3, o+2). Equal to AD over the whole element
+/// (tested), about an order of magnitude cheaper.
+#[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
+fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
+    let qe = el.effective(q);
+    let jac = el.jacobian();
+    let mut energy = 0.0;
+    let mut ge = [0.0; NDOF];
+    let mut he = [[0.0; NDOF]; NDOF];
+    for term in Term::ALL {
+        if !term.active(&el.params) {
+            continue;
+        }
+        for &(xi, wt) in term.rule(rules).points() {
+            let p = el.fields(&qe, xi);
+            let var = |v: f64, i: usize| Dual2SVec64::<4>::from_re(v).derivative(i);
+            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<4>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: var(p.d2nu, 3) };
+            let f = term.density(el, &pd, &w);
+            let scale = wt * jac;
+            let g4 = f.v1.unwrap_generic(U1, Const::<4>);
+            let h4 = f.v2.unwrap_generic(Const::<4>, Const::<4>);
+            energy += scale * f.re;
+            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
+            let w2 = crate::hermite::second_weights(xi, el.geometry.h);
+            let mut b = [[0.0; NDOF]; 4];
+            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+                b[0][i] = wd[k];
+            }
+            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+                b[1][i] = wv[k];
+                b[2][i] = wd[k];
+                b[3][i] = w2[k];
+            }
+            let mut bth = [[0.0; 4]; NDOF];
+            for i in 0..NDOF {
+                for a in 0..4 {
+                    let bi = b[a][i];
+                    if bi != 0.0 {
+                        ge[i] += scale * bi * g4[a];
+                        for c in 0..4 {
+                            bth[i][c] += bi * h4[(a, c)];
+                        }
+                    }
+                }
+            }
+            for (row, bt) in he.iter_mut().zip(&bth) {
+                for (j, h) in row.iter_mut().enumerate() {
+                    *h += scale * (bt[0] * b[0][j] + bt[1] * b[1][j] + bt[2] * b[2][j] + bt[3] * b[3][j]);
+                }
+            }
+        }
+    }
+    // chain rule through the augmented map (K9)
+    let alpha = el.alpha();
+    let mut jm = [[0.0; NDOF]; NDOF];
+    for (i, row) in jm.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    let mut second: Vec<(usize, usize, f64)> = Vec::new(); // (i, j, g̃ₖ α) symmetric pairs
+    for (flag, o) in el.augmented.iter().zip([0usize, 4]) {
+        if *flag {
+            let fac = 1.0 + alpha * q[o + 2];
+            for k in [o + 1, o + 3] {
+                jm[k][k] = fac;
+                jm[k][o + 2] = alpha * q[k];
+                second.push((k, o + 2, ge[k] * alpha));
+            }
+        }
+    }
+    let mut out = ElementDerivatives { energy, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
+    for j in 0..NDOF {
+        out.gradient[j] = (0..NDOF).map(|k| jm[k][j] * ge[k]).sum();
+    }
+    // Jᵀ K̃ J
+    let mut kj = [[0.0; NDOF]; NDOF];
+    for a in 0..NDOF {
+        for j in 0..NDOF {
+            kj[a][j] = (0..NDOF).map(|b| he[a][b] * jm[b][j]).sum();
+        }
+    }
+    for i in 0..NDOF {
+        for j in 0..NDOF {
+            out.hessian[i][j] = (0..NDOF).map(|a| jm[a][i] * kj[a][j]).sum();
+        }
+    }
+    for (i, j, v) in second {
+        out.hessian[i][j] += v;
+        out.hessian[j][i] += v;
+    }
+    out
+}
+
 /// The Biot strain energy density ½ EA (λ − 1)², J/m (eq. 17; N = EA(λ − 1), (S1)).
 pub fn biot_density<D: Scalar>(stretch: D, axial_stiffness: f64) -> D {
     let e = stretch - 1.0;
@@ -267,6 +398,8 @@ pub trait Kernel: Send + Sync {
     fn strain_measure(&self) -> &'static str;
     /// See [`Formulation::rules`].
     fn rules(&self) -> TermRules;
+    /// See [`Formulation::theory`].
+    fn theory(&self) -> Theory;
     /// Element energy in f64, J.
     fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64;
     /// Energy and gradient (forward-mode AD, `DualSVec64<8>`).
@@ -301,6 +434,10 @@ impl<F: Formulation> Kernel for F {
         Formulation::rules(self)
     }
 
+    fn theory(&self) -> Theory {
+        Formulation::theory(self)
+    }
+
     fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64 {
         self.element_energy(el, q)
     }
@@ -308,7 +445,11 @@ impl<F: Formulation> Kernel for F {
     fn gradient(&self, el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]) {
         if self.pointwise() {
             let ea = el.params.axial_stiffness;
-            return pointwise_gradient(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+            if plain(el) {
+                return pointwise_gradient(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+            }
+            let d = pointwise_derivatives_rod(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+            return (d.energy, d.gradient);
         }
         let x = SVector::<f64, NDOF>::from_column_slice(q);
         let (e, g) = gradient(
@@ -324,7 +465,10 @@ impl<F: Formulation> Kernel for F {
     fn derivatives(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives {
         if self.pointwise() {
             let ea = el.params.axial_stiffness;
-            return pointwise_derivatives(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+            if plain(el) {
+                return pointwise_derivatives(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
+            }
+            return pointwise_derivatives_rod(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
         }
         self.derivatives_full(el, q)
     }
@@ -364,13 +508,16 @@ impl<F: Formulation> Kernel for F {
         if let Some(p) = params.penalty {
             out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
         }
+        if let Some(ei) = params.bending_stiffness {
+            out.push(format!("bending energy ({}, EI = {:.6e} N·m², C¹ augmented transitions)", r.bending, ei));
+        }
         out
     }
 }
 
 /// Every registered formulation, default first. **Add a new formulation here** (one line).
 pub fn registry() -> Vec<Arc<dyn Kernel>> {
-    vec![Arc::new(StringSimpson), Arc::new(StringGauss)]
+    vec![Arc::new(StringSimpson), Arc::new(StringGauss), Arc::new(RodSimpson), Arc::new(RodGauss)]
 }
 
 /// The registered formulation called `name`.
@@ -402,21 +549,38 @@ mod tests {
         ElementContext {
             geometry: ElementGeometry { sigma_a: sa, h, region },
             contour: Contour::new(0.08, 0.45).unwrap(),
-            params: TermParams { axial_stiffness: 2.0e4, weight: Some(0.12 * 9.81), penalty: Some(3.0e6) },
+            params: TermParams { axial_stiffness: 2.0e4, weight: Some(0.12 * 9.81), penalty: Some(3.0e6), bending_stiffness: None },
+            augmented: [false; 2],
         }
     }
 
-    /// Elements in each region, the span ones reaching within R of a pulley centre.
-    fn elements() -> Vec<ElementContext> {
-        vec![
+    /// Elements in each region, the span ones reaching within R of a pulley centre. For a
+    /// rod formulation (docs/fem-rod.md) the bending term is active (EI = 1e-3 N·m²) and
+    /// the polar elements carry the augmented map (K9) at the start, the end and both
+    /// nodes.
+    fn elements_for(kernel: &dyn Kernel) -> Vec<ElementContext> {
+        let mut els = vec![
             context(Region::UpperSpan, 0.40, 0.03),
             context(Region::DrivenArc, 0.50, 0.02),
             context(Region::LowerSpan, 0.70, 0.04),
             context(Region::LowerSpan, 1.10, 0.04),
             context(Region::DriverArc, 1.20, 0.03),
             context(Region::UpperSpan, 0.0, 0.03),
-        ]
+        ];
+        if kernel.theory() == Theory::Kirchhoff {
+            for el in &mut els {
+                el.params.bending_stiffness = Some(1e-3);
+            }
+            els[1].augmented = [true, false];
+            els[4].augmented = [false, true];
+            let mut both = context(Region::DriverArc, 1.25, 0.03);
+            both.params.bending_stiffness = Some(1e-3);
+            both.augmented = [true, true];
+            els.push(both);
+        }
+        els
     }
+
 
     /// A random admissible state: s' ≈ 1 ± 0.1, ν of either sign (so some points
     /// penetrate), slopes ±0.2.
@@ -447,7 +611,7 @@ mod tests {
         let mut rng = Rng(0x1234_5678_9abc_def1);
         for kernel in registry() {
             let mut hessian_checked = 0;
-            for el in elements() {
+            for el in elements_for(kernel.as_ref()) {
                 for _ in 0..20 {
                     let q = random_q(&el, &mut rng);
                     let d = kernel.derivatives(&el, &q);
@@ -503,7 +667,7 @@ mod tests {
     fn pointwise_equals_full_ad() {
         let mut rng = Rng(77);
         for kernel in registry() {
-            for el in elements() {
+            for el in elements_for(kernel.as_ref()) {
                 for _ in 0..10 {
                     let q = random_q(&el, &mut rng);
                     let a = kernel.derivatives(&el, &q);
@@ -555,9 +719,9 @@ mod tests {
     #[test]
     fn labels_follow_the_active_terms() {
         let k = find("string-gauss").unwrap();
-        let p = TermParams { axial_stiffness: 1.0, weight: None, penalty: None };
+        let p = TermParams { axial_stiffness: 1.0, weight: None, penalty: None, bending_stiffness: None };
         assert_eq!(k.term_labels(&p).len(), 1);
-        let p = TermParams { axial_stiffness: 1.0, weight: Some(1.0), penalty: Some(1.0) };
+        let p = TermParams { axial_stiffness: 1.0, weight: Some(1.0), penalty: Some(1.0), bending_stiffness: None };
         let l = k.term_labels(&p);
         assert_eq!(l.len(), 3);
         assert!(l[0].starts_with("strain energy (Biot, gauss3"));

@@ -24,7 +24,7 @@ impl Formulation for StringGauss {
     }
 
     fn rules(&self) -> TermRules {
-        TermRules { strain: Rule::Gauss(3), gravity: Rule::Gauss(3), contact: Rule::Gauss(3) }
+        TermRules { strain: Rule::Gauss(3), gravity: Rule::Gauss(3), contact: Rule::Gauss(3), bending: Rule::Gauss(3) }
     }
 
     fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {

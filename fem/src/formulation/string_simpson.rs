@@ -30,7 +30,7 @@ impl Formulation for StringSimpson {
     }
 
     fn rules(&self) -> TermRules {
-        TermRules { strain: Rule::Simpson, gravity: Rule::Simpson, contact: Rule::Simpson }
+        TermRules { strain: Rule::Simpson, gravity: Rule::Simpson, contact: Rule::Simpson, bending: Rule::Gauss(3) }
     }
 
     fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {
