@@ -201,6 +201,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
         mass_per_length: b.mass_per_length,
         gravity: scene.effects.gravity,
         penalty: Some(penalty),
+        bending_stiffness: None,
     };
     let contour = data.contour()?;
     let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
@@ -217,7 +218,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
 
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
     let mut z = transfer(&start, &asm);
-    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: scene.effects.gravity.map(|g| g * b.mass_per_length), penalty: None };
+    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: scene.effects.gravity.map(|g| g * b.mass_per_length), penalty: None, bending_stiffness: None };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
     let contact_rule = kernel.rules().contact;
