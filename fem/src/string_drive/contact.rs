@@ -288,7 +288,8 @@ mod tests {
             let el = ElementContext {
                 geometry: ElementGeometry { sigma_a: sa, h, region },
                 contour,
-                params: TermParams { axial_stiffness: 2.0e4, weight: None, penalty: None },
+                params: TermParams { axial_stiffness: 2.0e4, weight: None, penalty: None, bending_stiffness: None },
+                augmented: [false; 2],
             };
             for trial in 0..30 {
                 let q = [
