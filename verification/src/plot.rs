@@ -461,13 +461,23 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     let s = &reference.samples;
     let fe = finest_fe(study);
     let with_moment = s.moment.is_some();
+    // The contact traction along σ for a friction drive: where the stick and slip zones
+    // (shaded) carry the normal load. (Static rods carry concentrated edge forces, which
+    // a sampled curve cannot show: not plotted for them.)
+    let with_pressure = s.pressure.is_some() && scene.analysis != drive::scene::Analysis::Static;
+    let panels = 2 + usize::from(with_moment) + usize::from(with_pressure);
     let panel = 420u32;
-    let height = panel * if with_moment { 3 } else { 2 };
+    let height = panel * panels as u32;
     render("force", height, |root| {
-        let areas = root.split_evenly((if with_moment { 3 } else { 2 }, 1));
+        let areas = root.split_evenly((panels, 1));
         field_panel(scene, study, &areas[0], "tension", "axial force N(σ) [N]", &format!("{} — axial force along σ", scene.name), &fe)?;
+        let mut next = 1;
         if with_moment {
-            field_panel(scene, study, &areas[1], "moment", "bending moment M(σ) [N·m]", "bending moment along σ", &fe)?;
+            field_panel(scene, study, &areas[next], "moment", "bending moment M(σ) [N·m]", "bending moment along σ", &fe)?;
+            next += 1;
+        }
+        if with_pressure {
+            field_panel(scene, study, &areas[next], "pressure", "contact pressure p(σ) [N/m]", "contact pressure (normal traction) along σ, stick and slip zones shaded", &fe)?;
         }
         difference_panel(scene, study, areas.last().unwrap_or(root))
     })

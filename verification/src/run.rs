@@ -291,6 +291,8 @@ pub struct Samples {
     pub moment: Option<Vec<f64>>,
     /// Contact state at σ.
     pub state: Vec<ContactState>,
+    /// Contact pressure (normal traction) p(σ), N/m; `None` if the model has none.
+    pub pressure: Option<Vec<f64>>,
 }
 
 impl Samples {
@@ -304,6 +306,8 @@ impl Samples {
         let mut s = Samples::default();
         let mut moment = Vec::with_capacity(n);
         let mut has_moment = n > 0;
+        let mut pressure = Vec::with_capacity(n);
+        let mut has_pressure = n > 0;
         for i in 0..n {
             let sigma = l * i as f64 / n as f64;
             let p = view.position(sigma);
@@ -319,6 +323,11 @@ impl Samples {
                 Some(m) => return Err(format!("non-finite moment ({m}) at σ = {sigma:.6} m")),
                 None => has_moment = false,
             }
+            match view.contact_pressure(sigma) {
+                Some(p) if p.is_finite() => pressure.push(p),
+                Some(p) => return Err(format!("non-finite contact pressure ({p}) at σ = {sigma:.6} m")),
+                None => has_pressure = false,
+            }
             s.sigma.push(sigma);
             s.x.push(p[0]);
             s.y.push(p[1]);
@@ -327,6 +336,7 @@ impl Samples {
             s.state.push(view.contact_state(sigma));
         }
         s.moment = has_moment.then_some(moment);
+        s.pressure = has_pressure.then_some(pressure);
         Ok(s)
     }
 
@@ -340,12 +350,14 @@ impl Samples {
         self.sigma.is_empty()
     }
 
-    /// The samples of a field by its norm prefix: `deflection`, `tension`, `moment`.
+    /// The samples of a field by its norm prefix: `deflection`, `tension`, `moment`,
+    /// `pressure`.
     pub fn field(&self, name: &str) -> Option<&[f64]> {
         match name {
             "deflection" => Some(&self.deflection),
             "tension" => Some(&self.tension),
             "moment" => self.moment.as_deref(),
+            "pressure" => self.pressure.as_deref(),
             _ => None,
         }
     }
