@@ -53,6 +53,13 @@ pub trait SolutionView {
     /// distributed pressure (e.g. concentrated edge forces only).
     fn contact_pressure(&self, sigma: f64) -> Option<f64>;
 
+    /// Tangential contact traction exerted by the pulley on the belt, N per metre of
+    /// contour, positive in the direction of increasing σ; `Some(0.0)` on the free spans;
+    /// `None` for a model without friction (the default).
+    fn friction_traction(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
     /// Contact state at σ.
     fn contact_state(&self, sigma: f64) -> ContactState;
 

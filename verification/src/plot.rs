@@ -465,7 +465,8 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     // (shaded) carry the normal load. (Static rods carry concentrated edge forces, which
     // a sampled curve cannot show: not plotted for them.)
     let with_pressure = s.pressure.is_some() && scene.analysis != drive::scene::Analysis::Static;
-    let panels = 2 + usize::from(with_moment) + usize::from(with_pressure);
+    let with_friction = s.friction.is_some();
+    let panels = 2 + usize::from(with_moment) + usize::from(with_pressure) + usize::from(with_friction);
     let panel = 420u32;
     let height = panel * panels as u32;
     render("force", height, |root| {
@@ -478,6 +479,10 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
         }
         if with_pressure {
             field_panel(scene, study, &areas[next], "pressure", "contact pressure p(σ) [N/m]", "contact pressure (normal traction) along σ, stick and slip zones shaded", &fe)?;
+            next += 1;
+        }
+        if with_friction {
+            field_panel(scene, study, &areas[next], "friction", "friction traction τ(σ) [N/m]", "friction traction on the belt along σ (+ along σ; |τ| = μp in the slip zones)", &fe)?;
         }
         difference_panel(scene, study, areas.last().unwrap_or(root))
     })

@@ -293,6 +293,8 @@ pub struct Samples {
     pub state: Vec<ContactState>,
     /// Contact pressure (normal traction) p(σ), N/m; `None` if the model has none.
     pub pressure: Option<Vec<f64>>,
+    /// Friction traction τ(σ) on the belt, N/m, + along σ; `None` without friction.
+    pub friction: Option<Vec<f64>>,
 }
 
 impl Samples {
@@ -308,6 +310,8 @@ impl Samples {
         let mut has_moment = n > 0;
         let mut pressure = Vec::with_capacity(n);
         let mut has_pressure = n > 0;
+        let mut friction = Vec::with_capacity(n);
+        let mut has_friction = n > 0;
         for i in 0..n {
             let sigma = l * i as f64 / n as f64;
             let p = view.position(sigma);
@@ -328,6 +332,11 @@ impl Samples {
                 Some(p) => return Err(format!("non-finite contact pressure ({p}) at σ = {sigma:.6} m")),
                 None => has_pressure = false,
             }
+            match view.friction_traction(sigma) {
+                Some(f) if f.is_finite() => friction.push(f),
+                Some(f) => return Err(format!("non-finite friction traction ({f}) at σ = {sigma:.6} m")),
+                None => has_friction = false,
+            }
             s.sigma.push(sigma);
             s.x.push(p[0]);
             s.y.push(p[1]);
@@ -337,6 +346,7 @@ impl Samples {
         }
         s.moment = has_moment.then_some(moment);
         s.pressure = has_pressure.then_some(pressure);
+        s.friction = has_friction.then_some(friction);
         Ok(s)
     }
 
@@ -351,13 +361,14 @@ impl Samples {
     }
 
     /// The samples of a field by its norm prefix: `deflection`, `tension`, `moment`,
-    /// `pressure`.
+    /// `pressure`, `friction`.
     pub fn field(&self, name: &str) -> Option<&[f64]> {
         match name {
             "deflection" => Some(&self.deflection),
             "tension" => Some(&self.tension),
             "moment" => self.moment.as_deref(),
             "pressure" => self.pressure.as_deref(),
+            "friction" => self.friction.as_deref(),
             _ => None,
         }
     }

@@ -70,6 +70,13 @@ impl SolutionView for StringDriveSolution {
         Some(pt.pressure.map_or(0.0, |p| p / pt.stretch))
     }
 
+    fn friction_traction(&self, sigma: f64) -> Option<f64> {
+        // τ per unstretched length, + in the direction of travel = +σ (ω₁ ≥ 0, validated);
+        // per unit contour length τ/λ, as the pressure.
+        let (_, pt) = self.at_sigma(sigma);
+        Some(pt.friction.map_or(0.0, |f| f / pt.stretch))
+    }
+
     fn contact_state(&self, sigma: f64) -> ContactState {
         match self.at_sigma(sigma).0 {
             DRIVEN_STICK | DRIVER_STICK => ContactState::Stick,
