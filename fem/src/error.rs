@@ -102,6 +102,21 @@ pub enum FemError {
         time: f64,
     },
 
+    /// Transport inertia at or above the critical speed (docs/fem-drive.md §6): the
+    /// effective tension N − ρc²λ of a span is not positive, the step energy (D3) has no
+    /// stationary point of the string's kind (the belt cannot be held on the pulleys).
+    #[error("speed at or above critical at t = {time} s: in the {span} span the axial force N = {tension:.6e} N does not exceed the transport term ρc²λ = {inertia_force:.6e} N (effective tension N − ρc²λ ≤ 0)")]
+    SpeedAtOrAboveCritical {
+        /// `upper` or `lower`.
+        span: String,
+        /// Axial force N at the span midpoint, N.
+        tension: f64,
+        /// ρc²λ there with the transport rate c of the step, N.
+        inertia_force: f64,
+        /// Time of the step, s.
+        time: f64,
+    },
+
     /// A time step of the drive transient failed (Newton did not converge).
     #[error("time step {step} (t = {time} s) failed: {reason}")]
     DriveStepFailed {

@@ -309,6 +309,16 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             radius: r,
             inertia: (scene.effects.inertia == Some(true)).then_some(b.mass_per_length * c_prev * c_prev),
         };
+        // critical speed (docs/fem-drive.md §6): the effective tension N − ρc²λ of both
+        // spans (at their midpoints, with c of the last step) must stay positive
+        if let Some(rc2) = step_params.inertia {
+            for (span, sigma) in [("upper", 0.5 * h), ("lower", 1.5 * h + PI * r)] {
+                let (n, stretch) = span_force(&asm, &z, &params, length, &kernel, &contour, sigma);
+                if n - rc2 * stretch <= 0.0 {
+                    return Err(FemError::SpeedAtOrAboveCritical { span: span.into(), tension: n, inertia_force: rc2 * stretch, time });
+                }
+            }
+        }
         let load = Load { torque: load_torque, damping, time_step: dt };
         // predictor: the material keeps its motion of the last step (secant in time),
         // x = 2 z_n − z_{n−1}; in a steady state this is z_n itself
@@ -465,7 +475,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     let power_out = (load_torque + damping * omega2) * omega2;
     let max_penetration = base.max_penetration();
     let stick_slip_max = points.iter().flatten().filter(|p| p.bound > 0.0 && !p.slip).fold(0.0f64, |m, p| m.max(p.displacement.abs()));
-    let view = DriveSolution::new(base, points.concat(), summary.clone());
+    let view = DriveSolution::new(base, &points, summary.clone());
     let mut terms = kernel.term_labels(&params);
     terms.push(format!(
         "Coulomb contact, {} (μ = {mu}, P_γ = {penalty:.6e} N/m², P_⊥ = {p_t:.6e} N/m², {contact_rule})",
@@ -609,6 +619,15 @@ fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour:
         out.slip_start.map_or(0.0, |s| (angle(s) - end_angle).rem_euclid(2.0 * PI).min(arc))
     };
     (arc, slip)
+}
+
+/// Axial force and stretch of the state z at σ.
+fn span_force(asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, sigma: f64) -> (f64, f64) {
+    let (e, xi) = asm.mesh().locate(contour.wrap(sigma));
+    let el = asm.context(e, params);
+    let q: [f64; NDOF] = asm.dofs().gather(e, z, length);
+    let stretch = el.stretch(&el.fields(&q, xi));
+    (kernel.axial_force(stretch, params.axial_stiffness), stretch)
 }
 
 /// Append one step to the history: raw axial force EA(λ − 1) at the span midpoints,

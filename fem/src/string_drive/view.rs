@@ -1,6 +1,7 @@
 //! The common view of a drive state (docs/fem-drive.md §8): geometry, axial force and
 //! material coordinate of the string solution ([`FemSolution`]), the contact state
-//! Stick/Slip and the normal traction from the integration-point states.
+//! Stick/Slip, the normal traction and the friction traction from the integration-point
+//! states.
 
 use drive::contour::Contour;
 use drive::summary::Summary;
@@ -18,17 +19,28 @@ pub struct DriveSolution {
     points: Vec<PointState>,
     /// Friction points (element edges), sorted by σ.
     friction: Vec<PointState>,
+    /// Per element, τ_⊥ at its edges ξ = −1, +1 (0 at an edge without a pulley).
+    edge_tractions: Vec<[f64; 2]>,
     summary: Summary,
 }
 
 impl DriveSolution {
-    /// The view of `base` with the point states `points` and the drive summary.
-    pub fn new(base: FemSolution, mut points: Vec<PointState>, summary: Summary) -> DriveSolution {
+    /// The view of `base` with the point states `points` (per element) and the drive
+    /// summary.
+    pub fn new(base: FemSolution, per_element: &[Vec<PointState>], summary: Summary) -> DriveSolution {
+        let edge_tractions = per_element
+            .iter()
+            .map(|pts| {
+                let at = |xi: f64| pts.iter().find(|p| p.xi == xi && p.friction_weight > 0.0 && p.pulley.is_some()).map_or(0.0, |p| p.tangential);
+                [at(-1.0), at(1.0)]
+            })
+            .collect();
+        let mut points = per_element.concat();
         points.retain(|p| p.pulley.is_some());
         points.sort_by(|a, b| a.sigma.total_cmp(&b.sigma));
         let friction = points.iter().filter(|p| p.friction_weight > 0.0).copied().collect();
         points.retain(|p| p.weight > 0.0);
-        DriveSolution { base, points, friction, summary }
+        DriveSolution { base, points, friction, edge_tractions, summary }
     }
 
     /// The string solution.
@@ -92,6 +104,22 @@ impl SolutionView for DriveSolution {
             return Some(0.0);
         }
         Some(self.neighbours(&self.points, sigma).map_or(0.0, |(a, b, t)| ((1.0 - t) * a.normal + t * b.normal).max(0.0)))
+    }
+
+    /// The pulley's traction on the belt, −τ_⊥ (τ_⊥ is the belt's on the drum, §5 of
+    /// docs/fem-drive.md), per unit contour length along +σ: linear within each element
+    /// between its two edge points (the interpolant whose integral is the trapezoidal
+    /// friction rule, so −R∫τ dσ over an arc is the summary torque exactly); 0 in the
+    /// elements without friction points (the spans beyond reach of a pulley). Not clipped
+    /// to the recovered contact zone: the element holding a contact end carries the
+    /// traction of its inner edge point, as the torque does.
+    fn friction_traction(&self, sigma: f64) -> Option<f64> {
+        let (e, xi) = self.base.mesh().locate(self.base.mesh().contour().wrap(sigma));
+        if !xi.is_finite() {
+            return None; // non-finite σ: no point of the belt
+        }
+        let [left, right] = self.edge_tractions.get(e).copied().unwrap_or([0.0, 0.0]);
+        Some(-0.5 * ((1.0 - xi) * left + (1.0 + xi) * right))
     }
 
     /// Free outside the recovered contact zones; inside, Slip or Stick as the nearer
