@@ -117,6 +117,25 @@ pub enum FemError {
         time: f64,
     },
 
+    /// The steady state reached has a slip run at the contact entry of a pulley followed
+    /// by stick (docs/fem-drive.md §11): a discrete artefact of the contact boundary (a
+    /// concentrated normal force there carries a concentrated friction force that drops
+    /// the tension into the stick zone), not a Coulomb steady state of the string — the
+    /// stick and slip arcs and span tensions would be wrong, so none are reported.
+    #[error("steady state at t = {time} s has a slip zone at the contact entry of the {pulley} pulley ({entry_slip_points} friction points, friction force {entry_force:.6e} N on the belt, above 20 % of the transmitted force {transmitted:.6e} N) followed by stick: an artefact of the discrete contact boundary, not a belt-creep state (docs/fem-drive.md §11; happens for slack belts with gravity)")]
+    EntrySlip {
+        /// `driver` or `driven`.
+        pulley: String,
+        /// Friction points in the leading slip run.
+        entry_slip_points: usize,
+        /// Σ w τ of the pulley on the belt over that run (along +σ), N.
+        entry_force: f64,
+        /// (M₂ + d₂ω₂)/R, N.
+        transmitted: f64,
+        /// Time of the steady state, s.
+        time: f64,
+    },
+
     /// A time step of the drive transient failed (Newton did not converge).
     #[error("time step {step} (t = {time} s) failed: {reason}")]
     DriveStepFailed {

@@ -190,7 +190,7 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
 /// contact; [`string_drive::solve`] with the scene's [`string_drive::DriveSettings`]).
 ///
 /// # Errors
-/// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::SpeedAtOrAboveCritical`], [`FemError::DriveStepFailed`],
+/// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::SpeedAtOrAboveCritical`], [`FemError::EntrySlip`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`] besides the static ones below.
 /// [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
 /// [`FemError::InvalidOption`], [`FemError::IllPosed`] (weightless slack loop), and the

@@ -169,6 +169,8 @@ struct PulleyOut {
     slip_start: Option<f64>,
     all_slip: bool,
     no_slip: bool,
+    /// A leading run of slip points followed by stick: (points, Σ w (−τ_⊥) over it, N).
+    entry_slip: Option<(usize, f64)>,
 }
 
 /// Solve a friction-drive scene (see [`applies`]).
@@ -446,6 +448,21 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     if !steady && matches!(scene.analysis, Analysis::Steady) {
         return Err(FemError::SteadyStateNotReached { steps: history.len(), time, rate: last_rate, tolerance: drive_settings.steady_tolerance });
     }
+    // a steady state must stick at entry (docs/fem-drive.md §11): a leading slip run
+    // whose friction force exceeds 20 % of the force the pulley transmits, (M₂ + d₂ω₂)/R,
+    // shifts the stick-zone tension by more than 20 % of the tension difference that sets
+    // the slip arcs — an error; smaller ones are reported in options.drive
+    let transmitted = (load_torque + damping * phi_prev / dt).abs() / r;
+    let entry_slip_force = outs.iter().filter_map(|o| o.entry_slip).fold(0.0f64, |m, (_, f)| m.max(f.abs()));
+    if steady {
+        for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
+            if let Some((n, force)) = outs[k].entry_slip {
+                if force.abs() > 0.2 * transmitted + 1e-9 * f_ref {
+                    return Err(FemError::EntrySlip { pulley: pulley.name().to_string(), entry_slip_points: n, entry_force: force, transmitted, time });
+                }
+            }
+        }
+    }
 
     // 3. outputs of the last state
     let sol_params = TermParams { penalty: Some(penalty), ..params };
@@ -508,6 +525,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             "dissipation": dissipation,
             "max_penetration": max_penetration,
             "stick_slip_max": stick_slip_max,
+            "entry_slip_force": entry_slip_force,
             "tangential_penalty": p_t,
         },
         "homotopy": report,
@@ -597,7 +615,13 @@ fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: 
         Some(i) if i + 1 < pts.len() => Some(0.5 * (unwrap(contour, pulley, pts[i].sigma) + unwrap(contour, pulley, pts[i + 1].sigma))),
         _ => None,
     };
-    PulleyOut { torque, slip_start, all_slip, no_slip }
+    // the leading run of slip points, if stick follows (not a belt-creep pattern)
+    let first_stick = pts.iter().position(|p| !p.slip);
+    let entry_slip = match first_stick {
+        Some(i) if i > 0 => Some((i, -pts[..i].iter().map(|p| p.friction_weight * p.tangential).sum::<f64>())),
+        _ => None,
+    };
+    PulleyOut { torque, slip_start, all_slip, no_slip, entry_slip }
 }
 
 /// Contact arc (point-based fallback) and slip arc of a pulley, rad.
