@@ -421,10 +421,11 @@ fn creep_with_inertia(scene: &Scene, mu: f64) -> (f64, f64, f64, f64, f64, f64) 
         }
     }
     let ts = 0.5 * (lo + hi);
-    let (tt, c, k, phi, _) = state(ts);
+    let (tt, c, _, phi, _) = state(ts);
     let rc2 = rho * c * c;
     let n = |t: f64| ea * (t + rc2) / (ea - rc2);
-    (n(tt), n(ts), tt, ts, phi, w1 * (ea + ts) / (ea + tt) * (k / k))
+    // ω₂ = ω₁λ_s/λ_t, λ = (EA + T̃)/k: k cancels
+    (n(tt), n(ts), tt, ts, phi, w1 * (ea + ts) / (ea + tt))
 }
 
 /// Hard case (issue 6): speed close to critical. The weightless creep scene with
