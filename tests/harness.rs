@@ -303,7 +303,8 @@ fn a_study_without_fe_says_so() {
     assert!(outcome.checks.iter().all(|c| c.measure == gate::Measure::Error));
 }
 
-/// `report` writes per scene a Markdown page, four SVGs and a JSON, and an index.
+/// `report` writes per scene a Markdown page, four SVGs and a JSON, and an index that
+/// keeps the rows of earlier reports in the same directory.
 #[test]
 fn report_writes_markdown_svg_json_and_an_index() {
     let dir = temp("reports");
@@ -326,4 +327,13 @@ fn report_writes_markdown_svg_json_and_an_index() {
     assert!(v["reference_fields"]["tension"].as_array().unwrap().len() >= 256);
     let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
     assert!(index.contains("[string-hanging-steel](string-hanging-steel/report.md)"), "{index}");
+    // A second report into the same directory adds its row and keeps the first.
+    let o = beltcheck(&["report", "scenes/string-hanging.json", "-o", dir.to_str().unwrap(), "--tolerances", "1e-6", "--elements", "32,64"]);
+    assert_eq!(o.status.code(), Some(0), "{}\n{}", stdout(&o), stderr(&o));
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    for scene in ["string-hanging-steel", "string-hanging"] {
+        assert!(index.contains(&format!("[{scene}]({scene}/report.md)")), "{scene} missing:\n{index}");
+    }
+    let rows: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("index.json")).unwrap()).unwrap();
+    assert_eq!(rows.as_array().unwrap().len(), 2);
 }

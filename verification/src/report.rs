@@ -17,7 +17,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use drive::scene::{Scene, Theory};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::plot;
 use crate::run::{fmt_tolerance, Family, Run, RunData};
@@ -44,7 +44,7 @@ pub enum ReportError {
 }
 
 /// What the index needs of one written report.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ReportEntry {
     /// Scene name.
     pub scene: String,
@@ -444,11 +444,36 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
 }
 
 /// Writes `dir/index.md`: one row per scene with model, methods, FE status, worst
-/// errors and links.
+/// errors and links, sorted by scene name — and the same entries as `dir/index.json`.
+///
+/// The index covers every report in `dir`, not only the ones just written: entries of
+/// an earlier `index.json` whose scene is not among `entries` are kept while their
+/// Markdown report still exists (so `report one-scene.json -o reports/` refreshes one
+/// row instead of dropping the others). An unreadable earlier `index.json` is ignored.
 ///
 /// # Errors
 /// A file that cannot be written.
 pub fn write_index(entries: &[ReportEntry], dir: &Path) -> Result<PathBuf, ReportError> {
+    let json = dir.join("index.json");
+    let earlier: Vec<ReportEntry> =
+        std::fs::read_to_string(&json).ok().and_then(|t| serde_json::from_str(&t).ok()).unwrap_or_default();
+    let mut all: Vec<ReportEntry> = earlier
+        .into_iter()
+        .filter(|old| !entries.iter().any(|e| e.scene == old.scene))
+        .filter_map(|mut old| {
+            // Where `report` puts a scene's page; re-rooted at `dir` (the earlier run may
+            // have named the directory differently).
+            let page = dir.join(&old.scene).join("report.md");
+            page.exists().then(|| {
+                old.markdown = page;
+                old
+            })
+        })
+        .chain(entries.iter().cloned())
+        .collect();
+    all.sort_by(|a, b| a.scene.cmp(&b.scene));
+    let entries = &all[..];
+    write(&json, &serde_json::to_string_pretty(entries)?)?;
     let mut m = String::new();
     let _ = writeln!(m, "# beltcheck reports\n");
     let _ = writeln!(m, "Each scene of the catalogue computed two independent ways — BVP references and MEL finite elements — and held against each other. Regenerate with `cargo run --release -- report scenes/ -o reports/` (see docs/verification.md).\n");
