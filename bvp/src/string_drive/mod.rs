@@ -23,9 +23,8 @@ use crate::analytical::belt_creep::{CreepData, CreepError, CreepSolution};
 use crate::collocation::{CollocationOptions, Scheme};
 use crate::continuation::{self, ContinuationOptions};
 use crate::error::BvpError;
-use crate::problem::JacobianMode;
 use crate::solution::{Solution, Stats};
-use crate::string_hanging::{add_stats, final_solve, finish_stats, Method};
+use crate::string_hanging::{add_stats, final_solve, finish_stats, Method, StringHangingOptions};
 pub use problem::ScaledStringDrive;
 use problem::*;
 
@@ -84,36 +83,10 @@ impl StringDrive {
     }
 }
 
-/// Options of [`solve`].
-#[derive(Debug, Clone, Serialize)]
-pub struct StringDriveOptions {
-    /// Final method. Default: collocation, order 6.
-    pub method: Method,
-    /// Tolerance of the final solve (the method's own definition). Default 1e-8; valid
-    /// (1e-13, 1e-2].
-    pub tolerance: f64,
-    /// Mesh cap of the collocation solves. Default 20 000.
-    pub max_nodes: usize,
-    /// Shooting intervals per segment. Default 8.
-    pub shooting_intervals: usize,
-    /// Jacobians by AD (default) or finite differences.
-    pub jacobian: JacobianMode,
-    /// Tolerance of the collocation solves along the homotopy path. Default 1e-5.
-    pub homotopy_tolerance: f64,
-}
-
-impl Default for StringDriveOptions {
-    fn default() -> Self {
-        Self {
-            method: Method::Collocation(Scheme::default()),
-            tolerance: 1e-8,
-            max_nodes: 20_000,
-            shooting_intervals: 8,
-            jacobian: JacobianMode::Ad,
-            homotopy_tolerance: 1e-5,
-        }
-    }
-}
+/// Options of [`solve`]: those of the hanging string (final method, tolerance in
+/// (1e-13, 1e-2], default 1e-8; collocation mesh cap; shooting intervals; Jacobian mode;
+/// homotopy tolerance), which the drive's homotopy and final solve use the same way.
+pub type StringDriveOptions = StringHangingOptions;
 
 /// Why a `string-drive` scene has no computed steady solution.
 #[derive(Debug, Clone, Error)]
