@@ -1,5 +1,7 @@
-//! End to end: `beltcheck solve --method fem` on a friction-drive scene writes the
-//! optional `history` of the transient (docs/fem-drive.md §8) beside the summary.
+//! End to end: `beltcheck solve --method fem` on a friction-drive scene: `analysis:
+//! transient` writes the optional `history` of the transient (docs/fem-drive.md §8)
+//! beside the summary; `analysis: steady` runs the direct steady solve (§12), which has
+//! no history and lands on the same state.
 
 mod common;
 
@@ -7,8 +9,12 @@ use common::{beltcheck, stderr, stdout, temp};
 
 #[test]
 fn fem_drive_writes_the_history() {
+    let mut scene: serde_json::Value = serde_json::from_str(&std::fs::read_to_string("fem/tests/scenes/drive-creep.json").unwrap()).unwrap();
+    scene["analysis"] = "transient".into();
+    let transient = temp("cli-drive", "transient-scene.json");
+    std::fs::write(&transient, serde_json::to_string(&scene).unwrap()).unwrap();
     let out = temp("cli-drive", "drive.json");
-    let o = beltcheck(&["solve", "fem/tests/scenes/drive-creep.json", "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);
+    let o = beltcheck(&["solve", transient.to_str().unwrap(), "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}\n{}", stdout(&o), stderr(&o));
     let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let h = &v["history"];
@@ -23,6 +29,15 @@ fn fem_drive_writes_the_history() {
         assert!(s["driven"][key].is_number(), "summary.driven.{key}");
     }
     assert!(s["tension_tight"].as_f64().unwrap() > s["tension_slack"].as_f64().unwrap());
+    // the steady scene: direct solve, no history, the same driven speed (the two agree
+    // to 1e-6 relative at 32 elements: creep ω₂ is set by the span stretches)
+    let out = temp("cli-drive", "steady.json");
+    let o = beltcheck(&["solve", "fem/tests/scenes/drive-creep.json", "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}\n{}", stdout(&o), stderr(&o));
+    let w: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    assert!(w.get("history").is_none());
+    let (a, b) = (w["summary"]["driven_speed"].as_f64().unwrap(), s["driven_speed"].as_f64().unwrap());
+    assert!((a - b).abs() < 1e-6 * b, "steady ω₂ {a} vs transient {b}");
     // a static scene has no history
     let out = temp("cli-drive", "static.json");
     let o = beltcheck(&["solve", "scenes/string-hanging.json", "--method", "fem", "--elements", "32", "--json", out.to_str().unwrap()]);

@@ -1,7 +1,8 @@
 //! Run a friction-drive scene by MEL finite elements and print the summary, the
 //! history (every k-th step) and the work (docs/fem-drive.md).
 //!
-//! `cargo run --release -p fem --example drive -- fem/tests/scenes/drive-creep.json [elements] [penalty|al] [time_step] [kappa_t]`
+//! `cargo run --release -p fem --example drive -- fem/tests/scenes/drive-creep.json [elements] [penalty|al|steady] [time_step] [kappa_t]`
+//! (`steady`: the direct steady solve of docs/fem-drive.md §12)
 
 use std::path::Path;
 
@@ -32,7 +33,15 @@ fn main() {
         ds.tangential_penalty_factor = k;
     }
     let kernel = fem::formulation::find(&opts.formulation).expect("formulation");
-    match fem::string_drive::solve(&scene, &opts, &fem::SolverSettings::default(), &ds, kernel) {
+    let steady = args.get(3).map(String::as_str) == Some("steady");
+    let t0 = std::time::Instant::now();
+    let result = if steady {
+        fem::string_drive::steady::solve(&scene, &opts, &fem::SolverSettings::default(), &ds, kernel)
+    } else {
+        fem::string_drive::solve(&scene, &opts, &fem::SolverSettings::default(), &ds, kernel)
+    };
+    println!("wall {:.3} s", t0.elapsed().as_secs_f64());
+    match result {
         Ok(run) => {
             for (name, v) in run.summary.scalars() {
                 let shown = if name.contains("arc") || name.contains("contact_") { v.to_degrees() } else { v };

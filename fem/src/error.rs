@@ -90,7 +90,7 @@ pub enum FemError {
 
     /// The load on the driven pulley exceeds what friction can transmit on a pulley
     /// (docs/fem-drive.md §5): no steady creep solution exists.
-    #[error("torque above the friction capacity at t = {time} s: the {pulley} pulley must transmit {torque:.6e} N·m but its contact can carry at most {capacity:.6e} N·m (R ∫ μ τ_γ dσ over its contact zone)")]
+    #[error("torque above the friction capacity{}: the {pulley} pulley must transmit {torque:.6e} N·m but its contact can carry at most {capacity:.6e} N·m (R ∫ μ τ_γ dσ over its contact zone)", at(.time))]
     FrictionCapacityExceeded {
         /// `driver` or `driven`.
         pulley: String,
@@ -98,14 +98,14 @@ pub enum FemError {
         torque: f64,
         /// R ∫ μ τ_γ dσ over the pulley's contact points, N·m.
         capacity: f64,
-        /// Time of the step, s.
-        time: f64,
+        /// Time of the step, s (`None`: the direct steady solve).
+        time: Option<f64>,
     },
 
     /// Transport inertia at or above the critical speed (docs/fem-drive.md §6): the
     /// effective tension N − ρc²λ of a span is not positive, the step energy (D3) has no
     /// stationary point of the string's kind (the belt cannot be held on the pulleys).
-    #[error("speed at or above critical at t = {time} s: in the {span} span the axial force N = {tension:.6e} N does not exceed the transport term ρc²λ = {inertia_force:.6e} N (effective tension N − ρc²λ ≤ 0)")]
+    #[error("speed at or above critical{}: in the {span} span the axial force N = {tension:.6e} N does not exceed the transport term ρc²λ = {inertia_force:.6e} N (effective tension N − ρc²λ ≤ 0)", at(.time))]
     SpeedAtOrAboveCritical {
         /// `upper` or `lower`.
         span: String,
@@ -113,8 +113,8 @@ pub enum FemError {
         tension: f64,
         /// ρc²λ there with the transport rate c of the step, N.
         inertia_force: f64,
-        /// Time of the step, s.
-        time: f64,
+        /// Time of the step, s (`None`: the direct steady solve).
+        time: Option<f64>,
     },
 
     /// The steady state reached has a slip run at the contact entry of a pulley followed
@@ -159,4 +159,12 @@ pub enum FemError {
         /// The steady-state tolerance.
         tolerance: f64,
     },
+}
+
+/// " at t = … s" of a transient step, " in the steady state" of the direct solve.
+fn at(time: &Option<f64>) -> String {
+    match time {
+        Some(t) => format!(" at t = {t} s"),
+        None => " in the steady state".into(),
+    }
 }

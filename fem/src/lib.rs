@@ -186,8 +186,9 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
 }
 
 /// Solve a scene with MEL finite elements: the static string (`string-hanging`), or
-/// the friction drive (`string-drive`, analysis steady or transient with Coulomb
-/// contact; [`string_drive::solve`] with the scene's [`string_drive::DriveSettings`]).
+/// the friction drive (`string-drive` with Coulomb contact: analysis `steady` by the
+/// direct steady solve [`string_drive::steady::solve`], `transient` by
+/// [`string_drive::solve`], with the scene's [`string_drive::DriveSettings`]).
 ///
 /// # Errors
 /// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::SpeedAtOrAboveCritical`], [`FemError::EntrySlip`], [`FemError::DriveStepFailed`],
@@ -207,6 +208,11 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
         })?;
         let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
         drive_settings.stop_at_steady = true;
+        // `steady`: the direct steady solve (docs/fem-drive.md §12); `transient`: the
+        // quasistatic transient run to its steady state, with its history
+        if scene.analysis == drive::scene::Analysis::Steady {
+            return string_drive::steady::solve(scene, opts, settings, &drive_settings, kernel);
+        }
         return string_drive::solve(scene, opts, settings, &drive_settings, kernel);
     }
     let data = string_hanging_data(scene, opts, settings)?;

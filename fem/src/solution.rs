@@ -28,6 +28,9 @@ pub struct FemSolution {
     summary: Summary,
     /// Recovered contact zones (driver, driven).
     zones: [Option<ContactZone>; 2],
+    /// ρc² of steady transport (N), if the belt moves with inertia: the free spans then
+    /// carry the effective tension N − ρc²λ (docs/fem-drive.md §12).
+    transport: Option<f64>,
 }
 
 /// Contact zone of one pulley (σ of entry and exit, unwrapped so that
@@ -79,7 +82,7 @@ impl FemSolution {
                 el.effective(&dofs.gather(e, z, length))
             })
             .collect();
-        let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2] };
+        let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2], transport: None };
         if sol.params.penalty.is_some() {
             sol.zones = if sol.params.bending_stiffness.is_some() {
                 [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
@@ -89,6 +92,18 @@ impl FemSolution {
         }
         sol.summary = sol.compute_summary();
         sol
+    }
+
+    /// The same solution of a belt in steady transport with inertia ρc² (N): the
+    /// contact boundaries are recovered with the effective tension N − ρc²λ of the free
+    /// spans (docs/fem-drive.md §12) and the summary recomputed.
+    pub fn with_transport_inertia(mut self, rho_c2: f64) -> Self {
+        self.transport = (rho_c2 != 0.0).then_some(rho_c2);
+        if self.params.penalty.is_some() && self.params.bending_stiffness.is_none() {
+            self.zones = [self.recovered_zone(Pulley::Driver), self.recovered_zone(Pulley::Driven)];
+        }
+        self.summary = self.compute_summary();
+        self
     }
 
     /// The mesh.
@@ -353,7 +368,9 @@ impl FemSolution {
         // the force at the anchor from the span's horizontal force F_x (constant in a
         // free span, (S2)), which the FE gives most accurately in the middle of the span,
         // far from the contact edges; the local N_P only where the belt is too steep
-        let n_local = self.recovered_axial_force(sigma_p);
+        // with steady transport the span carries the effective tension N − ρc²λ
+        let rc2 = self.transport.unwrap_or(0.0);
+        let n_local = self.recovered_axial_force(sigma_p) - rc2 * self.stretch(sigma_p);
         let f_p = match self.span_horizontal_force(sigma_p, dir) {
             Some(fx) if t[0].abs() > 0.1 && fx * t[0] > 0.0 => [fx, fx * t[1] / t[0]],
             _ => [n_local * t[0], n_local * t[1]],
@@ -371,7 +388,8 @@ impl FemSolution {
             for &(x, wt) in GL8.iter() {
                 let f = force(0.5 * u * (1.0 + x));
                 let nf = f[0].hypot(f[1]);
-                let lam = 1.0 + nf / ea;
+                // N = T̃ + ρc²λ and λ = 1 + N/EA give λ = (1 + T̃/EA)/(1 − ρc²/EA)
+                let lam = (1.0 + nf / ea) / (1.0 - rc2 / ea);
                 acc[0] += wt * lam * f[0] / nf;
                 acc[1] += wt * lam * f[1] / nf;
             }
@@ -412,7 +430,7 @@ impl FemSolution {
 
     /// The horizontal force F_x = N t_x of the span that σ lies on (or, on an arc, of
     /// the span next to it in direction `dir`), averaged over the middle half of the
-    /// span (32 points). `None` without gravity-free span data (never for this model).
+    /// span (32 points); with steady transport the effective tension (N − ρc²λ) t_x. `None` without gravity-free span data (never for this model).
     fn span_horizontal_force(&self, sigma: f64, dir: f64) -> Option<f64> {
         let c = self.mesh.contour();
         let mut region = c.region(sigma);
@@ -429,7 +447,7 @@ impl FemSolution {
             let el = self.context(e);
             let [_, r1, _] = el.curve(&self.local[e], xi);
             let speed = r1[0].hypot(r1[1]);
-            let n = self.recovered_axial_force(s);
+            let n = self.recovered_axial_force(s) - self.transport.map_or(0.0, |rc2| rc2 * self.stretch(s));
             sum += n * r1[0] / speed;
         }
         let fx = sum / samples as f64;

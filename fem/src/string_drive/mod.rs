@@ -30,10 +30,11 @@ use crate::linear::SparseLu;
 use crate::mesh::Mesh;
 use crate::options::{FemOptions, SolverSettings};
 use crate::solution::FemSolution;
-use crate::string_hanging::StringHanging;
+use crate::string_hanging::{HomotopyReport, StringHanging};
 use crate::{FemRun, FemStats};
 
 pub mod contact;
+pub mod steady;
 pub mod system;
 pub mod view;
 
@@ -193,21 +194,9 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     }
     let b = &scene.belt;
     let r = scene.drive.pulley_radius;
-    let penalty = opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r));
     // 1. the static frictionless start (fem-string.md §9)
-    let data = StringHanging {
-        radius: r,
-        centre_distance: scene.drive.centre_distance,
-        length: b.length,
-        axial_stiffness: b.axial_stiffness,
-        mass_per_length: b.mass_per_length,
-        gravity: scene.effects.gravity,
-        penalty: Some(penalty),
-        bending_stiffness: None,
-    };
-    let contour = data.contour()?;
-    let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
-    let (start, report, _) = data.solve(mesh, kernel.clone(), settings)?;
+    let (start, report, penalty) = static_start(scene, opts, settings, kernel.clone())?;
+    let contour = *start.mesh().contour();
     let mut newton_total = report.newton_iterations;
 
     let h = contour.centre_distance();
@@ -317,7 +306,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             for (span, sigma) in [("upper", 0.5 * h), ("lower", 1.5 * h + PI * r)] {
                 let (n, stretch) = span_force(&asm, &z, &params, length, &kernel, &contour, sigma);
                 if n - rc2 * stretch <= 0.0 {
-                    return Err(FemError::SpeedAtOrAboveCritical { span: span.into(), tension: n, inertia_force: rc2 * stretch, time });
+                    return Err(FemError::SpeedAtOrAboveCritical { span: span.into(), tension: n, inertia_force: rc2 * stretch, time: Some(time) });
                 }
             }
         }
@@ -340,7 +329,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             for pulley in [Pulley::Driven, Pulley::Driver] {
                 let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
                 if demand > cap {
-                    return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
+                    return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time: Some(time) });
                 }
             }
             let sys = StepSystem { asm: &asm, params, length, points: &points, step: step_params, load, strain_rule };
@@ -359,7 +348,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
                     for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
                         if outs[k].all_slip {
                             let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
-                            return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time });
+                            return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time: Some(time) });
                         }
                     }
                     return Err(FemError::DriveStepFailed { step, time, reason });
@@ -538,6 +527,29 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
         homotopy_steps: report.steps,
     };
     Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history) })
+}
+
+/// The static frictionless start of both drive solvers (docs/fem-drive.md §3): the
+/// scene's string with its gravity and length by the homotopy of fem-string.md §9,
+/// fitted to its contact boundaries, at the final penalty P (returned).
+fn static_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, kernel: Arc<dyn Kernel>) -> Result<(FemSolution, HomotopyReport, f64), FemError> {
+    let b = &scene.belt;
+    let r = scene.drive.pulley_radius;
+    let penalty = opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r));
+    let data = StringHanging {
+        radius: r,
+        centre_distance: scene.drive.centre_distance,
+        length: b.length,
+        axial_stiffness: b.axial_stiffness,
+        mass_per_length: b.mass_per_length,
+        gravity: scene.effects.gravity,
+        penalty: Some(penalty),
+        bending_stiffness: None,
+    };
+    let contour = data.contour()?;
+    let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
+    let (start, report, _) = data.solve(mesh, kernel, settings)?;
+    Ok((start, report, penalty))
 }
 
 /// The static solution's unknowns on `asm` (its own mesh), as string_hanging's transfer.
