@@ -117,6 +117,22 @@ pub enum FemError {
         time: Option<f64>,
     },
 
+    /// The direct steady solve could not fit its mesh to the contact boundaries and
+    /// stick→slip transitions (docs/fem-drive.md §12): a recovered point still lies a
+    /// sizeable fraction of an element from any node, so the stick/slip arcs are not
+    /// resolved. Usually a coarse mesh of a slack belt with gravity: refine it.
+    #[error("the steady solve could not fit its mesh to the contact boundaries and stick/slip transitions: after {passes} passes a point still lies {last_move:.3e} m from its node ({fraction:.0}% of an arc element; limit 25%): {reason} — refine the mesh (docs/fem-drive.md §12)", fraction = 100.0 * .last_move / .element)]
+    SteadyFitFailed {
+        /// Fitting passes done.
+        passes: usize,
+        /// Largest distance of a recovered point from its node, m.
+        last_move: f64,
+        /// Arc element length πR/n_arc, m.
+        element: f64,
+        /// Why the fitting stopped.
+        reason: String,
+    },
+
     /// The steady state reached has a slip run at the contact entry of a pulley followed
     /// by stick (docs/fem-drive.md §11): a discrete artefact of the contact boundary (a
     /// concentrated normal force there carries a concentrated friction force that drops

@@ -218,9 +218,15 @@ fn history_and_transient_limits() {
     assert!(err.contains("fem.time_step"), "{err}");
     let bad = text.replace("\"fem\": {\"elements\": 64}", "\"fem\": {\"elements\": 64, \"steady_tolerance\": 2.0}");
     assert!(Scene::from_json_str(&bad).unwrap_err().to_string().contains("fem.steady_tolerance"));
+    // (analysis `transient` through the entry point stops at max_steps; `steady` with
+    // the transient solver and too few steps is the named error — the entry point's
+    // `steady` is the direct solve of §12, which has no steps)
     let good = text.replace("\"fem\": {\"elements\": 64}", "\"fem\": {\"elements\": 32, \"max_steps\": 3}");
     let scene = Scene::from_json_str(&good).unwrap();
-    match fem::solve_scene(&scene, &FemOptions::from_scene(&scene, fem::default_formulation())) {
+    assert!(fem::solve_scene(&scene, &FemOptions::from_scene(&scene, fem::default_formulation())).is_ok(), "steady: direct solve");
+    let ds3 = DriveSettings::from_scene(&scene);
+    assert_eq!(ds3.max_steps, 3);
+    match run(&scene, 32, None, &ds3) {
         Err(FemError::SteadyStateNotReached { steps: 3, .. }) => {}
         other => panic!("expected SteadyStateNotReached after 3 steps, got {:?}", other.map(|r| r.summary)),
     }
@@ -498,5 +504,57 @@ fn slack_gravity_drive_reports_entry_slip() {
             assert!(entry_force.abs() > 0.2 * transmitted && entry_slip_points >= 1);
         }
         other => panic!("expected EntrySlip, got {:?}", other.map(|r| r.summary)),
+    }
+}
+
+fn steady(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
+    let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
+    let kernel = fem::formulation::find(&opts.formulation).unwrap();
+    string_drive::steady::solve(scene, &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
+}
+
+/// The direct steady solve (docs/fem-drive.md §12) on the creep scene: belt-creep
+/// theory with shrinking error, the exact discrete power balance P_in = P_out + D
+/// (it follows from (DS2), so it holds to round-off, unlike the transient's O(Δt)),
+/// the driven torque balance, and agreement with the transient's steady state.
+/// Measured slip-arc errors against ln(T_t/T_s)/μ: 1.3°, 0.46°, 0.24° at 64, 128, 256.
+#[test]
+fn direct_steady_solve_matches_creep_theory_and_balances_power() {
+    let scene = creep_scene();
+    let mut slip = Vec::new();
+    for n in [64, 128] {
+        let r = steady(&scene, n).unwrap_or_else(|e| panic!("{n}: {e}"));
+        let (s_err, w_err) = creep_errors(&scene, &r);
+        assert!(w_err < 1e-6, "{n}: ω₂/ω₁ against λ_s/λ_t: {w_err:e}");
+        slip.push(s_err[0].max(s_err[1]));
+        let (pin, pout, d) = (drive_option(&r, "power_in"), drive_option(&r, "power_out"), drive_option(&r, "dissipation"));
+        assert!((pin - pout - d).abs() < 1e-9 * pin, "{n}: P_in {pin} P_out {pout} D {d}");
+        assert!(d > 0.0, "slip dissipates");
+        let m2 = r.summary.driven.as_ref().unwrap().torque.unwrap();
+        assert!((m2 - 2.0).abs() < 1e-9, "{n}: driven torque {m2}");
+        assert!(r.history.is_none());
+        assert_eq!(r.options["drive"]["report"]["fit_converged"], true, "{n}: fitted");
+    }
+    assert!(slip[1] < 0.6 * slip[0] && slip[1] < 0.6f64.to_radians(), "slip-arc errors {slip:?} rad");
+    // the transient's steady state (64 elements) agrees to its own O(h) front error
+    let t = run(&scene, 64, None, &DriveSettings::from_scene(&scene)).unwrap();
+    let s = steady(&scene, 64).unwrap();
+    let rel = |q: &str| (t.summary.get(q).unwrap() - s.summary.get(q).unwrap()).abs() / s.summary.get(q).unwrap().abs();
+    assert!(rel("driven_speed") < 1e-6 && rel("tension_tight") < 1e-4, "ω₂ {:e}, T_t {:e}", rel("driven_speed"), rel("tension_tight"));
+}
+
+/// Above the friction capacity the steady solve's load continuation ends with the
+/// driven pulley in full slip: the named error, without a time.
+#[test]
+fn direct_steady_solve_reports_torque_above_capacity() {
+    let mut scene = creep_scene();
+    scene.drive.driven_torque = 10.0; // capacity ≈ 7.0 N·m
+    match steady(&scene, 64) {
+        Err(FemError::FrictionCapacityExceeded { capacity, time, .. }) => {
+            assert!(capacity > 5.0 && capacity < 10.0, "capacity {capacity}");
+            assert!(time.is_none());
+        }
+        Err(other) => panic!("expected FrictionCapacityExceeded, got {other}"),
+        Ok(_) => panic!("no steady state above the capacity"),
     }
 }
