@@ -44,6 +44,41 @@ pub struct FrictionPoint {
     pub left: (usize, f64),
     /// Element starting at the node (its edge ξ = −1) and its weight h/2.
     pub right: (usize, f64),
+    /// The whole node, or one half of a node split at a fitted stick→slip transition.
+    pub part: Part,
+}
+
+/// Which share of a node a friction point carries (docs/fem-drive.md §12).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Both edges, weight (h_l + h_r)/2, v upwind (the element ending at the node).
+    Whole,
+    /// The upstream half of a transition node: weight h_l/2, v of the element ending
+    /// there (the stick side).
+    Left,
+    /// The downstream half: weight h_r/2, v of the element starting there (the slip
+    /// side) — so the traction jump at the transition sits exactly at the node.
+    Right,
+}
+
+impl FrictionPoint {
+    /// The element whose stretch λ̄ gives the point's velocity (DS0).
+    pub fn velocity_element(&self) -> usize {
+        if self.part == Part::Right {
+            self.right.0
+        } else {
+            self.left.0
+        }
+    }
+
+    /// σ where the point's velocity is sampled: the midpoint of its element.
+    pub fn velocity_sigma(&self) -> f64 {
+        if self.part == Part::Right {
+            self.sigma + self.right.1
+        } else {
+            self.sigma - self.left.1
+        }
+    }
 }
 
 /// The state of a friction point in a converged steady solution.
@@ -98,10 +133,13 @@ pub struct SteadyProblem<'a> {
     pub strain_rule: Rule,
 }
 
-/// The friction points of a mesh (docs/fem-drive.md §12).
-pub fn friction_points(asm: &Assembler) -> Vec<FrictionPoint> {
+/// The friction points of a mesh (docs/fem-drive.md §12): one per node within reach of
+/// a pulley, two (the halves [`Part::Left`], [`Part::Right`]) at a node within 10⁻⁶ of
+/// its element lengths of one of the stick→slip transitions `splits` (σ).
+pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
     let mesh = asm.mesh();
     let contour = mesh.contour();
+    let lc = contour.length();
     let n = mesh.len();
     let mut out = Vec::new();
     for k in 0..n {
@@ -111,7 +149,13 @@ pub fn friction_points(asm: &Assembler) -> Vec<FrictionPoint> {
         let reach = |region: Region| reachable_pulley(contour, region, sigma);
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
         let Some(pulley) = pulley else { continue };
-        out.push(FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h) });
+        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole };
+        if splits.iter().any(|&t| wrapped_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
+            out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
+            out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
+        } else {
+            out.push(whole);
+        }
     }
     out
 }
@@ -177,9 +221,9 @@ fn inertia_energy<D: Scalar>(el: &ElementContext, q: &[D; NDOF], c: D, rho: f64,
 }
 
 /// Entries of one friction point: rows and columns in the point's variable list
-/// (q of the left element, q of the right element, c, ω₂, τ) — see
-/// [`SteadyProblem::variables`].
-const NPV: usize = 2 * NDOF + 3;
+/// (q of the left element, q of the right element, c, ω₂, τ, and for the slip half of a
+/// split node the τ of its stick half) — see [`SteadyProblem::variables`].
+const NPV: usize = 2 * NDOF + 4;
 
 /// Residual, Jacobian values (pattern order) and the point results of one evaluation.
 pub struct Evaluated {
@@ -220,12 +264,14 @@ impl SteadyProblem<'_> {
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
+        let partner = (pt.part == Part::Right && i > 0 && self.points[i - 1].part == Part::Left).then(|| self.it(i - 1));
         std::array::from_fn(|k| match k {
             k if k < NDOF => il[k],
             k if k < 2 * NDOF => ir[k - NDOF],
             k if k == 2 * NDOF => Some(self.ic()),
             k if k == 2 * NDOF + 1 => Some(self.iw()),
-            _ => Some(self.it(i)),
+            k if k == 2 * NDOF + 2 => Some(self.it(i)),
+            _ => partner,
         })
     }
 
@@ -312,10 +358,41 @@ impl SteadyProblem<'_> {
             }
         }
         // friction points (DS1)–(DS4)
-        let per: Vec<([f64; NPV], [[f64; NPV]; NPV], PointResult)> = (0..self.points.len())
+        let mut per: Vec<([f64; NPV], [[f64; NPV]; NPV], PointResult)> = (0..self.points.len())
             .into_par_iter()
-            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)]))
+            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false))
             .collect();
+        // a pulley whose contact points all slide leaves c or ω₂ without an equation
+        // (no steady creep state has that: each contact zone sticks at entry); within
+        // an iterate, the point nearest to sticking, min (|τ + κv| − b)/b, is taken as
+        // stick (§12) — at a converged state it must then satisfy |τ| ≤ b itself
+        for pulley in [Pulley::Driver, Pulley::Driven] {
+            let contact = |k: &usize| self.points[*k].pulley == pulley && per[*k].2.normal > 0.0;
+            let idx: Vec<usize> = (0..per.len()).filter(|k| contact(k)).collect();
+            if idx.is_empty() || idx.iter().any(|&k| !per[k].2.slip) {
+                continue;
+            }
+            let margin = |k: usize| {
+                let res = &per[k].2;
+                ((res.traction + sp.kappa * res.velocity).abs() - sp.mu * res.normal) / (sp.mu * res.normal)
+            };
+            if let Some(&k) = idx.iter().min_by(|a, b| margin(**a).total_cmp(&margin(**b))) {
+                per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true);
+            }
+        }
+        // both halves of a split node sticking would be two multipliers on one node
+        // (proportional columns): the slip half then carries the stick half's traction,
+        // w_R (τ_R − τ_L) = 0 — the whole node's behaviour (§12)
+        for i in 1..per.len() {
+            if self.points[i].part == Part::Right && self.points[i - 1].part == Part::Left && !per[i].2.slip && !per[i - 1].2.slip {
+                let w = self.points[i].weight;
+                let it = 2 * NDOF + 2;
+                per[i].0[it] = w * (x[self.it(i)] - x[self.it(i - 1)]);
+                per[i].1[it] = [0.0; NPV];
+                per[i].1[it][it] = w;
+                per[i].1[it][NPV - 1] = -w;
+            }
+        }
         let mut results = Vec::with_capacity(self.points.len());
         for (i, (r, j, res)) in per.into_iter().enumerate() {
             let v = self.variables(i);
@@ -346,26 +423,29 @@ impl SteadyProblem<'_> {
     /// (q_left, q_right, c, ω₂, τ_i): (DS1) −wτλ̄ on the S-row of the node, (DS2)
     /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
     /// b = μP⟨−γ̄⟩ (λ̄, γ̄: trapezoidal means of the two edges).
-    fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64) -> ([f64; NPV], [[f64; NPV]; NPV], PointResult) {
+    fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; NPV], [[f64; NPV]; NPV], PointResult) {
         let pt = self.points[i];
         let sp = &self.sp;
         let w = pt.weight;
-        // λ̄ of the upstream element, γ̄ the trapezoidal mean of the two edges, with
-        // gradients in (q_left, q_right)
+        // λ̄ of the point's velocity element (DS0), γ̄ the trapezoidal mean of the
+        // node's two edges, with gradients in (q_left, q_right)
         let (lam, dlam) = {
-            let el = self.asm.context(pt.left.0, &self.params);
-            let q = self.asm.dofs().gather(pt.left.0, z, self.length);
+            let e = pt.velocity_element();
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
             let (l, dl) = element_stretch(&el, &q);
             let mut d = [0.0; 2 * NDOF];
-            d[..NDOF].copy_from_slice(&dl);
+            let off = if pt.part == Part::Right { NDOF } else { 0 };
+            d[off..off + NDOF].copy_from_slice(&dl);
             (l, d)
         };
         let mut gap: Option<(f64, [f64; 2 * NDOF])> = Some((0.0, [0.0; 2 * NDOF]));
+        let node_weight = pt.left.1 + pt.right.1;
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
             let (_, _, g) = point_kinematics(&el, &q, xi);
-            let f = we / w;
+            let f = we / node_weight;
             gap = match (gap, g) {
                 (Some((acc, mut dacc)), Some((gv, dg))) => {
                     for k in 0..NDOF {
@@ -405,7 +485,7 @@ impl SteadyProblem<'_> {
         };
         let b = sp.mu * normal;
         let y = tau + sp.kappa * v;
-        let slip = y.abs() >= b;
+        let slip = y.abs() >= b && !force_stick;
         if slip {
             let s = if b > 0.0 { y.signum() } else { 0.0 };
             r[it] = w * (tau - b * s);
@@ -583,6 +663,11 @@ pub fn newton(problem: &SteadyProblem, lu: &mut SparseLu, x: &mut [f64], w: &[f6
         // converged: a whole step below the tolerance that kept the active set, or two
         // in a row (a point exactly at its slip bound may flip at round-off)
         if alpha == 1.0 && small && (same_set || small_before) {
+            // a point taken as stick only to give its pulley an equation (see
+            // `evaluate`) must obey Coulomb's bound by itself at the solution
+            if let Some(p) = problem.evaluate(x, false).and_then(|e| e.results.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
+                return Err(format!("no Coulomb state: a pulley slides over its whole contact (|τ| = {:.6e} N/m above μτ_γ = {:.6e} N/m at σ = {:.6} m)", p.traction.abs(), problem.sp.mu * p.normal, p.point.sigma));
+            }
             report.update_norm = unorm;
             return Ok(report);
         }
@@ -645,18 +730,31 @@ pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) ->
         return None;
     }
     let s = |p: &PointResult| unwrapped(contour, pulley, p.point.sigma);
-    let mid = |p: &PointResult| s(p) - p.point.left.1;
-    let (a, b) = (pts[last_stick], pts[last_stick + 1]);
+    let mid = |p: &PointResult| unwrapped(contour, pulley, p.point.velocity_sigma());
+    let a = pts[last_stick];
+    // the first two distinct velocity samples of the slip run (the slip half of a
+    // split node and the next node share their element)
+    let mut samples: Vec<&PointResult> = Vec::with_capacity(2);
+    for p in &pts[last_stick + 1..] {
+        if samples.last().is_none_or(|q| (mid(p) - mid(q)).abs() > 1e-12) {
+            samples.push(p);
+        }
+        if samples.len() == 2 {
+            break;
+        }
+    }
+    let b = samples[0];
     let mut sigma = 0.5 * (s(a) + s(b));
-    if let Some(c) = pts.get(last_stick + 2) {
+    if let [b, c] = samples[..] {
         let (mb, mc) = (mid(b), mid(c));
         if mc > mb && (c.velocity - b.velocity).abs() > 0.0 {
             let root = mb - b.velocity * (mc - mb) / (c.velocity - b.velocity);
-            // the zero may lie up to one element upstream of the last stick point (the
-            // fitted transition node itself sticks with half the slip traction)
+            // the zero may lie up to one element upstream of the last stick point (an
+            // unsplit transition node sticks with half the slip traction) or up to the
+            // second slip sample downstream
             let lo = if last_stick > 0 { s(pts[last_stick - 1]) } else { s(a) };
             if root.is_finite() {
-                sigma = root.clamp(lo, s(b));
+                sigma = root.clamp(lo, s(c));
             }
         }
     }
@@ -729,7 +827,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         let c0 = r * omega1 / lambda0;
         check_critical(&start, b.mass_per_length * c0 * c0)?;
     }
-    let points = friction_points(&asm);
+    let points = friction_points(&asm, &[]);
     let mut x = super::transfer(&start, &asm);
     x.extend([r * omega1 / lambda0, omega1]);
     x.extend(std::iter::repeat_n(0.0, points.len()));
@@ -812,6 +910,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
             let sol = FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], params, length, kernel.clone())
                 .with_transport_inertia(rho_c2(&state));
             let mut breaks = sol.contact_boundaries();
+            let boundaries = breaks.len();
             breaks.extend([Pulley::Driver, Pulley::Driven].iter().filter_map(|&p| transition(&state.results, &contour, p)));
             let nodes = state.asm.mesh().node_sigmas();
             let moved = breaks.iter().map(|&s| nodes.iter().map(|&n| wrapped_diff(n, s, lc).abs()).fold(f64::INFINITY, f64::min)).fold(0.0f64, f64::max);
@@ -867,7 +966,8 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
                 break;
             };
             let asm = Assembler::new(mesh, kernel.clone());
-            let points = friction_points(&asm);
+            // the node at each fitted transition is split into its stick and slip halves
+            let points = friction_points(&asm, &breaks[boundaries..]);
             let mut x = super::transfer(&sol, &asm);
             let nz_old = state.asm.len();
             x.extend([state.x[nz_old], state.x[nz_old + 1]]);
@@ -1098,9 +1198,13 @@ fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn 
     let penalty = params.penalty.unwrap_or(0.0);
     let mut edge: Vec<[Option<PointResult>; 2]> = vec![[None, None]; n];
     for res in &state.results {
-        // a node's point stands for both elements' edges
-        edge[res.point.left.0][1] = Some(*res);
-        edge[res.point.right.0][0] = Some(*res);
+        // a node's point stands for both elements' edges, a half for its own side
+        if res.point.part != Part::Right {
+            edge[res.point.left.0][1] = Some(*res);
+        }
+        if res.point.part != Part::Left {
+            edge[res.point.right.0][0] = Some(*res);
+        }
     }
     let rule = kernel.rules().contact;
     (0..n)
@@ -1173,7 +1277,7 @@ mod tests {
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
         let (start, _, penalty) = super::super::static_start(&scene, &opts, &settings, kernel.clone()).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
-        let points = friction_points(&asm);
+        let points = friction_points(&asm, &[]);
         let b = &scene.belt;
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(penalty), bending_stiffness: None };
         // a soft penalty keeps the FD of the normal term well conditioned
