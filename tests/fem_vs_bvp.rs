@@ -218,29 +218,26 @@ fn string_drive_converges_to_the_bvp() {
 /// The hard case of issue 6: a very slack belt with gravity driven (fem/tests/scenes/
 /// drive-slack.json, the string-hanging belt with μ = 0.3, M₂ = 0.02 N·m; the BVP sticks
 /// at entry at the span tension, slip arcs 9.30° / 12.24°). The transient cannot solve
-/// it (`EntrySlip`, docs/fem-drive.md §11); the direct steady solve on the fitted mesh
-/// does (§12). Measured at 128 (256) elements: mid-span tensions 2e-5, ω₂ 1.2e-7
-/// (1.4e-7), contact angles 3e-6, slip arcs 10.89° / 13.00° (10.45° / 12.55°). At 64
-/// elements the fit does not converge and the solve says so (`SteadyFitFailed`).
+/// it (`EntrySlip`, docs/fem-drive.md §11); the direct steady solve does (§12), on the
+/// fitted mesh from 128 elements. Measured at 128 / 256 elements: mid-span tensions
+/// 2e-5, ω₂ 1.2e-7 / 1.4e-7, contact angles 3e-6, slip arcs 10.89° / 13.00° and
+/// 10.45° / 12.55° (the driver's slip zone, 13 mm long, lies in the Cartesian contact
+/// part of the upper span). Coarser meshes do not resolve it (§12).
 #[test]
 fn slack_gravity_drive_by_the_direct_steady_solve() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("fem/tests/scenes/drive-slack.json");
     let sc = Scene::from_path(&path).unwrap();
     let reference = bvp_reference(&sc);
-    let fine = fem_summary(&sc, 128, "string-simpson");
-    let rel = |q: &str| (fine.get(q).unwrap() - reference.get(q).unwrap()).abs() / reference.get(q).unwrap().abs();
-    for (q, bound) in [("tension_upper_mid", 1e-4), ("tension_lower_mid", 1e-4), ("driven_speed", 1e-6), ("transport_rate", 1e-6), ("driver.contact_arc", 1e-5), ("driven.contact_arc", 1e-5), ("driven.torque", 1e-9)] {
-        assert!(rel(q) < bound, "{q}: {:e} (bound {bound:e})", rel(q));
+    let mut slip_errors = Vec::new();
+    for n in [128, 256] {
+        let fine = fem_summary(&sc, n, "string-simpson");
+        let rel = |q: &str| (fine.get(q).unwrap() - reference.get(q).unwrap()).abs() / reference.get(q).unwrap().abs();
+        for (q, bound) in [("tension_upper_mid", 1e-4), ("tension_lower_mid", 1e-4), ("driven_speed", 1e-6), ("transport_rate", 1e-6), ("driver.contact_arc", 1e-5), ("driven.contact_arc", 1e-5), ("driven.torque", 1e-9)] {
+            assert!(rel(q) < bound, "{n}: {q}: {:e} (bound {bound:e})", rel(q));
+        }
+        let err = |q: &str| (fine.get(q).unwrap() - reference.get(q).unwrap()).abs();
+        slip_errors.push(err("driver.slip_arc").max(err("driven.slip_arc")));
+        assert!(slip_errors[slip_errors.len() - 1] < 2f64.to_radians(), "{n}: slip arcs {}° / {}°", fine.get("driver.slip_arc").unwrap().to_degrees(), fine.get("driven.slip_arc").unwrap().to_degrees());
     }
-    for q in ["driver.slip_arc", "driven.slip_arc"] {
-        let err = (fine.get(q).unwrap() - reference.get(q).unwrap()).abs();
-        assert!(err < 2f64.to_radians(), "{q}: {}° against {}°", fine.get(q).unwrap().to_degrees(), reference.get(q).unwrap().to_degrees());
-    }
-    let opts = fem::FemOptions { elements: 64, ..fem::FemOptions::from_scene(&sc, "string-simpson") };
-    match fem::solve_scene(&sc, &opts) {
-        Err(fem::FemError::SteadyFitFailed { last_move, element, .. }) => assert!(last_move > 0.25 * element),
-        Err(e) => panic!("expected SteadyFitFailed at 64 elements, got {e}"),
-        Ok(_) => {}
-    }
+    assert!(slip_errors[1] < slip_errors[0], "slip-arc errors {slip_errors:?} rad shrink");
 }
-

@@ -11,6 +11,12 @@
 //! - `to_steady/exudyn/N`: N = 64 (128 elements take ≈ 24 s, measured once by
 //!   `--example drive`, docs/fem-drive.md §10).
 //!
+//! The direct steady solve (docs/fem-drive.md §12), `direct_steady/…`: static start,
+//! load continuation, fitting passes — the whole `steady::solve`:
+//! - `direct_steady/creep/N`: N = 64 … 512;
+//! - `direct_steady/string-drive/N`: the catalogue scene (gravity, inertia), N = 32 … 256;
+//! - `direct_steady/slack/N`: the very slack belt with gravity, N = 128, 256.
+//!
 //! Run: `cargo bench -p fem --bench string_drive`. Sample size 10.
 
 use std::path::Path;
@@ -52,5 +58,30 @@ fn to_steady(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, to_steady);
+fn solve_direct(scene: &Scene, elements: usize) -> f64 {
+    let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
+    let kernel = fem::formulation::find(&opts.formulation).unwrap();
+    let run = string_drive::steady::solve(scene, &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel).expect("steady state");
+    run.summary.driven_speed.unwrap()
+}
+
+fn direct_steady(c: &mut Criterion) {
+    let mut group = c.benchmark_group("direct_steady");
+    group.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(3));
+    let creep = scene("drive-creep.json");
+    for n in [64, 128, 256, 512] {
+        group.bench_with_input(BenchmarkId::new("creep", n), &n, |b, &n| b.iter(|| solve_direct(&creep, n)));
+    }
+    let catalogue = Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/string-drive.json")).unwrap();
+    for n in [32, 64, 128, 256] {
+        group.bench_with_input(BenchmarkId::new("string-drive", n), &n, |b, &n| b.iter(|| solve_direct(&catalogue, n)));
+    }
+    let slack = scene("drive-slack.json");
+    for n in [128, 256] {
+        group.bench_with_input(BenchmarkId::new("slack", n), &n, |b, &n| b.iter(|| solve_direct(&slack, n)));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, to_steady, direct_steady);
 criterion_main!(benches);

@@ -538,24 +538,17 @@ fn merit(r: &[f64], s: &[f64]) -> f64 {
     0.5 * r.iter().zip(s).map(|(a, b)| (a * b) * (a * b)).sum::<f64>()
 }
 
-/// A problem with its pattern and the position of one diagonal entry per unknown.
+/// A problem with its pattern.
 struct Patterned<'p, 'a> {
     problem: &'p SteadyProblem<'a>,
     rows: Vec<usize>,
     cols: Vec<usize>,
-    diagonal: Vec<usize>,
 }
 
 impl<'p, 'a> Patterned<'p, 'a> {
     fn new(problem: &'p SteadyProblem<'a>) -> Self {
         let (rows, cols) = problem.pattern();
-        let mut diagonal = vec![usize::MAX; problem.len()];
-        for (k, (&r, &c)) in rows.iter().zip(&cols).enumerate() {
-            if r == c && diagonal[r] == usize::MAX {
-                diagonal[r] = k;
-            }
-        }
-        Patterned { problem, rows, cols, diagonal }
+        Patterned { problem, rows, cols }
     }
 }
 
@@ -563,6 +556,123 @@ impl<'a> std::ops::Deref for Patterned<'_, 'a> {
     type Target = SteadyProblem<'a>;
     fn deref(&self) -> &SteadyProblem<'a> {
         self.problem
+    }
+}
+
+/// Where a pattern entry of the full Jacobian goes in the bordered system.
+#[derive(Debug, Clone, Copy)]
+enum Entry {
+    /// Inner block A (z, τ): position in the inner values.
+    Inner(usize),
+    /// Border column B: (inner row, border column).
+    B(usize, usize),
+    /// Border row C: (border row, inner column).
+    C(usize, usize),
+    /// Corner D: (border row, border column).
+    D(usize, usize),
+}
+
+/// The Newton system [A B; C D] with the two global unknowns (c, ω₂) as its border
+/// (docs/fem-drive.md §12). A — the nodal unknowns and the tractions — is banded around
+/// the loop; the c- and ω₂-rows are dense (every friction point enters them), and a
+/// sparse LU of the whole matrix fills in like AᵀA (measured: 4 → 850 ms from 128 to
+/// 2048 elements). A's LU and the 2 × 2 Schur complement S = D − C A⁻¹ B keep the cost
+/// linear.
+struct Bordered {
+    border: [usize; 2],
+    global_of: Vec<usize>,
+    entries: Vec<Entry>,
+    inner_len: usize,
+    inner_diagonal: Vec<usize>,
+    lu: SparseLu,
+}
+
+impl Bordered {
+    fn new(rows: &[usize], cols: &[usize], n: usize, border: [usize; 2]) -> Result<Bordered, String> {
+        let mut inner_of = vec![usize::MAX; n];
+        let mut global_of = Vec::with_capacity(n - 2);
+        for (g, slot) in inner_of.iter_mut().enumerate() {
+            if !border.contains(&g) {
+                *slot = global_of.len();
+                global_of.push(g);
+            }
+        }
+        let bi = |g: usize| border.iter().position(|&b| b == g);
+        let (mut ir, mut ic) = (Vec::new(), Vec::new());
+        let entries: Vec<Entry> = rows
+            .iter()
+            .zip(cols)
+            .map(|(&r, &c)| match (bi(r), bi(c)) {
+                (None, None) => {
+                    ir.push(inner_of[r]);
+                    ic.push(inner_of[c]);
+                    Entry::Inner(ir.len() - 1)
+                }
+                (None, Some(k)) => Entry::B(inner_of[r], k),
+                (Some(k), None) => Entry::C(k, inner_of[c]),
+                (Some(k), Some(l)) => Entry::D(k, l),
+            })
+            .collect();
+        let mut inner_diagonal = vec![usize::MAX; global_of.len()];
+        for (k, (&r, &c)) in ir.iter().zip(&ic).enumerate() {
+            if r == c && inner_diagonal[r] == usize::MAX {
+                inner_diagonal[r] = k;
+            }
+        }
+        let mut lu = SparseLu::new();
+        lu.set_pattern(global_of.len(), &ir, &ic)?;
+        Ok(Bordered { border, global_of, entries, inner_len: ir.len(), inner_diagonal, lu })
+    }
+
+    /// Overwrite `rhs` with J⁻¹ rhs for the Jacobian `values` (pattern order), with
+    /// `shift` added to the diagonal (Levenberg–Marquardt; empty: none).
+    fn solve(&mut self, values: &[f64], shift: &[f64], rhs: &mut [f64]) -> Result<(), String> {
+        let m = self.global_of.len();
+        let mut a = vec![0.0; self.inner_len];
+        let mut b = [vec![0.0; m], vec![0.0; m]];
+        let mut c = [vec![0.0; m], vec![0.0; m]];
+        let mut d = [[0.0; 2]; 2];
+        for (e, &v) in self.entries.iter().zip(values) {
+            match *e {
+                Entry::Inner(k) => a[k] += v,
+                Entry::B(i, k) => b[k][i] += v,
+                Entry::C(k, j) => c[k][j] += v,
+                Entry::D(k, l) => d[k][l] += v,
+            }
+        }
+        if !shift.is_empty() {
+            for (i, &pos) in self.inner_diagonal.iter().enumerate() {
+                a[pos] += shift[self.global_of[i]];
+            }
+            for k in 0..2 {
+                d[k][k] += shift[self.border[k]];
+            }
+        }
+        self.lu.factorize(&a)?;
+        let mut u: Vec<f64> = self.global_of.iter().map(|&g| rhs[g]).collect();
+        self.lu.solve_in_place(&mut u)?;
+        for col in b.iter_mut() {
+            self.lu.solve_in_place(col)?;
+        }
+        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
+        let s = [[d[0][0] - dot(&c[0], &b[0]), d[0][1] - dot(&c[0], &b[1])], [d[1][0] - dot(&c[1], &b[0]), d[1][1] - dot(&c[1], &b[1])]];
+        let g = [rhs[self.border[0]] - dot(&c[0], &u), rhs[self.border[1]] - dot(&c[1], &u)];
+        let det = s[0][0] * s[1][1] - s[0][1] * s[1][0];
+        let scale = (s[0][0] * s[1][1]).abs().max((s[0][1] * s[1][0]).abs());
+        if !(det.abs() > 1e-14 * scale && det.is_finite()) {
+            return Err(format!("singular Schur complement of (c, ω₂): det {det:.3e}"));
+        }
+        let y = [(g[0] * s[1][1] - s[0][1] * g[1]) / det, (s[0][0] * g[1] - s[1][0] * g[0]) / det];
+        for (i, &gl) in self.global_of.iter().enumerate() {
+            rhs[gl] = u[i] - b[0][i] * y[0] - b[1][i] * y[1];
+        }
+        rhs[self.border[0]] = y[0];
+        rhs[self.border[1]] = y[1];
+        if rhs.iter().all(|v| v.is_finite()) {
+            Ok(())
+        } else {
+            Err("non-finite Newton step".into())
+        }
     }
 }
 
@@ -583,9 +693,10 @@ pub struct SteadyNewton {
 ///
 /// # Errors
 /// A message with the iteration count and the last update norm.
-pub fn newton(problem: &SteadyProblem, lu: &mut SparseLu, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, String> {
+pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, String> {
     let n = x.len();
     let problem = &Patterned::new(problem);
+    let mut lu = Bordered::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()])?;
     let mut report = SteadyNewton::default();
     let mut last_update = f64::INFINITY;
     let mut trial = vec![0.0; n];
@@ -602,7 +713,7 @@ pub fn newton(problem: &SteadyProblem, lu: &mut SparseLu, x: &mut [f64], w: &[f6
         // a singular generalised Jacobian (an active set without a unique solution) is
         // regularised on its diagonal, Levenberg–Marquardt style, 1e-12 → 1e-4 of D
         let mut step: Vec<f64> = ev.residual.iter().map(|r| -r).collect();
-        let solved = lu.factorize(&ev.values).and_then(|_| lu.solve_in_place(&mut step));
+        let solved = lu.solve(&ev.values, &[], &mut step);
         if let Err(e) = solved {
             let mut d = vec![0.0; n];
             for (k, &v) in ev.values.iter().enumerate() {
@@ -613,12 +724,9 @@ pub fn newton(problem: &SteadyProblem, lu: &mut SparseLu, x: &mut [f64], w: &[f6
             let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let mut ok = false;
             for f in [1e-12, 1e-10, 1e-8, 1e-6, 1e-4] {
-                let mut vals = ev.values.clone();
-                for (i, &pos) in problem.diagonal.iter().enumerate() {
-                    vals[pos] += f * d[i].abs().max(1e-6 * dmax).max(1e-300);
-                }
+                let shift: Vec<f64> = d.iter().map(|v| f * v.abs().max(1e-6 * dmax).max(1e-300)).collect();
                 step.iter_mut().zip(&ev.residual).for_each(|(s, r)| *s = -r);
-                if lu.factorize(&vals).and_then(|_| lu.solve_in_place(&mut step)).is_ok() {
+                if lu.solve(&ev.values, &shift, &mut step).is_ok() {
                     ok = true;
                     break;
                 }
@@ -698,8 +806,14 @@ pub struct SteadyReport {
     pub fit_last_move: Option<f64>,
     /// Why a fitting pass failed (the solution is then the last converged one).
     pub fit_failure: Option<String>,
-    /// Friction points (one per node within reach of a pulley; two at a transition).
+    /// Friction points (one per node within reach of a pulley; two at a split node).
     pub friction_points: usize,
+    /// Wall time of the static start (homotopy of fem-string.md §9), s.
+    pub static_seconds: f64,
+    /// Wall time of the load continuation, s.
+    pub continuation_seconds: f64,
+    /// Wall time of the fitting passes, s.
+    pub fitting_seconds: f64,
 }
 
 /// A converged steady state on one mesh.
@@ -796,6 +910,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
     let b = &scene.belt;
     let r = scene.drive.pulley_radius;
     let (start, homotopy, penalty) = super::static_start(scene, opts, settings, kernel.clone())?;
+    let static_seconds = clock.elapsed().as_secs_f64();
     let contour = *start.mesh().contour();
     let h = contour.centre_distance();
     let s0 = start.summary();
@@ -831,17 +946,11 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
     let mut x = super::transfer(&start, &asm);
     x.extend([r * omega1 / lambda0, omega1]);
     x.extend(std::iter::repeat_n(0.0, points.len()));
-    let mut report = SteadyReport { friction_points: points.len(), ..Default::default() };
+    let mut report = SteadyReport { friction_points: points.len(), static_seconds, ..Default::default() };
     let tol = settings.update_tolerance;
     let max_it = drive_settings.max_newton_iterations;
 
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
-    let mut lu = SparseLu::new();
-    let problem = |asm: &Assembler, pts: &[FrictionPoint], eta: f64| -> (Vec<usize>, Vec<usize>) {
-        SteadyProblem { asm, params, length, points: pts, sp: sp_at(eta), strain_rule }.pattern()
-    };
-    let (rows, cols) = problem(&asm, &points, 1.0);
-    lu.set_pattern(x.len(), &rows, &cols).map_err(|detail| FemError::SingularTangent { eta: 0.0, iteration: 0, detail })?;
     let w = variable_weights(&asm, h, r, omega1, f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
     let mut eta: f64 = 0.0;
@@ -853,7 +962,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         let target = if first { 0.0 } else { (eta + step).min(1.0) };
         let prob = SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(target), strain_rule };
         let mut xt = x.clone();
-        match newton(&prob, &mut lu, &mut xt, &w, &scales, tol, max_it) {
+        match newton(&prob, &mut xt, &w, &scales, tol, max_it) {
             Ok(n) => {
                 report.newton_iterations += n.iterations;
                 report.continuation_steps += 1;
@@ -895,6 +1004,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         }
     }
     let mut state = State { asm, x, results: last_results, rho: inertia.then_some(b.mass_per_length) };
+    report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
     if settings.contact_fitting {
@@ -905,6 +1015,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         // plain iteration x ← g(x) oscillates for the drive's transitions)
         let mut fitted_to: Option<Vec<f64>> = None;
         let mut move_limit: f64 = 0.3;
+        let (mut best_move, mut best_pass, mut passes) = (f64::INFINITY, 0usize, 0usize);
         let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
         for _ in 0..settings.max_fits.max(MIN_FITS) {
             let sol = FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], params, length, kernel.clone())
@@ -919,6 +1030,16 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
                 report.fit_converged = true;
                 break;
             }
+            // stalled: no 10 % gain over the best pass in 4 passes (a point the mesh
+            // cannot take, e.g. within 2 % of an element of a region transition, where
+            // `Mesh::fitted` keeps the transition node)
+            if moved < 0.9 * best_move {
+                best_move = moved;
+                best_pass = passes;
+            } else if passes >= best_pass + 4 {
+                break;
+            }
+            passes += 1;
             let residual: Option<Vec<f64>> = fitted_to.as_ref().filter(|x| x.len() == breaks.len()).map(|x| breaks.iter().zip(x).map(|(g, x)| wrapped_diff(*g, *x, lc)).collect());
             let next: Vec<f64> = match (&fitted_to, &residual, &previous) {
                 (Some(x), Some(f), Some((xp, fp))) if xp.len() == x.len() => (0..x.len())
@@ -973,19 +1094,13 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
             x.extend([state.x[nz_old], state.x[nz_old + 1]]);
             x.extend(points.iter().map(|p| interpolate_traction(&state.results, &contour, p)));
             let prob = SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(1.0), strain_rule };
-            let (rows, cols) = prob.pattern();
-            let mut lu = SparseLu::new();
-            if let Err(e) = lu.set_pattern(x.len(), &rows, &cols) {
-                report.fit_failure = Some(e);
-                break;
-            }
             let w = variable_weights(&asm, h, r, omega1, f_ref, points.len());
             let scales = row_scales(&asm, f_ref, points.len());
             // the transferred state is far from equilibrium in the stiff normal penalty
             // where a kink moved between elements: on failure, a penalty ladder
             // P/10⁵ → P from the transferred state
             let x0 = x.clone();
-            let mut solved = newton(&prob, &mut lu, &mut x, &w, &scales, tol, max_it);
+            let mut solved = newton(&prob, &mut x, &w, &scales, tol, max_it);
             if solved.is_err() {
                 x.copy_from_slice(&x0);
                 let mut iterations = 0;
@@ -993,7 +1108,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
                     let soft = TermParams { penalty: Some(f * penalty), ..params };
                     let sp = SteadyParams { penalty: f * penalty, ..sp_at(1.0) };
                     let p = SteadyProblem { asm: &asm, params: soft, length, points: &points, sp, strain_rule };
-                    solved = newton(&p, &mut lu, &mut x, &w, &scales, tol, max_it).map(|n| {
+                    solved = newton(&p, &mut x, &w, &scales, tol, max_it).map(|n| {
                         iterations += n.iterations;
                         SteadyNewton { iterations, ..n }
                     });
@@ -1023,6 +1138,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
             }
         }
     }
+    report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
     // an unresolved fit leaves the stick/slip arcs wrong by a fraction of an element or
     // more: a named error above a quarter of an arc element (§12)
     let element = PI * r / arc_elements as f64;
