@@ -161,7 +161,10 @@ pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
 }
 
 /// λ = |∂σr|/∂σS and γ (if defined) at a point, with their gradients in the element's q.
-fn point_kinematics(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> (f64, [f64; NDOF], Option<(f64, [f64; NDOF])>) {
+/// A value with its gradient in an element's q.
+type WithGradient = (f64, [f64; NDOF]);
+
+fn point_kinematics(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> (f64, [f64; NDOF], Option<WithGradient>) {
     let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
     let (lam, gl) = gradient(
         |v| {
