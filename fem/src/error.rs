@@ -121,7 +121,7 @@ pub enum FemError {
     /// stick→slip transitions (docs/fem-drive.md §12): a recovered point still lies a
     /// sizeable fraction of an element from any node, so the stick/slip arcs are not
     /// resolved. Usually a coarse mesh of a slack belt with gravity: refine it.
-    #[error("the steady solve could not fit its mesh to the contact boundaries and stick/slip transitions: after {passes} passes a point still lies {last_move:.3e} m from its node ({fraction:.0}% of an arc element; limit 25%): {reason} — refine the mesh (docs/fem-drive.md §12)", fraction = 100.0 * .last_move / .element)]
+    #[error("the steady solve could not fit its mesh to the contact boundaries and stick/slip transitions: after {passes} passes a point still lies {last_move:.3e} m from its node ({fraction:.0}% of an arc element; limit 5%): {reason} — refine the mesh (docs/fem-drive.md §12)", fraction = 100.0 * .last_move / .element)]
     SteadyFitFailed {
         /// Fitting passes done.
         passes: usize,
