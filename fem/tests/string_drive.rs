@@ -562,3 +562,51 @@ fn direct_steady_solve_reports_torque_above_capacity() {
         Ok(_) => panic!("no steady state above the capacity"),
     }
 }
+
+/// The hard cases of the issue by the direct steady solve (docs/fem-drive.md §12), 128
+/// elements: a torque close to the capacity (M₂ = 6.5 of ≈ 7.0 N·m, slip over 161° of
+/// the 180° arc), μ = 1.2, and 0.9 of the critical speed with transport inertia against
+/// the closed-form creep state with inertia; above critical the named error.
+#[test]
+fn direct_steady_solve_hard_cases() {
+    // slip-arc bounds in arc elements (7.8° at 128): a tenth for μ = 0.3 (the creep
+    // scene's error is 0.02°), a quarter for μ = 1.2, whose 37° slip zone carries the
+    // steep e^{μθ} (measured 0.81°)
+    for (mu, torque, bound) in [(0.3, 6.5, 0.1), (1.2, 6.0, 0.25)] {
+        let mut scene = creep_scene();
+        scene.drive.driven_torque = torque;
+        scene.effects.contact = drive::scene::Contact::Coulomb(mu);
+        let r = steady(&scene, 128).unwrap_or_else(|e| panic!("μ = {mu}, M₂ = {torque}: {e}"));
+        let s = &r.summary;
+        let (tt, ts) = (s.tension_tight.unwrap(), s.tension_slack.unwrap());
+        let theta = (tt / ts).ln() / mu;
+        let ea = scene.belt.axial_stiffness;
+        let speed_err = (s.driven_speed.unwrap() / 10.0 - (1.0 + ts / ea) / (1.0 + tt / ea)).abs();
+        for pulley in [s.driver.as_ref().unwrap(), s.driven.as_ref().unwrap()] {
+            assert!((pulley.slip_arc.unwrap() - theta).abs() < bound * std::f64::consts::PI / 23.0, "μ {mu} M₂ {torque}: slip {} vs {theta}", pulley.slip_arc.unwrap());
+        }
+        assert!(speed_err < 1e-6, "μ {mu}: {speed_err:e}");
+        assert!((s.driven.as_ref().unwrap().torque.unwrap() - torque).abs() < 1e-8 * torque);
+        assert!((s.driver.as_ref().unwrap().torque.unwrap() + torque).abs() < 1e-6 * torque);
+    }
+    let mut scene = creep_scene();
+    scene.effects.inertia = Some(true);
+    scene.drive.driven_torque = 0.5;
+    let (r, ea, rho) = (scene.drive.pulley_radius, scene.belt.axial_stiffness, scene.belt.mass_per_length);
+    let lambda0 = (2.0 * scene.drive.centre_distance + 2.0 * std::f64::consts::PI * r) / scene.belt.length;
+    let omega_c = (ea * (lambda0 - 1.0) * lambda0 / rho).sqrt() / r;
+    scene.drive.driver_speed = 0.9 * omega_c;
+    let (nt, ns, _, _, phi, w2) = creep_with_inertia(&scene, 0.3);
+    let run_ = steady(&scene, 128).unwrap_or_else(|e| panic!("0.9 ω_c: {e}"));
+    let s = &run_.summary;
+    let (tt, ts) = (s.tension_tight.unwrap(), s.tension_slack.unwrap());
+    assert!((s.driven_speed.unwrap() - w2).abs() < 1e-7 * w2, "ω₂ {} vs {w2}", s.driven_speed.unwrap());
+    assert!((tt - nt).abs() < 1e-5 * nt && (ts - ns).abs() < 1e-5 * ns, "N: {tt} vs {nt}, {ts} vs {ns}");
+    let slip = s.driven.as_ref().unwrap().slip_arc.unwrap();
+    assert!((slip - phi).abs() < 0.1 * std::f64::consts::PI / 23.0, "slip {slip} vs {phi}");
+    scene.drive.driver_speed = 1.01 * omega_c;
+    match steady(&scene, 64) {
+        Err(FemError::SpeedAtOrAboveCritical { time, .. }) => assert!(time.is_none()),
+        other => panic!("expected SpeedAtOrAboveCritical, got {:?}", other.map(|r| r.summary)),
+    }
+}
