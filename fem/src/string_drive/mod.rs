@@ -460,8 +460,8 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     let c = a_prev / dt;
     let mut summary = base.summary();
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
-    summary.tension_tight = Some(tu.max(tl));
-    summary.tension_slack = Some(tu.min(tl));
+    summary.tension_tight = Some(stick_zone_force(&base, Pulley::Driver, outs[0].slip_start).unwrap_or(tu.max(tl)));
+    summary.tension_slack = Some(stick_zone_force(&base, Pulley::Driven, outs[1].slip_start).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
     summary.transport_rate = Some(c);
     for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
@@ -550,6 +550,19 @@ fn static_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, ker
     let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (start, report, _) = data.solve(mesh, kernel, settings)?;
     Ok((start, report, penalty))
+}
+
+/// `tension_tight` / `tension_slack` (docs/fem-drive.md §8): the axial force of the
+/// driver's / driven pulley's stick zone — creep theory's T_t, T_s, as the BVP reports
+/// them (docs/string-drive.md) — midway between the contact entry and the stick→slip
+/// transition `transition` (σ; the whole zone without one); `None` without a recovered
+/// zone or with the transition outside it.
+fn stick_zone_force(base: &FemSolution, pulley: Pulley, transition: Option<f64>) -> Option<f64> {
+    let contour = base.mesh().contour();
+    let zone = base.zone(pulley)?;
+    let span = zone.sigma_end - zone.sigma_start;
+    let stick = transition.map_or(span, |t| (t - zone.sigma_start).rem_euclid(contour.length()));
+    (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_start + 0.5 * stick)))
 }
 
 /// The static solution's unknowns on `asm` (its own mesh), as string_hanging's transfer.

@@ -1390,12 +1390,7 @@ fn finish(
     // pinned), taken midway between the contact entry and the transition; the larger /
     // smaller mid-span force where a pulley has no stick zone or no recovered zone
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
-    let stick_force = |pulley: Pulley| -> Option<f64> {
-        let zone = base.zone(pulley)?;
-        let span = zone.sigma_end - zone.sigma_start;
-        let stick = transition(&state.results, &contour, pulley).map_or(span, |t| (t - zone.sigma_start).rem_euclid(contour.length()));
-        (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_start + 0.5 * stick)))
-    };
+    let stick_force = |pulley: Pulley| super::stick_zone_force(&base, pulley, transition(&state.results, &contour, pulley));
     summary.tension_tight = Some(stick_force(Pulley::Driver).unwrap_or(tu.max(tl)));
     summary.tension_slack = Some(stick_force(Pulley::Driven).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
