@@ -26,7 +26,7 @@ use crate::assembly::Assembler;
 use crate::error::FemError;
 use crate::formulation::Kernel;
 use crate::kinematics::{TermParams, NDOF};
-use crate::linear::SparseLu;
+use crate::linear::BorderedLu;
 use crate::mesh::Mesh;
 use crate::options::{FemOptions, SolverSettings};
 use crate::solution::FemSolution;
@@ -269,8 +269,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
 
     set_references(&mut points, &asm, &z, &params, length, &contour);
     let pattern = Pattern::new(&asm);
-    let mut lu = SparseLu::new();
-    lu.set_pattern(asm.len() + 2, &pattern.rows, &pattern.cols)
+    let mut lu = BorderedLu::new(&pattern.rows, &pattern.cols, asm.len() + 2, [asm.len(), asm.len() + 1])
         .map_err(|detail| FemError::SingularTangent { eta: 1.0, iteration: 0, detail })?;
     let w_newton = system::weights(&asm, h, r, 1.0);
     let w_steady = system::weights(&asm, h, r, f_ref / b.axial_stiffness);

@@ -19,7 +19,7 @@ use crate::assembly::Assembler;
 use crate::error::FemError;
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
-use crate::linear::SparseLu;
+use crate::linear::BorderedLu;
 use crate::mesh::Mesh;
 use crate::quadrature::Rule;
 use crate::solution::FemSolution;
@@ -692,123 +692,6 @@ impl<'a> std::ops::Deref for Patterned<'_, 'a> {
     }
 }
 
-/// Where a pattern entry of the full Jacobian goes in the bordered system.
-#[derive(Debug, Clone, Copy)]
-enum Entry {
-    /// Inner block A (z, τ): position in the inner values.
-    Inner(usize),
-    /// Border column B: (inner row, border column).
-    B(usize, usize),
-    /// Border row C: (border row, inner column).
-    C(usize, usize),
-    /// Corner D: (border row, border column).
-    D(usize, usize),
-}
-
-/// The Newton system [A B; C D] with the two global unknowns (c, ω₂) as its border
-/// (docs/fem-drive.md §12). A — the nodal unknowns and the tractions — is banded around
-/// the loop; the c- and ω₂-rows are dense (every friction point enters them), and a
-/// sparse LU of the whole matrix fills in like AᵀA (measured: 4 → 850 ms from 128 to
-/// 2048 elements). A's LU and the 2 × 2 Schur complement S = D − C A⁻¹ B keep the cost
-/// linear.
-struct Bordered {
-    border: [usize; 2],
-    global_of: Vec<usize>,
-    entries: Vec<Entry>,
-    inner_len: usize,
-    inner_diagonal: Vec<usize>,
-    lu: SparseLu,
-}
-
-impl Bordered {
-    fn new(rows: &[usize], cols: &[usize], n: usize, border: [usize; 2]) -> Result<Bordered, String> {
-        let mut inner_of = vec![usize::MAX; n];
-        let mut global_of = Vec::with_capacity(n - 2);
-        for (g, slot) in inner_of.iter_mut().enumerate() {
-            if !border.contains(&g) {
-                *slot = global_of.len();
-                global_of.push(g);
-            }
-        }
-        let bi = |g: usize| border.iter().position(|&b| b == g);
-        let (mut ir, mut ic) = (Vec::new(), Vec::new());
-        let entries: Vec<Entry> = rows
-            .iter()
-            .zip(cols)
-            .map(|(&r, &c)| match (bi(r), bi(c)) {
-                (None, None) => {
-                    ir.push(inner_of[r]);
-                    ic.push(inner_of[c]);
-                    Entry::Inner(ir.len() - 1)
-                }
-                (None, Some(k)) => Entry::B(inner_of[r], k),
-                (Some(k), None) => Entry::C(k, inner_of[c]),
-                (Some(k), Some(l)) => Entry::D(k, l),
-            })
-            .collect();
-        let mut inner_diagonal = vec![usize::MAX; global_of.len()];
-        for (k, (&r, &c)) in ir.iter().zip(&ic).enumerate() {
-            if r == c && inner_diagonal[r] == usize::MAX {
-                inner_diagonal[r] = k;
-            }
-        }
-        let mut lu = SparseLu::new();
-        lu.set_pattern(global_of.len(), &ir, &ic)?;
-        Ok(Bordered { border, global_of, entries, inner_len: ir.len(), inner_diagonal, lu })
-    }
-
-    /// Overwrite `rhs` with J⁻¹ rhs for the Jacobian `values` (pattern order), with
-    /// `shift` added to the diagonal (Levenberg–Marquardt; empty: none).
-    fn solve(&mut self, values: &[f64], shift: &[f64], rhs: &mut [f64]) -> Result<(), String> {
-        let m = self.global_of.len();
-        let mut a = vec![0.0; self.inner_len];
-        let mut b = [vec![0.0; m], vec![0.0; m]];
-        let mut c = [vec![0.0; m], vec![0.0; m]];
-        let mut d = [[0.0; 2]; 2];
-        for (e, &v) in self.entries.iter().zip(values) {
-            match *e {
-                Entry::Inner(k) => a[k] += v,
-                Entry::B(i, k) => b[k][i] += v,
-                Entry::C(k, j) => c[k][j] += v,
-                Entry::D(k, l) => d[k][l] += v,
-            }
-        }
-        if !shift.is_empty() {
-            for (i, &pos) in self.inner_diagonal.iter().enumerate() {
-                a[pos] += shift[self.global_of[i]];
-            }
-            for k in 0..2 {
-                d[k][k] += shift[self.border[k]];
-            }
-        }
-        self.lu.factorize(&a)?;
-        let mut u: Vec<f64> = self.global_of.iter().map(|&g| rhs[g]).collect();
-        self.lu.solve_in_place(&mut u)?;
-        for col in b.iter_mut() {
-            self.lu.solve_in_place(col)?;
-        }
-        let dot = |x: &[f64], y: &[f64]| x.iter().zip(y).map(|(p, q)| p * q).sum::<f64>();
-        let s = [[d[0][0] - dot(&c[0], &b[0]), d[0][1] - dot(&c[0], &b[1])], [d[1][0] - dot(&c[1], &b[0]), d[1][1] - dot(&c[1], &b[1])]];
-        let g = [rhs[self.border[0]] - dot(&c[0], &u), rhs[self.border[1]] - dot(&c[1], &u)];
-        let det = s[0][0] * s[1][1] - s[0][1] * s[1][0];
-        let scale = (s[0][0] * s[1][1]).abs().max((s[0][1] * s[1][0]).abs());
-        if !(det.abs() > 1e-14 * scale && det.is_finite()) {
-            return Err(format!("singular Schur complement of (c, ω₂): det {det:.3e}"));
-        }
-        let y = [(g[0] * s[1][1] - s[0][1] * g[1]) / det, (s[0][0] * g[1] - s[1][0] * g[0]) / det];
-        for (i, &gl) in self.global_of.iter().enumerate() {
-            rhs[gl] = u[i] - b[0][i] * y[0] - b[1][i] * y[1];
-        }
-        rhs[self.border[0]] = y[0];
-        rhs[self.border[1]] = y[1];
-        if rhs.iter().all(|v| v.is_finite()) {
-            Ok(())
-        } else {
-            Err("non-finite Newton step".into())
-        }
-    }
-}
-
 /// Work of one semismooth Newton solve.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SteadyNewton {
@@ -829,7 +712,7 @@ pub struct SteadyNewton {
 pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, String> {
     let n = x.len();
     let problem = &Patterned::new(problem);
-    let mut lu = Bordered::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()])?;
+    let mut lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()])?;
     let mut report = SteadyNewton::default();
     let mut last_update = f64::INFINITY;
     let mut trial = vec![0.0; n];

@@ -2,14 +2,15 @@
 //! [`Assembler`] (strain, gravity), the extra element terms of [`super::contact`] in
 //! (q, a, φ), and the load potential (D4); a Newton solver on it (as
 //! docs/fem-string.md §8: Armijo line search on Π, Levenberg–Marquardt fallback, faer
-//! sparse LU with the symbolic factorisation reused).
+//! sparse LU of the banded block with the symbolic factorisation reused and the 2 × 2
+//! Schur complement of (a, φ): `linear::BorderedLu`).
 
 use rayon::prelude::*;
 
 use crate::assembly::Assembler;
 use crate::dofs::DofKind;
 use crate::kinematics::{TermParams, NDOF};
-use crate::linear::SparseLu;
+use crate::linear::BorderedLu;
 use crate::quadrature::Rule;
 
 use super::contact::{self, PointState, StepParams, NEXT};
@@ -246,12 +247,13 @@ pub struct StepNewton {
     pub update_norm: f64,
 }
 
-/// Newton on the step system from `x` (overwritten). `lu` holds `pattern`.
+/// Newton on the step system from `x` (overwritten). `lu` holds `pattern` with (a, φ)
+/// as its border (their rows are dense: the bordered solve keeps the cost linear).
 ///
 /// # Errors
 /// A message with the iteration count and the last update norm.
 #[allow(clippy::too_many_arguments)]
-pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, String> {
+pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, String> {
     let n = x.len();
     let mut step = vec![0.0; n];
     let mut newton_step = vec![0.0; n];
@@ -288,12 +290,10 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut SparseLu, x: &mut [f
             }
             // a singular tangent (e.g. a pulley whose points all slide, d₂ = 0) is
             // regularised like an indefinite one
-            let solved = lu.factorize(&vals).and_then(|_| {
-                for (s, g) in step.iter_mut().zip(&grad) {
-                    *s = -g;
-                }
-                lu.solve_in_place(&mut step)
-            });
+            for (s, g) in step.iter_mut().zip(&grad) {
+                *s = -g;
+            }
+            let solved = lu.solve(&vals, &[], &mut step);
             if let Err(e) = solved {
                 if mu >= 1e2 {
                     return Err(format!("singular tangent at Newton iteration {}: {e}", report.iterations));
