@@ -241,6 +241,9 @@ pub struct Evaluated {
 /// Variables of an element's friction load: q (8), c, ω₂, τ_a, τ_b.
 const NEV: usize = NDOF + 4;
 
+/// Residual entries and Jacobian block of an element's friction load.
+type ElementLoad = ([f64; NEV], [[f64; NEV]; NEV]);
+
 /// Quadrature of the friction load (DS1)–(DS3): 4-point Gauss–Legendre (τ linear × λ ×
 /// a cubic shape function).
 const FRICTION_RULE: Rule = Rule::Gauss(4);
@@ -316,7 +319,7 @@ impl SteadyProblem<'_> {
     /// linear between its edge values: −∫ τ λ ∂S/∂q dσ on the S-rows (values and
     /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element;
     /// with its Jacobian in (q, c, ω₂, τ_a, τ_b).
-    fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ([f64; NEV], [[f64; NEV]; NEV]) {
+    fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad {
         let el = self.asm.context(e, &self.params);
         let q = self.asm.dofs().gather(e, z, self.length);
         let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
@@ -533,7 +536,7 @@ impl SteadyProblem<'_> {
         }
         // (DS1)–(DS3): the consistent friction load of every element with friction points
         let owners = self.edge_owners();
-        let loads: Vec<Option<([f64; NEV], [[f64; NEV]; NEV])>> = owners
+        let loads: Vec<Option<ElementLoad>> = owners
             .par_iter()
             .enumerate()
             .map(|(e, o)| {
