@@ -72,6 +72,21 @@ pub struct PointState {
     pub displacement: f64,
 }
 
+/// The points of the mixed rule of §7.3 on ξ ∈ [−1, 1]: (ξ, weight of the normal term,
+/// weight of the friction term) — the contact rule's points for the normal term, the
+/// element edges ξ = ±1 (trapezoidal weight 1) for friction; an edge that is a point of
+/// the contact rule carries both.
+pub fn mixed_rule(contact_rule: Rule) -> Vec<(f64, f64, f64)> {
+    let mut rule: Vec<(f64, f64, f64)> = contact_rule.points().iter().map(|&(xi, w)| (xi, w, 0.0)).collect();
+    for edge in [-1.0, 1.0] {
+        match rule.iter_mut().find(|p| p.0 == edge) {
+            Some(p) => p.2 = 1.0,
+            None => rule.push((edge, 0.0, 1.0)),
+        }
+    }
+    rule
+}
+
 /// The pulley a point at σ in `region` can touch: the arc's pulley, or the pulley whose
 /// centre is within R in x of a span point (the domain of the gap, fem-string.md F10).
 pub fn reachable_pulley(contour: &Contour, region: Region, sigma: f64) -> Option<Pulley> {

@@ -182,30 +182,14 @@ struct PulleyOut {
 /// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
 pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
-    drive_settings.validate()?;
-    let Contact::Coulomb(mu) = scene.effects.contact else {
-        return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
-    };
-    let omega1 = scene.drive.driver_speed;
-    if omega1.is_nan() || omega1 <= 0.0 {
-        return Err(FemError::Unsupported(format!(
-            "driver_speed ω₁ = {omega1} rad/s: the FE drive transient needs the driver turning clockwise (ω₁ > 0)"
-        )));
-    }
+    let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(scene, opts, settings, drive_settings, kernel.clone())?;
     let b = &scene.belt;
     let r = scene.drive.pulley_radius;
-    // 1. the static frictionless start (fem-string.md §9)
-    let (start, report, penalty) = static_start(scene, opts, settings, kernel.clone())?;
     let contour = *start.mesh().contour();
     let mut newton_total = report.newton_iterations;
-
     let h = contour.centre_distance();
-    let s0 = start.summary();
-    let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
     let load_torque = scene.drive.driven_torque;
     let damping = scene.drive.driven_damping;
-    let weight = scene.effects.gravity.map_or(0.0, |g| g * b.mass_per_length);
-    let f_ref = t_static.max(load_torque.abs() / r).max(weight * b.length).max(1e-300);
 
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
     let mut z = transfer(&start, &asm);
@@ -228,14 +212,8 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             let q = asm.dofs().gather(e, &z, length);
             // the contact rule's points for the normal term and the element edges
             // ξ = ±1 (trapezoidal weights) for friction: the mixed rule of §7.3
-            let mut rule: Vec<(f64, f64, f64)> = contact_rule.points().iter().map(|&(xi, w)| (xi, w, 0.0)).collect();
-            for edge in [-1.0, 1.0] {
-                match rule.iter_mut().find(|p| p.0 == edge) {
-                    Some(p) => p.2 = 1.0,
-                    None => rule.push((edge, 0.0, 1.0)),
-                }
-            }
-            rule.into_iter()
+            contact::mixed_rule(contact_rule)
+                .into_iter()
                 .map(|(xi, w, wf)| {
                     let sigma = el.sigma(xi);
                     let pulley = contact::reachable_pulley(&contour, el.geometry.region, sigma);
@@ -528,10 +506,37 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history) })
 }
 
-/// The static frictionless start of both drive solvers (docs/fem-drive.md §3): the
-/// scene's string with its gravity and length by the homotopy of fem-string.md §9,
-/// fitted to its contact boundaries, at the final penalty P (returned).
-fn static_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, kernel: Arc<dyn Kernel>) -> Result<(FemSolution, HomotopyReport, f64), FemError> {
+/// What both drive solvers start from (docs/fem-drive.md §3): the checked inputs μ, ω₁,
+/// the static frictionless solution of the scene's string with its gravity and length
+/// (homotopy of fem-string.md §9, fitted to its contact boundaries, at the final penalty
+/// P), and the force scale F_ref = max(T_static, M₂/R, ρgL) of the norms.
+struct DriveStart {
+    mu: f64,
+    omega1: f64,
+    start: FemSolution,
+    report: HomotopyReport,
+    penalty: f64,
+    /// The larger |mid-span axial force| of the static start, N.
+    t_static: f64,
+    f_ref: f64,
+}
+
+/// The common start of [`solve`] and [`steady::solve`].
+///
+/// # Errors
+/// [`FemError::InvalidOption`] (drive settings), [`FemError::Unsupported`] (no Coulomb
+/// contact, ω₁ ≤ 0), the static start's errors.
+fn drive_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<DriveStart, FemError> {
+    drive_settings.validate()?;
+    let Contact::Coulomb(mu) = scene.effects.contact else {
+        return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
+    };
+    let omega1 = scene.drive.driver_speed;
+    if omega1.is_nan() || omega1 <= 0.0 {
+        return Err(FemError::Unsupported(format!(
+            "driver_speed ω₁ = {omega1} rad/s: the FE drive needs the driver turning clockwise (ω₁ > 0)"
+        )));
+    }
     let b = &scene.belt;
     let r = scene.drive.pulley_radius;
     let penalty = opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r));
@@ -548,7 +553,11 @@ fn static_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, ker
     let contour = data.contour()?;
     let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (start, report, _) = data.solve(mesh, kernel, settings)?;
-    Ok((start, report, penalty))
+    let s0 = start.summary();
+    let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
+    let weight = scene.effects.gravity.map_or(0.0, |g| g * b.mass_per_length);
+    let f_ref = t_static.max(scene.drive.driven_torque.abs() / r).max(weight * b.length).max(1e-300);
+    Ok(DriveStart { mu, omega1, start, report, penalty, t_static, f_ref })
 }
 
 /// `tension_tight` / `tension_slack` (docs/fem-drive.md §8): the axial force of the

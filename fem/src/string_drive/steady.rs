@@ -160,33 +160,18 @@ pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
     out
 }
 
-/// λ = |∂σr|/∂σS and γ (if defined) at a point, with their gradients in the element's q.
-/// A value with its gradient in an element's q.
-type WithGradient = (f64, [f64; NDOF]);
-
-fn point_kinematics(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> (f64, [f64; NDOF], Option<WithGradient>) {
-    let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
-    let (lam, gl) = gradient(
+/// The gap γ at a point of an element and its gradient in the element's q; `None`
+/// where no pulley can be reached (F10).
+fn point_gap(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> Option<(f64, [f64; NDOF])> {
+    el.gap(&el.fields(q, xi))?;
+    let (g, gg) = gradient(
         |v| {
             let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-            let p = el.fields(&qq, xi);
-            el.stretch(&p)
+            el.gap(&el.fields(&qq, xi)).unwrap_or(v[0] * 0.0)
         },
-        &qv,
+        &SVector::<f64, NDOF>::from_fn(|i, _| q[i]),
     );
-    let p = el.fields(q, xi);
-    let gap = el.gap(&p).map(|_| {
-        let (g, gg) = gradient(
-            |v| {
-                let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-                let p = el.fields(&qq, xi);
-                el.gap(&p).unwrap_or(v[0] * 0.0)
-            },
-            &qv,
-        );
-        (g, std::array::from_fn(|i| gg[i]))
-    });
-    (lam, std::array::from_fn(|i| gl[i]), gap)
+    Some((g, std::array::from_fn(|i| gg[i])))
 }
 
 /// The upwind stretch of an element (docs/fem-drive.md §12): physical length over
@@ -595,7 +580,7 @@ impl SteadyProblem<'_> {
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let (_, _, g) = point_kinematics(&el, &q, xi);
+            let g = point_gap(&el, &q, xi);
             let f = we / node_weight;
             gap = match (gap, g) {
                 (Some((acc, mut dacc)), Some((gv, dg))) => {
@@ -769,7 +754,7 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
             if let Some(et) = problem.evaluate(&trial, false) {
                 let mt = merit(&et.residual, scales);
                 if small || mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    accepted = Some((alpha, et));
+                    accepted = Some((alpha, et, mt));
                     break;
                 }
                 if best.is_none_or(|(_, m)| mt < m) {
@@ -778,10 +763,11 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
             }
             alpha *= 0.5;
         }
-        let (alpha, same_set) = match accepted {
-            Some((a, et)) => (a, et.results.iter().zip(&ev.results).all(|(p, q)| p.slip == q.slip)),
+        // the accepted trial's evaluation and merit are those of the new x
+        let (alpha, same_set, merit_after, after) = match accepted {
+            Some((a, et, mt)) => (a, et.results.iter().zip(&ev.results).all(|(p, q)| p.slip == q.slip), mt, Some(et)),
             None => match best {
-                Some((a, _)) => (a, false),
+                Some((a, mt)) => (a, false, mt, None),
                 None => return Err(format!("no admissible step at Newton iteration {} (scaled update {unorm:.3e})", report.iterations)),
             },
         };
@@ -791,14 +777,13 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
         // the round-off floor: steps within 10³ of the tolerance that no longer reduce
         // the merit by 10 % for 3 iterations on the same active set (fine meshes of a
         // stiff normal penalty)
-        let merit_after = problem.evaluate(&trial, false).map_or(f64::INFINITY, |e| merit(&e.residual, scales));
         floor_count = if unorm <= 1e3 * tolerance && same_set && merit_after > 0.9 * m0 { floor_count + 1 } else { 0 };
         // converged: a whole step below the tolerance that kept the active set, or two
         // in a row (a point exactly at its slip bound may flip at round-off)
         if (alpha == 1.0 && small && (same_set || small_before)) || floor_count >= 3 {
             // a point taken as stick only to give its pulley an equation (see
             // `evaluate`) must obey Coulomb's bound by itself at the solution
-            if let Some(p) = problem.evaluate(x, false).and_then(|e| e.results.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
+            if let Some(p) = after.and_then(|e| e.results.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
                 return Err(format!("no Coulomb state: a pulley slides over its whole contact (|τ| = {:.6e} N/m above μτ_γ = {:.6e} N/m at σ = {:.6} m)", p.traction.abs(), problem.sp.mu * p.normal, p.point.sigma));
             }
             report.update_norm = unorm;
@@ -944,29 +929,15 @@ fn wrapped_diff(a: f64, b: f64, l: f64) -> f64 {
 /// [`FemError::HomotopyStalled`] (the load continuation failed otherwise),
 /// [`FemError::SteadyFitFailed`], [`FemError::NonFinite`].
 pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<dyn Kernel>) -> Result<crate::FemRun, FemError> {
-    use drive::scene::Contact;
     let clock = std::time::Instant::now();
-    drive_settings.validate()?;
-    let Contact::Coulomb(mu) = scene.effects.contact else {
-        return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
-    };
-    let omega1 = scene.drive.driver_speed;
-    if omega1.is_nan() || omega1 <= 0.0 {
-        return Err(FemError::Unsupported(format!(
-            "driver_speed ω₁ = {omega1} rad/s: the FE drive needs the driver turning clockwise (ω₁ > 0)"
-        )));
-    }
+    let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(scene, opts, settings, drive_settings, kernel.clone())?;
+    let static_seconds = clock.elapsed().as_secs_f64();
     let b = &scene.belt;
     let r = scene.drive.pulley_radius;
-    let (start, homotopy, penalty) = super::static_start(scene, opts, settings, kernel.clone())?;
-    let static_seconds = clock.elapsed().as_secs_f64();
     let contour = *start.mesh().contour();
     let h = contour.centre_distance();
-    let s0 = start.summary();
-    let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
     let (load_torque, damping) = (scene.drive.driven_torque, scene.drive.driven_damping);
     let weight = scene.effects.gravity.map(|g| g * b.mass_per_length);
-    let f_ref = t_static.max(load_torque.abs() / r).max(weight.unwrap_or(0.0) * b.length).max(1e-300);
     let params = TermParams { axial_stiffness: b.axial_stiffness, weight, penalty: Some(penalty), bending_stiffness: None };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
@@ -1384,14 +1355,8 @@ fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn 
         .map(|e| {
             let el = asm.context(e, &params);
             let q = asm.dofs().gather(e, &state.x[..asm.len()], length);
-            let mut pts: Vec<(f64, f64, f64)> = rule.points().iter().map(|&(xi, w)| (xi, w, 0.0)).collect();
-            for xi in [-1.0, 1.0] {
-                match pts.iter_mut().find(|p| p.0 == xi) {
-                    Some(p) => p.2 = 1.0,
-                    None => pts.push((xi, 0.0, 1.0)),
-                }
-            }
-            pts.into_iter()
+            super::contact::mixed_rule(rule)
+                .into_iter()
                 .map(|(xi, w, wf)| {
                     let sigma = el.sigma(xi);
                     let p = el.fields(&q, xi);
@@ -1448,7 +1413,7 @@ mod tests {
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        let (start, _, penalty) = super::super::static_start(&scene, &opts, &settings, kernel.clone()).unwrap();
+        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&scene, &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[]);
         let b = &scene.belt;
