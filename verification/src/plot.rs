@@ -11,6 +11,9 @@
 //! Canvases are large (1200 px wide) because SVG coordinates are whole pixels.
 
 use plotters::coord::Shift;
+use plotters::chart::MeshStyle;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::CoordTranslate;
 use plotters::prelude::*;
 
 use drive::contour::Region;
@@ -260,16 +263,11 @@ pub fn shape_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
             .y_label_area_size(left as i32 - 10)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
-        chart
-            .configure_mesh()
-            .light_line_style(GRID.mix(0.0))
-            .bold_line_style(GRID)
+        grid_style(&mut chart.configure_mesh(), 16)
             .x_desc("x [m]")
             .y_desc("y [m]")
             .x_label_formatter(&axis_label)
             .y_label_formatter(&axis_label)
-            .label_style(("sans-serif", 16))
-            .axis_desc_style(("sans-serif", 18))
             .draw()
             .map_err(err)?;
         // Pulleys: discs of radius R (to the belt centreline) and their centres.
@@ -322,20 +320,9 @@ pub fn shape_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
             if let Some(&p) = pts.first() {
                 pts.push(p);
             }
-            chart
-                .draw_series(DashedLineSeries::new(pts, 10, 6, col.stroke_width(2)))
-                .map_err(err)?
-                .label(label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], col.stroke_width(2)));
+            labelled_line(&mut chart, pts, col, 2, true, label.clone())?;
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font(("sans-serif", 16))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .draw()
-            .map_err(err)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         nu_panel(scene, study, &lower, &fe)
     })
 }
@@ -346,39 +333,13 @@ fn nu_panel(scene: &Scene, study: &Study, area: &Area, fe: &[(usize, &Samples, S
     let s = &reference.samples;
     let l = scene.geometric_length();
     let (y0, y1) = padded_range(s.deflection.iter().chain(fe.iter().flat_map(|f| f.1.deflection.iter())));
-    let mut chart = ChartBuilder::on(area)
-        .caption("deflection ν(σ) from the contour (positive away from the pulleys); shaded: contact", ("sans-serif", 20))
-        .margin_left(10)
-        .margin_right(30)
-        .x_label_area_size(50)
-        .y_label_area_size(80)
-        .build_cartesian_2d(0.0..l, y0..y1)
-        .map_err(err)?;
-    shade_contact(&mut chart, s, l, y0, y1)?;
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.0))
-        .bold_line_style(GRID)
-        .x_desc("σ [m]")
-        .y_desc("ν [m]")
-        .y_label_formatter(&axis_label)
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 18))
-        .draw()
-        .map_err(err)?;
+    let caption = "deflection ν(σ) from the contour (positive away from the pulleys); shaded: contact".to_string();
+    let axes = SigmaAxes { caption, caption_font: 20, l, y: (y0, y1), y_area: 80, ydesc: "ν [m]", y_format: Some(&axis_label), shade: Some(s) };
+    let mut chart = sigma_chart(area, axes)?;
     region_labels(&mut chart, scene)?;
-    chart
-        .draw_series(LineSeries::new(s.sigma.iter().zip(&s.deflection).map(|(&a, &b)| (a, b)), REFERENCE.stroke_width(2)))
-        .map_err(err)?
-        .label("reference")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], REFERENCE.stroke_width(2)));
+    labelled_line(&mut chart, s.sigma.iter().zip(&s.deflection).map(|(&a, &b)| (a, b)).collect(), REFERENCE, 2, false, "reference".to_string())?;
     for (i, fs, label) in fe {
-        let col = series_color(study, *i);
-        chart
-            .draw_series(DashedLineSeries::new(fs.sigma.iter().zip(&fs.deflection).map(|(&a, &b)| (a, b)), 10, 6, col.stroke_width(2)))
-            .map_err(err)?
-            .label(label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], col.stroke_width(2)));
+        labelled_line(&mut chart, fs.sigma.iter().zip(&fs.deflection).map(|(&a, &b)| (a, b)).collect(), series_color(study, *i), 2, true, label.clone())?;
     }
     legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
@@ -438,15 +399,87 @@ fn region_labels<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, scene: &Scene) -> Result
     Ok(())
 }
 
-fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, pos: SeriesLabelPosition) -> Result<(), String> {
+/// The legend box every chart uses, at `pos`, labels in `font` px.
+fn legend_box<'a, 'b: 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, SVGBackend<'b>, CT>, pos: SeriesLabelPosition, font: u32) -> Result<(), String> {
     chart
         .configure_series_labels()
         .position(pos)
-        .label_font(("sans-serif", 16))
+        .label_font(("sans-serif", font))
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK.mix(0.4))
         .draw()
         .map_err(err)
+}
+
+fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, pos: SeriesLabelPosition) -> Result<(), String> {
+    legend_box(chart, pos, 16)
+}
+
+/// The grid and label style of every chart: bold grid lines only, tick labels in
+/// `font` px, axis descriptions 2 px larger.
+fn grid_style<'m, 'a, 'b, X, Y, DB>(mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>, font: u32) -> &'m mut MeshStyle<'a, 'b, X, Y, DB>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    DB: DrawingBackend,
+{
+    mesh.light_line_style(GRID.mix(0.0)).bold_line_style(GRID).label_style(("sans-serif", font)).axis_desc_style(("sans-serif", font + 2))
+}
+
+/// One labelled curve: solid or dashed (10/6 px) in `col` of `width` px, with a short
+/// line of the same style as its legend entry.
+fn labelled_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
+    pts: Vec<(f64, f64)>,
+    col: RGBColor,
+    width: u32,
+    dashed: bool,
+    label: String,
+) -> Result<(), String> {
+    let entry = move |(x, y): (i32, i32)| PathElement::new(vec![(x, y), (x + 24, y)], col.stroke_width(width));
+    if dashed {
+        chart.draw_series(DashedLineSeries::new(pts, 10, 6, col.stroke_width(width))).map_err(err)?.label(label).legend(entry);
+    } else {
+        chart.draw_series(LineSeries::new(pts, col.stroke_width(width))).map_err(err)?.label(label).legend(entry);
+    }
+    Ok(())
+}
+
+/// A chart over σ ∈ [0, l] (linear axes) with the common grid style: used by every
+/// panel that plots a field along the contour.
+/// The reference's contact zones are shaded under the grid when `shade` is given.
+struct SigmaAxes<'s> {
+    caption: String,
+    caption_font: u32,
+    /// Contour length: the σ axis is [0, l].
+    l: f64,
+    y: (f64, f64),
+    y_area: u32,
+    ydesc: &'s str,
+    y_format: Option<&'s dyn Fn(&f64) -> String>,
+    shade: Option<&'s Samples>,
+}
+
+fn sigma_chart<'a, 'b>(area: &'a Area<'b>, axes: SigmaAxes<'_>) -> Result<Chart<'a, 'b>, String> {
+    let SigmaAxes { caption, caption_font, l, y, y_area, ydesc, y_format, shade } = axes;
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", caption_font))
+        .margin_left(10)
+        .margin_right(30)
+        .x_label_area_size(50)
+        .y_label_area_size(y_area)
+        .build_cartesian_2d(0.0..l, y.0..y.1)
+        .map_err(err)?;
+    if let Some(samples) = shade {
+        shade_contact(&mut chart, samples, l, y.0, y.1)?;
+    }
+    let mut mesh = chart.configure_mesh();
+    grid_style(&mut mesh, 16).x_desc("σ [m]").y_desc(ydesc);
+    if let Some(f) = y_format {
+        mesh.y_label_formatter(f);
+    }
+    mesh.draw().map_err(err)?;
+    Ok(chart)
 }
 
 // ---------------------------------------------------------------------------
@@ -503,39 +536,14 @@ fn field_panel(scene: &Scene, study: &Study, area: &Area, field: &str, ydesc: &s
     let clipped = !others.is_empty() && (o0 < lo || o1 > hi);
     let (y0, y1) = padded_range([lo, hi].iter());
     let title = if clipped { format!("{title} (FE curves clipped to the plotted range)") } else { title.to_string() };
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, ("sans-serif", 22))
-        .margin_left(10)
-        .margin_right(30)
-        .x_label_area_size(50)
-        .y_label_area_size(90)
-        .build_cartesian_2d(0.0..l, y0..y1)
-        .map_err(err)?;
-    shade_contact(&mut chart, s, l, y0, y1)?;
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.0))
-        .bold_line_style(GRID)
-        .x_desc("σ [m]")
-        .y_desc(ydesc)
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 18))
-        .draw()
-        .map_err(err)?;
+    let axes = SigmaAxes { caption: title, caption_font: 22, l, y: (y0, y1), y_area: 90, ydesc, y_format: None, shade: Some(s) };
+    let mut chart = sigma_chart(area, axes)?;
     region_labels(&mut chart, scene)?;
-    chart
-        .draw_series(LineSeries::new(s.sigma.iter().zip(f).map(|(&a, &b)| (a, b)), REFERENCE.stroke_width(2)))
-        .map_err(err)?
-        .label(format!("BVP reference ({} {})", study.reference.method, study.reference.discretisation))
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], REFERENCE.stroke_width(2)));
+    let reference_label = format!("BVP reference ({} {})", study.reference.method, study.reference.discretisation);
+    labelled_line(&mut chart, s.sigma.iter().zip(f).map(|(&a, &b)| (a, b)).collect(), REFERENCE, 2, false, reference_label)?;
     for (i, fs, label) in fe {
         let Some(g) = fs.field(field) else { continue };
-        let col = series_color(study, *i);
-        chart
-            .draw_series(DashedLineSeries::new(fs.sigma.iter().zip(g).map(|(&a, &b)| (a, b)), 10, 6, col.stroke_width(2)))
-            .map_err(err)?
-            .label(label.clone())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], col.stroke_width(2)));
+        labelled_line(&mut chart, fs.sigma.iter().zip(g).map(|(&a, &b)| (a, b)).collect(), series_color(study, *i), 2, true, label.clone())?;
     }
     if fe.is_empty() {
         chart
@@ -576,38 +584,16 @@ fn difference_panel(scene: &Scene, study: &Study, area: &Area) -> Result<(), Str
         .y_label_area_size(90)
         .build_cartesian_2d(0.0..l, (y0..y1).log_scale())
         .map_err(err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.0))
-        .bold_line_style(GRID)
-        .x_desc("σ [m]")
-        .y_desc("|N − N_ref| [N]")
-        .y_label_formatter(&log_label)
-        .label_style(("sans-serif", 16))
-        .axis_desc_style(("sans-serif", 18))
-        .draw()
-        .map_err(err)?;
+    grid_style(&mut chart.configure_mesh(), 16).x_desc("σ [m]").y_desc("|N − N_ref| [N]").y_label_formatter(&log_label).draw().map_err(err)?;
     for (a, _, _) in regions(scene) {
         if a > 0.0 {
             chart.draw_series(DashedLineSeries::new([(a, y0), (a, y1)], 4, 4, BLACK.mix(0.35).stroke_width(1))).map_err(err)?;
         }
     }
     for (i, label, pts) in curves {
-        let col = series_color(study, i);
-        chart
-            .draw_series(LineSeries::new(pts, col.stroke_width(1)))
-            .map_err(err)?
-            .label(label)
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], col.stroke_width(2)));
+        labelled_line(&mut chart, pts, series_color(study, i), 1, false, label)?;
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .label_font(("sans-serif", 15))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .draw()
-        .map_err(err)
+    legend_box(&mut chart, SeriesLabelPosition::UpperRight, 15)
 }
 
 // ---------------------------------------------------------------------------
@@ -632,6 +618,11 @@ fn row_error(series: &Series, row: usize, which: Option<usize>) -> Option<f64> {
     .filter(|e| *e > 0.0 && e.is_finite())
 }
 
+/// (x, error) of every row of a series whose discretisation `x` maps to an abscissa.
+fn error_points(series: &Series, which: Option<usize>, x: impl Fn(Discretisation) -> Option<f64>) -> Vec<(f64, f64)> {
+    (0..series.rows.len()).filter_map(|r| Some((x(series.rows[r].run.discretisation)?, row_error(series, r, which)?))).collect()
+}
+
 type LogChart<'a, 'b> = ChartContext<
     'a,
     SVGBackend<'b>,
@@ -646,32 +637,20 @@ fn loglog<'a, 'b>(area: &'a Area<'b>, title: &str, x: (f64, f64), y: (f64, f64),
         .y_label_area_size(80)
         .build_cartesian_2d((x.0..x.1).log_scale(), (y.0..y.1).log_scale())
         .map_err(err)?;
-    chart
-        .configure_mesh()
-        .light_line_style(GRID.mix(0.0))
-        .bold_line_style(GRID)
+    grid_style(&mut chart.configure_mesh(), 15)
         .x_desc(xdesc)
         .y_desc(ydesc)
         .x_labels(8)
         .y_labels(14)
         .x_label_formatter(&log_label)
         .y_label_formatter(&log_label)
-        .label_style(("sans-serif", 15))
-        .axis_desc_style(("sans-serif", 17))
         .draw()
         .map_err(err)?;
     Ok(chart)
 }
 
 fn log_legend<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>, pos: SeriesLabelPosition) -> Result<(), String> {
-    chart
-        .configure_series_labels()
-        .position(pos)
-        .label_font(("sans-serif", 15))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK.mix(0.4))
-        .draw()
-        .map_err(err)
+    legend_box(chart, pos, 15)
 }
 
 /// Draws a message in the middle of an area.
@@ -751,18 +730,13 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 .build_cartesian_2d(x0..x1, (y0..y1).log_scale())
                 .map_err(err)?;
             let count_label = |v: &f64| if (v - v.round()).abs() < 1e-9 { format!("{}", 2f64.powf(v.round()) as u64) } else { String::new() };
-            chart
-                .configure_mesh()
-                .light_line_style(GRID.mix(0.0))
-                .bold_line_style(GRID)
+            grid_style(&mut chart.configure_mesh(), 15)
                 .x_desc("elements (log scale)")
                 .y_desc("relative error")
                 .x_labels(((x1 - x0).ceil() as usize + 1) * 2)
                 .x_label_formatter(&count_label)
                 .y_labels(14)
                 .y_label_formatter(&log_label)
-                .label_style(("sans-serif", 15))
-                .axis_desc_style(("sans-serif", 17))
                 .draw()
                 .map_err(err)?;
             for (p, line) in slopes {
@@ -777,28 +751,16 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 let col = series_color(study, i);
                 let s = &study.series[i];
                 for (mi, (m, mlabel)) in measures.iter().enumerate() {
-                    let pts: Vec<(f64, f64)> = s
-                        .rows
-                        .iter()
-                        .enumerate()
-                        .filter_map(|(r, row)| match row.run.discretisation {
-                            Discretisation::Elements(n) => row_error(s, r, *m).map(|e| ((n as f64).log2(), e)),
-                            _ => None,
-                        })
-                        .collect();
+                    let pts = error_points(s, *m, |d| match d {
+                        Discretisation::Elements(n) => Some((n as f64).log2()),
+                        _ => None,
+                    });
                     if !pts.is_empty() {
                         draw_measure(&mut chart, &pts, col, mi, format!("{} — {mlabel}", s.method))?;
                     }
                 }
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerLeft)
-                .label_font(("sans-serif", 15))
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .draw()
-                .map_err(err)?;
+            legend_box(&mut chart, SeriesLabelPosition::LowerLeft, 15)?;
         }
         // BVP panel.
         let bvp: Vec<usize> = (0..study.series.len()).filter(|&i| study.series[i].family == Family::Bvp && study.series[i].status == SeriesStatus::Studied).collect();
@@ -832,15 +794,10 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             let col = series_color(study, i);
             let s = &study.series[i];
             for (mi, (m, mlabel)) in measures.iter().enumerate() {
-                let pts: Vec<(f64, f64)> = s
-                    .rows
-                    .iter()
-                    .enumerate()
-                    .filter_map(|(r, row)| match row.run.discretisation {
-                        Discretisation::Tolerance(t) => row_error(s, r, *m).map(|e| (t, e)),
-                        _ => None,
-                    })
-                    .collect();
+                let pts = error_points(s, *m, |d| match d {
+                    Discretisation::Tolerance(t) => Some(t),
+                    _ => None,
+                });
                 if !pts.is_empty() {
                     let short = if mi == 0 { "scalars" } else { "N L2" };
                     let _ = mlabel;
@@ -852,39 +809,62 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
     })
 }
 
+/// The point marker of a curve.
+#[derive(Clone, Copy)]
+enum Marker {
+    Circle,
+    Triangle,
+}
+
+/// A curve with a marker at every point, labelled with a line and the marker:
+/// solid or dashed (8/5 px), 2 px wide.
+fn marked_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
+    pts: &[(f64, f64)],
+    col: RGBColor,
+    marker: Marker,
+    dashed: bool,
+    label: String,
+) -> Result<(), String> {
+    if dashed {
+        chart.draw_series(DashedLineSeries::new(pts.to_vec(), 8, 5, col.stroke_width(2))).map_err(err)?;
+    } else {
+        chart.draw_series(LineSeries::new(pts.to_vec(), col.stroke_width(2))).map_err(err)?;
+    }
+    let line = move |(x, y): (i32, i32)| EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(2));
+    match marker {
+        Marker::Circle => {
+            chart
+                .draw_series(PointSeries::of_element(pts.to_vec(), 5, col.filled(), &|p, sz, st| Circle::new(p, sz, st)))
+                .map_err(err)?
+                .label(label)
+                .legend(move |p| line(p) + Circle::new((12, 0), 4, col.filled()));
+        }
+        Marker::Triangle => {
+            chart
+                .draw_series(PointSeries::of_element(pts.to_vec(), 6, col.filled(), &|p, sz, st| TriangleMarker::new(p, sz, st)))
+                .map_err(err)?
+                .label(label)
+                .legend(move |p| line(p) + TriangleMarker::new((12, 0), 5, col.filled()));
+        }
+    }
+    Ok(())
+}
+
 /// One measure of one method: measure 0 solid with circles, measure 1 dashed with
 /// triangles.
-fn draw_measure<'a, 'b: 'a, X, Y>(
-    chart: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
+fn draw_measure<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
     pts: &[(f64, f64)],
     col: RGBColor,
     measure: usize,
     label: String,
-) -> Result<(), String>
-where
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
+) -> Result<(), String> {
     if measure == 0 {
-        chart.draw_series(LineSeries::new(pts.to_vec(), col.stroke_width(2))).map_err(err)?;
-        chart
-            .draw_series(PointSeries::of_element(pts.to_vec(), 5, col.filled(), &|p, sz, st| Circle::new(p, sz, st)))
-            .map_err(err)?
-            .label(label)
-            .legend(move |(x, y)| {
-                EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(2)) + Circle::new((12, 0), 4, col.filled())
-            });
+        marked_line(chart, pts, col, Marker::Circle, false, label)
     } else {
-        chart.draw_series(DashedLineSeries::new(pts.to_vec(), 8, 5, col.stroke_width(2))).map_err(err)?;
-        chart
-            .draw_series(PointSeries::of_element(pts.to_vec(), 6, col.filled(), &|p, sz, st| TriangleMarker::new(p, sz, st)))
-            .map_err(err)?
-            .label(label)
-            .legend(move |(x, y)| {
-                EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(1)) + TriangleMarker::new((12, 0), 5, col.filled())
-            });
+        marked_line(chart, pts, col, Marker::Triangle, true, label)
     }
-    Ok(())
 }
 
 /// Error vs wall time (log–log), every studied method of the scene on one axis; one
@@ -922,21 +902,8 @@ pub fn work_precision_svg(scene: &Scene, study: &Study) -> Result<String, PlotEr
             for (i, pts) in curves {
                 let col = series_color(study, i);
                 let s = &study.series[i];
-                chart.draw_series(LineSeries::new(pts.clone(), col.stroke_width(2))).map_err(err)?;
-                let marker_pts = pts.clone();
-                if s.family == Family::Fem {
-                    chart
-                        .draw_series(PointSeries::of_element(marker_pts, 6, col.filled(), &|p, sz, st| TriangleMarker::new(p, sz, st)))
-                        .map_err(err)?
-                        .label(s.method.clone())
-                        .legend(move |(x, y)| EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(2)) + TriangleMarker::new((12, 0), 5, col.filled()));
-                } else {
-                    chart
-                        .draw_series(PointSeries::of_element(marker_pts, 5, col.filled(), &|p, sz, st| Circle::new(p, sz, st)))
-                        .map_err(err)?
-                        .label(s.method.clone())
-                        .legend(move |(x, y)| EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(2)) + Circle::new((12, 0), 4, col.filled()));
-                }
+                let marker = if s.family == Family::Fem { Marker::Triangle } else { Marker::Circle };
+                marked_line(&mut chart, &pts, col, marker, false, s.method.clone())?;
                 // Label the loosest and tightest discretisation of each line.
                 for &r in [0, s.rows.len().saturating_sub(1)].iter() {
                     let Some(row) = s.rows.get(r) else { continue };
