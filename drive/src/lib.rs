@@ -57,5 +57,5 @@ pub use scene::{
     Analysis, Belt, BvpMethod, BvpSettings, Contact, DriveGeometry, Effects, ElasticLayer,
     FemSettings, GateSettings, Scene, Theory,
 };
-pub use summary::{PulleySummary, Summary, SCALAR_NAMES};
+pub use summary::{Global, PulleyId, PulleyQuantity, PulleySummary, Quantity, Summary, SCALAR_NAMES};
 pub use view::{sample_fields, ContactState, SolutionView};

@@ -1,8 +1,10 @@
 //! The named scalars of a solution (`summary` of DESIGN.md's result format).
 //!
 //! A quantity that a scene's effects do not produce is `None` and is *absent* from
-//! the JSON (never `0`, never `null`). The verification harness compares summaries
-//! by the flat names of [`SCALAR_NAMES`] (`y_upper_mid`, `driver.contact_arc`, ...).
+//! the JSON (never `0`, never `null`). Quantities are typed ids ([`Quantity`]: a
+//! [`Global`] quantity, or a [`PulleyQuantity`] of a [`PulleyId`]); their flat names
+//! ([`SCALAR_NAMES`]: `y_upper_mid`, `driver.contact_arc`, ...) are what the JSON, the
+//! gate blocks and the harness's tables use.
 //!
 //! Sign and unit conventions (DESIGN.md "Result format"):
 //! - `*_mid`: at x = 0 on the upper / lower span;
@@ -14,7 +16,14 @@
 //!   clockwise positive (the driving sense);
 //! - `edge_force_*`: concentrated normal reaction at a contact boundary (unshearable
 //!   rods), N;
-//! - `tension_tight`/`tension_slack`: larger/smaller span tension in steady motion, N;
+//! - `edge_pressure_*`: contact pressure per unit reference length just inside the
+//!   zone at its first/last point (Cosserat rods: finite, no edge forces), N/m;
+//! - `tension_tight`/`tension_slack`: the axial force in the driver's / the driven
+//!   pulley's stick zone in steady motion, N;
+//! - one-pulley scenes (open ends, Paper C): the pulley as `pulley.*`, and
+//!   `pulley_speed` (ω, rad/s, clockwise positive), `tension_in`/`tension_out` (axial
+//!   force at the inflow/outflow end, N), `y_in`/`y_out` (y of the centreline at the
+//!   end sections, m);
 //! - `driven_speed`: ω₂, rad/s, clockwise positive;
 //! - `transport_rate`: c = mass flux / ρ, m/s (unstretched length per unit time).
 
@@ -23,37 +32,275 @@ use serde::{Deserialize, Serialize};
 use crate::error::ResultError;
 use crate::suggest::nearest;
 
-/// Every flat name [`Summary::scalars`] can produce, in its order.
-pub const SCALAR_NAMES: [&str; 26] = [
-    "y_upper_mid",
-    "y_lower_mid",
-    "tension_upper_mid",
-    "tension_lower_mid",
-    "moment_upper_mid",
-    "moment_lower_mid",
-    "tension_tight",
-    "tension_slack",
-    "driven_speed",
-    "transport_rate",
-    "driver.contact_arc",
-    "driver.contact_start",
-    "driver.contact_end",
-    "driver.stick_arc",
-    "driver.slip_arc",
-    "driver.torque",
-    "driver.edge_force_start",
-    "driver.edge_force_end",
-    "driven.contact_arc",
-    "driven.contact_start",
-    "driven.contact_end",
-    "driven.stick_arc",
-    "driven.slip_arc",
-    "driven.torque",
-    "driven.edge_force_start",
-    "driven.edge_force_end",
+/// A quantity of the whole belt (top level of `summary`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Global {
+    /// y at x = 0 on the upper span, m.
+    YUpperMid,
+    /// y at x = 0 on the lower span, m.
+    YLowerMid,
+    /// Axial force at x = 0 on the upper span, N.
+    TensionUpperMid,
+    /// Axial force at x = 0 on the lower span, N.
+    TensionLowerMid,
+    /// Bending moment at x = 0 on the upper span, N·m.
+    MomentUpperMid,
+    /// Bending moment at x = 0 on the lower span, N·m.
+    MomentLowerMid,
+    /// Axial force in the driver's stick zone, N.
+    TensionTight,
+    /// Axial force in the driven pulley's stick zone, N.
+    TensionSlack,
+    /// ω₂, rad/s.
+    DrivenSpeed,
+    /// c = mass flux / ρ, m/s.
+    TransportRate,
+    /// ω of the single pulley of a one-pulley scene, rad/s.
+    PulleySpeed,
+    /// Axial force at the inflow end of a one-pulley scene, N.
+    TensionIn,
+    /// Axial force at the outflow end of a one-pulley scene, N.
+    TensionOut,
+    /// y of the centreline at the inflow end section, m.
+    YIn,
+    /// y of the centreline at the outflow end section, m.
+    YOut,
+}
+
+/// Which pulley a [`PulleyQuantity`] belongs to: `driver`/`driven` of the two-pulley
+/// loop, or the single `pulley` of a one-pulley scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PulleyId {
+    /// The left pulley of the loop, at (−H/2, 0).
+    Driver,
+    /// The right pulley of the loop, at (+H/2, 0).
+    Driven,
+    /// The pulley of a one-pulley scene, at the origin.
+    Pulley,
+}
+
+/// A contact quantity of one pulley (`summary.<pulley>.<quantity>`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PulleyQuantity {
+    /// Angle of the contact zone, rad.
+    ContactArc,
+    /// Polar angle of the first contact point in the direction of travel, rad.
+    ContactStart,
+    /// Polar angle of the last contact point in the direction of travel, rad.
+    ContactEnd,
+    /// Angle of the stick zone, rad.
+    StickArc,
+    /// Angle of the slip zone, rad.
+    SlipArc,
+    /// Torque of the belt on the pulley, N·m, clockwise positive.
+    Torque,
+    /// Concentrated normal reaction at the first contact point, N.
+    EdgeForceStart,
+    /// Concentrated normal reaction at the last contact point, N.
+    EdgeForceEnd,
+    /// Contact pressure just inside the zone at its first point, N/m.
+    EdgePressureStart,
+    /// Contact pressure just inside the zone at its last point, N/m.
+    EdgePressureEnd,
+}
+
+/// A summary quantity: the typed id behind each flat name of [`SCALAR_NAMES`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Quantity {
+    /// A quantity of the whole belt.
+    Global(Global),
+    /// A contact quantity of one pulley.
+    Pulley(PulleyId, PulleyQuantity),
+}
+
+impl Global {
+    /// Every global quantity, in the order of the result format.
+    pub const ALL: [Global; 15] = [
+        Global::YUpperMid,
+        Global::YLowerMid,
+        Global::TensionUpperMid,
+        Global::TensionLowerMid,
+        Global::MomentUpperMid,
+        Global::MomentLowerMid,
+        Global::TensionTight,
+        Global::TensionSlack,
+        Global::DrivenSpeed,
+        Global::TransportRate,
+        Global::PulleySpeed,
+        Global::TensionIn,
+        Global::TensionOut,
+        Global::YIn,
+        Global::YOut,
+    ];
+
+    /// The JSON name.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Global::YUpperMid => "y_upper_mid",
+            Global::YLowerMid => "y_lower_mid",
+            Global::TensionUpperMid => "tension_upper_mid",
+            Global::TensionLowerMid => "tension_lower_mid",
+            Global::MomentUpperMid => "moment_upper_mid",
+            Global::MomentLowerMid => "moment_lower_mid",
+            Global::TensionTight => "tension_tight",
+            Global::TensionSlack => "tension_slack",
+            Global::DrivenSpeed => "driven_speed",
+            Global::TransportRate => "transport_rate",
+            Global::PulleySpeed => "pulley_speed",
+            Global::TensionIn => "tension_in",
+            Global::TensionOut => "tension_out",
+            Global::YIn => "y_in",
+            Global::YOut => "y_out",
+        }
+    }
+}
+
+impl PulleyId {
+    /// Every pulley, in the order of the result format.
+    pub const ALL: [PulleyId; 3] = [PulleyId::Driver, PulleyId::Driven, PulleyId::Pulley];
+
+    /// The JSON name of the pulley block.
+    pub const fn name(self) -> &'static str {
+        match self {
+            PulleyId::Driver => "driver",
+            PulleyId::Driven => "driven",
+            PulleyId::Pulley => "pulley",
+        }
+    }
+}
+
+impl PulleyQuantity {
+    /// Every pulley quantity, in the order of the result format.
+    pub const ALL: [PulleyQuantity; 10] = [
+        PulleyQuantity::ContactArc,
+        PulleyQuantity::ContactStart,
+        PulleyQuantity::ContactEnd,
+        PulleyQuantity::StickArc,
+        PulleyQuantity::SlipArc,
+        PulleyQuantity::Torque,
+        PulleyQuantity::EdgeForceStart,
+        PulleyQuantity::EdgeForceEnd,
+        PulleyQuantity::EdgePressureStart,
+        PulleyQuantity::EdgePressureEnd,
+    ];
+
+    /// The JSON name inside a pulley block.
+    pub const fn name(self) -> &'static str {
+        match self {
+            PulleyQuantity::ContactArc => "contact_arc",
+            PulleyQuantity::ContactStart => "contact_start",
+            PulleyQuantity::ContactEnd => "contact_end",
+            PulleyQuantity::StickArc => "stick_arc",
+            PulleyQuantity::SlipArc => "slip_arc",
+            PulleyQuantity::Torque => "torque",
+            PulleyQuantity::EdgeForceStart => "edge_force_start",
+            PulleyQuantity::EdgeForceEnd => "edge_force_end",
+            PulleyQuantity::EdgePressureStart => "edge_pressure_start",
+            PulleyQuantity::EdgePressureEnd => "edge_pressure_end",
+        }
+    }
+}
+
+/// Number of summary quantities: the globals, then each pulley's quantities.
+const N_QUANTITIES: usize = Global::ALL.len() + PulleyId::ALL.len() * PulleyQuantity::ALL.len();
+
+/// The flat names of every quantity, in [`Quantity::ALL`]'s order, as a table
+/// (the pulley names cannot be concatenated in a const context).
+const TABLE: [&str; N_QUANTITIES] = [
+    "y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "moment_upper_mid",
+    "moment_lower_mid", "tension_tight", "tension_slack", "driven_speed", "transport_rate",
+    "pulley_speed", "tension_in", "tension_out", "y_in", "y_out",
+    "driver.contact_arc", "driver.contact_start", "driver.contact_end", "driver.stick_arc",
+    "driver.slip_arc", "driver.torque", "driver.edge_force_start", "driver.edge_force_end",
+    "driver.edge_pressure_start", "driver.edge_pressure_end",
+    "driven.contact_arc", "driven.contact_start", "driven.contact_end", "driven.stick_arc",
+    "driven.slip_arc", "driven.torque", "driven.edge_force_start", "driven.edge_force_end",
+    "driven.edge_pressure_start", "driven.edge_pressure_end",
+    "pulley.contact_arc", "pulley.contact_start", "pulley.contact_end", "pulley.stick_arc",
+    "pulley.slip_arc", "pulley.torque", "pulley.edge_force_start", "pulley.edge_force_end",
+    "pulley.edge_pressure_start", "pulley.edge_pressure_end",
 ];
 
-/// Contact quantities of one pulley (`summary.driver`, `summary.driven`).
+/// Every flat name [`Summary::scalars`] can produce, in its order (a unit test holds
+/// it equal to the names of [`Quantity::ALL`]).
+pub const SCALAR_NAMES: [&str; N_QUANTITIES] = TABLE;
+
+impl Quantity {
+    /// Every quantity, in the order of the result format: globals, then `driver.*`,
+    /// `driven.*`, `pulley.*`.
+    pub const ALL: [Quantity; N_QUANTITIES] = {
+        let mut all = [Quantity::Global(Global::YUpperMid); N_QUANTITIES];
+        let mut k = 0;
+        while k < Global::ALL.len() {
+            all[k] = Quantity::Global(Global::ALL[k]);
+            k += 1;
+        }
+        let mut p = 0;
+        while p < PulleyId::ALL.len() {
+            let mut q = 0;
+            while q < PulleyQuantity::ALL.len() {
+                all[k] = Quantity::Pulley(PulleyId::ALL[p], PulleyQuantity::ALL[q]);
+                k += 1;
+                q += 1;
+            }
+            p += 1;
+        }
+        all
+    };
+
+    /// Position in [`Quantity::ALL`] and [`SCALAR_NAMES`].
+    pub const fn index(self) -> usize {
+        match self {
+            Quantity::Global(g) => g as usize,
+            Quantity::Pulley(p, q) => Global::ALL.len() + p as usize * PulleyQuantity::ALL.len() + q as usize,
+        }
+    }
+
+    /// The flat name, e.g. `y_upper_mid` or `driver.contact_arc`.
+    pub const fn name(self) -> &'static str {
+        TABLE[self.index()]
+    }
+
+    /// The quantity of a flat name.
+    ///
+    /// # Errors
+    /// [`ResultError::UnknownQuantity`] with the nearest valid name.
+    pub fn parse(name: &str) -> Result<Quantity, ResultError> {
+        match TABLE.iter().position(|n| *n == name) {
+            Some(k) => Ok(Quantity::ALL[k]),
+            None => Err(ResultError::UnknownQuantity { name: name.to_string(), suggestion: nearest(name, TABLE.iter().copied()) }),
+        }
+    }
+}
+
+impl std::fmt::Display for Quantity {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// The value getter and the slot of an enum of quantities, from one list of
+/// `Variant => field` pairs (so the two cannot disagree).
+macro_rules! accessors {
+    ($kind:ident: $get:ident, $slot:ident; $($variant:ident => $field:ident),+ $(,)?) => {
+        /// The value of one quantity.
+        pub fn $get(&self, q: $kind) -> Option<f64> {
+            match q {
+                $($kind::$variant => self.$field,)+
+            }
+        }
+
+        /// The slot of one quantity.
+        pub fn $slot(&mut self, q: $kind) -> &mut Option<f64> {
+            match q {
+                $($kind::$variant => &mut self.$field,)+
+            }
+        }
+    };
+}
+
+/// Contact quantities of one pulley (`summary.driver`, `summary.driven`,
+/// `summary.pulley`); see [`PulleyQuantity`] for each field.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct PulleySummary {
     /// Angle of the contact zone, rad.
@@ -74,55 +321,41 @@ pub struct PulleySummary {
     /// Torque of the belt on the pulley, N·m, clockwise positive.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub torque: Option<f64>,
-    /// Concentrated normal reaction at the first contact point, N.
+    /// Concentrated normal reaction at the first contact point, N (unshearable rods).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge_force_start: Option<f64>,
-    /// Concentrated normal reaction at the last contact point, N.
+    /// Concentrated normal reaction at the last contact point, N (unshearable rods).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge_force_end: Option<f64>,
+    /// Contact pressure just inside the zone at its first point, N/m (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_start: Option<f64>,
+    /// Contact pressure just inside the zone at its last point, N/m (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_pressure_end: Option<f64>,
 }
 
 impl PulleySummary {
     /// The field names, in the order of the result format.
-    pub const NAMES: [&'static str; 8] = [
-        "contact_arc",
-        "contact_start",
-        "contact_end",
-        "stick_arc",
-        "slip_arc",
-        "torque",
-        "edge_force_start",
-        "edge_force_end",
-    ];
+    pub const NAMES: [&'static str; 10] = {
+        let mut names = [""; 10];
+        let mut q = 0;
+        while q < 10 {
+            names[q] = PulleyQuantity::ALL[q].name();
+            q += 1;
+        }
+        names
+    };
 
-    fn slots(&self) -> [&Option<f64>; 8] {
-        [
-            &self.contact_arc,
-            &self.contact_start,
-            &self.contact_end,
-            &self.stick_arc,
-            &self.slip_arc,
-            &self.torque,
-            &self.edge_force_start,
-            &self.edge_force_end,
-        ]
-    }
-
-    fn slots_mut(&mut self) -> [&mut Option<f64>; 8] {
-        [
-            &mut self.contact_arc,
-            &mut self.contact_start,
-            &mut self.contact_end,
-            &mut self.stick_arc,
-            &mut self.slip_arc,
-            &mut self.torque,
-            &mut self.edge_force_start,
-            &mut self.edge_force_end,
-        ]
-    }
+    accessors!(PulleyQuantity: get, slot_mut;
+        ContactArc => contact_arc, ContactStart => contact_start, ContactEnd => contact_end,
+        StickArc => stick_arc, SlipArc => slip_arc, Torque => torque,
+        EdgeForceStart => edge_force_start, EdgeForceEnd => edge_force_end,
+        EdgePressureStart => edge_pressure_start, EdgePressureEnd => edge_pressure_end);
 }
 
-/// Named scalars of one solution; see the module docs for units and signs.
+/// Named scalars of one solution; see the module docs for units and signs, and
+/// [`Global`] for each top-level field.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Summary {
     /// y at x = 0 on the upper span, m.
@@ -143,10 +376,10 @@ pub struct Summary {
     /// Bending moment at x = 0 on the lower span, N·m (rods and shells).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub moment_lower_mid: Option<f64>,
-    /// Larger span tension in steady motion, N.
+    /// Axial force in the driver's stick zone in steady motion, N.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tension_tight: Option<f64>,
-    /// Smaller span tension in steady motion, N.
+    /// Axial force in the driven pulley's stick zone in steady motion, N.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tension_slack: Option<f64>,
     /// ω₂, rad/s.
@@ -155,79 +388,82 @@ pub struct Summary {
     /// c = mass flux / ρ, m/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transport_rate: Option<f64>,
+    /// ω of the single pulley (one-pulley scenes), rad/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pulley_speed: Option<f64>,
+    /// Axial force at the inflow end (one-pulley scenes), N.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tension_in: Option<f64>,
+    /// Axial force at the outflow end (one-pulley scenes), N.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tension_out: Option<f64>,
+    /// y of the centreline at the inflow end section (one-pulley scenes), m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_in: Option<f64>,
+    /// y of the centreline at the outflow end section (one-pulley scenes), m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y_out: Option<f64>,
     /// Driver pulley quantities.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub driver: Option<PulleySummary>,
     /// Driven pulley quantities.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub driven: Option<PulleySummary>,
+    /// The single pulley of a one-pulley scene.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pulley: Option<PulleySummary>,
 }
 
 impl Summary {
-    fn top_slots(&self) -> [&Option<f64>; 10] {
-        [
-            &self.y_upper_mid,
-            &self.y_lower_mid,
-            &self.tension_upper_mid,
-            &self.tension_lower_mid,
-            &self.moment_upper_mid,
-            &self.moment_lower_mid,
-            &self.tension_tight,
-            &self.tension_slack,
-            &self.driven_speed,
-            &self.transport_rate,
-        ]
+    accessors!(Global: global, global_slot;
+        YUpperMid => y_upper_mid, YLowerMid => y_lower_mid, TensionUpperMid => tension_upper_mid,
+        TensionLowerMid => tension_lower_mid, MomentUpperMid => moment_upper_mid,
+        MomentLowerMid => moment_lower_mid, TensionTight => tension_tight, TensionSlack => tension_slack,
+        DrivenSpeed => driven_speed, TransportRate => transport_rate, PulleySpeed => pulley_speed,
+        TensionIn => tension_in, TensionOut => tension_out, YIn => y_in, YOut => y_out);
+
+    fn pulley_block(&mut self, p: PulleyId) -> &mut Option<PulleySummary> {
+        match p {
+            PulleyId::Driver => &mut self.driver,
+            PulleyId::Driven => &mut self.driven,
+            PulleyId::Pulley => &mut self.pulley,
+        }
     }
 
-    fn top_slots_mut(&mut self) -> [&mut Option<f64>; 10] {
-        [
-            &mut self.y_upper_mid,
-            &mut self.y_lower_mid,
-            &mut self.tension_upper_mid,
-            &mut self.tension_lower_mid,
-            &mut self.moment_upper_mid,
-            &mut self.moment_lower_mid,
-            &mut self.tension_tight,
-            &mut self.tension_slack,
-            &mut self.driven_speed,
-            &mut self.transport_rate,
-        ]
+    /// The value of a quantity; `None` if absent.
+    pub fn value(&self, q: Quantity) -> Option<f64> {
+        match q {
+            Quantity::Global(g) => self.global(g),
+            Quantity::Pulley(PulleyId::Driver, k) => self.driver.as_ref()?.get(k),
+            Quantity::Pulley(PulleyId::Driven, k) => self.driven.as_ref()?.get(k),
+            Quantity::Pulley(PulleyId::Pulley, k) => self.pulley.as_ref()?.get(k),
+        }
+    }
+
+    /// Sets (or, with `None`, removes) a quantity; a pulley block is created on first
+    /// use.
+    pub fn set_value(&mut self, q: Quantity, value: Option<f64>) {
+        match q {
+            Quantity::Global(g) => *self.global_slot(g) = value,
+            Quantity::Pulley(p, k) => *self.pulley_block(p).get_or_insert_with(PulleySummary::default).slot_mut(k) = value,
+        }
+    }
+
+    /// The present quantities as (typed id, value), in the order of [`Quantity::ALL`].
+    pub fn quantities(&self) -> Vec<(Quantity, f64)> {
+        Quantity::ALL.iter().filter_map(|&q| Some((q, self.value(q)?))).collect()
     }
 
     /// The present scalars as (flat name, value), in the order of [`SCALAR_NAMES`]:
-    /// top-level names as is, pulley quantities as `driver.<field>` / `driven.<field>`.
+    /// top-level names as is, pulley quantities as `driver.<field>` / `driven.<field>`
+    /// / `pulley.<field>`.
     pub fn scalars(&self) -> Vec<(String, f64)> {
-        let mut out = Vec::new();
-        for (name, slot) in SCALAR_NAMES.iter().zip(self.top_slots()) {
-            if let Some(v) = *slot {
-                out.push((name.to_string(), v));
-            }
-        }
-        for (prefix, pulley) in [("driver", &self.driver), ("driven", &self.driven)] {
-            if let Some(p) = pulley {
-                for (name, slot) in PulleySummary::NAMES.iter().zip(p.slots()) {
-                    if let Some(v) = *slot {
-                        out.push((format!("{prefix}.{name}"), v));
-                    }
-                }
-            }
-        }
-        out
+        self.quantities().into_iter().map(|(q, v)| (q.name().to_string(), v)).collect()
     }
 
     /// The scalar of a flat name; `None` if absent or not a summary name.
     pub fn get(&self, name: &str) -> Option<f64> {
-        if let Some((prefix, field)) = name.split_once('.') {
-            let pulley = match prefix {
-                "driver" => self.driver.as_ref()?,
-                "driven" => self.driven.as_ref()?,
-                _ => return None,
-            };
-            let k = PulleySummary::NAMES.iter().position(|n| *n == field)?;
-            return *pulley.slots()[k];
-        }
-        let k = SCALAR_NAMES[..10].iter().position(|n| *n == name)?;
-        *self.top_slots()[k]
+        self.value(Quantity::parse(name).ok()?)
     }
 
     /// Sets (or, with `None`, removes) the scalar of a flat name; a pulley block is
@@ -237,33 +473,7 @@ impl Summary {
     /// [`ResultError::UnknownQuantity`] (with the nearest name) for a name not in
     /// [`SCALAR_NAMES`].
     pub fn set(&mut self, name: &str, value: Option<f64>) -> Result<(), ResultError> {
-        let unknown = || ResultError::UnknownQuantity {
-            name: name.to_string(),
-            suggestion: nearest(name, SCALAR_NAMES.iter().copied()),
-        };
-        if let Some((prefix, field)) = name.split_once('.') {
-            let k = PulleySummary::NAMES
-                .iter()
-                .position(|n| *n == field)
-                .ok_or_else(unknown)?;
-            let pulley = match prefix {
-                "driver" => &mut self.driver,
-                "driven" => &mut self.driven,
-                _ => return Err(unknown()),
-            };
-            let block = pulley.get_or_insert_with(PulleySummary::default);
-            if let Some(slot) = block.slots_mut().into_iter().nth(k) {
-                *slot = value;
-            }
-            return Ok(());
-        }
-        let k = SCALAR_NAMES[..10]
-            .iter()
-            .position(|n| *n == name)
-            .ok_or_else(unknown)?;
-        if let Some(slot) = self.top_slots_mut().into_iter().nth(k) {
-            *slot = value;
-        }
+        self.set_value(Quantity::parse(name)?, value);
         Ok(())
     }
 
@@ -289,8 +499,8 @@ impl Summary {
     /// # Errors
     /// [`ResultError::NotFinite`] naming the first non-finite quantity.
     pub fn check_finite(&self) -> Result<(), ResultError> {
-        match self.scalars().into_iter().find(|(_, v)| !v.is_finite()) {
-            Some((quantity, value)) => Err(ResultError::NotFinite { quantity, value }),
+        match self.quantities().into_iter().find(|(_, v)| !v.is_finite()) {
+            Some((q, value)) => Err(ResultError::NotFinite { quantity: q.name().to_string(), value }),
             None => Ok(()),
         }
     }
@@ -327,9 +537,39 @@ mod tests {
             "`driver.contact_ark` is not a summary quantity; did you mean `driver.contact_arc`?"
         );
         assert!(s.set("idler.torque", Some(1.0)).is_err());
+        assert!(s.set("driver.", Some(1.0)).is_err());
         assert!(s.set("", Some(1.0)).is_err());
         assert_eq!(s.get("y_upper_mid.x"), None);
         assert_eq!(s.get("nonsense"), None);
+    }
+
+    #[test]
+    fn typed_ids_and_flat_names_agree() {
+        for (k, q) in Quantity::ALL.iter().enumerate() {
+            assert_eq!(q.index(), k);
+            assert_eq!(Quantity::parse(SCALAR_NAMES[k]).unwrap(), *q);
+            let expected = match q {
+                Quantity::Global(g) => g.name().to_string(),
+                Quantity::Pulley(p, x) => format!("{}.{}", p.name(), x.name()),
+            };
+            assert_eq!(q.name(), expected);
+        }
+        // Serialised, each quantity sits where its flat name says.
+        let mut s = Summary::default();
+        for (k, q) in Quantity::ALL.iter().enumerate() {
+            s.set_value(*q, Some(k as f64 + 0.5));
+        }
+        let json = serde_json::to_value(&s).unwrap();
+        for (k, name) in SCALAR_NAMES.iter().enumerate() {
+            let v = match name.split_once('.') {
+                Some((p, f)) => &json[p][f],
+                None => &json[*name],
+            };
+            assert_eq!(v.as_f64(), Some(k as f64 + 0.5), "{name}");
+        }
+        // Absent stays absent: a two-pulley summary writes no one-pulley names.
+        let two = Summary { y_upper_mid: Some(0.1), ..Default::default() };
+        assert_eq!(serde_json::to_string(&two).unwrap(), r#"{"y_upper_mid":0.1}"#);
     }
 
     #[test]
