@@ -34,3 +34,20 @@ pub enum BvpError {
     #[error("invalid input: {0}")]
     InvalidInput(String),
 }
+
+/// A sparse factorisation or solve failure as the BVP engine reports it: a singular or
+/// non-finite Jacobian, or an inconsistent pattern (a bug in the caller).
+impl From<numerics::LinearError> for BvpError {
+    fn from(e: numerics::LinearError) -> Self {
+        use numerics::LinearError as L;
+        match e {
+            L::NonFiniteMatrix { .. } => BvpError::NonFinite { what: "Jacobian entries".into() },
+            L::Singular { .. } | L::SingularSchur { .. } | L::NonFiniteSolution => {
+                BvpError::SingularJacobian { iteration: 0, detail: e.to_string() }
+            }
+            L::InvalidPattern { .. } | L::DimensionMismatch { .. } | L::NotFactorised => {
+                BvpError::InvalidInput(format!("sparse LU: {e}"))
+            }
+        }
+    }
+}

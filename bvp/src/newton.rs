@@ -32,10 +32,6 @@
 //! [`BvpError::NonFinite`].
 
 use crate::error::BvpError;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
-use faer::MatMut;
 
 /// A square nonlinear system F(z) = 0 with a factorisable Jacobian.
 pub trait NewtonSystem {
@@ -240,86 +236,9 @@ pub fn solve<S: NewtonSystem>(system: &mut S, z: &mut [f64], opts: &NewtonOption
 }
 
 /// Sparse LU of a square matrix given as (row, col, value) triplets, with the symbolic
-/// factorisation cached for as long as the pattern (the row and column index lists, in
-/// order) does not change. Duplicate (row, col) entries are summed.
-#[derive(Debug, Default)]
-pub struct SparseLu {
-    n: usize,
-    rows: Vec<usize>,
-    cols: Vec<usize>,
-    pattern: Option<(SymbolicSparseColMat<usize>, Argsort<usize>, SymbolicLu<usize>)>,
-    lu: Option<Lu<usize, f64>>,
-    /// Number of symbolic factorisations done (one per distinct pattern).
-    pub symbolic_factorisations: usize,
-    /// Number of numeric factorisations done.
-    pub numeric_factorisations: usize,
-}
-
-impl SparseLu {
-    /// An empty factorisation (call [`Self::factorize`] before solving).
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Factorise the n × n matrix with entries `vals[e]` at (`rows[e]`, `cols[e]`).
-    pub fn factorize(&mut self, n: usize, rows: &[usize], cols: &[usize], vals: &[f64]) -> Result<(), BvpError> {
-        if rows.len() != cols.len() || rows.len() != vals.len() {
-            return Err(BvpError::InvalidInput("sparse LU: triplet lists differ in length".into()));
-        }
-        if rows.iter().chain(cols).any(|&i| i >= n) {
-            return Err(BvpError::InvalidInput(format!("sparse LU: index outside {n} × {n}")));
-        }
-        if !all_finite(vals) {
-            return Err(BvpError::NonFinite { what: "Jacobian entries".into() });
-        }
-        let same = self.pattern.is_some() && self.n == n && self.rows == rows && self.cols == cols;
-        if !same {
-            let pairs: Vec<Pair<usize, usize>> = rows.iter().zip(cols).map(|(&r, &c)| Pair::new(r, c)).collect();
-            let (sym, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-                .map_err(|e| BvpError::InvalidInput(format!("sparse pattern: {e:?}")))?;
-            let symbolic = SymbolicLu::try_new(sym.as_ref()).map_err(|e| BvpError::SingularJacobian {
-                iteration: 0,
-                detail: format!("symbolic LU failed: {e:?}"),
-            })?;
-            self.symbolic_factorisations += 1;
-            self.n = n;
-            self.rows = rows.to_vec();
-            self.cols = cols.to_vec();
-            self.pattern = Some((sym, argsort, symbolic));
-        }
-        let (sym, argsort, symbolic) = self.pattern.as_ref().expect("pattern set above");
-        let mat = SparseColMat::new_from_argsort(sym.clone(), argsort, vals)
-            .map_err(|e| BvpError::InvalidInput(format!("sparse matrix: {e:?}")))?;
-        self.lu = None;
-        let lu = Lu::try_new_with_symbolic(symbolic.clone(), mat.as_ref())
-            .map_err(|e| BvpError::SingularJacobian { iteration: 0, detail: format!("sparse LU: {e:?}") })?;
-        self.numeric_factorisations += 1;
-        self.lu = Some(lu);
-        Ok(())
-    }
-
-    /// Overwrite `b` with A⁻¹ b. Non-finite results are reported as a singular matrix.
-    pub fn solve_in_place(&self, b: &mut [f64]) -> Result<(), BvpError> {
-        let lu =
-            self.lu.as_ref().ok_or_else(|| BvpError::InvalidInput("sparse LU: solve before factorisation".into()))?;
-        if b.len() != self.n {
-            return Err(BvpError::InvalidInput(format!(
-                "sparse LU: right-hand side has {} entries, matrix is {}",
-                b.len(),
-                self.n
-            )));
-        }
-        let n = self.n;
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(b, n, 1));
-        if !all_finite(b) {
-            return Err(BvpError::SingularJacobian {
-                iteration: 0,
-                detail: "sparse LU solve produced non-finite values".into(),
-            });
-        }
-        Ok(())
-    }
-}
+/// factorisation cached for as long as the pattern does not change (duplicates summed);
+/// shared with `fem` in the `numerics` crate, failures as [`BvpError`].
+pub type SparseLu = numerics::TripletLu<BvpError>;
 
 #[cfg(test)]
 mod tests {
@@ -354,8 +273,8 @@ mod tests {
         let rep = solve(&mut sys, &mut z, &NewtonOptions { tolerance: 1e-13, ..Default::default() }).unwrap();
         assert!((z[0] - 2f64.sqrt()).abs() < 1e-12 && (z[1] - 2f64.sqrt()).abs() < 1e-12);
         assert!(rep.iterations <= 10, "{rep:?}");
-        assert_eq!(sys.lu.symbolic_factorisations, 1);
-        assert_eq!(sys.lu.numeric_factorisations, rep.iterations);
+        assert_eq!(sys.lu.symbolic_factorisations(), 1);
+        assert_eq!(sys.lu.numeric_factorisations(), rep.iterations);
     }
 
     #[test]
