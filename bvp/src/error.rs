@@ -34,3 +34,49 @@ pub enum BvpError {
     #[error("invalid input: {0}")]
     InvalidInput(String),
 }
+
+/// A sparse factorisation or solve failure as the BVP engine reports it: a singular or
+/// non-finite Jacobian, or an inconsistent pattern (a bug in the caller).
+impl From<numerics::LinearError> for BvpError {
+    fn from(e: numerics::LinearError) -> Self {
+        use numerics::LinearError as L;
+        match e {
+            L::NonFiniteMatrix { .. } => BvpError::NonFinite { what: "Jacobian entries".into() },
+            L::Singular { .. } | L::SingularSchur { .. } | L::NonFiniteSolution => {
+                BvpError::SingularJacobian { iteration: 0, detail: e.to_string() }
+            }
+            L::InvalidPattern { .. } | L::DimensionMismatch { .. } | L::NotFactorised => {
+                BvpError::InvalidInput(format!("sparse LU: {e}"))
+            }
+        }
+    }
+}
+
+/// A Newton failure as the BVP engine reports it: iteration limit, exhausted damping and
+/// a failed line search are [`BvpError::NewtonDiverged`] with the last scaled correction
+/// as `residual`; a failing factorisation or solve carries its iteration.
+impl From<numerics::newton::NewtonError<BvpError>> for BvpError {
+    fn from(e: numerics::newton::NewtonError<BvpError>) -> Self {
+        use numerics::newton::{NewtonError as N, Stage};
+        match e {
+            N::InvalidOptions(_) | N::DimensionMismatch { .. } => BvpError::InvalidInput(e.to_string()),
+            N::NonFinite { what, .. } => BvpError::NonFinite { what: what.to_string() },
+            N::MaxIterations { iterations, correction, tolerance, .. } => {
+                BvpError::NewtonDiverged { iterations, residual: correction, tolerance }
+            }
+            N::DampingExhausted { iteration, correction, tolerance, .. }
+            | N::LineSearchFailed { iteration, correction, tolerance, .. } => {
+                BvpError::NewtonDiverged { iterations: iteration, residual: correction, tolerance }
+            }
+            N::SingularStep { iteration, .. } => BvpError::SingularJacobian {
+                iteration,
+                detail: "non-finite Newton correction (numerically singular Jacobian)".into(),
+            },
+            N::Problem { iteration, stage: Stage::Factorize | Stage::Solve, error } => match error {
+                BvpError::SingularJacobian { detail, .. } => BvpError::SingularJacobian { iteration, detail },
+                other => other,
+            },
+            N::Problem { stage: Stage::Residual, error, .. } => error,
+        }
+    }
+}

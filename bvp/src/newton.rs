@@ -1,41 +1,33 @@
-//! A damped Newton method on faer's sparse LU (affine-covariant, error-oriented).
+//! The BVP engine's damped Newton: [`numerics::newton`] with its default damping,
+//! Deuflhard's natural monotonicity test (error-oriented NLEQ-ERR, simplified), and its
+//! default tolerance norm ‖Δz‖ = max_i |Δz_i| / (1 + |z_i|) (weights frozen at the
+//! current iterate; the algorithm and the tolerance are defined exactly there).
 //!
-//! The nonlinear system F(z) = 0, z ∈ R^n, is supplied through [`NewtonSystem`]: a
-//! residual, a Jacobian factorisation at a point and a solve with that factorisation.
-//! Sparse Jacobians are factorised with [`SparseLu`], which computes the symbolic LU
-//! once per sparsity pattern (once per mesh) and only refactorises numerically in
-//! each iteration (DEPENDENCIES.md: symbolic 83 ms vs numeric 31 ms at n = 100 000).
-//!
-//! # Algorithm (Deuflhard, "Newton Methods for Nonlinear Problems", Springer 2004,
-//! §3.3, the error-oriented NLEQ-ERR scheme, simplified)
-//!
-//! At iterate z_k:
-//! 1. Newton correction Δz_k = −J(z_k)⁻¹ F(z_k) (one Jacobian factorisation).
-//! 2. Scaled norm ‖v‖_k = max_i |v_i| / (1 + |z_{k,i}|) (weights frozen at z_k).
-//! 3. **Convergence test**: if ‖Δz_k‖_k ≤ `tolerance`, the full step is taken and
-//!    z_k + Δz_k is returned. The error left is then O(‖Δz_k‖²) (quadratic convergence).
-//! 4. Otherwise a damping factor λ ∈ [λ_min, 1] is chosen by the *natural monotonicity
-//!    test*: with the simplified correction Δ̄ = −J(z_k)⁻¹ F(z_k + λΔz_k) (same LU,
-//!    one extra residual and solve) the trial is accepted if
-//!    Θ = ‖Δ̄‖_k / ‖Δz_k‖_k ≤ 1 − λ/4.
-//!    On rejection λ ← max(min(λ/2, μ), λ/10) with Deuflhard's prediction
-//!    μ = ½ ‖Δz_k‖ λ² / ‖Δ̄ − (1 − λ)Δz_k‖, until λ < λ_min (failure).
-//!    A trial point with a non-finite residual is rejected like a failed test.
-//! 5. If the full step (λ = 1) was accepted and ‖Δ̄‖_k ≤ `tolerance`, the simplified
-//!    correction is applied as well and z_k + Δz_k + Δ̄ is returned (this saves one
-//!    Jacobian near the solution; Δ̄ is the next Newton correction up to O(‖Δz_k‖²)).
-//! 6. The next iteration starts with λ = min(1, 2λ_k) (λ = 1 after a full step).
+//! A system is supplied through [`NewtonSystem`]: a residual, a Jacobian factorisation
+//! at a point and a solve with that factorisation. Sparse Jacobians are factorised with
+//! [`SparseLu`], which computes the symbolic LU once per sparsity pattern (once per
+//! mesh) and only refactorises numerically in each iteration (DEPENDENCIES.md: symbolic
+//! 83 ms vs numeric 31 ms at n = 100 000).
 //!
 //! Failures are values: [`BvpError::NewtonDiverged`] (iteration limit, or λ below
-//! λ_min; its `residual` field is the last scaled Newton correction ‖Δz‖_k, the
-//! quantity compared with the tolerance), [`BvpError::SingularJacobian`] and
-//! [`BvpError::NonFinite`].
+//! λ_min; its `residual` field is the last scaled Newton correction ‖Δz‖, the quantity
+//! compared with the tolerance), [`BvpError::SingularJacobian`] and
+//! [`BvpError::NonFinite`] (the mapping from [`numerics::newton::NewtonError`] is in
+//! `error.rs`).
 
 use crate::error::BvpError;
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
-use faer::MatMut;
+use numerics::newton::NewtonProblem;
+
+pub use numerics::newton::{scaled_norm, NewtonOptions};
+
+/// Work done by one Newton solve (iterations = Jacobian factorisations, residual
+/// evaluations, solves, last scaled correction, smallest damping factor).
+pub type NewtonReport = numerics::newton::NewtonStats;
+
+/// Sparse LU of a square matrix given as (row, col, value) triplets, with the symbolic
+/// factorisation cached for as long as the pattern does not change (duplicates summed);
+/// shared with `fem` in the `numerics` crate, failures as [`BvpError`].
+pub type SparseLu = numerics::TripletLu<BvpError>;
 
 /// A square nonlinear system F(z) = 0 with a factorisable Jacobian.
 pub trait NewtonSystem {
@@ -51,274 +43,33 @@ pub trait NewtonSystem {
     fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError>;
 }
 
-/// Options of [`solve`].
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct NewtonOptions {
-    /// Convergence threshold on the scaled Newton correction
-    /// max_i |Δz_i| / (1 + |z_i|). Default 1e-10; valid range (0, 1).
-    pub tolerance: f64,
-    /// Maximum number of Newton iterations (Jacobian factorisations). Default 30;
-    /// valid ≥ 1.
-    pub max_iterations: usize,
-    /// Smallest damping factor λ_min before giving up. Default 1e-4; valid (0, 1].
-    pub min_damping: f64,
-}
+/// A [`NewtonSystem`] as the shared Newton's problem (default damping, norm and hooks).
+struct Shared<'s, S>(&'s mut S);
 
-impl Default for NewtonOptions {
-    fn default() -> Self {
-        Self { tolerance: 1e-10, max_iterations: 30, min_damping: 1e-4 }
+impl<S: NewtonSystem> NewtonProblem for Shared<'_, S> {
+    type Error = BvpError;
+    fn size(&self) -> usize {
+        self.0.size()
     }
-}
-
-impl NewtonOptions {
-    /// Check the documented ranges.
-    pub fn validate(&self) -> Result<(), BvpError> {
-        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(BvpError::InvalidInput(format!("Newton tolerance {} outside (0, 1)", self.tolerance)));
-        }
-        if self.max_iterations == 0 {
-            return Err(BvpError::InvalidInput("Newton max_iterations must be ≥ 1".into()));
-        }
-        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
-            return Err(BvpError::InvalidInput(format!("Newton min_damping {} outside (0, 1]", self.min_damping)));
-        }
-        Ok(())
+    fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), BvpError> {
+        self.0.residual(z, r)
     }
-}
-
-/// Work done by one Newton solve.
-#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
-pub struct NewtonReport {
-    /// Newton iterations (= Jacobian evaluations and factorisations).
-    pub iterations: usize,
-    /// Residual evaluations F(z).
-    pub residual_evaluations: usize,
-    /// Linear solves with a factorised Jacobian.
-    pub solves: usize,
-    /// Last scaled Newton correction ‖Δz‖ (see the module documentation).
-    pub last_correction: f64,
-    /// Smallest damping factor used.
-    pub min_damping_used: f64,
-}
-
-/// Stamp the Newton iteration number into a [`BvpError::SingularJacobian`].
-fn at_iteration(e: BvpError, iteration: usize) -> BvpError {
-    match e {
-        BvpError::SingularJacobian { detail, .. } => BvpError::SingularJacobian { iteration, detail },
-        other => other,
+    fn factorize(&mut self, z: &[f64]) -> Result<(), BvpError> {
+        self.0.factorize(z)
     }
-}
-
-/// ‖v‖ = max_i |v_i| / (1 + |z_i|).
-pub fn scaled_norm(v: &[f64], z: &[f64]) -> f64 {
-    v.iter().zip(z).fold(0.0_f64, |m, (&vi, &zi)| m.max(vi.abs() / (1.0 + zi.abs())))
-}
-
-fn all_finite(v: &[f64]) -> bool {
-    v.iter().all(|x| x.is_finite())
+    fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError> {
+        self.0.solve(b)
+    }
 }
 
 /// Solve F(z) = 0 by the damped Newton method of the module documentation, starting
 /// from and overwriting `z` (length n). On error `z` holds the last accepted iterate.
+///
+/// # Errors
+/// [`BvpError::NewtonDiverged`], [`BvpError::SingularJacobian`], [`BvpError::NonFinite`],
+/// [`BvpError::InvalidInput`] (options, dimensions), or the system's own error.
 pub fn solve<S: NewtonSystem>(system: &mut S, z: &mut [f64], opts: &NewtonOptions) -> Result<NewtonReport, BvpError> {
-    opts.validate()?;
-    let n = system.size();
-    if z.len() != n {
-        return Err(BvpError::InvalidInput(format!("Newton: initial iterate has {} entries, system has {n}", z.len())));
-    }
-    if !all_finite(z) {
-        return Err(BvpError::NonFinite { what: "Newton initial iterate".into() });
-    }
-    let mut report = NewtonReport { min_damping_used: 1.0, ..Default::default() };
-    let mut r = vec![0.0; n];
-    let mut dz = vec![0.0; n];
-    let mut dbar = vec![0.0; n];
-    let mut trial = vec![0.0; n];
-    let mut lambda: f64 = 1.0;
-    let mut last_norm = f64::INFINITY;
-
-    system.residual(z, &mut r)?;
-    report.residual_evaluations += 1;
-    if !all_finite(&r) {
-        return Err(BvpError::NonFinite { what: "residual at the initial iterate".into() });
-    }
-    loop {
-        if report.iterations >= opts.max_iterations {
-            return Err(BvpError::NewtonDiverged {
-                iterations: report.iterations,
-                residual: last_norm,
-                tolerance: opts.tolerance,
-            });
-        }
-        system.factorize(z).map_err(|e| at_iteration(e, report.iterations + 1))?;
-        report.iterations += 1;
-        for (d, &ri) in dz.iter_mut().zip(&r) {
-            *d = -ri;
-        }
-        system.solve(&mut dz).map_err(|e| at_iteration(e, report.iterations))?;
-        report.solves += 1;
-        if !all_finite(&dz) {
-            return Err(BvpError::SingularJacobian {
-                iteration: report.iterations,
-                detail: "non-finite Newton correction (numerically singular Jacobian)".into(),
-            });
-        }
-        let norm = scaled_norm(&dz, z);
-        last_norm = norm;
-        report.last_correction = norm;
-        if norm <= opts.tolerance {
-            for (t, (&zi, &d)) in trial.iter_mut().zip(z.iter().zip(&dz)) {
-                *t = zi + d;
-            }
-            system.residual(&trial, &mut r)?;
-            report.residual_evaluations += 1;
-            if !all_finite(&r) {
-                return Err(BvpError::NonFinite { what: "residual at the converged iterate".into() });
-            }
-            z.copy_from_slice(&trial);
-            return Ok(report);
-        }
-        // Damping by the natural monotonicity test.
-        loop {
-            for (t, (&zi, &d)) in trial.iter_mut().zip(z.iter().zip(&dz)) {
-                *t = zi + lambda * d;
-            }
-            system.residual(&trial, &mut r)?;
-            report.residual_evaluations += 1;
-            let mut accepted = false;
-            let mut mu = lambda / 2.0;
-            if all_finite(&r) {
-                for (b, &ri) in dbar.iter_mut().zip(&r) {
-                    *b = -ri;
-                }
-                system.solve(&mut dbar)?;
-                report.solves += 1;
-                if all_finite(&dbar) {
-                    let nbar = scaled_norm(&dbar, z);
-                    let theta = nbar / norm;
-                    if theta <= 1.0 - lambda / 4.0 {
-                        accepted = true;
-                        if lambda == 1.0 && nbar <= opts.tolerance {
-                            for (t, &b) in trial.iter_mut().zip(&dbar) {
-                                *t += b;
-                            }
-                            system.residual(&trial, &mut r)?;
-                            report.residual_evaluations += 1;
-                            if !all_finite(&r) {
-                                return Err(BvpError::NonFinite { what: "residual at the converged iterate".into() });
-                            }
-                            z.copy_from_slice(&trial);
-                            report.last_correction = nbar;
-                            return Ok(report);
-                        }
-                    } else {
-                        let diff: Vec<f64> = dbar.iter().zip(&dz).map(|(&b, &d)| b - (1.0 - lambda) * d).collect();
-                        let dn = scaled_norm(&diff, z);
-                        if dn > 0.0 {
-                            mu = 0.5 * norm * lambda * lambda / dn;
-                        }
-                    }
-                }
-            }
-            if accepted {
-                break;
-            }
-            lambda = (mu.min(lambda / 2.0)).max(lambda / 10.0);
-            report.min_damping_used = report.min_damping_used.min(lambda);
-            if lambda < opts.min_damping {
-                return Err(BvpError::NewtonDiverged {
-                    iterations: report.iterations,
-                    residual: norm,
-                    tolerance: opts.tolerance,
-                });
-            }
-        }
-        z.copy_from_slice(&trial);
-        // `r` holds F(trial) = F(z_{k+1}).
-        lambda = if lambda == 1.0 { 1.0 } else { (2.0 * lambda).min(1.0) };
-    }
-}
-
-/// Sparse LU of a square matrix given as (row, col, value) triplets, with the symbolic
-/// factorisation cached for as long as the pattern (the row and column index lists, in
-/// order) does not change. Duplicate (row, col) entries are summed.
-#[derive(Debug, Default)]
-pub struct SparseLu {
-    n: usize,
-    rows: Vec<usize>,
-    cols: Vec<usize>,
-    pattern: Option<(SymbolicSparseColMat<usize>, Argsort<usize>, SymbolicLu<usize>)>,
-    lu: Option<Lu<usize, f64>>,
-    /// Number of symbolic factorisations done (one per distinct pattern).
-    pub symbolic_factorisations: usize,
-    /// Number of numeric factorisations done.
-    pub numeric_factorisations: usize,
-}
-
-impl SparseLu {
-    /// An empty factorisation (call [`Self::factorize`] before solving).
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Factorise the n × n matrix with entries `vals[e]` at (`rows[e]`, `cols[e]`).
-    pub fn factorize(&mut self, n: usize, rows: &[usize], cols: &[usize], vals: &[f64]) -> Result<(), BvpError> {
-        if rows.len() != cols.len() || rows.len() != vals.len() {
-            return Err(BvpError::InvalidInput("sparse LU: triplet lists differ in length".into()));
-        }
-        if rows.iter().chain(cols).any(|&i| i >= n) {
-            return Err(BvpError::InvalidInput(format!("sparse LU: index outside {n} × {n}")));
-        }
-        if !all_finite(vals) {
-            return Err(BvpError::NonFinite { what: "Jacobian entries".into() });
-        }
-        let same = self.pattern.is_some() && self.n == n && self.rows == rows && self.cols == cols;
-        if !same {
-            let pairs: Vec<Pair<usize, usize>> = rows.iter().zip(cols).map(|(&r, &c)| Pair::new(r, c)).collect();
-            let (sym, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-                .map_err(|e| BvpError::InvalidInput(format!("sparse pattern: {e:?}")))?;
-            let symbolic = SymbolicLu::try_new(sym.as_ref()).map_err(|e| BvpError::SingularJacobian {
-                iteration: 0,
-                detail: format!("symbolic LU failed: {e:?}"),
-            })?;
-            self.symbolic_factorisations += 1;
-            self.n = n;
-            self.rows = rows.to_vec();
-            self.cols = cols.to_vec();
-            self.pattern = Some((sym, argsort, symbolic));
-        }
-        let (sym, argsort, symbolic) = self.pattern.as_ref().expect("pattern set above");
-        let mat = SparseColMat::new_from_argsort(sym.clone(), argsort, vals)
-            .map_err(|e| BvpError::InvalidInput(format!("sparse matrix: {e:?}")))?;
-        self.lu = None;
-        let lu = Lu::try_new_with_symbolic(symbolic.clone(), mat.as_ref())
-            .map_err(|e| BvpError::SingularJacobian { iteration: 0, detail: format!("sparse LU: {e:?}") })?;
-        self.numeric_factorisations += 1;
-        self.lu = Some(lu);
-        Ok(())
-    }
-
-    /// Overwrite `b` with A⁻¹ b. Non-finite results are reported as a singular matrix.
-    pub fn solve_in_place(&self, b: &mut [f64]) -> Result<(), BvpError> {
-        let lu =
-            self.lu.as_ref().ok_or_else(|| BvpError::InvalidInput("sparse LU: solve before factorisation".into()))?;
-        if b.len() != self.n {
-            return Err(BvpError::InvalidInput(format!(
-                "sparse LU: right-hand side has {} entries, matrix is {}",
-                b.len(),
-                self.n
-            )));
-        }
-        let n = self.n;
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(b, n, 1));
-        if !all_finite(b) {
-            return Err(BvpError::SingularJacobian {
-                iteration: 0,
-                detail: "sparse LU solve produced non-finite values".into(),
-            });
-        }
-        Ok(())
-    }
+    Ok(numerics::newton::solve(&mut Shared(system), z, opts)?)
 }
 
 #[cfg(test)]
@@ -354,16 +105,21 @@ mod tests {
         let rep = solve(&mut sys, &mut z, &NewtonOptions { tolerance: 1e-13, ..Default::default() }).unwrap();
         assert!((z[0] - 2f64.sqrt()).abs() < 1e-12 && (z[1] - 2f64.sqrt()).abs() < 1e-12);
         assert!(rep.iterations <= 10, "{rep:?}");
-        assert_eq!(sys.lu.symbolic_factorisations, 1);
-        assert_eq!(sys.lu.numeric_factorisations, rep.iterations);
+        assert_eq!(sys.lu.symbolic_factorisations(), 1);
+        assert_eq!(sys.lu.numeric_factorisations(), rep.iterations);
     }
 
     #[test]
-    fn singular_jacobian_is_an_error() {
-        // z = (0, 0): Jacobian [[0, 0], [1, −1]] is singular.
+    fn failures_map_to_bvp_errors() {
+        // z = (0, 0): Jacobian [[0, 0], [1, −1]] is singular, at iteration 1.
         let mut sys = Circle { lu: SparseLu::new() };
-        let mut z = vec![0.0, 0.0];
-        let err = solve(&mut sys, &mut z, &NewtonOptions::default()).unwrap_err();
-        assert!(matches!(err, BvpError::SingularJacobian { .. }), "{err}");
+        let err = solve(&mut sys, &mut [0.0, 0.0], &NewtonOptions::default()).unwrap_err();
+        assert!(matches!(err, BvpError::SingularJacobian { iteration: 1, .. }), "{err}");
+        // two iterations from far away are not enough
+        let opts = NewtonOptions { max_iterations: 2, ..Default::default() };
+        let err = solve(&mut sys, &mut [10.0, 0.3], &opts).unwrap_err();
+        assert!(matches!(err, BvpError::NewtonDiverged { iterations: 2, residual, .. } if residual > 1e-3), "{err}");
+        let err = solve(&mut sys, &mut [1.0], &NewtonOptions::default()).unwrap_err();
+        assert!(matches!(err, BvpError::InvalidInput(_)), "{err}");
     }
 }

@@ -27,12 +27,9 @@
 //! Both functions are generic over the scalar type so that Jacobians are computed by
 //! forward-mode automatic differentiation ([`num_dual`]); `f64` gives plain values.
 
-use num_dual::DualNum;
-
 /// Scalar types the problem functions are evaluated with: `f64` and the dual numbers
-/// of `num_dual` (first derivatives).
-pub trait Scalar: DualNum<Primitive = f64> + Copy {}
-impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+/// of `num_dual` (first derivatives); one definition for `bvp` and `fem`.
+pub use numerics::Scalar;
 
 /// A square multi-segment BVP (see the module documentation for the form).
 pub trait Problem: Sync {

@@ -75,6 +75,7 @@ use std::time::Instant;
 
 use diffsol::{OdeBuilder, OdeSolverMethod, OdeSolverStopReason};
 use nalgebra::{DMatrix, DVector};
+use numerics::newton::scaled_norm;
 
 use crate::error::BvpError;
 use crate::jacobian::{bc_jacobian, rhs_jacobian};
@@ -658,14 +659,6 @@ fn jacobian<P: Problem>(
         }
     }
     jac
-}
-
-/// max_i |v_i| / (1 + |u_i|).
-fn scaled_norm(v: &[f64], u: &[f64]) -> f64 {
-    v.iter()
-        .zip(u)
-        .map(|(a, b)| a.abs() / (1.0 + b.abs()))
-        .fold(0.0, f64::max)
 }
 
 /// Checks the guess against the problem and returns the initial unknowns u.

@@ -6,14 +6,13 @@
 //! the same code gives values (f64) and exact derivatives (dual numbers).
 
 use drive::contour::{Contour, Region};
-use num_dual::DualNum;
 
 use crate::hermite;
 use crate::mesh::ElementGeometry;
 
-/// The number types element energies are evaluated with: f64 and num-dual's duals.
-pub trait Scalar: DualNum<Primitive = f64> + Copy {}
-impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
+/// The number types element energies are evaluated with: f64 and num-dual's duals
+/// (one definition for `bvp` and `fem`).
+pub use numerics::Scalar;
 
 /// Number of local unknowns of a string element.
 pub const NDOF: usize = 8;

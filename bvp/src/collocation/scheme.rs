@@ -67,25 +67,11 @@ impl Scheme {
         }
     }
 
-    /// Collocation nodes c_1 < … < c_s in (0, 1) (Gauss–Legendre points).
+    /// Collocation nodes c_1 < … < c_s in (0, 1): the Gauss–Legendre points ξ of
+    /// [`numerics::Rule::Gauss`] mapped by c = (1 + ξ)/2.
     pub fn nodes(self) -> Vec<f64> {
-        let xi: Vec<f64> = match self {
-            Scheme::Gauss4 => {
-                let a = (1.0_f64 / 3.0).sqrt();
-                vec![-a, a]
-            }
-            Scheme::Gauss6 => {
-                let a = (3.0_f64 / 5.0).sqrt();
-                vec![-a, 0.0, a]
-            }
-            Scheme::Gauss8 => {
-                let r = 2.0 / 7.0 * (6.0_f64 / 5.0).sqrt();
-                let inner = (3.0 / 7.0 - r).sqrt();
-                let outer = (3.0 / 7.0 + r).sqrt();
-                vec![-outer, -inner, inner, outer]
-            }
-        };
-        xi.into_iter().map(|x| 0.5 * (1.0 + x)).collect()
+        let points = u8::try_from(self.stages()).expect("2 to 4 stages");
+        numerics::Rule::Gauss(points).points().iter().map(|&(xi, _)| 0.5 * (1.0 + xi)).collect()
     }
 }
 

@@ -1,0 +1,34 @@
+//! `numerics`: the numerical building blocks shared by beltcheck's two independent
+//! solvers, `bvp` and `fem`. Both depend on this crate and never on each other: they
+//! share code, not answers.
+//!
+//! # Layers (each builds only on those above it)
+//! - [`scalar`]: the number type of functions differentiated by forward-mode AD
+//!   ([`Scalar`]: `f64` and num-dual's duals);
+//! - [`linear`]: sparse direct solves — [`linear::SparseLu`] (symbolic factorisation once
+//!   per pattern, numeric per iteration), [`linear::TripletLu`] (the same from triplets,
+//!   pattern cached by comparison) and [`linear::BorderedLu`] (a sparse block with two
+//!   dense border unknowns by its 2 × 2 Schur complement), failures as
+//!   [`linear::LinearError`];
+//! - [`quadrature`]: integration rules on [−1, 1] (Gauss–Legendre 1…5 points, Simpson,
+//!   trapezoidal) — fem's element rules and bvp's collocation nodes;
+//! - [`newton`]: one damped Newton for F(z) = 0 over a [`newton::NewtonProblem`]
+//!   (residual, Jacobian factorisation and solve, optional norm / merit / admissibility /
+//!   step-acceptance / regularisation / convergence hooks), with natural-monotonicity or
+//!   backtracking damping, work statistics and typed failures. Its tolerance is on the
+//!   full Newton correction in the scaled maximum norm max_i |Δz_i| / (1 + |z_i|)
+//!   (weights at the current iterate; a problem may supply its own norm) — see the
+//!   module for the exact algorithm and for how fem's three Newton loops map onto it.
+//!
+//! Errors are typed enums carrying the numbers; the linear solvers are generic over the
+//! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
+
+pub mod linear;
+pub mod newton;
+pub mod quadrature;
+pub mod scalar;
+
+pub use linear::{BorderedLu, LinearError, SparseLu, TripletLu};
+pub use newton::{NewtonError, NewtonOptions, NewtonProblem, NewtonStats};
+pub use quadrature::Rule;
+pub use scalar::Scalar;
