@@ -31,6 +31,18 @@ pub enum SceneError {
         message: String,
     },
 
+    /// A key given twice in one JSON object (at any depth): JSON readers disagree on
+    /// which one counts, so neither is taken (position 1-based, of the second one).
+    #[error("duplicate key `{path}` (line {line}, column {column}): each key may appear once per object; remove one of the two")]
+    DuplicateKey {
+        /// Full path of the repeated key.
+        path: String,
+        /// Line of the second occurrence (1-based).
+        line: usize,
+        /// Column just after the second occurrence of the key (1-based).
+        column: usize,
+    },
+
     /// A key that the scene format does not define (every nesting level is checked).
     #[error("unknown field `{path}`{}", unknown_hint(.suggestion.as_deref(), .allowed))]
     UnknownField {
@@ -170,6 +182,7 @@ impl SceneError {
             | SceneError::Syntax { .. }
             | SceneError::PulleysOverlap { .. } => None,
             SceneError::UnknownField { path, .. }
+            | SceneError::DuplicateKey { path, .. }
             | SceneError::MissingField { path, .. }
             | SceneError::WrongType { path, .. }
             | SceneError::UnknownVariant { path, .. }

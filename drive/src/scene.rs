@@ -445,18 +445,17 @@ pub struct GateSettings {
 // ---------------------------------------------------------------------------
 // Reading, writing, validating
 
+/// Longest scene name, bytes (the name is a directory and file name of `report`; file
+/// systems allow 255).
+pub const MAX_NAME_LEN: usize = 100;
+
 impl Scene {
     /// Parses and validates a scene from JSON text.
     ///
     /// # Errors
     /// The first problem found, naming its field path (see [`SceneError`]).
     pub fn from_json_str(text: &str) -> Result<Scene, SceneError> {
-        let mut value: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| SceneError::Syntax {
-                line: e.line(),
-                column: e.column(),
-                message: e.to_string(),
-            })?;
+        let mut value = crate::schema::parse_strict(text)?;
         crate::schema::check_scene(&mut value)?;
         let scene: Scene = serde_json::from_value(value)
             // unreachable after the schema walk; kept as an error, not a panic
@@ -522,6 +521,7 @@ impl Scene {
                 reason: "must not be empty".into(),
             });
         }
+        let shown = crate::schema::clip_key(&self.name);
         if let Some(c) = self
             .name
             .chars()
@@ -530,8 +530,24 @@ impl Scene {
             return Err(SceneError::Invalid {
                 path: "name".into(),
                 reason: format!(
-                    "{:?} contains {c:?}: only ASCII letters, digits, `-`, `_` and `.` are allowed (the name is used for report file names)",
-                    self.name
+                    "{shown:?} contains {c:?}: only ASCII letters, digits, `-`, `_` and `.` are allowed (the name is used for report file names)",
+                ),
+            });
+        }
+        if self.name.starts_with('.') {
+            return Err(SceneError::Invalid {
+                path: "name".into(),
+                reason: format!(
+                    "{shown:?} starts with `.`: the name is a report directory name, and `.`, `..` or a hidden name would write outside it or out of sight"
+                ),
+            });
+        }
+        if self.name.len() > MAX_NAME_LEN {
+            return Err(SceneError::Invalid {
+                path: "name".into(),
+                reason: format!(
+                    "{shown:?} has {} characters, at most {MAX_NAME_LEN} are allowed (the name is used for report file names)",
+                    self.name.len()
                 ),
             });
         }
@@ -665,6 +681,15 @@ impl Scene {
                         });
                     }
                 }
+            }
+            Analysis::Steady | Analysis::Transient if e.contact == Contact::Coulomb(0.0) => {
+                return Err(SceneError::NotAllowed {
+                    path: "effects.contact.coulomb".into(),
+                    reason: format!(
+                        "a {} drive transmits its torque through friction and needs μ > 0 (got μ = 0): with μ = 0 no torque reaches the driven pulley and its speed is undetermined",
+                        self.analysis
+                    ),
+                });
             }
             Analysis::Steady => {
                 if e.contact == Contact::Frictionless {
