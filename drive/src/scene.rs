@@ -445,6 +445,10 @@ pub struct GateSettings {
 // ---------------------------------------------------------------------------
 // Reading, writing, validating
 
+/// Largest driver rotation per transient time step, rad (`fem.time_step` × |ω₁|):
+/// π/4, so that a contact arc (≤ π) takes at least four steps to pass.
+pub const MAX_STEP_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
+
 /// Longest scene name, bytes (the name is a directory and file name of `report`; file
 /// systems allow 255).
 pub const MAX_NAME_LEN: usize = 100;
@@ -504,6 +508,7 @@ impl Scene {
         }
         if let Some(f) = &self.fem {
             f.validate()?;
+            self.validate_time_step(f)?;
         }
         if let Some(g) = &self.gate {
             g.validate()?;
@@ -521,7 +526,7 @@ impl Scene {
                 reason: "must not be empty".into(),
             });
         }
-        let shown = crate::schema::clip_key(&self.name);
+        let shown = crate::error::clip(&self.name);
         if let Some(c) = self
             .name
             .chars()
@@ -548,6 +553,25 @@ impl Scene {
                 reason: format!(
                     "{shown:?} has {} characters, at most {MAX_NAME_LEN} are allowed (the name is used for report file names)",
                     self.name.len()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The driver turns at most [`MAX_STEP_ANGLE`] per transient time step.
+    fn validate_time_step(&self, f: &FemSettings) -> Result<(), SceneError> {
+        let Some(dt) = f.time_step else { return Ok(()) };
+        let angle = self.drive.driver_speed.abs() * dt;
+        if angle > MAX_STEP_ANGLE {
+            return Err(SceneError::OutOfRange {
+                path: "fem.time_step".into(),
+                value: dt,
+                range: format!(
+                    "the driver turns |ω₁|·Δt = {} rad per step, at most {} rad (π/4) are allowed so that the friction fronts move by a fraction of an arc per step: Δt ≤ {} s",
+                    crate::error::num(&angle),
+                    crate::error::num(&MAX_STEP_ANGLE),
+                    crate::error::num(&(MAX_STEP_ANGLE / self.drive.driver_speed.abs()))
                 ),
             });
         }

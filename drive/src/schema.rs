@@ -358,7 +358,7 @@ pub(crate) fn check_scene(value: &mut Value) -> Result<(), SceneError> {
 /// `path.key`; a key that is empty or has characters other than ASCII letters,
 /// digits, `_`, `-`, `.` is written JSON-quoted (`belt."axial stiffness"`).
 fn join(path: &str, key: &str) -> String {
-    let key = &clip_key(key);
+    let key = &crate::error::clip(key);
     let plain = !key.is_empty()
         && key
             .chars()
@@ -372,17 +372,6 @@ fn join(path: &str, key: &str) -> String {
         key
     } else {
         format!("{path}.{key}")
-    }
-}
-
-/// A key as it appears in a message: keys of more than 64 characters are cut to their
-/// first 40 and the length (an unknown key of megabytes is not echoed whole).
-pub(crate) fn clip_key(key: &str) -> String {
-    let n = key.chars().count();
-    if n > 64 {
-        format!("{}…({n} characters)", key.chars().take(40).collect::<String>())
-    } else {
-        key.to_string()
     }
 }
 
@@ -567,7 +556,7 @@ fn unknown_variant(path: &str, what: &str, value: &str, variants: &[&str]) -> Sc
     SceneError::UnknownVariant {
         path: path.into(),
         what: what.into(),
-        value: clip_key(value),
+        value: crate::error::clip(value),
         suggestion: nearest(value, variants.iter().copied()),
         allowed: variants.iter().map(|s| s.to_string()).collect(),
     }

@@ -14,9 +14,9 @@
 use std::fmt;
 use std::time::Instant;
 
-use bvp::collocation::Scheme;
+pub use bvp::collocation::Scheme;
 use bvp::scene::{BvpMethod, BvpRunOptions, SceneSolveError};
-use drive::scene::Scene;
+use drive::scene::{Scene, Theory};
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 use serde::Serialize;
@@ -91,6 +91,34 @@ pub struct Solved {
     pub notes: Vec<String>,
     /// Time history of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
     pub history: Option<drive::result::History>,
+    /// `Some` for a transient FE run that stopped at `fem.max_steps` before its steady
+    /// state (the solution is the last state, not the steady one); `None` for a run
+    /// that reached what it solves for. [`execute`] turns `Some` into
+    /// [`RunError::NotSteady`]; `solve` prints it and writes `"converged": false`.
+    pub not_steady: Option<NotSteady>,
+}
+
+/// How far a transient was from its steady state when `fem.max_steps` cut it off.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NotSteady {
+    /// Time steps run.
+    pub steps: usize,
+    /// Change rate r_n of the last step, 1/rad (docs/fem-drive.md §7).
+    pub rate: f64,
+    /// The steady threshold on r_n (`fem.steady_tolerance`), 1/rad.
+    pub tolerance: f64,
+}
+
+impl fmt::Display for NotSteady {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "the transient did not reach a steady state: it stopped after {} step(s) (fem.max_steps) with change rate {} per rad above the steady threshold {} per rad; raise fem.max_steps or fem.time_step",
+            self.steps,
+            drive::error::num(&self.rate),
+            drive::error::num(&self.tolerance)
+        )
+    }
 }
 
 /// Why a method produced no solution.
@@ -105,6 +133,10 @@ pub enum RunError {
     /// output, …).
     #[error("{0}")]
     Failed(String),
+    /// A transient that stopped before its steady state: its last state is no answer
+    /// to compare (issue 12: it used to count as converged).
+    #[error("{0}")]
+    NotSteady(NotSteady),
 }
 
 /// A solution method the harness can run at any discretisation of its family.
@@ -206,6 +238,7 @@ impl Method for BvpSolver {
             terms: Vec::new(),
             notes: run.notes,
             history: None,
+            not_steady: None,
         })
     }
 }
@@ -242,16 +275,25 @@ impl Method for FemFormulation {
         let Discretisation::Elements(elements) = disc else {
             return Err(RunError::Failed(format!("{}: an FE method is refined by mesh, not by {disc}", self.label())));
         };
+        if let Some(theory) = formulation_theory(&self.name).filter(|&t| t != scene.belt.theory) {
+            return Err(RunError::NotApplicable(format!(
+                "formulation `{}` discretises theory `{theory}`, the scene's belt is theory `{}` (its formulations: {})",
+                self.name,
+                scene.belt.theory,
+                list_or_none(&fem::formulations_for(scene.belt.theory))
+            )));
+        }
         let opts = fem::FemOptions {
             elements,
             formulation: self.name.clone(),
             penalty: self.penalty.or(scene.fem_settings().penalty),
         };
         let run = fem::solve_scene(scene, &opts).map_err(|e| match e {
-            fem::FemError::Unsupported(m) => RunError::NotApplicable(m),
+            fem::FemError::Unsupported(_) => RunError::NotApplicable(no_fe_model(scene)),
             #[allow(unreachable_patterns)]
             other => RunError::Failed(other.to_string()),
         })?;
+        let not_steady = fem_not_steady(&run.options);
         Ok(Solved {
             view: run.view,
             summary: run.summary,
@@ -266,8 +308,73 @@ impl Method for FemFormulation {
             notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
             terms: run.terms,
             history: run.history,
+            not_steady,
         })
     }
+}
+
+/// The belt theory a registered formulation discretises (`None` if not registered).
+pub fn formulation_theory(name: &str) -> Option<Theory> {
+    [Theory::String, Theory::Kirchhoff, Theory::Cosserat, Theory::Shell]
+        .into_iter()
+        .find(|&t| fem::formulations_for(t).contains(&name))
+}
+
+/// Names of the registered FE formulations, default first.
+pub fn registered_formulations() -> Vec<&'static str> {
+    fem::available_formulations()
+}
+
+/// The default FE formulation of a scene: its first `fem.formulations`, else the first
+/// registered formulation of its belt theory (a rod scene gets a rod formulation).
+///
+/// # Errors
+/// [`RunError::NotApplicable`] if no registered formulation discretises the theory.
+pub fn default_formulation(scene: &Scene) -> Result<String, RunError> {
+    if let Some(first) = scene.fem_settings().formulations.first() {
+        return Ok(first.clone());
+    }
+    let theory = scene.belt.theory;
+    fem::formulations_for(theory).first().map(|n| n.to_string()).ok_or_else(|| {
+        RunError::NotApplicable(format!("no registered FE formulation discretises theory `{theory}` (registered: {})", list_or_none(&registered_formulations())))
+    })
+}
+
+fn list_or_none(names: &[&str]) -> String {
+    if names.is_empty() {
+        "none".to_string()
+    } else {
+        names.join(", ")
+    }
+}
+
+/// Why the FE has no model for a scene, in words: the scene's model and the models the
+/// FE has (the `fem` crate's own message names Rust types and an older list).
+fn no_fe_model(scene: &Scene) -> String {
+    let contact = match scene.effects.contact {
+        drive::scene::Contact::Frictionless => "frictionless contact".to_string(),
+        drive::scene::Contact::Coulomb(mu) => format!("Coulomb friction (μ = {})", drive::error::num(&mu)),
+        drive::scene::Contact::ElasticLayer(_) => "an elastic interlayer".to_string(),
+    };
+    format!(
+        "no MEL finite element model for a {} belt, analysis `{}`, with {contact}; the MEL models are: the string and the Kirchhoff rod hanging on frictionless pulleys (static), and the string friction drive (steady and transient, Coulomb friction)",
+        scene.belt.theory, scene.analysis
+    )
+}
+
+/// A transient FE run that stopped before its steady state, read from the run's
+/// options (`drive.steady`, `drive.steps`, `drive.final_change_rate`,
+/// `drive.settings.steady_tolerance`, written by `fem::string_drive::solve`).
+fn fem_not_steady(options: &serde_json::Value) -> Option<NotSteady> {
+    let drive = options.get("drive")?;
+    if drive.get("steady")?.as_bool()? {
+        return None;
+    }
+    Some(NotSteady {
+        steps: drive.get("steps").and_then(serde_json::Value::as_u64).map_or(0, |n| n as usize),
+        rate: drive.get("final_change_rate").and_then(serde_json::Value::as_f64).unwrap_or(f64::INFINITY),
+        tolerance: drive.pointer("/settings/steady_tolerance").and_then(serde_json::Value::as_f64).unwrap_or(f64::NAN),
+    })
 }
 
 // ---------------------------------------------------------------------------
@@ -429,6 +536,9 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
     let solved = method.solve(scene, disc);
     let wall = start.elapsed().as_secs_f64();
     let outcome = solved.and_then(|s| {
+        if let Some(n) = s.not_steady {
+            return Err(RunError::NotSteady(n));
+        }
         s.summary.check_finite().map_err(|e| RunError::Failed(format!("summary: {e}")))?;
         let samples = Samples::of_view(s.view.as_ref(), samples).map_err(RunError::Failed)?;
         let mut cost = s.cost;

@@ -62,6 +62,29 @@ pub enum Formulations {
     Named(Vec<String>),
 }
 
+/// Why a study that ran gives no usable answer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StudyError {
+    /// The reference run failed: there is nothing to hold the other runs against.
+    #[error("the reference ({method}) could not be computed")]
+    ReferenceFailed {
+        /// Reference method label.
+        method: String,
+        /// Its failure.
+        source: RunError,
+    },
+    /// A method the study asked for failed at every discretisation.
+    #[error("no successful run of {method} (all {runs} failed); first failure")]
+    NoSuccessfulRun {
+        /// Method label.
+        method: String,
+        /// Its runs, all failed.
+        runs: usize,
+        /// The failure of its first run.
+        source: RunError,
+    },
+}
+
 /// What a study runs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StudyPlan {
@@ -94,7 +117,7 @@ pub enum PlanError {
     #[error("element counts must be ≥ 4 and strictly increasing, got {0:?}")]
     Meshes(Vec<usize>),
     /// A tolerance outside (0, 1).
-    #[error("tolerance {0} is not in (0, 1)")]
+    #[error("tolerance {} is not in (0, 1)", drive::error::num(.0))]
     Tolerance(f64),
 }
 
@@ -387,6 +410,28 @@ impl Study {
     /// Index of a quantity by name.
     pub fn quantity_index(&self, name: &str) -> Option<usize> {
         self.quantities.iter().position(|q| q.name == name)
+    }
+
+    /// Whether the study answers what it asked: its reference solved, and every
+    /// method it studied with at least one successful run (`converge` and `report`
+    /// exit with status 2 otherwise, and `converge` writes no study JSON).
+    ///
+    /// # Errors
+    /// [`StudyError::ReferenceFailed`] or [`StudyError::NoSuccessfulRun`] (the first
+    /// such method).
+    pub fn usable(&self) -> Result<(), StudyError> {
+        if let Err(e) = &self.reference.outcome {
+            return Err(StudyError::ReferenceFailed { method: self.reference.method.clone(), source: e.clone() });
+        }
+        for s in self.series.iter().filter(|s| s.status == SeriesStatus::Studied) {
+            if s.rows.iter().all(|r| r.run.data().is_none()) {
+                if let Some(first) = s.rows.first() {
+                    let source = first.run.outcome.as_ref().err().cloned().unwrap_or(RunError::Failed(String::new()));
+                    return Err(StudyError::NoSuccessfulRun { method: s.method.clone(), runs: s.rows.len(), source });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// True if at least one FE series was studied.
