@@ -309,7 +309,8 @@ fn chosen_method(scene: &Scene, flags: MethodFlags<'_>) -> Result<(Box<dyn Metho
 /// Solve and time one run (the harness's clock, around the whole solve).
 fn solve_once(scene: &Scene, method: &dyn Method, disc: Discretisation) -> Result<Solved> {
     let start = std::time::Instant::now();
-    let mut solved = method.solve(scene, disc).map_err(|e| anyhow::anyhow!("{}: {e}", method.label()))?;
+    // the method's typed error stays the source (`{:#}` prints its chain)
+    let mut solved = method.solve(scene, disc).map_err(|e| anyhow::Error::new(e).context(method.label()))?;
     solved.cost.wall_seconds = start.elapsed().as_secs_f64();
     Ok(solved)
 }

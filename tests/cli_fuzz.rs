@@ -112,7 +112,7 @@ fn mutated_catalogue_scenes_through_the_cli() {
     let texts: Vec<String> = scenes.iter().map(|s| std::fs::read_to_string(root.join(format!("scenes/{s}.json"))).unwrap()).collect();
     let dir: PathBuf = common::temp("cli-fuzz", "runs");
     std::fs::create_dir_all(&dir).unwrap();
-    let mut rng = Rng(0x5eed_0f_be17_c0de);
+    let mut rng = Rng(0x005e_ed0f_be17_c0de);
     let (mut ok, mut refused, mut stopped) = (0, 0, 0);
     for case in 0.. {
         if start.elapsed() > BUDGET {

@@ -73,3 +73,33 @@ fn transient_cut_off_is_a_failed_run() {
         other => panic!("expected NotSteady, got {:?}", other.map(|d| d.summary)),
     }
 }
+
+/// The solvers' errors reach the harness as values, not strings (issue 11 item 7): an
+/// overloaded drive (M₂ = 1000 N·m against a capacity of ~21 N·m) fails in the FE with
+/// `FemError::FrictionCapacityExceeded` carrying both torques, and in the BVP with the
+/// BVP's own error type.
+#[test]
+fn solver_errors_stay_typed() {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/string-drive.json")).unwrap()).unwrap();
+    v["drive"]["driven_torque"] = serde_json::json!(1000.0);
+    let scene = Scene::from_json_str(&v.to_string()).unwrap();
+    let fe = FemFormulation { name: "string-simpson".into(), penalty: None };
+    match execute(&fe, &scene, Discretisation::Elements(32), 64).outcome {
+        Err(RunError::Fem(fem::FemError::FrictionCapacityExceeded { torque, capacity, .. })) => {
+            assert!(torque > 1000.0 && capacity < torque, "{torque} vs {capacity}");
+        }
+        other => panic!("expected a typed FE error, got {:?}", other.err()),
+    }
+    let bvp = BvpSolver::new(BvpVariant::Shooting);
+    match execute(&bvp, &scene, Discretisation::Tolerance(1e-6), 64).outcome {
+        Err(e @ RunError::Bvp(_)) => {
+            assert!(e.to_string().contains("friction capacity"), "{e}");
+            assert_eq!(e.kind(), "failed");
+            let json = serde_json::to_value(&e).unwrap();
+            assert_eq!(json["kind"], "failed");
+            assert_eq!(json["message"], e.to_string());
+        }
+        other => panic!("expected a typed BVP error, got {:?}", other.err()),
+    }
+}

@@ -121,22 +121,70 @@ impl fmt::Display for NotSteady {
     }
 }
 
-/// Why a method produced no solution.
-#[derive(Debug, Clone, PartialEq, Serialize, thiserror::Error)]
-#[serde(tag = "kind", content = "message", rename_all = "snake_case")]
+/// Why a method produced no solution. The solvers' own errors are kept as values
+/// ([`RunError::Bvp`], [`RunError::Fem`]: match on them, or follow
+/// [`std::error::Error::source`]); their message is the solver's. Serialised as
+/// `{"kind": "not_applicable" | "failed" | "not_steady", "message": "…"}`.
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
     /// The method has no model for this scene (e.g. a formulation for another belt
     /// theory): not a failure of the method, but nothing to compare either.
     #[error("not applicable: {0}")]
     NotApplicable(String),
-    /// The method was applicable and failed (no convergence, mesh cap, non-finite
-    /// output, …).
+    /// A method outside this crate failed, or a method was given the wrong kind of
+    /// discretisation.
     #[error("{0}")]
     Failed(String),
+    /// The BVP solver failed (no convergence, mesh cap, a failed self-check, …).
+    #[error(transparent)]
+    Bvp(std::sync::Arc<SceneSolveError>),
+    /// The FE solver failed.
+    #[error(transparent)]
+    Fem(fem::FemError),
+    /// The solution's summary has a non-finite quantity.
+    #[error("summary: {0}")]
+    Summary(#[from] drive::error::ResultError),
+    /// The solution's fields have a non-finite sample.
+    #[error(transparent)]
+    Sample(#[from] NonFiniteSample),
     /// A transient that stopped before its steady state: its last state is no answer
     /// to compare (issue 12: it used to count as converged).
     #[error("{0}")]
     NotSteady(NotSteady),
+}
+
+impl RunError {
+    /// `not_applicable`, `failed` or `not_steady`: the kind written to JSON.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            RunError::NotApplicable(_) => "not_applicable",
+            RunError::NotSteady(_) => "not_steady",
+            _ => "failed",
+        }
+    }
+}
+
+impl Serialize for RunError {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(2))?;
+        m.serialize_entry("kind", self.kind())?;
+        m.serialize_entry("message", &self.to_string())?;
+        m.end()
+    }
+}
+
+/// A sample of a solution field that is NaN or ±∞.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("non-finite {field} ({value}) at σ = {sigma:.6} m")]
+pub struct NonFiniteSample {
+    /// Field name: `x`, `y`, `deflection`, `tension`, `moment`, `contact pressure`,
+    /// `friction traction`.
+    pub field: &'static str,
+    /// The value.
+    pub value: f64,
+    /// Where, m.
+    pub sigma: f64,
 }
 
 /// A solution method the harness can run at any discretisation of its family.
@@ -208,7 +256,7 @@ impl Method for BvpSolver {
         let Discretisation::Tolerance(tolerance) = disc else {
             return Err(RunError::Failed(format!("{}: a BVP method is refined by tolerance, not by {disc}", self.label())));
         };
-        let mut opts = BvpRunOptions::from_scene(scene).map_err(|e| RunError::Failed(e.to_string()))?;
+        let mut opts = BvpRunOptions::from_scene(scene).map_err(|e| RunError::Bvp(e.into()))?;
         opts.tolerance = tolerance;
         match self.variant {
             BvpVariant::Collocation(s) => {
@@ -222,7 +270,7 @@ impl Method for BvpSolver {
         }
         let run = bvp::scene::solve_scene(scene, &opts).map_err(|e| match e {
             SceneSolveError::Unsupported(m) => RunError::NotApplicable(m),
-            other => RunError::Failed(other.to_string()),
+            other => RunError::Bvp(other.into()),
         })?;
         Ok(Solved {
             view: run.view,
@@ -291,7 +339,7 @@ impl Method for FemFormulation {
         let run = fem::solve_scene(scene, &opts).map_err(|e| match e {
             fem::FemError::Unsupported(_) => RunError::NotApplicable(no_fe_model(scene)),
             #[allow(unreachable_patterns)]
-            other => RunError::Failed(other.to_string()),
+            other => RunError::Fem(other),
         })?;
         let not_steady = fem_not_steady(&run.options);
         Ok(Solved {
@@ -409,8 +457,8 @@ impl Samples {
     /// naming the field and σ.
     ///
     /// # Errors
-    /// A message such as `non-finite tension at σ = 0.3 m`.
-    pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, String> {
+    /// The first non-finite sample, e.g. `non-finite tension (NaN) at σ = 0.3 m`.
+    pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, NonFiniteSample> {
         let l = view.contour().length();
         let mut s = Samples::default();
         let mut moment = Vec::with_capacity(n);
@@ -426,22 +474,22 @@ impl Samples {
             let t = view.axial_force(sigma);
             for (name, v) in [("x", p[0]), ("y", p[1]), ("deflection", nu), ("tension", t)] {
                 if !v.is_finite() {
-                    return Err(format!("non-finite {name} ({v}) at σ = {sigma:.6} m"));
+                    return Err(NonFiniteSample { field: name, value: v, sigma });
                 }
             }
             match view.bending_moment(sigma) {
                 Some(m) if m.is_finite() => moment.push(m),
-                Some(m) => return Err(format!("non-finite moment ({m}) at σ = {sigma:.6} m")),
+                Some(m) => return Err(NonFiniteSample { field: "moment", value: m, sigma }),
                 None => has_moment = false,
             }
             match view.contact_pressure(sigma) {
                 Some(p) if p.is_finite() => pressure.push(p),
-                Some(p) => return Err(format!("non-finite contact pressure ({p}) at σ = {sigma:.6} m")),
+                Some(p) => return Err(NonFiniteSample { field: "contact pressure", value: p, sigma }),
                 None => has_pressure = false,
             }
             match view.friction_traction(sigma) {
                 Some(f) if f.is_finite() => friction.push(f),
-                Some(f) => return Err(format!("non-finite friction traction ({f}) at σ = {sigma:.6} m")),
+                Some(f) => return Err(NonFiniteSample { field: "friction traction", value: f, sigma }),
                 None => has_friction = false,
             }
             s.sigma.push(sigma);
@@ -539,8 +587,8 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
         if let Some(n) = s.not_steady {
             return Err(RunError::NotSteady(n));
         }
-        s.summary.check_finite().map_err(|e| RunError::Failed(format!("summary: {e}")))?;
-        let samples = Samples::of_view(s.view.as_ref(), samples).map_err(RunError::Failed)?;
+        s.summary.check_finite()?;
+        let samples = Samples::of_view(s.view.as_ref(), samples)?;
         let mut cost = s.cost;
         cost.wall_seconds = wall;
         Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, samples })

@@ -63,7 +63,7 @@ pub enum Formulations {
 }
 
 /// Why a study that ran gives no usable answer.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum StudyError {
     /// The reference run failed: there is nothing to hold the other runs against.
     #[error("the reference ({method}) could not be computed")]
