@@ -38,6 +38,15 @@ fn partials(dir: &Path) -> Vec<PathBuf> {
     std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.to_string_lossy().ends_with(".partial")).collect()
 }
 
+/// The catalogue's string drive as a transient with this `fem` block.
+fn transient_drive(fem: serde_json::Value) -> serde_json::Value {
+    let mut v = catalogue("string-drive");
+    v["analysis"] = serde_json::json!("transient");
+    v.as_object_mut().unwrap().remove("bvp");
+    v["fem"] = fem;
+    v
+}
+
 /// The string drive with a torque far above its friction capacity: no solution by
 /// either method.
 fn unsolvable_drive() -> PathBuf {
@@ -207,11 +216,7 @@ fn formulations_follow_the_belt_theory() {
 /// the JSON and a statement in the printout (it used to say `true`, silently).
 #[test]
 fn transient_cut_off_by_max_steps_is_not_converged() {
-    let mut v = catalogue("string-drive");
-    v["analysis"] = serde_json::json!("transient");
-    v.as_object_mut().unwrap().remove("bvp");
-    v["fem"] = serde_json::json!({"elements": 32, "max_steps": 1});
-    let scene = write_scene("cut-transient.json", &v);
+    let scene = write_scene("cut-transient.json", &transient_drive(serde_json::json!({"elements": 32, "max_steps": 1})));
     let out = temp("cut-transient.out.json");
     let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", "fem", "--json", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -220,8 +225,7 @@ fn transient_cut_off_by_max_steps_is_not_converged() {
     let r: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     assert_eq!(r["converged"], false);
     // with the default step limit the same transient reaches its steady state
-    v["fem"] = serde_json::json!({"elements": 32});
-    let scene = write_scene("full-transient.json", &v);
+    let scene = write_scene("full-transient.json", &transient_drive(serde_json::json!({"elements": 32})));
     let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", "fem", "--json", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stdout(&o).contains("NOT CONVERGED"));
@@ -233,10 +237,6 @@ fn transient_cut_off_by_max_steps_is_not_converged() {
 /// rad/s, Δt = 0.1 s: 6 rad per step).
 #[test]
 fn coarse_time_step_is_refused() {
-    let mut v = catalogue("string-drive");
-    v["analysis"] = serde_json::json!("transient");
-    v.as_object_mut().unwrap().remove("bvp");
-    v["fem"] = serde_json::json!({"elements": 32, "time_step": 0.1});
-    let scene = write_scene("coarse-step.json", &v);
+    let scene = write_scene("coarse-step.json", &transient_drive(serde_json::json!({"elements": 32, "time_step": 0.1})));
     fails_with(&["solve", scene.to_str().unwrap(), "--method", "fem"], "fem.time_step");
 }
