@@ -19,14 +19,7 @@ use drive::summary::Summary;
 use drive::view::sample_fields;
 use verification::run::{BvpSolver, BvpVariant, Discretisation, FemFormulation, Method, Scheme, Solved};
 
-/// Largest FE element count of a run or study: the cost of a steady drive grows with the
-/// square of the elements, and 16384 elements already take minutes.
-const MAX_ELEMENTS: usize = 16_384;
-/// Smallest FE element count: one element per region of the contour.
-const MIN_ELEMENTS: usize = 4;
-/// Bounds of `--samples` (σ samples of the field norms) and `--fields`.
-const MIN_SAMPLES: usize = 16;
-const MAX_SAMPLES: usize = 100_000;
+use verification::study::{MAX_ELEMENTS, MIN_ELEMENTS, SAMPLES_RANGE};
 
 /// Why the command line refuses to run or to write (exit status 2).
 #[derive(Debug, thiserror::Error)]
@@ -316,8 +309,8 @@ fn solve_once(scene: &Scene, method: &dyn Method, disc: Discretisation) -> Resul
 }
 
 fn run_solve(args: &SolveArgs) -> Result<()> {
-    if args.fields > MAX_SAMPLES {
-        return Err(CliError::OutOfRange { flag: "fields", value: args.fields.to_string(), range: format!("0 (no fields) … {MAX_SAMPLES} samples") }.into());
+    if args.fields > *SAMPLES_RANGE.end() {
+        return Err(CliError::OutOfRange { flag: "fields", value: args.fields.to_string(), range: format!("0 (no fields) … {} samples", SAMPLES_RANGE.end()) }.into());
     }
     let scene = load_scene(&args.scene)?;
     let flags = MethodFlags {
@@ -525,8 +518,8 @@ fn study_with_progress(scene: &Scene, plan: &verification::study::StudyPlan, bar
 }
 
 fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
-    if !(MIN_SAMPLES..=MAX_SAMPLES).contains(&args.samples) {
-        return Err(CliError::OutOfRange { flag: "samples", value: args.samples.to_string(), range: format!("{MIN_SAMPLES} … {MAX_SAMPLES} σ samples") }.into());
+    if !SAMPLES_RANGE.contains(&args.samples) {
+        return Err(CliError::OutOfRange { flag: "samples", value: args.samples.to_string(), range: format!("{} … {} σ samples", SAMPLES_RANGE.start(), SAMPLES_RANGE.end()) }.into());
     }
     for &n in &args.elements {
         check_elements("elements", n)?;

@@ -449,6 +449,11 @@ pub struct GateSettings {
 /// π/4, so that a contact arc (≤ π) takes at least four steps to pass.
 pub const MAX_STEP_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
 
+/// Largest FE element count (`fem.elements`, `fem.mesh_sequence`, the CLI's
+/// `--elements`): the cost of a steady drive grows with the square of the elements, and
+/// 16384 elements already take minutes.
+pub const MAX_ELEMENTS: usize = 16_384;
+
 /// Longest scene name, bytes (the name is a directory and file name of `report`; file
 /// systems allow 255).
 pub const MAX_NAME_LEN: usize = 100;
@@ -837,8 +842,8 @@ impl FemSettings {
     /// # Errors
     /// The first field out of range.
     pub fn validate(&self) -> Result<(), SceneError> {
-        let four = "at least 4 elements (one per region of the contour)";
-        if self.elements < 4 {
+        let four = "at least 4 elements (one per region of the contour) and at most 16384 (the cost grows with the square of the count)";
+        if !(4..=MAX_ELEMENTS).contains(&self.elements) {
             return Err(SceneError::OutOfRange {
                 path: "fem.elements".into(),
                 value: self.elements as f64,
@@ -847,7 +852,7 @@ impl FemSettings {
         }
         for (i, &n) in self.mesh_sequence.iter().enumerate() {
             let path = format!("fem.mesh_sequence[{i}]");
-            if n < 4 {
+            if !(4..=MAX_ELEMENTS).contains(&n) {
                 return Err(SceneError::OutOfRange {
                     path,
                     value: n as f64,

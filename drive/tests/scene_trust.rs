@@ -103,3 +103,33 @@ fn huge_unknown_key_is_truncated_in_the_message() {
     let msg = rejected(&text).to_string();
     assert!(msg.len() < 2000, "message of {} bytes", msg.len());
 }
+
+/// Element counts are bounded in the scene too (a `fem.elements` of 2²⁰ ran for minutes).
+#[test]
+fn element_counts_are_bounded() {
+    let mut v: serde_json::Value = serde_json::from_str(HANGING).unwrap();
+    v["fem"] = serde_json::json!({"elements": drive::scene::MAX_ELEMENTS + 1});
+    let e = rejected(&v.to_string());
+    assert_eq!(e.path(), Some("fem.elements"), "{e}");
+    assert!(e.to_string().contains("16384"), "{e}");
+    v["fem"] = serde_json::json!({"mesh_sequence": [64, 1 << 20]});
+    assert_eq!(rejected(&v.to_string()).path(), Some("fem.mesh_sequence[1]"));
+    v["fem"] = serde_json::json!({"elements": drive::scene::MAX_ELEMENTS});
+    Scene::from_json_str(&v.to_string()).expect("the largest count is fine");
+}
+
+/// A transient step in which the driver turns more than π/4 is refused, naming the
+/// angle; π/4 itself is fine.
+#[test]
+fn time_step_angle_is_bounded() {
+    let mut v: serde_json::Value = serde_json::from_str(DRIVE).unwrap();
+    v["analysis"] = serde_json::json!("transient");
+    v.as_object_mut().unwrap().remove("bvp");
+    let omega = v["drive"]["driver_speed"].as_f64().unwrap();
+    v["fem"] = serde_json::json!({"time_step": 1.01 * drive::scene::MAX_STEP_ANGLE / omega});
+    let e = rejected(&v.to_string());
+    assert_eq!(e.path(), Some("fem.time_step"), "{e}");
+    assert!(e.to_string().contains("rad per step"), "{e}");
+    v["fem"] = serde_json::json!({"time_step": 0.99 * drive::scene::MAX_STEP_ANGLE / omega});
+    Scene::from_json_str(&v.to_string()).expect("a step below π/4 is fine");
+}

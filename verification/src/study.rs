@@ -41,6 +41,14 @@ pub const STUDY_MAX_NODES: usize = 100_000;
 /// Tolerance of the reference run of `converge` and `report` (collocation gauss6).
 pub const REFERENCE_TOLERANCE: f64 = 1e-11;
 
+pub use drive::scene::MAX_ELEMENTS;
+
+/// Smallest FE element count: one element per region of the contour.
+pub const MIN_ELEMENTS: usize = 4;
+
+/// Bounds of the σ samples of the field norms ([`StudyPlan::samples`]).
+pub const SAMPLES_RANGE: std::ops::RangeInclusive<usize> = 16..=100_000;
+
 /// A sweep of one BVP variant over tolerances.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BvpSweep {
@@ -113,9 +121,12 @@ pub enum PlanError {
         /// The registry, comma-separated, or "none".
         registered: String,
     },
-    /// Mesh sequence not strictly increasing or below 4 elements.
-    #[error("element counts must be ≥ 4 and strictly increasing, got {0:?}")]
+    /// Mesh sequence not strictly increasing or outside 4 … [`MAX_ELEMENTS`].
+    #[error("element counts must lie in {MIN_ELEMENTS} … {MAX_ELEMENTS} and increase strictly, got {0:?}")]
     Meshes(Vec<usize>),
+    /// σ samples outside [`SAMPLES_RANGE`].
+    #[error("{n} σ samples: the field norms take {lo} … {hi}", n = .0, lo = SAMPLES_RANGE.start(), hi = SAMPLES_RANGE.end())]
+    Samples(usize),
     /// A tolerance outside (0, 1).
     #[error("tolerance {} is not in (0, 1)", drive::error::num(.0))]
     Tolerance(f64),
@@ -179,8 +190,11 @@ impl StudyPlan {
                 }
             }
         }
-        if self.meshes.iter().any(|&n| n < 4) || self.meshes.windows(2).any(|w| w[1] <= w[0]) {
+        if self.meshes.iter().any(|n| !(MIN_ELEMENTS..=MAX_ELEMENTS).contains(n)) || self.meshes.windows(2).any(|w| w[1] <= w[0]) {
             return Err(PlanError::Meshes(self.meshes.clone()));
+        }
+        if !SAMPLES_RANGE.contains(&self.samples) {
+            return Err(PlanError::Samples(self.samples));
         }
         let tols = self.bvp.iter().flat_map(|s| s.tolerances.iter()).chain(std::iter::once(&self.reference.1));
         for &t in tols {
