@@ -198,7 +198,7 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
         });
     }
     // a family the plan asked for with no studied method would pass on zero runs
-    let asked_fem = !study.plan.fem_methods().is_empty();
+    let asked_fem = !study.plan.fem_methods().is_empty() && !study.plan.meshes.is_empty();
     for (family, asked, what) in [(Family::Bvp, !study.plan.bvp.is_empty(), "BVP"), (Family::Fem, asked_fem, "FE")] {
         let studied = study.series.iter().filter(|s| s.family == family && s.status == SeriesStatus::Studied).count();
         if asked && studied == 0 {
