@@ -12,12 +12,41 @@ use std::process::ExitCode;
 use anyhow::{Context, Result};
 use clap::{Parser, Subcommand, ValueEnum};
 
-use bvp::collocation::Scheme;
+use drive::error::num;
 use drive::result::{Cost, RunResult};
 use drive::scene::Scene;
 use drive::summary::Summary;
 use drive::view::sample_fields;
-use verification::run::{BvpSolver, BvpVariant, Discretisation, FemFormulation, Method, Solved};
+use verification::run::{BvpSolver, BvpVariant, Discretisation, FemFormulation, Method, Scheme, Solved};
+
+use verification::study::{MAX_ELEMENTS, MIN_ELEMENTS, SAMPLES_RANGE};
+
+/// Why the command line refuses to run or to write (exit status 2).
+#[derive(Debug, thiserror::Error)]
+enum CliError {
+    /// A flag that the chosen method does not use.
+    #[error("--{flag} is not used by method {method}: {hint}")]
+    FlagNotForMethod { flag: &'static str, method: &'static str, hint: &'static str },
+    /// A flag value outside its documented range.
+    #[error("--{flag} = {value} is out of range: {range}")]
+    OutOfRange { flag: &'static str, value: String, range: String },
+    /// `--json` onto an existing path that is not a regular file.
+    #[error("`{}` exists and is {kind}: refusing to replace it (--json writes regular files only); give the path of a new or a regular file", .path.display())]
+    NotRegularFile { path: PathBuf, kind: &'static str },
+    /// `--json` onto a path without a file name (`/`, `..`).
+    #[error("`{}` names no file", .path.display())]
+    NoFileName { path: PathBuf },
+    /// Writing or renaming failed (the temporary file is removed).
+    #[error("writing `{}`", .path.display())]
+    Write { path: PathBuf, source: std::io::Error },
+    /// Two scenes of one `report` run with the same name (their reports would overwrite
+    /// each other).
+    #[error("scene name `{name}` appears twice ({} and {}): each scene's report is written to a directory of its name; rename one", .first.display(), .second.display())]
+    DuplicateSceneName { name: String, first: PathBuf, second: PathBuf },
+    /// Scenes of a `report` run without a usable study (reports are written, exit 2).
+    #[error("{} scene(s) without a usable study: {}", .0.len(), .0.join("; "))]
+    Unsolved(Vec<String>),
+}
 
 /// The embedded default scene (the catalogue's `string-hanging`).
 const DEFAULT_SCENE: &str = include_str!("../scenes/string-hanging.json");
@@ -37,10 +66,13 @@ enum Command {
     /// against the tightest BVP run, with observed orders, Richardson extrapolation and
     /// the cost of every run.
     Converge(ConvergeArgs),
-    /// Write Markdown + SVG + JSON reports of scenes (files or directories) and an index.
+    /// Write Markdown + SVG + JSON reports of scenes (files or directories) and an index;
+    /// exit status 2 if a scene name repeats (nothing run) or a scene's study is not
+    /// usable (as `converge`; the reports are still written).
     Report(ReportArgs),
     /// CI gate: CI-sized studies checked against each scene's `gate` block; exit status 1
-    /// with a table of what drifted, 0 if everything holds.
+    /// with a table of what drifted, 0 if everything holds, 2 for a usage or input error
+    /// (missing or invalid scene, bad tolerance, unknown formulation).
     Gate(GateArgs),
 }
 
@@ -51,14 +83,15 @@ struct StudyArgs {
     /// else every registered formulation.
     #[arg(long = "formulation", value_name = "NAME")]
     formulations: Vec<String>,
-    /// FE element counts, e.g. 8,16,32; default: the scene's `fem` mesh sequence.
+    /// FE element counts (4 … 16384, increasing), e.g. 8,16,32; default: the scene's
+    /// `fem` mesh sequence.
     #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
     elements: Vec<usize>,
     /// BVP tolerances for every variant, e.g. 1e-4,1e-6,1e-8; default: 1e-4 … 1e-10
     /// (gauss4 to 1e-8).
     #[arg(long, value_delimiter = ',', value_name = "TOL,TOL,…")]
     tolerances: Vec<f64>,
-    /// σ samples of the field norms.
+    /// σ samples of the field norms (16 … 100000).
     #[arg(long, default_value_t = verification::study::DEFAULT_SAMPLES)]
     samples: usize,
 }
@@ -69,7 +102,10 @@ struct ConvergeArgs {
     scene: PathBuf,
     #[command(flatten)]
     study: StudyArgs,
-    /// Also write the study (every number) as JSON to this file.
+    /// Also write the study (every number) as JSON to this file — only if the study
+    /// is usable (its reference solved, every method it asked for with at least one
+    /// successful run); otherwise exit status 2 and nothing is written. An existing
+    /// symlink, FIFO, device or directory there is refused, never replaced.
     #[arg(long)]
     json: Option<PathBuf>,
 }
@@ -89,10 +125,11 @@ struct ReportArgs {
 struct GateArgs {
     /// Scene files or directories of scenes (default: scenes/).
     scenes: Vec<PathBuf>,
-    /// Tolerance of the gated BVP runs (gauss4, shooting).
+    /// Tolerance of the gated BVP runs (gauss4, shooting), 0 < tolerance < 1.
     #[arg(long, default_value_t = verification::gate::GATE_BVP_TOLERANCE)]
     tolerance: f64,
-    /// FE element counts, e.g. 16,32,64; default: each scene's `fem` mesh sequence.
+    /// FE element counts (4 … 16384, increasing), e.g. 16,32,64; default: each
+    /// scene's `fem` mesh sequence.
     #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
     elements: Vec<usize>,
     /// Gate only this FE formulation (repeatable); default: the scene's
@@ -102,7 +139,8 @@ struct GateArgs {
     /// Gate the BVP methods only (no FE runs).
     #[arg(long)]
     bvp_only: bool,
-    /// Also write every check as JSON to this file.
+    /// Also write every check as JSON to this file (a symlink, FIFO, device or
+    /// directory there is refused, never replaced).
     #[arg(long)]
     json: Option<PathBuf>,
 }
@@ -124,23 +162,31 @@ struct SolveArgs {
     /// Method; default: the scene's `bvp.method`, else bvp-collocation.
     #[arg(long, value_enum)]
     method: Option<MethodArg>,
-    /// Tolerance of the final BVP solve; default: the scene's `bvp.tolerance`, else 1e-8.
+    /// BVP methods only: tolerance of the final BVP solve, 0 < tolerance < 1; default:
+    /// the scene's `bvp.tolerance`, else 1e-8.
     #[arg(long)]
     tolerance: Option<f64>,
-    /// Collocation scheme (gauss4, gauss6, gauss8); default: the scene's `bvp.scheme`, else gauss6.
+    /// bvp-collocation only: scheme (gauss4, gauss6, gauss8); default: the scene's
+    /// `bvp.scheme`, else gauss6.
     #[arg(long)]
     scheme: Option<String>,
-    /// FE: number of elements round the loop; default: the scene's `fem.elements`, else 256.
+    /// fem only: number of elements round the loop, 4 … 16384; default: the scene's
+    /// `fem.elements`, else 256.
     #[arg(long)]
     elements: Option<usize>,
-    /// FE: element formulation (an unknown name lists the registered ones); default: the scene's first
-    /// `fem.formulations`, else the first registered one.
+    /// fem only: element formulation of the scene's belt theory (an unknown name lists
+    /// the registered ones; one of another theory is refused); default: the scene's
+    /// first `fem.formulations`, else the first registered one of its belt theory.
     #[arg(long)]
     formulation: Option<String>,
-    /// Write the result JSON (DESIGN.md "Result format") to this file.
+    /// Write the result JSON (DESIGN.md "Result format") to this file. Written via a
+    /// temporary file in the same directory and renamed; an existing symlink, FIFO,
+    /// device or directory there is refused, never replaced; on any error nothing is
+    /// left behind.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Number of equally spaced σ samples in the JSON `fields` (0 = no fields).
+    /// Number of equally spaced σ samples in the JSON `fields` (0 = no fields, else
+    /// at most 100000).
     #[arg(long, default_value_t = 200)]
     fields: usize,
 }
@@ -171,46 +217,84 @@ fn load_scene(path: &Path) -> Result<Scene> {
     Scene::from_path(path).with_context(|| format!("scene {}", path.display()))
 }
 
-/// The method and discretisation a `solve` asks for (scene defaults, then flags).
-fn chosen_method(
-    scene: &Scene,
+/// The flags of a `solve` that choose the method and its discretisation.
+#[derive(Clone, Copy, Default)]
+struct MethodFlags<'a> {
     method: Option<MethodArg>,
     tolerance: Option<f64>,
-    scheme: Option<&str>,
+    scheme: Option<&'a str>,
     elements: Option<usize>,
-    formulation: Option<&str>,
-) -> Result<(Box<dyn Method>, Discretisation, String)> {
+    formulation: Option<&'a str>,
+}
+
+/// Refuses a flag the method does not use.
+fn unused(given: bool, flag: &'static str, method: &'static str, hint: &'static str) -> Result<(), CliError> {
+    if given {
+        return Err(CliError::FlagNotForMethod { flag, method, hint });
+    }
+    Ok(())
+}
+
+/// `n` FE elements within [`MIN_ELEMENTS`, `MAX_ELEMENTS`].
+fn check_elements(flag: &'static str, n: usize) -> Result<(), CliError> {
+    if !(MIN_ELEMENTS..=MAX_ELEMENTS).contains(&n) {
+        return Err(CliError::OutOfRange {
+            flag,
+            value: n.to_string(),
+            range: format!("{MIN_ELEMENTS} … {MAX_ELEMENTS} elements (at least one per region of the contour; the cost grows with the square of the count)"),
+        });
+    }
+    Ok(())
+}
+
+/// A relative tolerance in (0, 1).
+fn check_tolerance(flag: &'static str, t: f64) -> Result<(), CliError> {
+    if !(t > 0.0 && t < 1.0) {
+        return Err(CliError::OutOfRange { flag, value: num(&t), range: "a relative tolerance, 0 < tolerance < 1".into() });
+    }
+    Ok(())
+}
+
+/// The method and discretisation a `solve` asks for (scene defaults, then flags); a flag
+/// the chosen method does not use is an error, not ignored.
+fn chosen_method(scene: &Scene, flags: MethodFlags<'_>) -> Result<(Box<dyn Method>, Discretisation, String)> {
     let bvp = scene.bvp_settings();
-    let method = method.unwrap_or(match bvp.method {
+    let method = flags.method.unwrap_or(match bvp.method {
         drive::scene::BvpMethod::Collocation => MethodArg::BvpCollocation,
         drive::scene::BvpMethod::Shooting => MethodArg::BvpShooting,
     });
     match method {
         MethodArg::BvpCollocation | MethodArg::BvpShooting => {
+            let name = if matches!(method, MethodArg::BvpShooting) { "bvp-shooting" } else { "bvp-collocation" };
+            let fem_only = "it sets the FE discretisation; use --method fem";
+            unused(flags.elements.is_some(), "elements", name, fem_only)?;
+            unused(flags.formulation.is_some(), "formulation", name, fem_only)?;
             let variant = if matches!(method, MethodArg::BvpShooting) {
+                unused(flags.scheme.is_some(), "scheme", name, "it chooses the collocation scheme; use --method bvp-collocation")?;
                 BvpVariant::Shooting
             } else {
-                let name = scheme.unwrap_or(&bvp.scheme);
-                BvpVariant::Collocation(name.parse::<Scheme>().map_err(|e| anyhow::anyhow!("scheme `{name}`: {e}"))?)
+                let scheme = flags.scheme.unwrap_or(&bvp.scheme);
+                BvpVariant::Collocation(scheme.parse::<Scheme>().map_err(|e| anyhow::anyhow!("scheme `{}`: {e}", drive::error::clip(scheme)))?)
             };
-            let name = if matches!(variant, BvpVariant::Shooting) { "bvp-shooting" } else { "bvp-collocation" };
-            Ok((Box::new(BvpSolver::new(variant)), Discretisation::Tolerance(tolerance.unwrap_or(bvp.tolerance)), name.to_string()))
+            let tolerance = flags.tolerance.unwrap_or(bvp.tolerance);
+            check_tolerance("tolerance", tolerance)?;
+            Ok((Box::new(BvpSolver::new(variant)), Discretisation::Tolerance(tolerance), name.to_string()))
         }
         MethodArg::Fem => {
-            let fem = scene.fem_settings();
-            let registered = fem::available_formulations();
-            let name = match formulation.map(str::to_string).or_else(|| fem.formulations.first().cloned()) {
-                Some(n) => n,
-                None => registered
-                    .first()
-                    .map(|n| n.to_string())
-                    .ok_or_else(|| anyhow::anyhow!("method fem: no MEL finite element formulation is registered"))?,
+            let bvp_only = "it sets the BVP solve; the FE is refined by --elements";
+            unused(flags.scheme.is_some(), "scheme", "fem", bvp_only)?;
+            unused(flags.tolerance.is_some(), "tolerance", "fem", bvp_only)?;
+            let registered = verification::run::registered_formulations();
+            let name = match flags.formulation {
+                Some(n) => n.to_string(),
+                None => verification::run::default_formulation(scene)?,
             };
             if !registered.contains(&name.as_str()) {
-                anyhow::bail!("unknown FE formulation `{name}`; registered: {}", registered.join(", "));
+                anyhow::bail!("unknown FE formulation `{}`; registered: {}", drive::error::clip(&name), registered.join(", "));
             }
-            let elements = elements.unwrap_or(fem.elements);
-            Ok((Box::new(FemFormulation { name, penalty: fem.penalty }), Discretisation::Elements(elements), "fem".to_string()))
+            let elements = flags.elements.unwrap_or(scene.fem_settings().elements);
+            check_elements("elements", elements)?;
+            Ok((Box::new(FemFormulation { name, penalty: scene.fem_settings().penalty }), Discretisation::Elements(elements), "fem".to_string()))
         }
     }
 }
@@ -218,27 +302,34 @@ fn chosen_method(
 /// Solve and time one run (the harness's clock, around the whole solve).
 fn solve_once(scene: &Scene, method: &dyn Method, disc: Discretisation) -> Result<Solved> {
     let start = std::time::Instant::now();
-    let mut solved = method.solve(scene, disc).map_err(|e| anyhow::anyhow!("{}: {e}", method.label()))?;
+    // the method's typed error stays the source (`{:#}` prints its chain)
+    let mut solved = method.solve(scene, disc).map_err(|e| anyhow::Error::new(e).context(method.label()))?;
     solved.cost.wall_seconds = start.elapsed().as_secs_f64();
     Ok(solved)
 }
 
 fn run_solve(args: &SolveArgs) -> Result<()> {
+    if args.fields > *SAMPLES_RANGE.end() {
+        return Err(CliError::OutOfRange { flag: "fields", value: args.fields.to_string(), range: format!("0 (no fields) … {} samples", SAMPLES_RANGE.end()) }.into());
+    }
     let scene = load_scene(&args.scene)?;
-    let (method, disc, name) = chosen_method(
-        &scene,
-        args.method,
-        args.tolerance,
-        args.scheme.as_deref(),
-        args.elements,
-        args.formulation.as_deref(),
-    )?;
+    let flags = MethodFlags {
+        method: args.method,
+        tolerance: args.tolerance,
+        scheme: args.scheme.as_deref(),
+        elements: args.elements,
+        formulation: args.formulation.as_deref(),
+    };
+    let (method, disc, name) = chosen_method(&scene, flags)?;
     let run = solve_once(&scene, method.as_ref(), disc)?;
     let label = format!("{} ({disc})", method.label());
     print_run(&scene, &label, &run);
+    if let Some(n) = &run.not_steady {
+        eprintln!("warning: {n}");
+    }
     if let Some(path) = &args.json {
         let result = result_json(&scene, &name, &run, args.fields)?;
-        write_atomically(path, &result)?;
+        write_output(path, &result)?;
         println!("result written to {}", path.display());
     }
     Ok(())
@@ -250,7 +341,7 @@ fn run_default() -> Result<()> {
     println!("(`beltcheck --help` lists the commands; `beltcheck solve scenes/<scene>.json` solves a scene file.)\n");
     let mut runs = Vec::new();
     for m in [MethodArg::BvpCollocation, MethodArg::BvpShooting] {
-        let (method, disc, _) = chosen_method(&scene, Some(m), None, None, None, None)?;
+        let (method, disc, _) = chosen_method(&scene, MethodFlags { method: Some(m), ..MethodFlags::default() })?;
         let run = solve_once(&scene, method.as_ref(), disc)?;
         print_run(&scene, &format!("{} ({disc})", method.label()), &run);
         println!();
@@ -267,7 +358,7 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
     let result = RunResult {
         scene: scene.name.clone(),
         method: method.to_string(),
-        converged: true,
+        converged: run.not_steady.is_none(),
         summary: run.summary.clone(),
         cost: Cost {
             wall_seconds: run.cost.wall_seconds,
@@ -283,12 +374,34 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
     Ok(serde_json::to_string_pretty(&result)?)
 }
 
-/// Write via a temporary file and rename, so a failure leaves nothing half-written.
-fn write_atomically(path: &Path, text: &str) -> Result<()> {
-    let tmp = path.with_extension("json.partial");
-    std::fs::write(&tmp, text).with_context(|| format!("writing {}", tmp.display()))?;
-    std::fs::rename(&tmp, path).with_context(|| format!("renaming to {}", path.display()))?;
-    Ok(())
+/// Writes `text` to `path` via a temporary file in the same directory and a rename, so
+/// that a failure leaves neither a half-written result nor the temporary file. An
+/// existing path that is not a regular file (a symlink, FIFO, device, socket or
+/// directory) is refused: renaming over it would replace the link or the device node.
+fn write_output(path: &Path, text: &str) -> Result<(), CliError> {
+    if let Ok(meta) = std::fs::symlink_metadata(path) {
+        let t = meta.file_type();
+        if !t.is_file() {
+            let kind = if t.is_symlink() {
+                "a symbolic link"
+            } else if t.is_dir() {
+                "a directory"
+            } else {
+                "not a regular file (a FIFO, device or socket)"
+            };
+            return Err(CliError::NotRegularFile { path: path.to_path_buf(), kind });
+        }
+    }
+    let Some(file) = path.file_name() else {
+        return Err(CliError::NoFileName { path: path.to_path_buf() });
+    };
+    let tmp = path.with_file_name(format!(".{}.{}.partial", file.to_string_lossy(), std::process::id()));
+    let written = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, path));
+    written.map_err(|source| {
+        // the temporary file may exist (the rename failed) or not (the write did)
+        let _ = std::fs::remove_file(&tmp);
+        CliError::Write { path: path.to_path_buf(), source }
+    })
 }
 
 fn deg(rad: f64) -> f64 {
@@ -315,7 +428,7 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         println!("  tension tight / slack [N]  {:>13.8} {:>14.8}", tt, ts);
     }
     if let Some(w2) = s.driven_speed {
-        println!("  driven speed ω₂  [rad/s]  {:>13.8}   (driver ω₁ = {} rad/s)", w2, scene.drive.driver_speed);
+        println!("  driven speed ω₂  [rad/s]  {:>13.8}   (driver ω₁ = {} rad/s)", w2, num(&scene.drive.driver_speed));
     }
     if let Some(c) = s.transport_rate {
         println!("  transport rate c   [m/s]  {:>13.8}", c);
@@ -348,6 +461,9 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     }
     for note in &run.notes {
         println!("  {note}");
+    }
+    if let Some(n) = &run.not_steady {
+        println!("  NOT CONVERGED: {n}; the numbers above are the last state of the transient");
     }
     if !run.terms.is_empty() {
         println!("  terms assembled: {}", run.terms.join(", "));
@@ -401,7 +517,16 @@ fn study_with_progress(scene: &Scene, plan: &verification::study::StudyPlan, bar
     Ok(verification::study::Study::run(scene, plan, &mut update)?)
 }
 
-fn study_plan(scene: &Scene, args: &StudyArgs) -> verification::study::StudyPlan {
+fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
+    if !SAMPLES_RANGE.contains(&args.samples) {
+        return Err(CliError::OutOfRange { flag: "samples", value: args.samples.to_string(), range: format!("{} … {} σ samples", SAMPLES_RANGE.start(), SAMPLES_RANGE.end()) }.into());
+    }
+    for &n in &args.elements {
+        check_elements("elements", n)?;
+    }
+    for &t in &args.tolerances {
+        check_tolerance("tolerances", t)?;
+    }
     let mut plan = verification::study::StudyPlan::convergence(scene);
     if !args.tolerances.is_empty() {
         plan = plan.with_tolerances(&args.tolerances);
@@ -412,26 +537,25 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> verification::study::StudyPlan
     if !args.formulations.is_empty() {
         plan = plan.with_formulations(&args.formulations);
     }
-    plan.samples = args.samples.max(16);
-    plan
+    plan.samples = args.samples;
+    plan.validate()?;
+    Ok(plan)
 }
 
 fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
-    let plan = study_plan(&scene, &args.study);
-    plan.validate()?;
+    let plan = study_plan(&scene, &args.study)?;
     let bar = progress_bar();
     let study = study_with_progress(&scene, &plan, &bar)?;
     bar.finish_and_clear();
     print!("{}", verification::table::study_text(&study));
     println!("\nstudy: {} runs in {:.1} s", plan.run_count(), study.wall_seconds);
+    // an unusable study is an error, and nothing is written for it
+    study.usable()?;
     if let Some(path) = &args.json {
         let text = verification::report::study_json(&scene, &study)?;
-        write_atomically(path, &text)?;
+        write_output(path, &text)?;
         println!("study written to {}", path.display());
-    }
-    if let Err(e) = &study.reference.outcome {
-        anyhow::bail!("the reference could not be computed: {e}");
     }
     Ok(())
 }
@@ -464,13 +588,22 @@ fn scene_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
 fn run_report(args: &ReportArgs) -> Result<()> {
     let files = scene_files(&args.inputs)?;
     let scenes: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
+    for (i, (file, scene)) in scenes.iter().enumerate() {
+        if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name == scene.name) {
+            return Err(CliError::DuplicateSceneName { name: scene.name.clone(), first: first.clone(), second: file.clone() }.into());
+        }
+    }
+    let plans: Vec<verification::study::StudyPlan> =
+        scenes.iter().map(|(file, scene)| study_plan(scene, &args.study).with_context(|| format!("scene {}", file.display()))).collect::<Result<_>>()?;
     std::fs::create_dir_all(&args.out).with_context(|| format!("creating {}", args.out.display()))?;
     let bar = progress_bar();
     let mut entries = Vec::new();
-    for (file, scene) in &scenes {
-        let plan = study_plan(scene, &args.study);
-        plan.validate().with_context(|| format!("scene {}", file.display()))?;
-        let study = study_with_progress(scene, &plan, &bar)?;
+    let mut unsolved = Vec::new();
+    for ((file, scene), plan) in scenes.iter().zip(&plans) {
+        let study = study_with_progress(scene, plan, &bar)?;
+        if let Err(e) = study.usable() {
+            unsolved.push(format!("{}: {:#}", scene.name, anyhow::Error::from(e)));
+        }
         let entry = verification::report::write_scene_report(scene, file, &study, &args.out)
             .with_context(|| format!("writing the report of {}", scene.name))?;
         bar.println(format!("{}: {} ({:.1} s)", scene.name, entry.markdown.display(), study.wall_seconds));
@@ -485,37 +618,46 @@ fn run_report(args: &ReportArgs) -> Result<()> {
         }
     }
     println!("index: {}", index.display());
+    if !unsolved.is_empty() {
+        return Err(CliError::Unsolved(unsolved).into());
+    }
     Ok(())
 }
 
-/// Returns Ok(true) if every scene passed.
+/// Returns Ok(true) if every scene passed, Ok(false) on drift; usage and input errors
+/// (a missing or invalid scene, a bad tolerance or element count, an unknown
+/// formulation) are errors before anything runs.
 fn run_gate(args: &GateArgs) -> Result<bool> {
     use verification::gate;
+    check_tolerance("tolerance", args.tolerance)?;
+    for &n in &args.elements {
+        check_elements("elements", n)?;
+    }
     let files = scene_files(&args.scenes)?;
+    let scenes: Vec<Scene> = files.iter().map(|f| load_scene(f)).collect::<Result<_>>()?;
+    let meshes = (!args.elements.is_empty()).then_some(args.elements.as_slice());
+    let formulations = if args.bvp_only {
+        Some(verification::study::Formulations::Named(Vec::new()))
+    } else if !args.formulations.is_empty() {
+        Some(verification::study::Formulations::Named(args.formulations.clone()))
+    } else {
+        None
+    };
+    let plans: Vec<verification::study::StudyPlan> = scenes
+        .iter()
+        .zip(&files)
+        .map(|(scene, file)| {
+            let plan = gate::gate_plan_with(scene, args.tolerance, meshes, formulations.clone());
+            plan.validate().with_context(|| format!("scene {}", file.display()))?;
+            Ok(plan)
+        })
+        .collect::<Result<_>>()?;
     let start = std::time::Instant::now();
     let bar = progress_bar();
-    let meshes = (!args.elements.is_empty()).then_some(args.elements.as_slice());
     let mut outcomes = Vec::new();
-    for file in &files {
-        let name = file.display().to_string();
-        let outcome = match load_scene(file) {
-            Err(e) => gate::failed_outcome(&name, format!("{e:#}")),
-            Ok(scene) => {
-                let formulations = if args.bvp_only {
-                    Some(verification::study::Formulations::Named(Vec::new()))
-                } else if !args.formulations.is_empty() {
-                    Some(verification::study::Formulations::Named(args.formulations.clone()))
-                } else {
-                    None
-                };
-                let plan = gate::gate_plan_with(&scene, args.tolerance, meshes, formulations);
-                match study_with_progress(&scene, &plan, &bar) {
-                    Ok(study) => gate::evaluate(&scene.gate_settings(), &study),
-                    Err(e) => gate::failed_outcome(&scene.name, format!("{e:#}")),
-                }
-            }
-        };
-        outcomes.push(outcome);
+    for (scene, plan) in scenes.iter().zip(&plans) {
+        let study = study_with_progress(scene, plan, &bar)?;
+        outcomes.push(gate::evaluate(&scene.gate_settings(), &study));
     }
     bar.finish_and_clear();
     let passed = outcomes.iter().all(gate::GateOutcome::passed);
@@ -535,7 +677,7 @@ fn run_gate(args: &GateArgs) -> Result<bool> {
     }
     if let Some(path) = &args.json {
         let text = serde_json::to_string_pretty(&outcomes)?;
-        write_atomically(path, &text)?;
+        write_output(path, &text)?;
         println!("checks written to {}", path.display());
     }
     Ok(passed)

@@ -31,6 +31,18 @@ pub enum SceneError {
         message: String,
     },
 
+    /// A key given twice in one JSON object (at any depth): JSON readers disagree on
+    /// which one counts, so neither is taken (position 1-based, of the second one).
+    #[error("duplicate key `{path}` (line {line}, column {column}): each key may appear once per object; remove one of the two")]
+    DuplicateKey {
+        /// Full path of the repeated key.
+        path: String,
+        /// Line of the second occurrence (1-based).
+        line: usize,
+        /// Column just after the second occurrence of the key (1-based).
+        column: usize,
+    },
+
     /// A key that the scene format does not define (every nesting level is checked).
     #[error("unknown field `{path}`{}", unknown_hint(.suggestion.as_deref(), .allowed))]
     UnknownField {
@@ -170,6 +182,7 @@ impl SceneError {
             | SceneError::Syntax { .. }
             | SceneError::PulleysOverlap { .. } => None,
             SceneError::UnknownField { path, .. }
+            | SceneError::DuplicateKey { path, .. }
             | SceneError::MissingField { path, .. }
             | SceneError::WrongType { path, .. }
             | SceneError::UnknownVariant { path, .. }
@@ -185,13 +198,25 @@ impl SceneError {
 }
 
 /// A number for a message: fixed notation for 1e-4 ≤ |v| < 1e7 (and 0), otherwise
-/// scientific, always the shortest representation that round-trips.
-pub(crate) fn num(v: &f64) -> String {
+/// scientific, always the shortest representation that round-trips (at most 17
+/// significant digits — never the hundreds of digits of `{}` on 1e-300 or 1e300).
+pub fn num(v: &f64) -> String {
     let a = v.abs();
     if *v == 0.0 || (1e-4..1e7).contains(&a) || !v.is_finite() {
         format!("{v}")
     } else {
         format!("{v:e}")
+    }
+}
+
+/// Text from the input as it appears in a message: more than 64 characters are cut to
+/// their first 40 and the count (a key or value of megabytes is not echoed whole).
+pub fn clip(text: &str) -> String {
+    let n = text.chars().count();
+    if n > 64 {
+        format!("{}…({n} characters)", text.chars().take(40).collect::<String>())
+    } else {
+        text.to_string()
     }
 }
 

@@ -445,18 +445,26 @@ pub struct GateSettings {
 // ---------------------------------------------------------------------------
 // Reading, writing, validating
 
+/// Largest driver rotation per transient time step, rad (`fem.time_step` × |ω₁|):
+/// π/4, so that a contact arc (≤ π) takes at least four steps to pass.
+pub const MAX_STEP_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
+
+/// Largest FE element count (`fem.elements`, `fem.mesh_sequence`, the CLI's
+/// `--elements`): the cost of a steady drive grows with the square of the elements, and
+/// 16384 elements already take minutes.
+pub const MAX_ELEMENTS: usize = 16_384;
+
+/// Longest scene name, bytes (the name is a directory and file name of `report`; file
+/// systems allow 255).
+pub const MAX_NAME_LEN: usize = 100;
+
 impl Scene {
     /// Parses and validates a scene from JSON text.
     ///
     /// # Errors
     /// The first problem found, naming its field path (see [`SceneError`]).
     pub fn from_json_str(text: &str) -> Result<Scene, SceneError> {
-        let mut value: serde_json::Value =
-            serde_json::from_str(text).map_err(|e| SceneError::Syntax {
-                line: e.line(),
-                column: e.column(),
-                message: e.to_string(),
-            })?;
+        let mut value = crate::schema::parse_strict(text)?;
         crate::schema::check_scene(&mut value)?;
         let scene: Scene = serde_json::from_value(value)
             // unreachable after the schema walk; kept as an error, not a panic
@@ -505,6 +513,7 @@ impl Scene {
         }
         if let Some(f) = &self.fem {
             f.validate()?;
+            self.validate_time_step(f)?;
         }
         if let Some(g) = &self.gate {
             g.validate()?;
@@ -522,6 +531,7 @@ impl Scene {
                 reason: "must not be empty".into(),
             });
         }
+        let shown = crate::error::clip(&self.name);
         if let Some(c) = self
             .name
             .chars()
@@ -530,8 +540,43 @@ impl Scene {
             return Err(SceneError::Invalid {
                 path: "name".into(),
                 reason: format!(
-                    "{:?} contains {c:?}: only ASCII letters, digits, `-`, `_` and `.` are allowed (the name is used for report file names)",
-                    self.name
+                    "{shown:?} contains {c:?}: only ASCII letters, digits, `-`, `_` and `.` are allowed (the name is used for report file names)",
+                ),
+            });
+        }
+        if self.name.starts_with('.') {
+            return Err(SceneError::Invalid {
+                path: "name".into(),
+                reason: format!(
+                    "{shown:?} starts with `.`: the name is a report directory name, and `.`, `..` or a hidden name would write outside it or out of sight"
+                ),
+            });
+        }
+        if self.name.len() > MAX_NAME_LEN {
+            return Err(SceneError::Invalid {
+                path: "name".into(),
+                reason: format!(
+                    "{shown:?} has {} characters, at most {MAX_NAME_LEN} are allowed (the name is used for report file names)",
+                    self.name.len()
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// The driver turns at most [`MAX_STEP_ANGLE`] per transient time step.
+    fn validate_time_step(&self, f: &FemSettings) -> Result<(), SceneError> {
+        let Some(dt) = f.time_step else { return Ok(()) };
+        let angle = self.drive.driver_speed.abs() * dt;
+        if angle > MAX_STEP_ANGLE {
+            return Err(SceneError::OutOfRange {
+                path: "fem.time_step".into(),
+                value: dt,
+                range: format!(
+                    "the driver turns |ω₁|·Δt = {} rad per step, at most {} rad (π/4) are allowed so that the friction fronts move by a fraction of an arc per step: Δt ≤ {} s",
+                    crate::error::num(&angle),
+                    crate::error::num(&MAX_STEP_ANGLE),
+                    crate::error::num(&(MAX_STEP_ANGLE / self.drive.driver_speed.abs()))
                 ),
             });
         }
@@ -666,6 +711,15 @@ impl Scene {
                     }
                 }
             }
+            Analysis::Steady | Analysis::Transient if e.contact == Contact::Coulomb(0.0) => {
+                return Err(SceneError::NotAllowed {
+                    path: "effects.contact.coulomb".into(),
+                    reason: format!(
+                        "a {} drive transmits its torque through friction and needs μ > 0 (got μ = 0): with μ = 0 no torque reaches the driven pulley and its speed is undetermined",
+                        self.analysis
+                    ),
+                });
+            }
             Analysis::Steady => {
                 if e.contact == Contact::Frictionless {
                     return Err(SceneError::NotAllowed {
@@ -788,8 +842,8 @@ impl FemSettings {
     /// # Errors
     /// The first field out of range.
     pub fn validate(&self) -> Result<(), SceneError> {
-        let four = "at least 4 elements (one per region of the contour)";
-        if self.elements < 4 {
+        let four = "at least 4 elements (one per region of the contour) and at most 16384 (the cost grows with the square of the count)";
+        if !(4..=MAX_ELEMENTS).contains(&self.elements) {
             return Err(SceneError::OutOfRange {
                 path: "fem.elements".into(),
                 value: self.elements as f64,
@@ -798,7 +852,7 @@ impl FemSettings {
         }
         for (i, &n) in self.mesh_sequence.iter().enumerate() {
             let path = format!("fem.mesh_sequence[{i}]");
-            if n < 4 {
+            if !(4..=MAX_ELEMENTS).contains(&n) {
                 return Err(SceneError::OutOfRange {
                     path,
                     value: n as f64,

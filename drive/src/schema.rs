@@ -249,6 +249,107 @@ pub(crate) const SCENE: &[Field] = &[
     opt("peer", Kind::Object(PEER), "published results of another code"),
 ];
 
+/// Parses scene text into a JSON value, refusing a key repeated in one object at any
+/// depth ([`SceneError::DuplicateKey`] with its full path; serde_json alone keeps the
+/// last one silently). A leading UTF-8 byte-order mark is accepted and skipped (editors
+/// on Windows write one; it carries no content).
+pub(crate) fn parse_strict(text: &str) -> Result<Value, SceneError> {
+    let text = text.strip_prefix('\u{FEFF}').unwrap_or(text);
+    let duplicate = std::cell::RefCell::new(None);
+    let mut de = serde_json::Deserializer::from_str(text);
+    let parsed = serde::de::DeserializeSeed::deserialize(
+        Strict {
+            path: String::new(),
+            duplicate: &duplicate,
+        },
+        &mut de,
+    )
+    .and_then(|v| de.end().map(|()| v));
+    parsed.map_err(|e| match duplicate.into_inner() {
+        Some(path) => SceneError::DuplicateKey {
+            path,
+            line: e.line(),
+            column: e.column(),
+        },
+        None => SceneError::Syntax {
+            line: e.line(),
+            column: e.column(),
+            message: e.to_string(),
+        },
+    })
+}
+
+/// A JSON value deserialised with its path known, so that a repeated key can be named.
+struct Strict<'a> {
+    path: String,
+    /// Set to the path of the first repeated key (the error itself is serde_json's).
+    duplicate: &'a std::cell::RefCell<Option<String>>,
+}
+
+impl<'de> serde::de::DeserializeSeed<'de> for Strict<'_> {
+    type Value = Value;
+    fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Value, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> serde::de::Visitor<'de> for Strict<'_> {
+    type Value = Value;
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+    fn visit_bool<E>(self, v: bool) -> Result<Value, E> {
+        Ok(Value::Bool(v))
+    }
+    fn visit_i64<E>(self, v: i64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+    fn visit_u64<E>(self, v: u64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+    fn visit_f64<E>(self, v: f64) -> Result<Value, E> {
+        Ok(Value::from(v))
+    }
+    fn visit_str<E>(self, v: &str) -> Result<Value, E> {
+        Ok(Value::String(v.to_string()))
+    }
+    fn visit_string<E>(self, v: String) -> Result<Value, E> {
+        Ok(Value::String(v))
+    }
+    fn visit_unit<E>(self) -> Result<Value, E> {
+        Ok(Value::Null)
+    }
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut seq: A) -> Result<Value, A::Error> {
+        let mut items = Vec::new();
+        loop {
+            let path = format!("{}[{}]", shown(&self.path), items.len());
+            match seq.next_element_seed(Strict {
+                path,
+                duplicate: self.duplicate,
+            })? {
+                Some(v) => items.push(v),
+                None => return Ok(Value::Array(items)),
+            }
+        }
+    }
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut map: A) -> Result<Value, A::Error> {
+        let mut object = serde_json::Map::new();
+        while let Some(key) = map.next_key::<String>()? {
+            let path = join(&self.path, &key);
+            if object.contains_key(&key) {
+                *self.duplicate.borrow_mut() = Some(path);
+                return Err(serde::de::Error::custom("duplicate key"));
+            }
+            let value = map.next_value_seed(Strict {
+                path,
+                duplicate: self.duplicate,
+            })?;
+            object.insert(key, value);
+        }
+        Ok(Value::Object(object))
+    }
+}
+
 /// Walks a whole scene document (root path `<scene>`).
 pub(crate) fn check_scene(value: &mut Value) -> Result<(), SceneError> {
     check_object(value, SCENE, "")
@@ -257,6 +358,7 @@ pub(crate) fn check_scene(value: &mut Value) -> Result<(), SceneError> {
 /// `path.key`; a key that is empty or has characters other than ASCII letters,
 /// digits, `_`, `-`, `.` is written JSON-quoted (`belt."axial stiffness"`).
 fn join(path: &str, key: &str) -> String {
+    let key = &crate::error::clip(key);
     let plain = !key.is_empty()
         && key
             .chars()
@@ -264,7 +366,7 @@ fn join(path: &str, key: &str) -> String {
     let key = if plain {
         key.to_string()
     } else {
-        serde_json::Value::from(key).to_string()
+        serde_json::Value::from(key.as_str()).to_string()
     };
     if path.is_empty() {
         key
@@ -454,7 +556,7 @@ fn unknown_variant(path: &str, what: &str, value: &str, variants: &[&str]) -> Sc
     SceneError::UnknownVariant {
         path: path.into(),
         what: what.into(),
-        value: value.into(),
+        value: crate::error::clip(value),
         suggestion: nearest(value, variants.iter().copied()),
         allowed: variants.iter().map(|s| s.to_string()).collect(),
     }

@@ -197,6 +197,17 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
             ..setup_fail("(reference)", format!("reference failed: {e}"))
         });
     }
+    // a family the plan asked for with no studied method would pass on zero runs
+    let asked_fem = !study.plan.fem_methods().is_empty() && !study.plan.meshes.is_empty();
+    for (family, asked, what) in [(Family::Bvp, !study.plan.bvp.is_empty(), "BVP"), (Family::Fem, asked_fem, "FE")] {
+        let studied = study.series.iter().filter(|s| s.family == family && s.status == SeriesStatus::Studied).count();
+        if asked && studied == 0 {
+            checks.push(setup_fail(
+                &format!("({what} runs)"),
+                format!("zero comparable {what} runs: no {what} method the gate asked for applies to this scene (see the notes); a gate that compares nothing cannot pass"),
+            ));
+        }
+    }
     for s in &study.series {
         if let SeriesStatus::NotApplicable(why) = &s.status {
             notes.push(format!("{}: not applicable ({why}), not gated", s.method));

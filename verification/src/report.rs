@@ -114,7 +114,7 @@ fn run_out(r: &Run) -> RunOut<'_> {
     match &r.outcome {
         Ok(d) => RunOut::Solved { method: &r.method, discretisation: r.discretisation, summary: &d.summary, cost: &d.cost, options: &d.options, terms: &d.terms, notes: &d.notes },
         Err(crate::run::RunError::NotApplicable(m)) => RunOut::NotApplicable { method: &r.method, discretisation: r.discretisation, wall_seconds: r.wall_seconds, reason: m.clone() },
-        Err(crate::run::RunError::Failed(m)) => RunOut::Failed { method: &r.method, discretisation: r.discretisation, wall_seconds: r.wall_seconds, reason: m.clone() },
+        Err(e) => RunOut::Failed { method: &r.method, discretisation: r.discretisation, wall_seconds: r.wall_seconds, reason: e.to_string() },
     }
 }
 

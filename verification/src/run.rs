@@ -14,9 +14,9 @@
 use std::fmt;
 use std::time::Instant;
 
-use bvp::collocation::Scheme;
+pub use bvp::collocation::Scheme;
 use bvp::scene::{BvpMethod, BvpRunOptions, SceneSolveError};
-use drive::scene::Scene;
+use drive::scene::{Scene, Theory};
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 use serde::Serialize;
@@ -91,20 +91,100 @@ pub struct Solved {
     pub notes: Vec<String>,
     /// Time history of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
     pub history: Option<drive::result::History>,
+    /// `Some` for a transient FE run that stopped at `fem.max_steps` before its steady
+    /// state (the solution is the last state, not the steady one); `None` for a run
+    /// that reached what it solves for. [`execute`] turns `Some` into
+    /// [`RunError::NotSteady`]; `solve` prints it and writes `"converged": false`.
+    pub not_steady: Option<NotSteady>,
 }
 
-/// Why a method produced no solution.
-#[derive(Debug, Clone, PartialEq, Serialize, thiserror::Error)]
-#[serde(tag = "kind", content = "message", rename_all = "snake_case")]
+/// How far a transient was from its steady state when `fem.max_steps` cut it off.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NotSteady {
+    /// Time steps run.
+    pub steps: usize,
+    /// Change rate r_n of the last step, 1/rad (docs/fem-drive.md §7).
+    pub rate: f64,
+    /// The steady threshold on r_n (`fem.steady_tolerance`), 1/rad.
+    pub tolerance: f64,
+}
+
+impl fmt::Display for NotSteady {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "the transient did not reach a steady state: it stopped after {} step(s) (fem.max_steps) with change rate {} per rad above the steady threshold {} per rad; raise fem.max_steps or fem.time_step",
+            self.steps,
+            drive::error::num(&self.rate),
+            drive::error::num(&self.tolerance)
+        )
+    }
+}
+
+/// Why a method produced no solution. The solvers' own errors are kept as values
+/// ([`RunError::Bvp`], [`RunError::Fem`]: match on them, or follow
+/// [`std::error::Error::source`]); their message is the solver's. Serialised as
+/// `{"kind": "not_applicable" | "failed" | "not_steady", "message": "…"}`.
+#[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
     /// The method has no model for this scene (e.g. a formulation for another belt
     /// theory): not a failure of the method, but nothing to compare either.
     #[error("not applicable: {0}")]
     NotApplicable(String),
-    /// The method was applicable and failed (no convergence, mesh cap, non-finite
-    /// output, …).
+    /// A method outside this crate failed, or a method was given the wrong kind of
+    /// discretisation.
     #[error("{0}")]
     Failed(String),
+    /// The BVP solver failed (no convergence, mesh cap, a failed self-check, …).
+    #[error(transparent)]
+    Bvp(std::sync::Arc<SceneSolveError>),
+    /// The FE solver failed.
+    #[error(transparent)]
+    Fem(fem::FemError),
+    /// The solution's summary has a non-finite quantity.
+    #[error("summary: {0}")]
+    Summary(#[from] drive::error::ResultError),
+    /// The solution's fields have a non-finite sample.
+    #[error(transparent)]
+    Sample(#[from] NonFiniteSample),
+    /// A transient that stopped before its steady state: its last state is no answer
+    /// to compare (issue 12: it used to count as converged).
+    #[error("{0}")]
+    NotSteady(NotSteady),
+}
+
+impl RunError {
+    /// `not_applicable`, `failed` or `not_steady`: the kind written to JSON.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            RunError::NotApplicable(_) => "not_applicable",
+            RunError::NotSteady(_) => "not_steady",
+            _ => "failed",
+        }
+    }
+}
+
+impl Serialize for RunError {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(Some(2))?;
+        m.serialize_entry("kind", self.kind())?;
+        m.serialize_entry("message", &self.to_string())?;
+        m.end()
+    }
+}
+
+/// A sample of a solution field that is NaN or ±∞.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("non-finite {field} ({value}) at σ = {sigma:.6} m")]
+pub struct NonFiniteSample {
+    /// Field name: `x`, `y`, `deflection`, `tension`, `moment`, `contact pressure`,
+    /// `friction traction`.
+    pub field: &'static str,
+    /// The value.
+    pub value: f64,
+    /// Where, m.
+    pub sigma: f64,
 }
 
 /// A solution method the harness can run at any discretisation of its family.
@@ -176,7 +256,7 @@ impl Method for BvpSolver {
         let Discretisation::Tolerance(tolerance) = disc else {
             return Err(RunError::Failed(format!("{}: a BVP method is refined by tolerance, not by {disc}", self.label())));
         };
-        let mut opts = BvpRunOptions::from_scene(scene).map_err(|e| RunError::Failed(e.to_string()))?;
+        let mut opts = BvpRunOptions::from_scene(scene).map_err(|e| RunError::Bvp(e.into()))?;
         opts.tolerance = tolerance;
         match self.variant {
             BvpVariant::Collocation(s) => {
@@ -190,7 +270,7 @@ impl Method for BvpSolver {
         }
         let run = bvp::scene::solve_scene(scene, &opts).map_err(|e| match e {
             SceneSolveError::Unsupported(m) => RunError::NotApplicable(m),
-            other => RunError::Failed(other.to_string()),
+            other => RunError::Bvp(other.into()),
         })?;
         Ok(Solved {
             view: run.view,
@@ -206,6 +286,7 @@ impl Method for BvpSolver {
             terms: Vec::new(),
             notes: run.notes,
             history: None,
+            not_steady: None,
         })
     }
 }
@@ -242,16 +323,25 @@ impl Method for FemFormulation {
         let Discretisation::Elements(elements) = disc else {
             return Err(RunError::Failed(format!("{}: an FE method is refined by mesh, not by {disc}", self.label())));
         };
+        if let Some(theory) = formulation_theory(&self.name).filter(|&t| t != scene.belt.theory) {
+            return Err(RunError::NotApplicable(format!(
+                "formulation `{}` discretises theory `{theory}`, the scene's belt is theory `{}` (its formulations: {})",
+                self.name,
+                scene.belt.theory,
+                list_or_none(&fem::formulations_for(scene.belt.theory))
+            )));
+        }
         let opts = fem::FemOptions {
             elements,
             formulation: self.name.clone(),
             penalty: self.penalty.or(scene.fem_settings().penalty),
         };
         let run = fem::solve_scene(scene, &opts).map_err(|e| match e {
-            fem::FemError::Unsupported(m) => RunError::NotApplicable(m),
+            fem::FemError::Unsupported(_) => RunError::NotApplicable(no_fe_model(scene)),
             #[allow(unreachable_patterns)]
-            other => RunError::Failed(other.to_string()),
+            other => RunError::Fem(other),
         })?;
+        let not_steady = fem_not_steady(&run.options);
         Ok(Solved {
             view: run.view,
             summary: run.summary,
@@ -266,8 +356,73 @@ impl Method for FemFormulation {
             notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
             terms: run.terms,
             history: run.history,
+            not_steady,
         })
     }
+}
+
+/// The belt theory a registered formulation discretises (`None` if not registered).
+pub fn formulation_theory(name: &str) -> Option<Theory> {
+    [Theory::String, Theory::Kirchhoff, Theory::Cosserat, Theory::Shell]
+        .into_iter()
+        .find(|&t| fem::formulations_for(t).contains(&name))
+}
+
+/// Names of the registered FE formulations, default first.
+pub fn registered_formulations() -> Vec<&'static str> {
+    fem::available_formulations()
+}
+
+/// The default FE formulation of a scene: its first `fem.formulations`, else the first
+/// registered formulation of its belt theory (a rod scene gets a rod formulation).
+///
+/// # Errors
+/// [`RunError::NotApplicable`] if no registered formulation discretises the theory.
+pub fn default_formulation(scene: &Scene) -> Result<String, RunError> {
+    if let Some(first) = scene.fem_settings().formulations.first() {
+        return Ok(first.clone());
+    }
+    let theory = scene.belt.theory;
+    fem::formulations_for(theory).first().map(|n| n.to_string()).ok_or_else(|| {
+        RunError::NotApplicable(format!("no registered FE formulation discretises theory `{theory}` (registered: {})", list_or_none(&registered_formulations())))
+    })
+}
+
+fn list_or_none(names: &[&str]) -> String {
+    if names.is_empty() {
+        "none".to_string()
+    } else {
+        names.join(", ")
+    }
+}
+
+/// Why the FE has no model for a scene, in words: the scene's model and the models the
+/// FE has (the `fem` crate's own message names Rust types and an older list).
+fn no_fe_model(scene: &Scene) -> String {
+    let contact = match scene.effects.contact {
+        drive::scene::Contact::Frictionless => "frictionless contact".to_string(),
+        drive::scene::Contact::Coulomb(mu) => format!("Coulomb friction (μ = {})", drive::error::num(&mu)),
+        drive::scene::Contact::ElasticLayer(_) => "an elastic interlayer".to_string(),
+    };
+    format!(
+        "no MEL finite element model for a {} belt, analysis `{}`, with {contact}; the MEL models are: the string and the Kirchhoff rod hanging on frictionless pulleys (static), and the string friction drive (steady and transient, Coulomb friction)",
+        scene.belt.theory, scene.analysis
+    )
+}
+
+/// A transient FE run that stopped before its steady state, read from the run's
+/// options (`drive.steady`, `drive.steps`, `drive.final_change_rate`,
+/// `drive.settings.steady_tolerance`, written by `fem::string_drive::solve`).
+fn fem_not_steady(options: &serde_json::Value) -> Option<NotSteady> {
+    let drive = options.get("drive")?;
+    if drive.get("steady")?.as_bool()? {
+        return None;
+    }
+    Some(NotSteady {
+        steps: drive.get("steps").and_then(serde_json::Value::as_u64).map_or(0, |n| n as usize),
+        rate: drive.get("final_change_rate").and_then(serde_json::Value::as_f64).unwrap_or(f64::INFINITY),
+        tolerance: drive.pointer("/settings/steady_tolerance").and_then(serde_json::Value::as_f64).unwrap_or(f64::NAN),
+    })
 }
 
 // ---------------------------------------------------------------------------
@@ -302,8 +457,8 @@ impl Samples {
     /// naming the field and σ.
     ///
     /// # Errors
-    /// A message such as `non-finite tension at σ = 0.3 m`.
-    pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, String> {
+    /// The first non-finite sample, e.g. `non-finite tension (NaN) at σ = 0.3 m`.
+    pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, NonFiniteSample> {
         let l = view.contour().length();
         let mut s = Samples::default();
         let mut moment = Vec::with_capacity(n);
@@ -319,22 +474,22 @@ impl Samples {
             let t = view.axial_force(sigma);
             for (name, v) in [("x", p[0]), ("y", p[1]), ("deflection", nu), ("tension", t)] {
                 if !v.is_finite() {
-                    return Err(format!("non-finite {name} ({v}) at σ = {sigma:.6} m"));
+                    return Err(NonFiniteSample { field: name, value: v, sigma });
                 }
             }
             match view.bending_moment(sigma) {
                 Some(m) if m.is_finite() => moment.push(m),
-                Some(m) => return Err(format!("non-finite moment ({m}) at σ = {sigma:.6} m")),
+                Some(m) => return Err(NonFiniteSample { field: "moment", value: m, sigma }),
                 None => has_moment = false,
             }
             match view.contact_pressure(sigma) {
                 Some(p) if p.is_finite() => pressure.push(p),
-                Some(p) => return Err(format!("non-finite contact pressure ({p}) at σ = {sigma:.6} m")),
+                Some(p) => return Err(NonFiniteSample { field: "contact pressure", value: p, sigma }),
                 None => has_pressure = false,
             }
             match view.friction_traction(sigma) {
                 Some(f) if f.is_finite() => friction.push(f),
-                Some(f) => return Err(format!("non-finite friction traction ({f}) at σ = {sigma:.6} m")),
+                Some(f) => return Err(NonFiniteSample { field: "friction traction", value: f, sigma }),
                 None => has_friction = false,
             }
             s.sigma.push(sigma);
@@ -429,8 +584,11 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
     let solved = method.solve(scene, disc);
     let wall = start.elapsed().as_secs_f64();
     let outcome = solved.and_then(|s| {
-        s.summary.check_finite().map_err(|e| RunError::Failed(format!("summary: {e}")))?;
-        let samples = Samples::of_view(s.view.as_ref(), samples).map_err(RunError::Failed)?;
+        if let Some(n) = s.not_steady {
+            return Err(RunError::NotSteady(n));
+        }
+        s.summary.check_finite()?;
+        let samples = Samples::of_view(s.view.as_ref(), samples)?;
         let mut cost = s.cost;
         cost.wall_seconds = wall;
         Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, samples })

@@ -41,6 +41,14 @@ pub const STUDY_MAX_NODES: usize = 100_000;
 /// Tolerance of the reference run of `converge` and `report` (collocation gauss6).
 pub const REFERENCE_TOLERANCE: f64 = 1e-11;
 
+pub use drive::scene::MAX_ELEMENTS;
+
+/// Smallest FE element count: one element per region of the contour.
+pub const MIN_ELEMENTS: usize = 4;
+
+/// Bounds of the σ samples of the field norms ([`StudyPlan::samples`]).
+pub const SAMPLES_RANGE: std::ops::RangeInclusive<usize> = 16..=100_000;
+
 /// A sweep of one BVP variant over tolerances.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BvpSweep {
@@ -60,6 +68,29 @@ pub enum Formulations {
     /// These names (from `--formulation` or the scene's `fem.formulations`); each must
     /// be registered, and "not applicable" counts as a failure.
     Named(Vec<String>),
+}
+
+/// Why a study that ran gives no usable answer.
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum StudyError {
+    /// The reference run failed: there is nothing to hold the other runs against.
+    #[error("the reference ({method}) could not be computed")]
+    ReferenceFailed {
+        /// Reference method label.
+        method: String,
+        /// Its failure.
+        source: RunError,
+    },
+    /// A method the study asked for failed at every discretisation.
+    #[error("no successful run of {method} (all {runs} failed); first failure")]
+    NoSuccessfulRun {
+        /// Method label.
+        method: String,
+        /// Its runs, all failed.
+        runs: usize,
+        /// The failure of its first run.
+        source: RunError,
+    },
 }
 
 /// What a study runs.
@@ -90,11 +121,14 @@ pub enum PlanError {
         /// The registry, comma-separated, or "none".
         registered: String,
     },
-    /// Mesh sequence not strictly increasing or below 4 elements.
-    #[error("element counts must be ≥ 4 and strictly increasing, got {0:?}")]
+    /// Mesh sequence not strictly increasing or outside 4 … [`MAX_ELEMENTS`].
+    #[error("element counts must lie in {MIN_ELEMENTS} … {MAX_ELEMENTS} and increase strictly, got {0:?}")]
     Meshes(Vec<usize>),
+    /// σ samples outside [`SAMPLES_RANGE`].
+    #[error("{n} σ samples: the field norms take {lo} … {hi}", n = .0, lo = SAMPLES_RANGE.start(), hi = SAMPLES_RANGE.end())]
+    Samples(usize),
     /// A tolerance outside (0, 1).
-    #[error("tolerance {0} is not in (0, 1)")]
+    #[error("tolerance {} is not in (0, 1)", drive::error::num(.0))]
     Tolerance(f64),
 }
 
@@ -156,8 +190,11 @@ impl StudyPlan {
                 }
             }
         }
-        if self.meshes.iter().any(|&n| n < 4) || self.meshes.windows(2).any(|w| w[1] <= w[0]) {
+        if self.meshes.iter().any(|n| !(MIN_ELEMENTS..=MAX_ELEMENTS).contains(n)) || self.meshes.windows(2).any(|w| w[1] <= w[0]) {
             return Err(PlanError::Meshes(self.meshes.clone()));
+        }
+        if !SAMPLES_RANGE.contains(&self.samples) {
+            return Err(PlanError::Samples(self.samples));
         }
         let tols = self.bvp.iter().flat_map(|s| s.tolerances.iter()).chain(std::iter::once(&self.reference.1));
         for &t in tols {
@@ -387,6 +424,28 @@ impl Study {
     /// Index of a quantity by name.
     pub fn quantity_index(&self, name: &str) -> Option<usize> {
         self.quantities.iter().position(|q| q.name == name)
+    }
+
+    /// Whether the study answers what it asked: its reference solved, and every
+    /// method it studied with at least one successful run (`converge` and `report`
+    /// exit with status 2 otherwise, and `converge` writes no study JSON).
+    ///
+    /// # Errors
+    /// [`StudyError::ReferenceFailed`] or [`StudyError::NoSuccessfulRun`] (the first
+    /// such method).
+    pub fn usable(&self) -> Result<(), StudyError> {
+        if let Err(e) = &self.reference.outcome {
+            return Err(StudyError::ReferenceFailed { method: self.reference.method.clone(), source: e.clone() });
+        }
+        for s in self.series.iter().filter(|s| s.status == SeriesStatus::Studied) {
+            if s.rows.iter().all(|r| r.run.data().is_none()) {
+                if let Some(first) = s.rows.first() {
+                    let source = first.run.outcome.as_ref().err().cloned().unwrap_or(RunError::Failed(String::new()));
+                    return Err(StudyError::NoSuccessfulRun { method: s.method.clone(), runs: s.rows.len(), source });
+                }
+            }
+        }
+        Ok(())
     }
 
     /// True if at least one FE series was studied.

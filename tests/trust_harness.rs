@@ -1,0 +1,105 @@
+//! The harness side of issue 12 and issue 11 item 7: a gate with zero comparable FE
+//! runs fails (it used to pass on the BVP rows alone), and a transient cut off by
+//! `fem.max_steps` is a failed run in studies, not a converged one.
+
+use std::path::Path;
+
+use drive::scene::{GateSettings, Scene};
+use verification::gate;
+use verification::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, RunError, Solved};
+use verification::study::{Formulations, Study};
+
+fn catalogue_scene(name: &str) -> Scene {
+    Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes").join(format!("{name}.json"))).unwrap()
+}
+
+/// An FE method with no model for any scene.
+struct NeverApplies;
+
+impl Method for NeverApplies {
+    fn label(&self) -> String {
+        "fem never-applies".into()
+    }
+    fn family(&self) -> Family {
+        Family::Fem
+    }
+    fn solve(&self, _: &Scene, _: Discretisation) -> Result<Solved, RunError> {
+        Err(RunError::NotApplicable("no model".into()))
+    }
+}
+
+/// The BVP rows pass (limit 1e-3 against errors ~1e-10 at tolerance 1e-8), every FE
+/// formulation is "not applicable": the gate fails with a check naming the zero FE
+/// runs. With the FE not asked for (`--bvp-only`) the same BVP rows pass.
+#[test]
+fn gate_with_zero_comparable_fe_runs_fails() {
+    let scene = catalogue_scene("string-hanging");
+    let settings = GateSettings { tolerances: [("y_upper_mid".to_string(), 1e-3)].into(), ..GateSettings::default() };
+    let bvp = || -> (Box<dyn Method>, Vec<Discretisation>) { (Box::new(BvpSolver::new(BvpVariant::Shooting)), vec![Discretisation::Tolerance(1e-8)]) };
+
+    let plan = gate::gate_plan_with(&scene, 1e-8, Some(&[16]), Some(Formulations::Discovered));
+    let methods = vec![bvp(), (Box::new(NeverApplies) as Box<dyn Method>, vec![Discretisation::Elements(16)])];
+    let study = Study::run_methods(&scene, &plan, methods, false, &mut |_| {});
+    let outcome = gate::evaluate(&settings, &study);
+    assert!(!outcome.passed(), "{:#?}", outcome.checks);
+    let failures: Vec<_> = outcome.failures().collect();
+    assert_eq!(failures.len(), 1, "{failures:#?}");
+    assert_eq!(failures[0].quantity, "(FE runs)");
+    assert!(failures[0].reason.contains("zero comparable FE runs"), "{}", failures[0].reason);
+
+    let plan = gate::gate_plan_with(&scene, 1e-8, Some(&[16]), Some(Formulations::Named(Vec::new())));
+    let study = Study::run_methods(&scene, &plan, vec![bvp()], false, &mut |_| {});
+    let outcome = gate::evaluate(&settings, &study);
+    assert!(outcome.passed(), "{:#?}", outcome.checks);
+}
+
+/// `string-drive` as a transient stopped after one step: the harness run fails with the
+/// step count and the change rate above the threshold.
+#[test]
+fn transient_cut_off_is_a_failed_run() {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/string-drive.json")).unwrap()).unwrap();
+    v["analysis"] = serde_json::json!("transient");
+    v.as_object_mut().unwrap().remove("bvp");
+    v["fem"] = serde_json::json!({"elements": 32, "max_steps": 1});
+    let scene = Scene::from_json_str(&v.to_string()).unwrap();
+    let method = FemFormulation { name: "string-simpson".into(), penalty: None };
+    let run = execute(&method, &scene, Discretisation::Elements(32), 64);
+    match run.outcome {
+        Err(RunError::NotSteady(n)) => {
+            assert_eq!(n.steps, 1);
+            assert!(n.rate > n.tolerance, "{n:?}");
+        }
+        other => panic!("expected NotSteady, got {:?}", other.map(|d| d.summary)),
+    }
+}
+
+/// The solvers' errors reach the harness as values, not strings (issue 11 item 7): an
+/// overloaded drive (M₂ = 1000 N·m against a capacity of ~21 N·m) fails in the FE with
+/// `FemError::FrictionCapacityExceeded` carrying both torques, and in the BVP with the
+/// BVP's own error type.
+#[test]
+fn solver_errors_stay_typed() {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/string-drive.json")).unwrap()).unwrap();
+    v["drive"]["driven_torque"] = serde_json::json!(1000.0);
+    let scene = Scene::from_json_str(&v.to_string()).unwrap();
+    let fe = FemFormulation { name: "string-simpson".into(), penalty: None };
+    match execute(&fe, &scene, Discretisation::Elements(32), 64).outcome {
+        Err(RunError::Fem(fem::FemError::FrictionCapacityExceeded { torque, capacity, .. })) => {
+            assert!(torque > 1000.0 && capacity < torque, "{torque} vs {capacity}");
+        }
+        other => panic!("expected a typed FE error, got {:?}", other.err()),
+    }
+    let bvp = BvpSolver::new(BvpVariant::Shooting);
+    match execute(&bvp, &scene, Discretisation::Tolerance(1e-6), 64).outcome {
+        Err(e @ RunError::Bvp(_)) => {
+            assert!(e.to_string().contains("friction capacity"), "{e}");
+            assert_eq!(e.kind(), "failed");
+            let json = serde_json::to_value(&e).unwrap();
+            assert_eq!(json["kind"], "failed");
+            assert_eq!(json["message"], e.to_string());
+        }
+        other => panic!("expected a typed BVP error, got {:?}", other.err()),
+    }
+}
