@@ -16,7 +16,7 @@ use drive::view::SolutionView;
 use rayon::prelude::*;
 
 use crate::assembly::Assembler;
-use crate::error::FemError;
+use crate::error::{FemError, NewtonFailure};
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
 use crate::linear::BorderedLu;
@@ -24,7 +24,7 @@ use crate::mesh::Mesh;
 use crate::quadrature::Rule;
 use crate::solution::FemSolution;
 
-use super::contact::{reachable_pulley, PointState};
+use super::contact::reachable_pulley;
 
 /// One friction point of the steady problem (docs/fem-drive.md §12): a node within
 /// reach of a pulley. Its stretch and gap are the trapezoidal means over the two element
@@ -696,11 +696,11 @@ pub struct SteadyNewton {
 /// and the active set did not change.
 ///
 /// # Errors
-/// A message with the iteration count and the last update norm.
-pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, String> {
+/// [`NewtonFailure`] with the iteration count and the last update norm.
+pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, NewtonFailure> {
     let n = x.len();
     let problem = &Patterned::new(problem);
-    let mut lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()])?;
+    let mut lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()]).map_err(NewtonFailure::Pattern)?;
     let mut report = SteadyNewton::default();
     let mut last_update = f64::INFINITY;
     let mut trial = vec![0.0; n];
@@ -708,10 +708,10 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
     let mut floor_count = 0usize;
     loop {
         let Some(ev) = problem.evaluate(x, true) else {
-            return Err(format!("inadmissible state (∂σS ≤ 0 or non-finite) at Newton iteration {}", report.iterations));
+            return Err(NewtonFailure::Inadmissible { iteration: report.iterations });
         };
         if report.iterations >= max_iterations {
-            return Err(format!("no convergence in {} Newton iterations (scaled update {last_update:.3e}, tolerance {tolerance:.1e})", report.iterations));
+            return Err(NewtonFailure::NotConverged { iterations: report.iterations, update: last_update, tolerance });
         }
         report.iterations += 1;
         let m0 = merit(&ev.residual, scales);
@@ -737,7 +737,7 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
                 }
             }
             if !ok {
-                return Err(format!("singular Jacobian at Newton iteration {}: {e}", report.iterations));
+                return Err(NewtonFailure::Singular { matrix: "Jacobian", iteration: report.iterations, detail: e });
             }
         }
         let unorm = super::system::scaled_norm(&step, w);
@@ -768,7 +768,7 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
             Some((a, et, mt)) => (a, et.results.iter().zip(&ev.results).all(|(p, q)| p.slip == q.slip), mt, Some(et)),
             None => match best {
                 Some((a, mt)) => (a, false, mt, None),
-                None => return Err(format!("no admissible step at Newton iteration {} (scaled update {unorm:.3e})", report.iterations)),
+                None => return Err(NewtonFailure::LineSearch { what: "no admissible step", iteration: report.iterations, update: unorm }),
             },
         };
         for i in 0..n {
@@ -784,7 +784,7 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
             // a point taken as stick only to give its pulley an equation (see
             // `evaluate`) must obey Coulomb's bound by itself at the solution
             if let Some(p) = after.and_then(|e| e.results.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
-                return Err(format!("no Coulomb state: a pulley slides over its whole contact (|τ| = {:.6e} N/m above μτ_γ = {:.6e} N/m at σ = {:.6} m)", p.traction.abs(), problem.sp.mu * p.normal, p.point.sigma));
+                return Err(NewtonFailure::NoCoulombState { traction: p.traction.abs(), bound: problem.sp.mu * p.normal, sigma: p.point.sigma });
             }
             report.update_norm = unorm;
             return Ok(report);
@@ -792,9 +792,6 @@ pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64],
         small_before = alpha == 1.0 && small;
     }
 }
-
-/// Fitting passes allowed at least (the moves per pass are limited, §12).
-const MIN_FITS: usize = 30;
 
 /// Work of a direct steady solve (in the run's `options.drive`).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
@@ -928,20 +925,20 @@ fn wrapped_diff(a: f64, b: f64, l: f64) -> f64 {
 /// [`FemError::FrictionCapacityExceeded`], [`FemError::SpeedAtOrAboveCritical`],
 /// [`FemError::HomotopyStalled`] (the load continuation failed otherwise),
 /// [`FemError::SteadyFitFailed`], [`FemError::NonFinite`].
-pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<dyn Kernel>) -> Result<crate::FemRun, FemError> {
+pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<dyn Kernel>) -> Result<crate::FemRun, FemError> {
     let clock = std::time::Instant::now();
-    let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(scene, opts, settings, drive_settings, kernel.clone())?;
+    let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
     let static_seconds = clock.elapsed().as_secs_f64();
-    let b = &scene.belt;
-    let r = scene.drive.pulley_radius;
+    let b = &problem.belt;
+    let r = problem.geometry.radius;
     let contour = *start.mesh().contour();
     let h = contour.centre_distance();
-    let (load_torque, damping) = (scene.drive.driven_torque, scene.drive.driven_damping);
-    let weight = scene.effects.gravity.map(|g| g * b.mass_per_length);
+    let (load_torque, damping) = (problem.drive.driven_torque, problem.drive.driven_damping);
+    let weight = problem.weight();
     let params = TermParams { axial_stiffness: b.axial_stiffness, weight, penalty: Some(penalty), bending_stiffness: None };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
-    let inertia = scene.effects.inertia == Some(true);
+    let inertia = problem.effects.inertia;
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
     // κ = P_⊥ Δt₀: the transient's tangential penalty times its default step (§5, §7)
@@ -963,7 +960,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         check_critical(&start, b.mass_per_length * c0 * c0)?;
     }
     let points = friction_points(&asm, &[]);
-    let mut x = super::transfer(&start, &asm);
+    let mut x = crate::string_hanging::transfer(&start, &asm);
     x.extend([r * omega1 / lambda0, omega1]);
     x.extend(std::iter::repeat_n(0.0, points.len()));
     let mut report = SteadyReport { friction_points: points.len(), static_seconds, ..Default::default() };
@@ -1018,7 +1015,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
                             return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity, time: None });
                         }
                     }
-                    return Err(FemError::HomotopyStalled { eta, step, min_step, steps: report.continuation_steps, last_failure: reason });
+                    return Err(FemError::HomotopyStalled { eta, step, min_step, steps: report.continuation_steps, last_failure: reason.to_string() });
                 }
             }
         }
@@ -1038,7 +1035,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         let mut move_limit: f64 = 0.3;
         let (mut best_move, mut best_pass, mut passes) = (f64::INFINITY, 0usize, 0usize);
         let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
-        for _ in 0..settings.max_fits.max(MIN_FITS) {
+        for _ in 0..drive_settings.max_fits {
             let sol = FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], params, length, kernel.clone())
                 .with_transport_inertia(rho_c2(&state));
             let mut breaks = sol.contact_boundaries();
@@ -1110,7 +1107,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
             let asm = Assembler::new(mesh, kernel.clone());
             // the node at each fitted transition is split into its stick and slip halves
             let points = friction_points(&asm, &breaks[boundaries..]);
-            let mut x = super::transfer(&sol, &asm);
+            let mut x = crate::string_hanging::transfer(&sol, &asm);
             let nz_old = state.asm.len();
             x.extend([state.x[nz_old], state.x[nz_old + 1]]);
             x.extend(points.iter().map(|p| interpolate_traction(&state.results, &contour, p)));
@@ -1153,7 +1150,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
                         report.rejected_fits += 1;
                         continue;
                     }
-                    report.fit_failure = Some(reason);
+                    report.fit_failure = Some(reason.to_string());
                     break;
                 }
             }
@@ -1167,7 +1164,7 @@ pub fn solve(scene: &drive::scene::Scene, opts: &crate::options::FemOptions, set
         let reason = report.fit_failure.clone().unwrap_or_else(|| "the passes did not converge".into());
         return Err(FemError::SteadyFitFailed { passes: report.fits + report.rejected_fits, last_move: m, element, reason });
     }
-    finish(scene, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
+    finish(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
 }
 
 /// τ at a new friction point from the old solution: linear in σ between the two old
@@ -1217,7 +1214,7 @@ fn check_critical(sol: &FemSolution, rc2: f64) -> Result<(), FemError> {
 /// Outputs of a converged steady state (docs/fem-drive.md §8, §12).
 #[allow(clippy::too_many_arguments)]
 fn finish(
-    scene: &drive::scene::Scene,
+    problem: &crate::problem::FemProblem,
     opts: &crate::options::FemOptions,
     settings: &crate::options::SolverSettings,
     drive_settings: &super::DriveSettings,
@@ -1236,10 +1233,10 @@ fn finish(
     let mesh = asm.mesh();
     let contour = *mesh.contour();
     let r = contour.radius();
-    let length = scene.belt.length;
+    let length = problem.belt.length;
     let (c, omega2) = (state.x[nz], state.x[nz + 1]);
-    let omega1 = scene.drive.driver_speed;
-    let (load_torque, damping) = (scene.drive.driven_torque, scene.drive.driven_damping);
+    let omega1 = problem.drive.driver_speed;
+    let (load_torque, damping) = (problem.drive.driven_torque, problem.drive.driven_damping);
     let base = FemSolution::new(mesh.clone(), asm.dofs(), &state.x[..nz], params, length, kernel.clone()).with_transport_inertia(rho_c2(&state));
     let mut summary = base.summary();
     // T_tight, T_slack: the axial forces of the driver's and the driven pulley's stick
@@ -1297,16 +1294,10 @@ fn finish(
     let mut terms = kernel.term_labels(&TermParams { penalty: None, ..params });
     terms.push(format!("Coulomb contact, direct steady state (semismooth Newton, μ = {mu}, P_γ = {penalty:.6e} N/m², friction on the nodes)"));
     terms.push(format!("driven load M₂ = {load_torque} N·m, d₂ = {damping} N·m·s"));
-    if scene.effects.inertia == Some(true) {
-        terms.push(format!("transport inertia (ρ = {} kg/m)", scene.belt.mass_per_length));
+    if problem.effects.inertia {
+        terms.push(format!("transport inertia (ρ = {} kg/m)", problem.belt.mass_per_length));
     }
-    let resolved = crate::options::FemOptions { penalty: Some(penalty), ..opts.clone() };
-    let options = serde_json::json!({
-        "method": "fem",
-        "elements": resolved.elements,
-        "formulation": resolved.formulation,
-        "penalty": resolved.penalty,
-        "settings": settings,
+    let options = opts.record(Some(penalty), settings, serde_json::json!({
         "drive": {
             "solver": "steady",
             "settings": drive_settings,
@@ -1320,7 +1311,7 @@ fn finish(
             "entry_slip_force": entry_slip_force,
         },
         "homotopy": homotopy,
-    });
+    }));
     let stats = crate::FemStats {
         wall_seconds: clock.elapsed().as_secs_f64(),
         newton_iterations: homotopy.newton_iterations + report.newton_iterations,
@@ -1334,7 +1325,7 @@ fn finish(
 /// Per element the point states the common view reads (docs/fem-drive.md §8): the
 /// contact rule's points with their normal traction, the two edges with the traction
 /// and state of their friction point.
-fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn Kernel>) -> Vec<Vec<PointState>> {
+fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn Kernel>) -> Vec<Vec<super::ViewPoint>> {
     let asm = &state.asm;
     let mesh = asm.mesh();
     let contour = mesh.contour();
@@ -1366,23 +1357,15 @@ fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn 
                         _ => 0.0,
                     };
                     let fr = if wf > 0.0 { edge[e][usize::from(xi > 0.0)] } else { None };
-                    PointState {
+                    super::ViewPoint {
                         xi,
-                        weight: w * el.jacobian(),
-                        friction_weight: if fr.is_some() { el.jacobian() } else { 0.0 },
                         sigma,
                         pulley,
-                        travel_ref: 0.0,
-                        s_ref: p.s,
-                        slope_ref: p.ds,
-                        metric: el.tangent_length(&p),
-                        lambda_n: 0.0,
-                        lambda_t: fr.map_or(0.0, |f| f.traction),
-                        bound: fr.map_or(0.0, |f| params.penalty.map_or(0.0, |_| f.normal)),
-                        slip: fr.is_some_and(|f| f.slip),
+                        weight: w * el.jacobian(),
+                        friction_weight: if fr.is_some() { el.jacobian() } else { 0.0 },
                         normal,
                         tangential: fr.map_or(0.0, |f| f.traction),
-                        displacement: fr.map_or(0.0, |f| f.velocity),
+                        slip: fr.is_some_and(|f| f.slip),
                     }
                 })
                 .collect()
@@ -1413,7 +1396,7 @@ mod tests {
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&scene, &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
+        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(&scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[]);
         let b = &scene.belt;
@@ -1422,7 +1405,7 @@ mod tests {
         let params = TermParams { penalty: Some(1e-3 * penalty), ..params };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
         let prob = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
-        let mut x = super::super::transfer(&start, &asm);
+        let mut x = crate::string_hanging::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)
         x.extend((0..points.len()).map(|i| if i % 2 == 0 { 3000.0 } else { 10.0 } * ((i as f64) * 1.7).sin()));
