@@ -25,7 +25,8 @@
 //! - [`dofs`], [`assembly`], [`linear`], [`newton`]: numbering with loop closure and the
 //!   material gauge s(0) = 0, parallel assembly, sparse LU, Newton with line search and
 //!   Levenberg–Marquardt regularisation;
-//! - [`string_hanging`]: the static string (or Kirchhoff rod, with EI) on frictionless
+//! - [`problem`]: the typed problem built once from the scene ([`FemProblem`]);
+//! - [`static_homotopy`]: the static string (or Kirchhoff rod, with EI) on frictionless
 //!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
 //!   contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
@@ -82,13 +83,13 @@ pub mod quadrature;
 pub mod solution;
 pub mod stamp;
 pub mod string_drive;
-pub mod string_hanging;
+pub mod static_homotopy;
 
 pub use error::{FemError, NewtonFailure};
 pub use options::{FemOptions, SolverSettings};
 pub use problem::FemProblem;
 pub use solution::FemSolution;
-pub use string_hanging::{HomotopyReport, StringHanging};
+pub use static_homotopy::{HomotopyReport, StringHanging};
 
 /// Work of an FE run.
 #[derive(Debug, Clone, Default, serde::Serialize)]

@@ -9,7 +9,7 @@ use drive::scene::{Analysis, Contact, Scene, Theory};
 
 use crate::error::FemError;
 use crate::options::{FemOptions, SolverSettings};
-use crate::string_hanging::StringHanging;
+use crate::static_homotopy::StringHanging;
 
 /// Pulley geometry: two equal pulleys, centres on the x axis.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]

@@ -1,5 +1,5 @@
 //! The friction drive (`string-drive`, Paper B) by MEL finite elements: the string of
-//! [`crate::string_hanging`] transported in σ through a quasistatic transient — a
+//! [`crate::static_homotopy`] transported in σ through a quasistatic transient — a
 //! sequence of energy minima with prescribed driver rotation increments ω₁Δt (§7.1) —
 //! with the driven pulley's rotation as an unknown under its load, Coulomb friction by
 //! the augmented Lagrangian return mapping of Table 1 (§6.1) or its penalty
@@ -35,7 +35,7 @@ use crate::mesh::Mesh;
 use crate::options::{FemOptions, SolverSettings};
 use crate::problem::{ContactLaw, FemProblem};
 use crate::solution::FemSolution;
-use crate::string_hanging::HomotopyReport;
+use crate::static_homotopy::HomotopyReport;
 use crate::{FemRun, FemStats};
 
 pub mod contact;
@@ -204,7 +204,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
     let damping = problem.drive.driven_damping;
 
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
-    let mut z = crate::string_hanging::transfer(&start, &asm);
+    let mut z = crate::static_homotopy::transfer(&start, &asm);
     let params = TermParams { axial_stiffness: b.axial_stiffness, weight: problem.weight(), penalty: None, bending_stiffness: None };
     let length = b.length;
     let strain_rule = kernel.rules().strain;

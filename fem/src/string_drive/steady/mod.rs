@@ -123,7 +123,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
         check_critical(&start, b.mass_per_length * c0 * c0)?;
     }
     let points = friction_points(&asm, &[]);
-    let mut x = crate::string_hanging::transfer(&start, &asm);
+    let mut x = crate::static_homotopy::transfer(&start, &asm);
     x.extend([r * omega1 / lambda0, omega1]);
     x.extend(std::iter::repeat_n(0.0, points.len()));
     let mut report = SteadyReport { friction_points: points.len(), static_seconds, ..Default::default() };
@@ -270,7 +270,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
             let asm = Assembler::new(mesh, kernel.clone());
             // the node at each fitted transition is split into its stick and slip halves
             let points = friction_points(&asm, &breaks[boundaries..]);
-            let mut x = crate::string_hanging::transfer(&sol, &asm);
+            let mut x = crate::static_homotopy::transfer(&sol, &asm);
             let nz_old = state.asm.len();
             x.extend([state.x[nz_old], state.x[nz_old + 1]]);
             x.extend(points.iter().map(|p| interpolate_traction(&state.results, &contour, p)));
@@ -382,7 +382,7 @@ mod tests {
         let params = TermParams { penalty: Some(1e-3 * penalty), ..params };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
         let prob = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
-        let mut x = crate::string_hanging::transfer(&start, &asm);
+        let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)
         x.extend((0..points.len()).map(|i| if i % 2 == 0 { 3000.0 } else { 10.0 } * ((i as f64) * 1.7).sin()));

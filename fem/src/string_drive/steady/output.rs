@@ -15,7 +15,7 @@ pub(super) fn finish(
     penalty: f64,
     kappa: f64,
     mu: f64,
-    homotopy: crate::string_hanging::HomotopyReport,
+    homotopy: crate::static_homotopy::HomotopyReport,
     report: SteadyReport,
     clock: std::time::Instant,
 ) -> Result<crate::FemRun, FemError> {

@@ -1,5 +1,7 @@
-//! The static string on two frictionless pulleys (`string-hanging`) by MEL finite
-//! elements: data from the scene, the tight starting state (F11), the two-phase
+//! The static analysis with homotopy: the string (`string-hanging`) or, with EI, the
+//! Kirchhoff rod (`rod-hanging`) on two frictionless pulleys by MEL finite elements
+//! (module `string_hanging` until issue 11; it solves both belts, and starts the
+//! drives): the problem data, the tight starting state (F11), the two-phase
 //! homotopy with step control under a capped penalty, the penalty continuation to the
 //! final P, and the contact fitting (docs/fem-string.md §5, §9).
 
