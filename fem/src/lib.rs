@@ -19,6 +19,9 @@
 //! - [`mesh`]: nodes at fixed σ, element boundaries on the four region transitions, and
 //!   meshes fitted to the contact boundaries;
 //! - [`hermite`], [`quadrature`]: shape functions (eq. 43), integration rules (§7.3);
+//! - [`element`]: element field layouts and dimension (1-D {s, ν}, {s, ν, θ}; 2-D
+//!   {S, ν, z}), the index map, the 2-D element interface and the Bogner–Fox–Schmit
+//!   rectangle for the shell;
 //! - [`kinematics`]: fields, position, stretch and gap of an element (eqs. 27, 37, 38);
 //! - [`formulation`]: the plug-in trait [`formulation::Formulation`], the energy terms,
 //!   exact derivatives by AD, and the registry;
@@ -70,6 +73,7 @@ use drive::view::SolutionView;
 
 pub mod assembly;
 pub mod dofs;
+pub mod element;
 mod error;
 pub mod formulation;
 pub mod hermite;
