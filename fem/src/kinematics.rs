@@ -19,9 +19,10 @@ impl<T: DualNum<Primitive = f64> + Copy> Scalar for T {}
 /// Number of local unknowns of a string element ([`crate::element::STRING`]).
 pub const NDOF: usize = STRING.dofs();
 
-/// Local indices (u_a, u′_a, u_b, u′_b) of s and of ν in the string layout.
-const S_DOFS: [usize; 4] = STRING.hermite_indices(0);
-const NU_DOFS: [usize; 4] = STRING.hermite_indices(1);
+/// Local indices (u_a, u′_a, u_b, u′_b) of s in the string layout.
+pub const S_DOFS: [usize; 4] = STRING.hermite_indices(0);
+/// Local indices (u_a, u′_a, u_b, u′_b) of ν in the string layout.
+pub const NU_DOFS: [usize; 4] = STRING.hermite_indices(1);
 
 /// Physical parameters of the energy terms of a scene; a term whose parameter is
 /// `None` is not assembled (docs/fem-string.md §4).
