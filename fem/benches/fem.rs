@@ -43,7 +43,7 @@ const CASES: [Case; 2] = [
     Case { prefix: "rod_", scene: "rod-hanging", formulation: "rod-simpson", eta: 0.0 },
 ];
 
-fn problem(case: &Case, elements: usize) -> fem::string_hanging::StartProblem {
+fn problem(case: &Case, elements: usize) -> fem::static_homotopy::StartProblem {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../scenes/{}.json", case.scene));
     let scene = drive::Scene::from_path(&path).unwrap();
     let settings = SolverSettings::default();

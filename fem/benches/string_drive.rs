@@ -34,7 +34,7 @@ fn scene(name: &str) -> Scene {
 fn solve(scene: &Scene, elements: usize, ds: &DriveSettings) -> f64 {
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    let run = string_drive::solve(scene, &opts, &SolverSettings::default(), ds, kernel).expect("steady state");
+    let run = string_drive::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), ds, kernel).expect("steady state");
     run.summary.driven_speed.unwrap()
 }
 
@@ -61,7 +61,7 @@ fn to_steady(c: &mut Criterion) {
 fn solve_direct(scene: &Scene, elements: usize) -> f64 {
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    let run = string_drive::steady::solve(scene, &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel).expect("steady state");
+    let run = string_drive::steady::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel).expect("steady state");
     run.summary.driven_speed.unwrap()
 }
 

@@ -36,9 +36,9 @@ fn main() {
     let steady = args.get(3).map(String::as_str) == Some("steady");
     let t0 = std::time::Instant::now();
     let result = if steady {
-        fem::string_drive::steady::solve(&scene, &opts, &fem::SolverSettings::default(), &ds, kernel)
+        fem::string_drive::steady::solve(&fem::FemProblem::from_scene(&scene), &opts, &fem::SolverSettings::default(), &ds, kernel)
     } else {
-        fem::string_drive::solve(&scene, &opts, &fem::SolverSettings::default(), &ds, kernel)
+        fem::string_drive::solve(&fem::FemProblem::from_scene(&scene), &opts, &fem::SolverSettings::default(), &ds, kernel)
     };
     println!("wall {:.3} s", t0.elapsed().as_secs_f64());
     match result {

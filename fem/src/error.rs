@@ -160,7 +160,7 @@ pub enum FemError {
         /// Time at the end of the step, s.
         time: f64,
         /// The Newton failure.
-        reason: String,
+        reason: NewtonFailure,
     },
 
     /// The transient did not reach the steady state within the step limit.
@@ -174,6 +174,62 @@ pub enum FemError {
         rate: f64,
         /// The steady-state tolerance.
         tolerance: f64,
+    },
+}
+
+/// Why a Newton solve of the drive (a transient step, a steady solve) failed, with its
+/// numbers.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum NewtonFailure {
+    /// The state left the admissible set (∂σS ≤ 0 or a non-finite value).
+    #[error("inadmissible state (∂σS ≤ 0 or non-finite) at Newton iteration {iteration}")]
+    Inadmissible {
+        /// Iteration at which the state was evaluated.
+        iteration: usize,
+    },
+    /// The iteration limit was reached.
+    #[error("no convergence in {iterations} Newton iterations (scaled update {update:.3e}, tolerance {tolerance:.1e})")]
+    NotConverged {
+        /// Iterations done.
+        iterations: usize,
+        /// Last scaled update.
+        update: f64,
+        /// Update tolerance.
+        tolerance: f64,
+    },
+    /// The (regularised) tangent could not be factorised.
+    #[error("singular {matrix} at Newton iteration {iteration}: {detail}")]
+    Singular {
+        /// "tangent" (energy minimisation) or "Jacobian" (semismooth system).
+        matrix: &'static str,
+        /// Iteration.
+        iteration: usize,
+        /// The sparse LU's message.
+        detail: String,
+    },
+    /// The sparse LU rejected the pattern.
+    #[error("sparse pattern: {0}")]
+    Pattern(String),
+    /// No step length gave an admissible or acceptable trial.
+    #[error("{what} at Newton iteration {iteration} (scaled update {update:.3e})")]
+    LineSearch {
+        /// "line search failed" or "no admissible step".
+        what: &'static str,
+        /// Iteration.
+        iteration: usize,
+        /// Scaled update of the step.
+        update: f64,
+    },
+    /// A point taken as stick to give its pulley an equation violates Coulomb's bound at
+    /// the solution: the pulley slides over its whole contact.
+    #[error("no Coulomb state: a pulley slides over its whole contact (|τ| = {traction:.6e} N/m above μτ_γ = {bound:.6e} N/m at σ = {sigma:.6} m)")]
+    NoCoulombState {
+        /// |τ_⊥|, N/m.
+        traction: f64,
+        /// μτ_γ, N/m.
+        bound: f64,
+        /// σ of the point, m.
+        sigma: f64,
     },
 }
 

@@ -7,6 +7,7 @@
 
 use drive::contour::{Contour, Region};
 
+use crate::element::STRING;
 use crate::hermite;
 use crate::mesh::ElementGeometry;
 
@@ -14,8 +15,13 @@ use crate::mesh::ElementGeometry;
 /// (one definition for `bvp` and `fem`).
 pub use numerics::Scalar;
 
-/// Number of local unknowns of a string element.
-pub const NDOF: usize = 8;
+/// Number of local unknowns of a string element ([`crate::element::STRING`]).
+pub const NDOF: usize = STRING.dofs();
+
+/// Local indices (u_a, u′_a, u_b, u′_b) of s in the string layout.
+pub const S_DOFS: [usize; 4] = STRING.hermite_indices(0);
+/// Local indices (u_a, u′_a, u_b, u′_b) of ν in the string layout.
+pub const NU_DOFS: [usize; 4] = STRING.hermite_indices(1);
 
 /// Physical parameters of the energy terms of a scene; a term whose parameter is
 /// `None` is not assembled (docs/fem-string.md §4).
@@ -89,17 +95,15 @@ impl ElementContext {
     #[inline]
     pub fn fields<D: Scalar>(&self, q: &[D; NDOF], xi: f64) -> PointFields<D> {
         let (wv, wd) = hermite::weights(xi, self.geometry.h);
-        let comb = |w: &[f64; 4], o: usize| -> D {
-            q[o] * w[0] + q[o + 1] * w[1] + q[o + 4] * w[2] + q[o + 5] * w[3]
-        };
+        let comb = |w: &[f64; 4], i: [usize; 4]| -> D { q[i[0]] * w[0] + q[i[1]] * w[1] + q[i[2]] * w[2] + q[i[3]] * w[3] };
         let w2 = hermite::second_weights(xi, self.geometry.h);
         PointFields {
             sigma: self.sigma(xi),
-            s: comb(&wv, 0),
-            ds: comb(&wd, 0),
-            nu: comb(&wv, 2),
-            dnu: comb(&wd, 2),
-            d2nu: comb(&w2, 2),
+            s: comb(&wv, S_DOFS),
+            ds: comb(&wd, S_DOFS),
+            nu: comb(&wv, NU_DOFS),
+            dnu: comb(&wd, NU_DOFS),
+            d2nu: comb(&w2, NU_DOFS),
         }
     }
 
@@ -111,11 +115,12 @@ impl ElementContext {
     pub fn effective<D: Scalar>(&self, q: &[D; NDOF]) -> [D; NDOF] {
         let mut out = *q;
         let a = self.alpha();
-        for (flag, o) in self.augmented.iter().zip([0usize, 4]) {
+        // per node (ends 0, 1): ν at the node, ∂σs and ∂σν scaled
+        for (flag, end) in self.augmented.iter().zip([0usize, 2]) {
             if *flag {
-                let f = q[o + 2] * a + 1.0;
-                out[o + 1] = q[o + 1] * f;
-                out[o + 3] = q[o + 3] * f;
+                let f = q[NU_DOFS[end]] * a + 1.0;
+                out[S_DOFS[end + 1]] = q[S_DOFS[end + 1]] * f;
+                out[NU_DOFS[end + 1]] = q[NU_DOFS[end + 1]] * f;
             }
         }
         out
@@ -142,7 +147,7 @@ impl ElementContext {
     /// ∂²σν at ξ (post-processing: curvature of the belt).
     pub fn second_derivative_nu(&self, q: &[f64; NDOF], xi: f64) -> f64 {
         let w = hermite::second_weights(xi, self.geometry.h);
-        q[2] * w[0] + q[3] * w[1] + q[6] * w[2] + q[7] * w[3]
+        NU_DOFS.iter().zip(w).map(|(&i, wk)| q[i] * wk).sum()
     }
 
     /// Position r, ∂σr and ∂²σr at ξ (f64 post-processing), from (F1), (F2) and

@@ -19,13 +19,17 @@
 //! - [`mesh`]: nodes at fixed σ, element boundaries on the four region transitions, and
 //!   meshes fitted to the contact boundaries;
 //! - [`hermite`], [`quadrature`]: shape functions (eq. 43), integration rules (§7.3);
+//! - [`element`]: element field layouts and dimension (1-D {s, ν}, {s, ν, θ}; 2-D
+//!   {S, ν, z}), the index map, the 2-D element interface and the Bogner–Fox–Schmit
+//!   rectangle for the shell;
 //! - [`kinematics`]: fields, position, stretch and gap of an element (eqs. 27, 37, 38);
 //! - [`formulation`]: the plug-in trait [`formulation::Formulation`], the energy terms,
 //!   exact derivatives by AD, and the registry;
 //! - [`dofs`], [`assembly`], [`linear`], [`newton`]: numbering with loop closure and the
 //!   material gauge s(0) = 0, parallel assembly, sparse LU, Newton with line search and
 //!   Levenberg–Marquardt regularisation;
-//! - [`string_hanging`]: the static string (or Kirchhoff rod, with EI) on frictionless
+//! - [`problem`]: the typed problem built once from the scene ([`FemProblem`]);
+//! - [`static_homotopy`]: the static string (or Kirchhoff rod, with EI) on frictionless
 //!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
 //!   contact fitting;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
@@ -63,12 +67,13 @@
 
 use std::time::Instant;
 
-use drive::scene::{Analysis, Contact, Scene, Theory};
+use drive::scene::{Analysis, Scene, Theory};
 use drive::summary::Summary;
 use drive::view::SolutionView;
 
 pub mod assembly;
 pub mod dofs;
+pub mod element;
 mod error;
 pub mod formulation;
 pub mod hermite;
@@ -77,16 +82,18 @@ pub mod linear;
 pub mod mesh;
 pub mod newton;
 mod options;
+pub mod problem;
 pub mod quadrature;
 pub mod solution;
 pub mod stamp;
 pub mod string_drive;
-pub mod string_hanging;
+pub mod static_homotopy;
 
-pub use error::FemError;
+pub use error::{FemError, NewtonFailure};
 pub use options::{FemOptions, SolverSettings};
+pub use problem::FemProblem;
 pub use solution::FemSolution;
-pub use string_hanging::{HomotopyReport, StringHanging};
+pub use static_homotopy::{HomotopyReport, StringHanging};
 
 /// Work of an FE run.
 #[derive(Debug, Clone, Default, serde::Serialize)]
@@ -156,33 +163,7 @@ pub fn solve_scene(scene: &Scene, opts: &FemOptions) -> Result<FemRun, FemError>
 /// # Errors
 /// [`FemError::Unsupported`] for any other kind of scene.
 pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSettings) -> Result<StringHanging, FemError> {
-    let supported = matches!(scene.belt.theory, Theory::String | Theory::Kirchhoff)
-        && matches!(scene.analysis, Analysis::Static)
-        && matches!(scene.effects.contact, Contact::Frictionless)
-        && scene.drive.driver_speed == 0.0
-        && scene.drive.driven_torque == 0.0
-        && scene.effects.inertia != Some(true);
-    if !supported {
-        return Err(FemError::Unsupported(format!(
-            "theory {}, analysis {}, contact {:?}: only the static string and Kirchhoff rod on frictionless pulleys (string-hanging, rod-hanging) have an MEL model so far",
-            scene.belt.theory, scene.analysis, scene.effects.contact
-        )));
-    }
-    let b = &scene.belt;
-    let r = scene.drive.pulley_radius;
-    Ok(StringHanging {
-        radius: r,
-        centre_distance: scene.drive.centre_distance,
-        length: b.length,
-        axial_stiffness: b.axial_stiffness,
-        mass_per_length: b.mass_per_length,
-        gravity: scene.effects.gravity,
-        penalty: Some(opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r))),
-        bending_stiffness: match scene.belt.theory {
-            Theory::Kirchhoff => b.bending_stiffness,
-            _ => None,
-        },
-    })
+    FemProblem::from_scene(scene).static_data(opts, settings)
 }
 
 /// Solve a scene with MEL finite elements: the static string (`string-hanging`), or
@@ -198,36 +179,47 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
 /// solver failures [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
 /// [`FemError::SingularTangent`], [`FemError::NonFinite`].
 pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSettings) -> Result<FemRun, FemError> {
+    let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
+    drive_settings.stop_at_steady = true;
+    solve_problem(&FemProblem::from_scene(scene), opts, settings, &drive_settings)
+}
+
+/// Solve a typed problem (built once from the scene by [`FemProblem::from_scene`]):
+/// the static analysis, or the friction drive — analysis `steady` by the direct steady
+/// solve [`string_drive::steady::solve`], `transient` by [`string_drive::solve`] with
+/// `drive_settings`.
+///
+/// # Errors
+/// As [`solve_scene_with`].
+pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &string_drive::DriveSettings) -> Result<FemRun, FemError> {
     let clock = Instant::now();
     opts.validate()?;
     settings.validate()?;
-    if string_drive::applies(scene) {
+    if problem.is_string_drive() {
         let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
             name: opts.formulation.clone(),
             available: available_formulations().iter().map(|s| s.to_string()).collect(),
         })?;
-        let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
-        drive_settings.stop_at_steady = true;
         // `steady`: the direct steady solve (docs/fem-drive.md §12); `transient`: the
         // quasistatic transient run to its steady state, with its history
-        if scene.analysis == drive::scene::Analysis::Steady {
-            return string_drive::steady::solve(scene, opts, settings, &drive_settings, kernel);
+        if problem.analysis == Analysis::Steady {
+            return string_drive::steady::solve(problem, opts, settings, drive_settings, kernel);
         }
-        return string_drive::solve(scene, opts, settings, &drive_settings, kernel);
+        return string_drive::solve(problem, opts, settings, drive_settings, kernel);
     }
-    let data = string_hanging_data(scene, opts, settings)?;
+    let data = problem.static_data(opts, settings)?;
     let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
         name: opts.formulation.clone(),
         available: available_formulations().iter().map(|s| s.to_string()).collect(),
     })?;
     // a formulation discretises one theory: string elements cannot carry EI, rod
     // elements need it (docs/fem-rod.md §4); the harness prints "not applicable"
-    if kernel.theory() != scene.belt.theory {
+    if kernel.theory() != problem.belt.theory {
         return Err(FemError::Unsupported(format!(
             "formulation `{}` discretises theory `{}`, the scene's belt is theory `{}`",
             kernel.name(),
             kernel.theory(),
-            scene.belt.theory
+            problem.belt.theory
         )));
     }
     let contour = data.contour()?;
@@ -238,22 +230,16 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
         return Err(FemError::NonFinite { what: e.to_string() });
     }
     let terms = kernel.term_labels(solution.params());
-    let resolved = FemOptions { penalty: data.penalty, ..opts.clone() };
     let zone = |p: drive::contour::Pulley| {
         solution.zone(p).map(|z| serde_json::json!({"recovered": z.recovered, "gap_sign_intervals": z.intervals}))
     };
-    let options = serde_json::json!({
-        "method": "fem",
-        "elements": resolved.elements,
-        "formulation": resolved.formulation,
-        "penalty": resolved.penalty,
-        "settings": settings,
+    let options = opts.record(data.penalty, settings, serde_json::json!({
         "homotopy": report,
         "contact_boundaries": {
             "driver": zone(drive::contour::Pulley::Driver),
             "driven": zone(drive::contour::Pulley::Driven),
         },
-    });
+    }));
     let stats = FemStats {
         wall_seconds: clock.elapsed().as_secs_f64(),
         newton_iterations: report.newton_iterations,

@@ -22,6 +22,23 @@ pub struct FemOptions {
 }
 
 impl FemOptions {
+    /// The `options` record of a run ([`crate::FemRun::options`]): method, elements,
+    /// formulation, the resolved penalty and the solver settings, with the analysis' own
+    /// entries `extra` (a JSON object) added.
+    pub(crate) fn record(&self, penalty: Option<f64>, settings: &SolverSettings, extra: serde_json::Value) -> serde_json::Value {
+        let mut record = serde_json::json!({
+            "method": "fem",
+            "elements": self.elements,
+            "formulation": self.formulation,
+            "penalty": penalty,
+            "settings": settings,
+        });
+        if let (Some(r), serde_json::Value::Object(e)) = (record.as_object_mut(), extra) {
+            r.extend(e);
+        }
+        record
+    }
+
     /// The scene's `fem` block (elements, penalty) with formulation `formulation`.
     pub fn from_scene(scene: &Scene, formulation: &str) -> FemOptions {
         let f = scene.fem_settings();
@@ -86,7 +103,9 @@ pub struct SolverSettings {
     /// Fit the mesh to the contact boundaries after the homotopy (§5): move a node to
     /// each located boundary and re-solve, until they agree. Default true.
     pub contact_fitting: bool,
-    /// Largest number of fitting passes (per penalty level). Default 10; ≥ 1.
+    /// Largest number of fitting passes of the static fit (per penalty level). Default
+    /// 10; ≥ 1. The direct steady drive solve has its own limit,
+    /// `string_drive::DriveSettings::max_fits`.
     pub max_fits: usize,
     /// Fitting has converged when every recovered boundary lies within this times L_c
     /// of its node. Default 1e-9 (1.4e-9 m in `string-hanging`); (0, 1e-3].

@@ -404,6 +404,7 @@ pub fn solve_fe(stamp: &Stamp, opts: &StampFeOptions) -> Result<StampFe, StampEr
 
     // φ′(t) of φ(t) = Π(z − t d): the directional derivative −∇Π(z − t d)·d (the
     // gradient is accurate where Π itself, a sum of cancelling O(EI/h³ |z|²) terms, is not).
+    #[allow(clippy::needless_range_loop)] // e indexes the unknowns (2e + a) and the nodes together
     let slope_at = |z: &[f64], d: &[f64], t: f64, penalty: f64| -> f64 {
         let mut out = 0.0;
         for e in 0..n {

@@ -30,7 +30,7 @@ fn creep_scene() -> Scene {
 fn run(scene: &Scene, elements: usize, penalty: Option<f64>, ds: &DriveSettings) -> Result<FemRun, FemError> {
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    string_drive::solve(scene, &opts, &SolverSettings::default(), ds, kernel)
+    string_drive::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), ds, kernel)
 }
 
 fn drive_option(run: &FemRun, key: &str) -> f64 {
@@ -510,7 +510,7 @@ fn slack_gravity_drive_reports_entry_slip() {
 fn steady(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    string_drive::steady::solve(scene, &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
+    string_drive::steady::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
 }
 
 /// The direct steady solve (docs/fem-drive.md §12) on the creep scene: belt-creep

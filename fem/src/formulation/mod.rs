@@ -22,7 +22,7 @@ use std::sync::Arc;
 use nalgebra::{Const, SVector, U1};
 use num_dual::{gradient, hessian, Dual2SVec64, Dual64, DualSVec64};
 
-use crate::kinematics::{ElementContext, PointFields, Scalar, TermParams, NDOF};
+use crate::kinematics::{ElementContext, PointFields, Scalar, TermParams, NDOF, NU_DOFS, S_DOFS};
 use crate::quadrature::Rule;
 
 mod rod_gauss;
@@ -198,10 +198,10 @@ fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w
             let g3 = f.eps.unwrap_generic(Const::<3>, U1);
             energy += scale * f.re;
             let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+            for (k, &i) in S_DOFS.iter().enumerate() {
                 grad[i] += scale * wd[k] * g3[0];
             }
-            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+            for (k, &i) in NU_DOFS.iter().enumerate() {
                 grad[i] += scale * (wv[k] * g3[1] + wd[k] * g3[2]);
             }
         }
@@ -230,13 +230,13 @@ fn pointwise_derivatives(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules
             let g3 = f.v1.unwrap_generic(U1, Const::<3>);
             let h3 = f.v2.unwrap_generic(Const::<3>, Const::<3>);
             out.energy += scale * f.re;
-            // B: row 0 = ∂σS weights on (0, 1, 4, 5), rows 1, 2 = ν, ∂σν on (2, 3, 6, 7)
+            // B: row 0 = ∂σS weights on the s unknowns, rows 1, 2 = ν, ∂σν on the ν unknowns
             let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
             let mut b = [[0.0; NDOF]; 3];
-            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+            for (k, &i) in S_DOFS.iter().enumerate() {
                 b[0][i] = wd[k];
             }
-            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+            for (k, &i) in NU_DOFS.iter().enumerate() {
                 b[1][i] = wv[k];
                 b[2][i] = wd[k];
             }
@@ -303,10 +303,10 @@ fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermR
             let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
             let w2 = crate::hermite::second_weights(xi, el.geometry.h);
             let mut b = [[0.0; NDOF]; 4];
-            for (k, &i) in [0usize, 1, 4, 5].iter().enumerate() {
+            for (k, &i) in S_DOFS.iter().enumerate() {
                 b[0][i] = wd[k];
             }
-            for (k, &i) in [2usize, 3, 6, 7].iter().enumerate() {
+            for (k, &i) in NU_DOFS.iter().enumerate() {
                 b[1][i] = wv[k];
                 b[2][i] = wd[k];
                 b[3][i] = w2[k];
@@ -337,13 +337,14 @@ fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermR
         row[i] = 1.0;
     }
     let mut second: Vec<(usize, usize, f64)> = Vec::new(); // (i, j, g̃ₖ α) symmetric pairs
-    for (flag, o) in el.augmented.iter().zip([0usize, 4]) {
+    for (flag, end) in el.augmented.iter().zip([0usize, 2]) {
         if *flag {
-            let fac = 1.0 + alpha * q[o + 2];
-            for k in [o + 1, o + 3] {
+            let nu = NU_DOFS[end];
+            let fac = 1.0 + alpha * q[nu];
+            for k in [S_DOFS[end + 1], NU_DOFS[end + 1]] {
                 jm[k][k] = fac;
-                jm[k][o + 2] = alpha * q[k];
-                second.push((k, o + 2, ge[k] * alpha));
+                jm[k][nu] = alpha * q[k];
+                second.push((k, nu, ge[k] * alpha));
             }
         }
     }

@@ -1,15 +1,19 @@
 //! The friction drive (`string-drive`, Paper B) by MEL finite elements: the string of
-//! [`crate::string_hanging`] transported in σ through a quasistatic transient — a
+//! [`crate::static_homotopy`] transported in σ through a quasistatic transient — a
 //! sequence of energy minima with prescribed driver rotation increments ω₁Δt (§7.1) —
 //! with the driven pulley's rotation as an unknown under its load, Coulomb friction by
 //! the augmented Lagrangian return mapping of Table 1 (§6.1) or its penalty
-//! regularisation, and persistent transport inertia on request. Steady analyses run the
-//! transient to the steady state (no direct steady solve). Equations, signs and
+//! regularisation, and persistent transport inertia on request — analysis `transient`
+//! ([`solve`]) runs it to the steady state. Analysis `steady` is solved directly
+//! ([`steady::solve`]: the stationary equations with the transport rate and the driven
+//! speed as unknowns, semismooth Newton on the stick/slip complementarity, load
+//! continuation and contact fitting; docs/fem-drive.md §12). Equations, signs and
 //! measured numbers: docs/fem-drive.md.
 //!
 //! Layers: [`contact`] (per-point state, D2, D6, D7, D8, exact derivatives),
-//! [`system`] (the step's global system and its Newton solver), this module (data from
-//! the scene, start, time loop with the AL outer loop, steady-state criterion,
+//! [`system`] (the step's global system and its Newton solver), [`steady`] (the direct
+//! steady solve), this module (the common start from the typed
+//! [`crate::FemProblem`], time loop with the AL outer loop, steady-state criterion,
 //! outputs), [`view`] (the common view with stick/slip states).
 
 use std::f64::consts::PI;
@@ -18,7 +22,7 @@ use std::time::Instant;
 
 use drive::contour::{Contour, Pulley, Region};
 use drive::result::History;
-use drive::scene::{Analysis, Contact, Scene, Theory};
+use drive::scene::{Analysis, Scene};
 use drive::summary::PulleySummary;
 use drive::view::SolutionView;
 
@@ -29,8 +33,9 @@ use crate::kinematics::{TermParams, NDOF};
 use crate::linear::BorderedLu;
 use crate::mesh::Mesh;
 use crate::options::{FemOptions, SolverSettings};
+use crate::problem::{ContactLaw, FemProblem};
 use crate::solution::FemSolution;
-use crate::string_hanging::{HomotopyReport, StringHanging};
+use crate::static_homotopy::HomotopyReport;
 use crate::{FemRun, FemStats};
 
 pub mod contact;
@@ -40,7 +45,7 @@ pub mod view;
 
 use contact::{PointState, StepParams};
 use system::{Load, Pattern, StepSystem};
-pub use view::DriveSolution;
+pub use view::{DriveSolution, ViewPoint};
 
 /// Friction treatment (docs/fem-drive.md §5).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -82,6 +87,11 @@ pub struct DriveSettings {
     pub tangential_penalty_factor: f64,
     /// Newton iteration limit per solve. Default 40; ≥ 5.
     pub max_newton_iterations: usize,
+    /// Largest number of contact-fitting passes of the direct steady solve
+    /// (docs/fem-drive.md §12; the moves per pass are limited to 0.3 h, so it needs more
+    /// passes than the static fit's [`SolverSettings::max_fits`]). Default 30; ≥ 1. The
+    /// only control of those passes (the static fit's `max_fits` does not apply).
+    pub max_fits: usize,
 }
 
 impl Default for DriveSettings {
@@ -96,6 +106,7 @@ impl Default for DriveSettings {
             max_al_iterations: 30,
             tangential_penalty_factor: 300.0,
             max_newton_iterations: 40,
+            max_fits: 30,
         }
     }
 }
@@ -139,6 +150,9 @@ impl DriveSettings {
         if !(self.tangential_penalty_factor.is_finite() && self.tangential_penalty_factor > 0.0) {
             return bad("tangential_penalty_factor", self.tangential_penalty_factor.to_string(), "must be positive and finite");
         }
+        if self.max_fits == 0 {
+            return bad("max_fits", "0".into(), "must be ≥ 1");
+        }
         if self.max_newton_iterations < 5 {
             return bad("max_newton_iterations", self.max_newton_iterations.to_string(), "must be ≥ 5");
         }
@@ -149,9 +163,7 @@ impl DriveSettings {
 /// True if the scene is a friction drive of a string (analysis steady or transient,
 /// Coulomb contact) — the scenes [`solve`] handles.
 pub fn applies(scene: &Scene) -> bool {
-    matches!(scene.belt.theory, Theory::String)
-        && matches!(scene.analysis, Analysis::Steady | Analysis::Transient)
-        && matches!(scene.effects.contact, Contact::Coulomb(_))
+    FemProblem::from_scene(scene).is_string_drive()
 }
 
 /// Per-step record (the history plus solver work).
@@ -180,20 +192,20 @@ struct PulleyOut {
 /// [`FemError::Unsupported`] (ω₁ ≤ 0), [`FemError::InvalidOption`], the static start's
 /// errors, [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
-pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
+pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
-    let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(scene, opts, settings, drive_settings, kernel.clone())?;
-    let b = &scene.belt;
-    let r = scene.drive.pulley_radius;
+    let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
+    let b = &problem.belt;
+    let r = problem.geometry.radius;
     let contour = *start.mesh().contour();
     let mut newton_total = report.newton_iterations;
     let h = contour.centre_distance();
-    let load_torque = scene.drive.driven_torque;
-    let damping = scene.drive.driven_damping;
+    let load_torque = problem.drive.driven_torque;
+    let damping = problem.drive.driven_damping;
 
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
-    let mut z = transfer(&start, &asm);
-    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: scene.effects.gravity.map(|g| g * b.mass_per_length), penalty: None, bending_stiffness: None };
+    let mut z = crate::static_homotopy::transfer(&start, &asm);
+    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: problem.weight(), penalty: None, bending_stiffness: None };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
     let contact_rule = kernel.rules().contact;
@@ -275,7 +287,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             tangential_penalty: p_t,
             driver_advance: r * omega1 * dt,
             radius: r,
-            inertia: (scene.effects.inertia == Some(true)).then_some(b.mass_per_length * c_prev * c_prev),
+            inertia: problem.effects.inertia.then_some(b.mass_per_length * c_prev * c_prev),
         };
         // critical speed (docs/fem-drive.md §6): the effective tension N − ρc²λ of both
         // spans (at their midpoints, with c of the last step) must stay positive
@@ -411,7 +423,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             }
         }
     }
-    if !steady && matches!(scene.analysis, Analysis::Steady) {
+    if !steady && matches!(problem.analysis, Analysis::Steady) {
         return Err(FemError::SteadyStateNotReached { steps: history.len(), time, rate: last_rate, tolerance: drive_settings.steady_tolerance });
     }
     // a steady state must stick at entry (docs/fem-drive.md §11): a leading slip run
@@ -458,7 +470,8 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
     let power_out = (load_torque + damping * omega2) * omega2;
     let max_penetration = base.max_penetration();
     let stick_slip_max = points.iter().flatten().filter(|p| p.bound > 0.0 && !p.slip).fold(0.0f64, |m, p| m.max(p.displacement.abs()));
-    let view = DriveSolution::new(base, &points, summary.clone());
+    let view_points: Vec<Vec<ViewPoint>> = points.iter().map(|pts| pts.iter().map(ViewPoint::from).collect()).collect();
+    let view = DriveSolution::new(base, &view_points, summary.clone());
     let mut terms = kernel.term_labels(&params);
     terms.push(format!(
         "Coulomb contact, {} (μ = {mu}, P_γ = {penalty:.6e} N/m², P_⊥ = {p_t:.6e} N/m², {contact_rule})",
@@ -468,16 +481,10 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
         }
     ));
     terms.push(format!("driven load M₂ = {load_torque} N·m, d₂ = {damping} N·m·s"));
-    if scene.effects.inertia == Some(true) {
+    if problem.effects.inertia {
         terms.push(format!("transport inertia (ρ = {} kg/m)", b.mass_per_length));
     }
-    let resolved = FemOptions { penalty: Some(penalty), ..opts.clone() };
-    let options = serde_json::json!({
-        "method": "fem",
-        "elements": resolved.elements,
-        "formulation": resolved.formulation,
-        "penalty": resolved.penalty,
-        "settings": settings,
+    let options = opts.record(Some(penalty), settings, serde_json::json!({
         "drive": {
             "settings": drive_settings,
             "time_step": dt,
@@ -495,7 +502,7 @@ pub fn solve(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_
             "tangential_penalty": p_t,
         },
         "homotopy": report,
-    });
+    }));
     let stats = FemStats {
         wall_seconds: clock.elapsed().as_secs_f64(),
         newton_iterations: newton_total,
@@ -526,37 +533,28 @@ struct DriveStart {
 /// # Errors
 /// [`FemError::InvalidOption`] (drive settings), [`FemError::Unsupported`] (no Coulomb
 /// contact, ω₁ ≤ 0), the static start's errors.
-fn drive_start(scene: &Scene, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<DriveStart, FemError> {
+fn drive_start(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<DriveStart, FemError> {
     drive_settings.validate()?;
-    let Contact::Coulomb(mu) = scene.effects.contact else {
+    let ContactLaw::Coulomb { mu } = problem.effects.contact else {
         return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
     };
-    let omega1 = scene.drive.driver_speed;
+    let omega1 = problem.drive.driver_speed;
     if omega1.is_nan() || omega1 <= 0.0 {
         return Err(FemError::Unsupported(format!(
             "driver_speed ω₁ = {omega1} rad/s: the FE drive needs the driver turning clockwise (ω₁ > 0)"
         )));
     }
-    let b = &scene.belt;
-    let r = scene.drive.pulley_radius;
-    let penalty = opts.penalty.unwrap_or(settings.penalty_factor * b.axial_stiffness / (r * r));
-    let data = StringHanging {
-        radius: r,
-        centre_distance: scene.drive.centre_distance,
-        length: b.length,
-        axial_stiffness: b.axial_stiffness,
-        mass_per_length: b.mass_per_length,
-        gravity: scene.effects.gravity,
-        penalty: Some(penalty),
-        bending_stiffness: None,
-    };
+    let b = &problem.belt;
+    let r = problem.geometry.radius;
+    let penalty = problem.penalty(opts, settings);
+    let data = problem.hanging(penalty);
     let contour = data.contour()?;
     let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (start, report, _) = data.solve(mesh, kernel, settings)?;
     let s0 = start.summary();
     let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
-    let weight = scene.effects.gravity.map_or(0.0, |g| g * b.mass_per_length);
-    let f_ref = t_static.max(scene.drive.driven_torque.abs() / r).max(weight * b.length).max(1e-300);
+    let weight = problem.weight().unwrap_or(0.0);
+    let f_ref = t_static.max(problem.drive.driven_torque.abs() / r).max(weight * b.length).max(1e-300);
     Ok(DriveStart { mu, omega1, start, report, penalty, t_static, f_ref })
 }
 
@@ -571,28 +569,6 @@ fn stick_zone_force(base: &FemSolution, pulley: Pulley, transition: Option<f64>)
     let span = zone.sigma_end - zone.sigma_start;
     let stick = transition.map_or(span, |t| (t - zone.sigma_start).rem_euclid(contour.length()));
     (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_start + 0.5 * stick)))
-}
-
-/// The static solution's unknowns on `asm` (its own mesh), as string_hanging's transfer.
-fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
-    let mesh = asm.mesh();
-    let dofs = asm.dofs();
-    let mut z = vec![0.0; asm.len()];
-    for k in 0..mesh.len() {
-        let sigma = mesh.node_sigmas()[k];
-        let nd = dofs.node(k);
-        let right = sol.one_sided_fields(sigma, false);
-        let left = sol.one_sided_fields(sigma, true);
-        if let Some(i) = nd.s {
-            z[i] = right.s;
-        }
-        z[nd.nu] = right.nu;
-        z[nd.slopes_in.0] = left.ds;
-        z[nd.slopes_in.1] = left.dnu;
-        z[nd.slopes_out.0] = right.ds;
-        z[nd.slopes_out.1] = right.dnu;
-    }
-    z
 }
 
 /// R Δθ_k of the pulley of a point: `driver` for the driver, `driven` for the driven one.

@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use crate::assembly::Assembler;
 use crate::dofs::DofKind;
+use crate::error::NewtonFailure;
 use crate::kinematics::{TermParams, NDOF};
 use crate::linear::BorderedLu;
 use crate::quadrature::Rule;
@@ -251,9 +252,9 @@ pub struct StepNewton {
 /// as its border (their rows are dense: the bordered solve keeps the cost linear).
 ///
 /// # Errors
-/// A message with the iteration count and the last update norm.
+/// [`NewtonFailure`] with the iteration count and the last update norm.
 #[allow(clippy::too_many_arguments)]
-pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, String> {
+pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, NewtonFailure> {
     let n = x.len();
     let mut step = vec![0.0; n];
     let mut newton_step = vec![0.0; n];
@@ -263,10 +264,10 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut 
     let allowance = 1e-13 * energy_scale;
     loop {
         let Some((energy, grad, values)) = sys.assemble(x) else {
-            return Err(format!("inadmissible state (∂σS ≤ 0 or non-finite) at Newton iteration {}", report.iterations));
+            return Err(NewtonFailure::Inadmissible { iteration: report.iterations });
         };
         if report.iterations >= max_iterations {
-            return Err(format!("no convergence in {} Newton iterations (scaled update {last_update:.3e}, tolerance {tolerance:.1e})", report.iterations));
+            return Err(NewtonFailure::NotConverged { iterations: report.iterations, update: last_update, tolerance });
         }
         report.iterations += 1;
         let mut d = vec![0.0; n];
@@ -296,7 +297,7 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut 
             let solved = lu.solve(&vals, &[], &mut step);
             if let Err(e) = solved {
                 if mu >= 1e2 {
-                    return Err(format!("singular tangent at Newton iteration {}: {e}", report.iterations));
+                    return Err(NewtonFailure::Singular { matrix: "tangent", iteration: report.iterations, detail: e });
                 }
                 mu = if mu == 0.0 { 1e-6 } else { 10.0 * mu };
                 continue;
@@ -354,7 +355,7 @@ pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut 
                 alpha *= 0.5;
             }
             if !accepted {
-                return Err(format!("line search failed at Newton iteration {} (scaled update {last_update:.3e})", report.iterations));
+                return Err(NewtonFailure::LineSearch { what: "line search failed", iteration: report.iterations, update: last_update });
             }
         }
         x.copy_from_slice(&trial);

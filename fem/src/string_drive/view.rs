@@ -3,7 +3,7 @@
 //! Stick/Slip, the normal traction and the friction traction from the integration-point
 //! states.
 
-use drive::contour::Contour;
+use drive::contour::{Contour, Pulley};
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 
@@ -11,14 +11,44 @@ use crate::solution::FemSolution;
 
 use super::contact::PointState;
 
+/// One contact point as the common view reads it: what the transient
+/// ([`PointState`]) and the direct steady solve both produce — no transient-only fields
+/// (upstream references, multipliers, slip bound), so the steady solve fills none with
+/// placeholders.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ViewPoint {
+    /// ξ in the element.
+    pub xi: f64,
+    /// σ of the point, m.
+    pub sigma: f64,
+    /// The pulley the point can touch (`None`: a span point out of reach).
+    pub pulley: Option<Pulley>,
+    /// Weight of the normal term, m (0 for a friction-only point).
+    pub weight: f64,
+    /// Weight of the friction term, m (0 for a point without friction).
+    pub friction_weight: f64,
+    /// Normal traction τ_γ, N/m.
+    pub normal: f64,
+    /// Tangential traction τ_⊥ (the belt's on the drum), N/m.
+    pub tangential: f64,
+    /// Sliding.
+    pub slip: bool,
+}
+
+impl From<&PointState> for ViewPoint {
+    fn from(p: &PointState) -> ViewPoint {
+        ViewPoint { xi: p.xi, sigma: p.sigma, pulley: p.pulley, weight: p.weight, friction_weight: p.friction_weight, normal: p.normal, tangential: p.tangential, slip: p.slip }
+    }
+}
+
 /// A converged drive state behind the common view.
 #[derive(Clone)]
 pub struct DriveSolution {
     base: FemSolution,
     /// Contact-capable points of the normal term, sorted by σ.
-    points: Vec<PointState>,
+    points: Vec<ViewPoint>,
     /// Friction points (element edges), sorted by σ.
-    friction: Vec<PointState>,
+    friction: Vec<ViewPoint>,
     /// Per element, τ_⊥ at its edges ξ = −1, +1 (0 at an edge without a pulley).
     edge_tractions: Vec<[f64; 2]>,
     summary: Summary,
@@ -27,7 +57,7 @@ pub struct DriveSolution {
 impl DriveSolution {
     /// The view of `base` with the point states `points` (per element) and the drive
     /// summary.
-    pub fn new(base: FemSolution, per_element: &[Vec<PointState>], summary: Summary) -> DriveSolution {
+    pub fn new(base: FemSolution, per_element: &[Vec<ViewPoint>], summary: Summary) -> DriveSolution {
         let edge_tractions = per_element
             .iter()
             .map(|pts| {
@@ -49,18 +79,18 @@ impl DriveSolution {
     }
 
     /// The normal-contact integration points (σ-sorted) with their last state.
-    pub fn points(&self) -> &[PointState] {
+    pub fn points(&self) -> &[ViewPoint] {
         &self.points
     }
 
     /// The friction points (element edges, σ-sorted) with their stick/slip state.
-    pub fn friction_points(&self) -> &[PointState] {
+    pub fn friction_points(&self) -> &[ViewPoint] {
         &self.friction
     }
 
     /// The two points of `set` enclosing σ (by σ, periodic) and the interpolation weight
     /// of the second; `None` without points.
-    fn neighbours<'a>(&self, set: &'a [PointState], sigma: f64) -> Option<(&'a PointState, &'a PointState, f64)> {
+    fn neighbours<'a>(&self, set: &'a [ViewPoint], sigma: f64) -> Option<(&'a ViewPoint, &'a ViewPoint, f64)> {
         if set.is_empty() {
             return None;
         }

@@ -1,5 +1,7 @@
-//! The static string on two frictionless pulleys (`string-hanging`) by MEL finite
-//! elements: data from the scene, the tight starting state (F11), the two-phase
+//! The static analysis with homotopy: the string (`string-hanging`) or, with EI, the
+//! Kirchhoff rod (`rod-hanging`) on two frictionless pulleys by MEL finite elements
+//! (module `string_hanging` until issue 11; it solves both belts, and starts the
+//! drives): the problem data, the tight starting state (F11), the two-phase
 //! homotopy with step control under a capped penalty, the penalty continuation to the
 //! final P, and the contact fitting (docs/fem-string.md §5, §9).
 
@@ -513,8 +515,9 @@ fn keep_contact_nodes(asm: &Assembler, z: &[f64], trial: &mut [f64], params: &Te
 }
 
 /// The global unknowns on `asm`'s mesh interpolated from a solution on another mesh of
-/// the same contour (one-sided slopes at region transitions).
-fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
+/// the same contour (one-sided slopes at region transitions) — the static homotopy's
+/// refits and the drives' start.
+pub(crate) fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
     let mesh = asm.mesh();
     let dofs = asm.dofs();
     let mut z = vec![0.0; asm.len()];

@@ -1,0 +1,460 @@
+//! The steady equations (DS1)–(DS4) on one mesh: unknown layout, sparsity pattern, residual and generalised Jacobian (assembly of the element kernels and the friction points).
+
+use super::*;
+
+/// Parameters of the steady equations that do not change within a Newton solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SteadyParams {
+    /// μ.
+    pub mu: f64,
+    /// Normal penalty P, N/m² (the normal traction is P⟨−γ⟩).
+    pub penalty: f64,
+    /// κ of the active-set decision τ + κv, N·s/m² (any κ > 0 gives the same roots).
+    pub kappa: f64,
+    /// R, m.
+    pub radius: f64,
+    /// ω₁, rad/s.
+    pub omega1: f64,
+    /// Load torque M₂ (already scaled by the continuation parameter), N·m.
+    pub torque: f64,
+    /// Damping d₂ (scaled), N·m·s.
+    pub damping: f64,
+    /// ρ (scaled) of the transport inertia, kg/m; `None` without inertia.
+    pub inertia: Option<f64>,
+}
+
+/// The steady problem on one mesh: X = (z, c, ω₂, τ₁ … τ_m).
+pub struct SteadyProblem<'a> {
+    /// Assembler of the string (strain, gravity, normal penalty in its params).
+    pub asm: &'a Assembler,
+    /// Term parameters with the normal penalty.
+    pub params: TermParams,
+    /// Belt length L, m.
+    pub length: f64,
+    /// The friction points.
+    pub points: &'a [FrictionPoint],
+    /// Parameters.
+    pub sp: SteadyParams,
+    /// Strain rule of the formulation (for the inertia term).
+    pub strain_rule: Rule,
+}
+
+/// Entries of one friction point: rows and columns in the point's variable list
+/// (q of the left element, q of the right element, c, ω₂, τ, and for the slip half of a
+/// split node the τ of its stick half) — see [`SteadyProblem::variables`].
+pub(super) const NPV: usize = 2 * NDOF + 4;
+
+/// Residual, Jacobian values (pattern order) and the point results of one evaluation.
+pub struct Evaluated {
+    /// F(X).
+    pub residual: Vec<f64>,
+    /// ∂F/∂X in the order of [`SteadyProblem::pattern`].
+    pub values: Vec<f64>,
+    /// Per friction point: (traction, normal, velocity, slip).
+    pub results: Vec<PointResult>,
+}
+
+/// Variables of an element's friction load: q (8), c, ω₂, τ_a, τ_b.
+pub(super) const NEV: usize = NDOF + 4;
+
+/// Residual entries and Jacobian block of an element's friction load.
+pub(super) type ElementLoad = ([f64; NEV], [[f64; NEV]; NEV]);
+
+/// Quadrature of the friction load (DS1)–(DS3): 4-point Gauss–Legendre (τ linear × λ ×
+/// a cubic shape function).
+pub(super) const FRICTION_RULE: Rule = Rule::Gauss(4);
+
+impl SteadyProblem<'_> {
+    /// Number of unknowns nz + 2 + m.
+    pub fn len(&self) -> usize {
+        self.asm.len() + 2 + self.points.len()
+    }
+
+    /// Never true; for clippy.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Index of c, ω₂ and of τ_i.
+    pub(super) fn ic(&self) -> usize {
+        self.asm.len()
+    }
+    pub(super) fn iw(&self) -> usize {
+        self.asm.len() + 1
+    }
+    pub(super) fn it(&self, i: usize) -> usize {
+        self.asm.len() + 2 + i
+    }
+
+    /// The global indices of point i's variables (q of the left and right elements,
+    /// c, ω₂, τ_i). The node's own unknowns appear twice (once per element); the pattern
+    /// sums duplicates.
+    pub(super) fn variables(&self, i: usize) -> [Option<usize>; NPV] {
+        let pt = &self.points[i];
+        let il = self.asm.dofs().element(pt.left.0);
+        let ir = self.asm.dofs().element(pt.right.0);
+        let partner = (pt.part == Part::Right && i > 0 && self.points[i - 1].part == Part::Left).then(|| self.it(i - 1));
+        std::array::from_fn(|k| match k {
+            k if k < NDOF => il[k],
+            k if k < 2 * NDOF => ir[k - NDOF],
+            k if k == 2 * NDOF => Some(self.ic()),
+            k if k == 2 * NDOF + 1 => Some(self.iw()),
+            k if k == 2 * NDOF + 2 => Some(self.it(i)),
+            _ => partner,
+        })
+    }
+
+    /// Per element, the friction points whose tractions hold at its edges ξ = −1, +1
+    /// (a whole node's point at both adjacent edges, a half at its own side's).
+    pub fn edge_owners(&self) -> Vec<[Option<usize>; 2]> {
+        let mut out = vec![[None, None]; self.asm.mesh().len()];
+        for (i, p) in self.points.iter().enumerate() {
+            if p.part != Part::Right {
+                out[p.left.0][1] = Some(i);
+            }
+            if p.part != Part::Left {
+                out[p.right.0][0] = Some(i);
+            }
+        }
+        out
+    }
+
+    /// Global indices of element e's friction-load variables (q, c, ω₂, τ_a, τ_b).
+    pub(super) fn element_variables(&self, e: usize, owners: [Option<usize>; 2]) -> [Option<usize>; NEV] {
+        let idx = self.asm.dofs().element(e);
+        std::array::from_fn(|k| match k {
+            k if k < NDOF => idx[k],
+            k if k == NDOF => Some(self.ic()),
+            k if k == NDOF + 1 => Some(self.iw()),
+            k if k == NDOF + 2 => owners[0].map(|i| self.it(i)),
+            _ => owners[1].map(|i| self.it(i)),
+        })
+    }
+
+    /// (DS1)–(DS3) of one element, the consistent (Galerkin) friction load with τ
+    /// linear between its edge values: −∫ τ λ ∂S/∂q dσ on the S-rows (values and
+    /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element;
+    /// with its Jacobian in (q, c, ω₂, τ_a, τ_b).
+    pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad {
+        let el = self.asm.context(e, &self.params);
+        let q = self.asm.dofs().gather(e, z, self.length);
+        let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
+        let jac = el.jacobian();
+        let h = el.geometry.h;
+        let (ic, iw, ia) = (NDOF, NDOF + 1, NDOF + 2);
+        let mut r = [0.0; NEV];
+        let mut j = [[0.0; NEV]; NEV];
+        for &(xi, wg) in FRICTION_RULE.points() {
+            let (lam, dl) = gradient(
+                |v| {
+                    let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
+                    el.stretch(&el.fields(&qq, xi))
+                },
+                &qv,
+            );
+            let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
+            let t = shape[0] * tau[0] + shape[1] * tau[1];
+            let w = wg * jac;
+            let (vw, _) = crate::hermite::weights(xi, h);
+            // S = Σ vw_k (s_a, s'_a, s_b, s'_b): local indices 0, 1, 4, 5
+            for (k, &loc) in [0usize, 1, 4, 5].iter().enumerate() {
+                r[loc] -= w * t * lam * vw[k];
+                for m in 0..NDOF {
+                    j[loc][m] -= w * t * dl[m] * vw[k];
+                }
+                for a in 0..2 {
+                    j[loc][ia + a] -= w * shape[a] * lam * vw[k];
+                }
+            }
+            r[ic] += w * t * lam;
+            for m in 0..NDOF {
+                j[ic][m] += w * t * dl[m];
+            }
+            for a in 0..2 {
+                j[ic][ia + a] += w * shape[a] * lam;
+            }
+            if driven {
+                r[iw] -= w * t;
+                for a in 0..2 {
+                    j[iw][ia + a] -= w * shape[a];
+                }
+            }
+        }
+        (r, j)
+    }
+
+    /// Slip dissipation D = ∫ τ v dσ, v = cλ − Rω_k, with the quadrature and the
+    /// linear τ of the friction load — so P_in = P_out + D holds by (DS2) to round-off.
+    pub fn dissipation(&self, x: &[f64]) -> f64 {
+        let z = &x[..self.asm.len()];
+        let (c, w2) = (x[self.ic()], x[self.iw()]);
+        let mut d = 0.0;
+        for (e, o) in self.edge_owners().into_iter().enumerate() {
+            let Some(first) = o[0].or(o[1]) else { continue };
+            let omega = if self.points[first].pulley == Pulley::Driven { w2 } else { self.sp.omega1 };
+            let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            for &(xi, wg) in FRICTION_RULE.points() {
+                let t = 0.5 * (1.0 - xi) * tau[0] + 0.5 * (1.0 + xi) * tau[1];
+                d += wg * el.jacobian() * t * (c * el.stretch(&el.fields(&q, xi)) - self.sp.radius * omega);
+            }
+        }
+        d
+    }
+
+    /// The pattern: the assembler's blocks, per element (q × (q, c)) if inertia, per
+    /// friction point its block, per element with friction its friction-load block, and
+    /// the diagonal of c, ω₂.
+    pub fn pattern(&self) -> (Vec<usize>, Vec<usize>) {
+        let (r0, c0) = self.asm.pattern();
+        let mut rows = r0.to_vec();
+        let mut cols = c0.to_vec();
+        if self.sp.inertia.is_some() {
+            for e in 0..self.asm.mesh().len() {
+                let idx = self.asm.dofs().element(e);
+                for gi in idx.iter().flatten() {
+                    for gj in idx.iter().flatten().copied().chain([self.ic()]) {
+                        rows.push(*gi);
+                        cols.push(gj);
+                    }
+                }
+            }
+        }
+        for i in 0..self.points.len() {
+            let v = self.variables(i);
+            for gi in v.iter().flatten() {
+                for gj in v.iter().flatten() {
+                    rows.push(*gi);
+                    cols.push(*gj);
+                }
+            }
+        }
+        for (e, owners) in self.edge_owners().into_iter().enumerate() {
+            if owners == [None, None] {
+                continue;
+            }
+            let v = self.element_variables(e, owners);
+            for gi in v.iter().flatten() {
+                for gj in v.iter().flatten() {
+                    rows.push(*gi);
+                    cols.push(*gj);
+                }
+            }
+        }
+        for k in [self.ic(), self.iw()] {
+            rows.push(k);
+            cols.push(k);
+        }
+        (rows, cols)
+    }
+
+    /// F(X) and its generalised Jacobian (the active set of the current X); `None` if
+    /// z is inadmissible or a value is not finite.
+    pub fn evaluate(&self, x: &[f64], with_jacobian: bool) -> Option<Evaluated> {
+        let nz = self.asm.len();
+        let z = &x[..nz];
+        let (c, w2) = (x[self.ic()], x[self.iw()]);
+        let sp = &self.sp;
+        let (mut residual, mut values) = if with_jacobian {
+            let a = self.asm.assemble(z, &self.params, self.length)?;
+            (a.gradient, a.values)
+        } else {
+            let (_, g) = self.asm.gradient(z, &self.params, self.length)?;
+            (g, Vec::new())
+        };
+        residual.resize(self.len(), 0.0);
+        // transport inertia (D8) with c an unknown: rows q, columns (q, c)
+        if let Some(rho) = sp.inertia {
+            let per: Vec<(f64, [f64; NDOF + 1], [[f64; NDOF + 1]; NDOF + 1])> = (0..self.asm.mesh().len())
+                .into_par_iter()
+                .map(|e| {
+                    let el = self.asm.context(e, &self.params);
+                    let q = self.asm.dofs().gather(e, z, self.length);
+                    let v = SVector::<f64, { NDOF + 1 }>::from_fn(|i, _| if i < NDOF { q[i] } else { c });
+                    let (en, g, h) = hessian(
+                        |v| {
+                            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
+                            inertia_energy(&el, &qq, v[NDOF], rho, self.strain_rule)
+                        },
+                        &v,
+                    );
+                    (en, std::array::from_fn(|i| g[i]), std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])))
+                })
+                .collect();
+            for (e, (_, g, h)) in per.iter().enumerate() {
+                let idx = self.asm.dofs().element(e);
+                for (i, gi) in idx.iter().enumerate() {
+                    let Some(gi) = gi else { continue };
+                    residual[*gi] += g[i];
+                    if with_jacobian {
+                        for (j, gj) in idx.iter().enumerate() {
+                            if gj.is_some() {
+                                values.push(h[i][j]);
+                            }
+                        }
+                        values.push(h[i][NDOF]);
+                    }
+                }
+            }
+        }
+        // friction points (DS1)–(DS4)
+        let mut per: Vec<([f64; NPV], [[f64; NPV]; NPV], PointResult)> = (0..self.points.len())
+            .into_par_iter()
+            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false))
+            .collect();
+        // a pulley whose contact points all slide leaves c or ω₂ without an equation
+        // (no steady creep state has that: each contact zone sticks at entry); within
+        // an iterate, the point nearest to sticking, min (|τ + κv| − b)/b, is taken as
+        // stick (§12) — at a converged state it must then satisfy |τ| ≤ b itself
+        for pulley in [Pulley::Driver, Pulley::Driven] {
+            let contact = |k: &usize| self.points[*k].pulley == pulley && per[*k].2.normal > 0.0;
+            let idx: Vec<usize> = (0..per.len()).filter(|k| contact(k)).collect();
+            if idx.is_empty() || idx.iter().any(|&k| !per[k].2.slip) {
+                continue;
+            }
+            let margin = |k: usize| {
+                let res = &per[k].2;
+                ((res.traction + sp.kappa * res.velocity).abs() - sp.mu * res.normal) / (sp.mu * res.normal)
+            };
+            if let Some(&k) = idx.iter().min_by(|a, b| margin(**a).total_cmp(&margin(**b))) {
+                per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true);
+            }
+        }
+        // both halves of a split node sticking would be two multipliers on one node
+        // (proportional columns): the slip half then carries the stick half's traction,
+        // w_R (τ_R − τ_L) = 0 — the whole node's behaviour (§12)
+        for i in 1..per.len() {
+            if self.points[i].part == Part::Right && self.points[i - 1].part == Part::Left && !per[i].2.slip && !per[i - 1].2.slip {
+                let w = self.points[i].weight;
+                let it = 2 * NDOF + 2;
+                per[i].0[it] = w * (x[self.it(i)] - x[self.it(i - 1)]);
+                per[i].1[it] = [0.0; NPV];
+                per[i].1[it][it] = w;
+                per[i].1[it][NPV - 1] = -w;
+            }
+        }
+        let mut results = Vec::with_capacity(self.points.len());
+        for (i, (r, j, res)) in per.into_iter().enumerate() {
+            let v = self.variables(i);
+            for (a, ga) in v.iter().enumerate() {
+                let Some(ga) = ga else { continue };
+                residual[*ga] += r[a];
+                if with_jacobian {
+                    for (b, gb) in v.iter().enumerate() {
+                        if gb.is_some() {
+                            values.push(j[a][b]);
+                        }
+                    }
+                }
+            }
+            results.push(res);
+        }
+        // (DS1)–(DS3): the consistent friction load of every element with friction points
+        let owners = self.edge_owners();
+        let loads: Vec<Option<ElementLoad>> = owners
+            .par_iter()
+            .enumerate()
+            .map(|(e, o)| {
+                let first = o[0].or(o[1])?;
+                let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
+                Some(self.element_friction(e, z, tau, self.points[first].pulley == Pulley::Driven))
+            })
+            .collect();
+        for (e, load) in loads.into_iter().enumerate() {
+            let Some((r, j)) = load else { continue };
+            let v = self.element_variables(e, owners[e]);
+            for (a, ga) in v.iter().enumerate() {
+                let Some(ga) = ga else { continue };
+                residual[*ga] += r[a];
+                if with_jacobian {
+                    for (b, gb) in v.iter().enumerate() {
+                        if gb.is_some() {
+                            values.push(j[a][b]);
+                        }
+                    }
+                }
+            }
+        }
+        // the driven pulley's torque balance (DS3) divided by R: + (M₂ + d₂ω₂)/R
+        residual[self.iw()] += (sp.torque + sp.damping * w2) / sp.radius;
+        if with_jacobian {
+            values.push(0.0);
+            values.push(sp.damping / sp.radius);
+        }
+        let finite = residual.iter().all(|v| v.is_finite()) && values.iter().all(|v| v.is_finite());
+        finite.then_some(Evaluated { residual, values, results })
+    }
+
+    /// The residual entries and Jacobian block of friction point i in its variables
+    /// (q_left, q_right, c, ω₂, τ_i): (DS1) −wτλ̄ on the S-row of the node, (DS2)
+    /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
+    /// b = μP⟨−γ̄⟩ (λ̄, γ̄: trapezoidal means of the two edges).
+    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; NPV], [[f64; NPV]; NPV], PointResult) {
+        let pt = self.points[i];
+        let sp = &self.sp;
+        let w = pt.weight;
+        // λ̄ of the point's velocity element (DS0), γ̄ the trapezoidal mean of the
+        // node's two edges, with gradients in (q_left, q_right)
+        let (lam, dlam) = {
+            let e = pt.velocity_element();
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let (l, dl) = element_stretch(&el, &q);
+            let mut d = [0.0; 2 * NDOF];
+            let off = if pt.part == Part::Right { NDOF } else { 0 };
+            d[off..off + NDOF].copy_from_slice(&dl);
+            (l, d)
+        };
+        let mut gap: Option<(f64, [f64; 2 * NDOF])> = Some((0.0, [0.0; 2 * NDOF]));
+        let node_weight = pt.left.1 + pt.right.1;
+        for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let g = point_gap(&el, &q, xi);
+            let f = we / node_weight;
+            gap = match (gap, g) {
+                (Some((acc, mut dacc)), Some((gv, dg))) => {
+                    for k in 0..NDOF {
+                        dacc[side * NDOF + k] += f * dg[k];
+                    }
+                    Some((acc + f * gv, dacc))
+                }
+                _ => None,
+            };
+        }
+        let (ic, iw, it) = (2 * NDOF, 2 * NDOF + 1, 2 * NDOF + 2);
+        let mut r = [0.0; NPV];
+        let mut j = [[0.0; NPV]; NPV];
+        // (DS1)–(DS3) are the elements' consistent friction loads (`element_friction`)
+        let driven = pt.pulley == Pulley::Driven;
+        // (DS4)
+        let omega = if driven { w2 } else { sp.omega1 };
+        let v = c * lam - sp.radius * omega;
+        let (normal, dnormal) = match gap {
+            Some((g, dg)) if g < 0.0 => (-sp.penalty * g, dg.map(|d| -sp.penalty * d)),
+            _ => (0.0, [0.0; 2 * NDOF]),
+        };
+        let b = sp.mu * normal;
+        let y = tau + sp.kappa * v;
+        let slip = y.abs() >= b && !force_stick;
+        if slip {
+            let s = if b > 0.0 { y.signum() } else { 0.0 };
+            r[it] = w * (tau - b * s);
+            j[it][it] = w;
+            for k in 0..2 * NDOF {
+                j[it][k] = -w * s * sp.mu * dnormal[k];
+            }
+        } else {
+            r[it] = -w * sp.kappa * v;
+            for k in 0..2 * NDOF {
+                j[it][k] = -w * sp.kappa * c * dlam[k];
+            }
+            j[it][ic] = -w * sp.kappa * lam;
+            if driven {
+                j[it][iw] = w * sp.kappa * sp.radius;
+            }
+        }
+        (r, j, PointResult { point: pt, traction: tau, normal, velocity: v, slip: slip && b > 0.0 })
+    }
+}

@@ -1,0 +1,165 @@
+//! Outputs of a converged steady state: summary, options record, terms and the common view's points (docs/fem-drive.md §8, §12).
+
+use super::*;
+
+/// Outputs of a converged steady state (docs/fem-drive.md §8, §12).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn finish(
+    problem: &crate::problem::FemProblem,
+    opts: &crate::options::FemOptions,
+    settings: &crate::options::SolverSettings,
+    drive_settings: &super::super::DriveSettings,
+    kernel: Arc<dyn Kernel>,
+    state: State,
+    params: TermParams,
+    penalty: f64,
+    kappa: f64,
+    mu: f64,
+    homotopy: crate::static_homotopy::HomotopyReport,
+    report: SteadyReport,
+    clock: std::time::Instant,
+) -> Result<crate::FemRun, FemError> {
+    let asm = &state.asm;
+    let nz = asm.len();
+    let mesh = asm.mesh();
+    let contour = *mesh.contour();
+    let r = contour.radius();
+    let length = problem.belt.length;
+    let (c, omega2) = (state.x[nz], state.x[nz + 1]);
+    let omega1 = problem.drive.driver_speed;
+    let (load_torque, damping) = (problem.drive.driven_torque, problem.drive.driven_damping);
+    let base = FemSolution::new(mesh.clone(), asm.dofs(), &state.x[..nz], params, length, kernel.clone()).with_transport_inertia(rho_c2(&state));
+    let mut summary = base.summary();
+    // T_tight, T_slack: the axial forces of the driver's and the driven pulley's stick
+    // zones (creep theory's, as the BVP's, docs/string-drive.md) — constant there (λ̄
+    // pinned), taken midway between the contact entry and the transition; the larger /
+    // smaller mid-span force where a pulley has no stick zone or no recovered zone
+    let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
+    let stick_force = |pulley: Pulley| super::super::stick_zone_force(&base, pulley, transition(&state.results, &contour, pulley));
+    summary.tension_tight = Some(stick_force(Pulley::Driver).unwrap_or(tu.max(tl)));
+    summary.tension_slack = Some(stick_force(Pulley::Driven).unwrap_or(tu.min(tl)));
+    summary.driven_speed = Some(omega2);
+    summary.transport_rate = Some(c);
+    let mut torques = [0.0; 2];
+    let mut entry_slip_force: f64 = 0.0;
+    for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
+        let mut pts: Vec<&PointResult> = state.results.iter().filter(|p| p.point.pulley == pulley).collect();
+        torques[k] = r * pts.iter().map(|p| p.point.weight * p.traction).sum::<f64>();
+        pts.retain(|p| p.normal > 0.0);
+        pts.sort_by(|a, b| unwrapped(&contour, pulley, a.point.sigma).total_cmp(&unwrapped(&contour, pulley, b.point.sigma)));
+        if let Some(i) = pts.iter().position(|p| !p.slip) {
+            entry_slip_force = entry_slip_force.max(pts[..i].iter().map(|p| p.point.weight * p.traction).sum::<f64>().abs());
+        }
+        let angle = |sigma: f64| contour.polar_angle(pulley, base.position(contour.wrap(sigma)));
+        let zone = base.zone(pulley);
+        let (arc, end_angle) = match (zone, pts.first(), pts.last()) {
+            (Some(z), _, _) => ((z.angle_start - z.angle_end).rem_euclid(2.0 * PI), z.angle_end),
+            (None, Some(a), Some(b)) => ((angle(a.point.sigma) - angle(b.point.sigma)).rem_euclid(2.0 * PI), angle(b.point.sigma)),
+            _ => (0.0, 0.0),
+        };
+        let slip = if pts.is_empty() || pts.iter().all(|p| !p.slip) {
+            0.0
+        } else if pts.iter().all(|p| p.slip) {
+            arc
+        } else {
+            transition(&state.results, &contour, pulley).map_or(0.0, |s| (angle(s) - end_angle).rem_euclid(2.0 * PI).min(arc))
+        };
+        let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };
+        let ps = block.get_or_insert_with(drive::summary::PulleySummary::default);
+        ps.contact_arc = ps.contact_arc.or(Some(arc));
+        ps.slip_arc = Some(slip);
+        ps.stick_arc = Some((ps.contact_arc.unwrap_or(arc) - slip).max(0.0));
+        ps.torque = Some(torques[k]);
+    }
+    if let Err(e) = summary.check_finite() {
+        return Err(FemError::NonFinite { what: e.to_string() });
+    }
+    let points: Vec<FrictionPoint> = state.results.iter().map(|p| p.point).collect();
+    let sp = SteadyParams { mu, penalty, kappa, radius: r, omega1, torque: load_torque, damping, inertia: None };
+    let dissipation = SteadyProblem { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain }.dissipation(&state.x);
+    let power_in = -torques[0] * omega1;
+    let power_out = (load_torque + damping * omega2) * omega2;
+    let max_penetration = base.max_penetration();
+    let per_element = view_points(&state, params, length, &kernel);
+    let view = super::super::DriveSolution::new(base, &per_element, summary.clone());
+    let mut terms = kernel.term_labels(&TermParams { penalty: None, ..params });
+    terms.push(format!("Coulomb contact, direct steady state (semismooth Newton, μ = {mu}, P_γ = {penalty:.6e} N/m², friction on the nodes)"));
+    terms.push(format!("driven load M₂ = {load_torque} N·m, d₂ = {damping} N·m·s"));
+    if problem.effects.inertia {
+        terms.push(format!("transport inertia (ρ = {} kg/m)", problem.belt.mass_per_length));
+    }
+    let options = opts.record(Some(penalty), settings, serde_json::json!({
+        "drive": {
+            "solver": "steady",
+            "settings": drive_settings,
+            "kappa": kappa,
+            "steady": true,
+            "report": report,
+            "power_in": power_in,
+            "power_out": power_out,
+            "dissipation": dissipation,
+            "max_penetration": max_penetration,
+            "entry_slip_force": entry_slip_force,
+        },
+        "homotopy": homotopy,
+    }));
+    let stats = crate::FemStats {
+        wall_seconds: clock.elapsed().as_secs_f64(),
+        newton_iterations: homotopy.newton_iterations + report.newton_iterations,
+        unknowns: state.x.len(),
+        elements: opts.elements,
+        homotopy_steps: homotopy.steps + report.continuation_steps,
+    };
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None })
+}
+
+/// Per element the point states the common view reads (docs/fem-drive.md §8): the
+/// contact rule's points with their normal traction, the two edges with the traction
+/// and state of their friction point.
+pub(super) fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn Kernel>) -> Vec<Vec<super::super::ViewPoint>> {
+    let asm = &state.asm;
+    let mesh = asm.mesh();
+    let contour = mesh.contour();
+    let n = mesh.len();
+    let penalty = params.penalty.unwrap_or(0.0);
+    let mut edge: Vec<[Option<PointResult>; 2]> = vec![[None, None]; n];
+    for res in &state.results {
+        // a node's point stands for both elements' edges, a half for its own side
+        if res.point.part != Part::Right {
+            edge[res.point.left.0][1] = Some(*res);
+        }
+        if res.point.part != Part::Left {
+            edge[res.point.right.0][0] = Some(*res);
+        }
+    }
+    let rule = kernel.rules().contact;
+    (0..n)
+        .map(|e| {
+            let el = asm.context(e, &params);
+            let q = asm.dofs().gather(e, &state.x[..asm.len()], length);
+            super::super::contact::mixed_rule(rule)
+                .into_iter()
+                .map(|(xi, w, wf)| {
+                    let sigma = el.sigma(xi);
+                    let p = el.fields(&q, xi);
+                    let pulley = reachable_pulley(contour, el.geometry.region, sigma);
+                    let normal = match (pulley, el.gap(&p)) {
+                        (Some(_), Some(g)) => (-penalty * g).max(0.0),
+                        _ => 0.0,
+                    };
+                    let fr = if wf > 0.0 { edge[e][usize::from(xi > 0.0)] } else { None };
+                    super::super::ViewPoint {
+                        xi,
+                        sigma,
+                        pulley,
+                        weight: w * el.jacobian(),
+                        friction_weight: if fr.is_some() { el.jacobian() } else { 0.0 },
+                        normal,
+                        tangential: fr.map_or(0.0, |f| f.traction),
+                        slip: fr.is_some_and(|f| f.slip),
+                    }
+                })
+                .collect()
+        })
+        .collect()
+}

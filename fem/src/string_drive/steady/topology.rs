@@ -1,0 +1,100 @@
+//! Friction-point topology of the direct steady solve (docs/fem-drive.md §12): the friction points of a mesh, their halves at a stick→slip transition, and the point results.
+
+use super::*;
+
+/// One friction point of the steady problem (docs/fem-drive.md §12): a node within
+/// reach of a pulley. Its stretch and gap are the trapezoidal means over the two element
+/// edges that meet there (equal except at a region transition, where the slopes are
+/// separate); one traction per node, so the node's S-equation carries one unknown.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionPoint {
+    /// σ of the node, m.
+    pub sigma: f64,
+    /// The pulley the point can touch.
+    pub pulley: Pulley,
+    /// Trapezoidal weight (h_left + h_right)/2, m.
+    pub weight: f64,
+    /// The node.
+    pub node: usize,
+    /// Element ending at the node (its edge ξ = +1) and its weight h/2.
+    pub left: (usize, f64),
+    /// Element starting at the node (its edge ξ = −1) and its weight h/2.
+    pub right: (usize, f64),
+    /// The whole node, or one half of a node split at a fitted stick→slip transition.
+    pub part: Part,
+}
+
+/// Which share of a node a friction point carries (docs/fem-drive.md §12).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Part {
+    /// Both edges, weight (h_l + h_r)/2, v upwind (the element ending at the node).
+    Whole,
+    /// The upstream half of a transition node: weight h_l/2, v of the element ending
+    /// there (the stick side).
+    Left,
+    /// The downstream half: weight h_r/2, v of the element starting there (the slip
+    /// side) — so the traction jump at the transition sits exactly at the node.
+    Right,
+}
+
+impl FrictionPoint {
+    /// The element whose stretch λ̄ gives the point's velocity (DS0).
+    pub fn velocity_element(&self) -> usize {
+        if self.part == Part::Right {
+            self.right.0
+        } else {
+            self.left.0
+        }
+    }
+
+    /// σ where the point's velocity is sampled: the midpoint of its element.
+    pub fn velocity_sigma(&self) -> f64 {
+        if self.part == Part::Right {
+            self.sigma + self.right.1
+        } else {
+            self.sigma - self.left.1
+        }
+    }
+}
+
+/// The state of a friction point in a converged steady solution.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointResult {
+    /// The point.
+    pub point: FrictionPoint,
+    /// τ_⊥, force per contour length of the belt on the drum along +σ, N/m.
+    pub traction: f64,
+    /// Normal traction P⟨−γ⟩, N/m.
+    pub normal: f64,
+    /// Relative velocity v = cλ − Rω_k of belt and drum surface, m/s.
+    pub velocity: f64,
+    /// Slip (|τ + κv| ≥ b with b > 0).
+    pub slip: bool,
+}
+
+/// The friction points of a mesh (docs/fem-drive.md §12): one per node within reach of
+/// a pulley, two (the halves [`Part::Left`], [`Part::Right`]) at a node within 10⁻⁶ of
+/// its element lengths of one of the stick→slip transitions `splits` (σ).
+pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
+    let mesh = asm.mesh();
+    let contour = mesh.contour();
+    let lc = contour.length();
+    let n = mesh.len();
+    let mut out = Vec::new();
+    for k in 0..n {
+        let left = (k + n - 1) % n;
+        let (el_l, el_r) = (mesh.elements()[left], mesh.elements()[k]);
+        let sigma = mesh.node_sigmas()[k];
+        let reach = |region: Region| reachable_pulley(contour, region, sigma);
+        let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
+        let Some(pulley) = pulley else { continue };
+        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole };
+        if splits.iter().any(|&t| wrapped_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
+            out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
+            out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
+        } else {
+            out.push(whole);
+        }
+    }
+    out
+}
