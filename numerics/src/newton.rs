@@ -291,7 +291,7 @@ pub struct Progress<'a> {
     pub correction: f64,
     /// The tolerance.
     pub tolerance: f64,
-    /// Merit before and after the step.
+    /// Merit before the step.
     pub merit_before: f64,
     /// Merit after the step.
     pub merit_after: f64,
