@@ -5,8 +5,8 @@
 //! - [`problem`]: the standard form (segments on [0, 1], parameters, boundary residual),
 //! - [`solution`]: a solved problem with dense output and work statistics,
 //! - [`error`]: failures carrying their numbers,
-//! - `collocation`: collocation with residual control and adaptive mesh, damped Newton
-//!   on faer's sparse LU,
+//! - `collocation`: collocation with residual control and adaptive mesh, the damped
+//!   Newton and sparse LU of the shared `numerics` crate ([`newton`] adapts them),
 //! - `shooting`: multiple shooting on diffsol,
 //! - `continuation`: natural-parameter and pseudo-arclength continuation, fold detection,
 //! - `analytical`: closed forms used by tests and examples,

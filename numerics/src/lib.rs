@@ -20,6 +20,10 @@
 //!   (weights at the current iterate; a problem may supply its own norm) — see the
 //!   module for the exact algorithm and for how fem's three Newton loops map onto it.
 //!
+//! Not here yet: continuation (step control, fold detection). bvp's and fem's homotopy
+//! loops are being restructured by their owners; the generic parts move here once one
+//! copy can replace both.
+//!
 //! Errors are typed enums carrying the numbers; the linear solvers are generic over the
 //! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
 

@@ -392,12 +392,14 @@ mod tests {
             let p = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs())).unwrap();
             a.swap(k, p);
             b.swap(k, p);
-            for i in k + 1..n {
-                let f = a[i][k] / a[k][k];
-                for j in k..n {
-                    a[i][j] -= f * a[k][j];
+            let (pivot_rows, below) = a.split_at_mut(k + 1);
+            let pivot = &pivot_rows[k];
+            for (i, row) in below.iter_mut().enumerate() {
+                let f = row[k] / pivot[k];
+                for (x, &p) in row[k..].iter_mut().zip(&pivot[k..]) {
+                    *x -= f * p;
                 }
-                b[i] -= f * b[k];
+                b[k + 1 + i] -= f * b[k];
             }
         }
         let mut x = vec![0.0; n];

@@ -291,7 +291,7 @@ pub struct Progress<'a> {
     pub correction: f64,
     /// The tolerance.
     pub tolerance: f64,
-    /// Merit before and after the step.
+    /// Merit before the step.
     pub merit_before: f64,
     /// Merit after the step.
     pub merit_after: f64,
@@ -779,8 +779,8 @@ mod tests {
             Ok(())
         }
         fn jacobian(&mut self, z: &[f64], jac: &mut Triplets) -> Result<(), LinearError> {
-            for c in 0..3 {
-                jac.push(0, c, 2.0 * z[c]);
+            for (c, &zc) in z.iter().enumerate() {
+                jac.push(0, c, 2.0 * zc);
             }
             jac.push(1, 0, 1.0);
             jac.push(1, 1, -1.0);
