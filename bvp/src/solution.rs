@@ -106,6 +106,33 @@ pub struct Stats {
     pub wall_seconds: f64,
 }
 
+impl Stats {
+    /// Add the iteration counters of one step (Newton iterations, Jacobians, mesh passes);
+    /// right-hand-side evaluations are counted by the caller's discretisation.
+    pub fn add_iterations(&mut self, step: &Stats) {
+        self.newton_iterations += step.newton_iterations;
+        self.jacobian_evaluations += step.jacobian_evaluations;
+        self.refinements += step.refinements;
+    }
+
+    /// Add the work counters of one stage of a run (homotopy, final solve): iterations
+    /// and right-hand-side evaluations.
+    pub fn add_work(&mut self, stage: &Stats) {
+        self.add_iterations(stage);
+        self.rhs_evaluations += stage.rhs_evaluations;
+    }
+
+    /// Close a run's total with its last stage: that stage's work, its size and residual,
+    /// and the run's wall time since `clock`.
+    pub fn close_with(&mut self, last: &Stats, clock: std::time::Instant) {
+        self.add_work(last);
+        self.unknowns = last.unknowns;
+        self.mesh_nodes = last.mesh_nodes;
+        self.max_residual = last.max_residual;
+        self.wall_seconds = clock.elapsed().as_secs_f64();
+    }
+}
+
 /// A multi-segment BVP solution; also used as an initial guess.
 #[derive(Debug, Clone, Serialize)]
 pub struct Solution {
