@@ -38,10 +38,7 @@ impl BeltOptions {
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneSolveError> {
         let b = scene.bvp_settings();
         Ok(Self {
-            method: match b.method {
-                drive::scene::BvpMethod::Collocation => BvpMethod::Collocation,
-                drive::scene::BvpMethod::Shooting => BvpMethod::Shooting,
-            },
+            method: b.method,
             tolerance: b.tolerance,
             scheme: b
                 .scheme

@@ -31,8 +31,9 @@ fn options(scene: &Scene, method: BvpMethod) -> BvpRunOptions {
 /// Solve and expect the named balance failure; returns (value, scale, tolerance).
 fn expect_balance_failure(scene: &Scene, method: BvpMethod, which: &str) -> (f64, f64, f64) {
     match solve_scene(scene, &options(scene, method)) {
-        Err(SceneSolveError::Belt(BeltError::BalanceFailed { balance, value, scale, tolerance, .. })) => {
-            assert_eq!(balance, which, "{}", method.name());
+        Err(SceneSolveError::Belt(BeltError::BalanceFailed(b))) => {
+            let (value, scale, tolerance) = (b.value, b.scale, b.tolerance);
+            assert_eq!(b.name, which, "{}", method.name());
             assert!(value.abs() > tolerance * scale, "{}: {value} within {tolerance} × {scale}", method.name());
             (value, scale, tolerance)
         }

@@ -36,34 +36,49 @@ pub fn closure_scale(weight: f64, force_scale: f64) -> (f64, &'static str) {
     if weight > 0.0 { (weight, "belt weight ρgL") } else { (force_scale, "force scale F_ref") }
 }
 
+/// One balance of a run held against its tolerance.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Balance {
+    /// Which balance: "closure defect" or "power imbalance".
+    pub name: &'static str,
+    /// Its value (N or W).
+    pub value: f64,
+    /// Unit of `value` and `scale`.
+    pub unit: &'static str,
+    /// The scale it is measured against (N or W).
+    pub scale: f64,
+    /// What the scale is ("belt weight ρgL", "force scale F_ref", "power scale P_ref").
+    pub scale_name: &'static str,
+    /// The relative tolerance.
+    pub tolerance: f64,
+}
+
+impl std::fmt::Display for Balance {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} {:.3e} {} exceeds {:.1e} × the scene's {} {:.3e} {}",
+            self.name, self.value, self.unit, self.tolerance, self.scale_name, self.scale, self.unit
+        )
+    }
+}
+
+impl Balance {
+    /// |value| ≤ tolerance · scale, else [`BeltError::BalanceFailed`] with the numbers.
+    pub fn check(self) -> Result<(), BeltError> {
+        if self.value.abs() <= self.tolerance * self.scale { Ok(()) } else { Err(BeltError::BalanceFailed(self)) }
+    }
+}
+
 /// Check the closure defect `defect` (N) against the belt weight `weight` = ρgL (N) or,
 /// without gravity, the force scale `force_scale` = F_ref (N).
 pub fn check_closure(defect: f64, weight: f64, force_scale: f64) -> Result<(), BeltError> {
     let (scale, scale_name) = closure_scale(weight, force_scale);
-    if defect.abs() <= CLOSURE_TOLERANCE * scale {
-        return Ok(());
-    }
-    Err(BeltError::BalanceFailed {
-        balance: "closure defect",
-        value: defect,
-        unit: "N",
-        scale,
-        scale_name,
-        tolerance: CLOSURE_TOLERANCE,
-    })
+    Balance { name: "closure defect", value: defect, unit: "N", scale, scale_name, tolerance: CLOSURE_TOLERANCE }.check()
 }
 
 /// Check the power imbalance `imbalance` (W) against `power_scale` = P_ref (W).
 pub fn check_power(imbalance: f64, power_scale: f64) -> Result<(), BeltError> {
-    if imbalance.abs() <= POWER_TOLERANCE * power_scale {
-        return Ok(());
-    }
-    Err(BeltError::BalanceFailed {
-        balance: "power imbalance",
-        value: imbalance,
-        unit: "W",
-        scale: power_scale,
-        scale_name: "power scale P_ref",
-        tolerance: POWER_TOLERANCE,
-    })
+    let scale_name = "power scale P_ref";
+    Balance { name: "power imbalance", value: imbalance, unit: "W", scale: power_scale, scale_name, tolerance: POWER_TOLERANCE }.check()
 }

@@ -6,6 +6,8 @@ use thiserror::Error;
 use crate::analytical::belt_creep::CreepError;
 use crate::error::BvpError;
 
+use super::balance::Balance;
+
 /// Why a belt problem (string, Kirchhoff rod, string drive) has no computed solution.
 #[derive(Debug, Clone, Error)]
 pub enum BeltError {
@@ -45,19 +47,6 @@ pub enum BeltError {
     /// converged discrete solution does not satisfy the belt's equilibrium, e.g. when the
     /// scene's numbers lie beyond what double precision resolves (EA ≥ 1e17 N, a centre
     /// distance of 1e50 m).
-    #[error("self-check failed: {balance} {value:.3e} {unit} exceeds {tolerance:.1e} × the scene's {scale_name} {scale:.3e} {unit}; the solution is not trustworthy (scene numbers such as an axial stiffness of 1e17 N or a centre distance of 1e50 m lie beyond what double precision resolves against the belt's weight and load)")]
-    BalanceFailed {
-        /// Which balance: "closure defect" or "power imbalance".
-        balance: &'static str,
-        /// Its value (N or W).
-        value: f64,
-        /// Unit of `value` and `scale`.
-        unit: &'static str,
-        /// The scale it is measured against (N or W).
-        scale: f64,
-        /// What the scale is ("belt weight ρgL", "force scale F_ref", "power scale P_ref").
-        scale_name: &'static str,
-        /// The relative tolerance.
-        tolerance: f64,
-    },
+    #[error("self-check failed: {0}; the solution is not trustworthy (scene numbers such as an axial stiffness of 1e17 N or a centre distance of 1e50 m lie beyond what double precision resolves against the belt's weight and load)")]
+    BalanceFailed(Balance),
 }

@@ -6,26 +6,8 @@ use serde::Serialize;
 use crate::collocation::Scheme;
 use crate::problem::JacobianMode;
 
-/// The two BVP methods of the final solve.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum BvpMethod {
-    /// Collocation with residual control (`bvp-collocation`).
-    #[serde(rename = "bvp-collocation")]
-    Collocation,
-    /// Multiple shooting (`bvp-shooting`).
-    #[serde(rename = "bvp-shooting")]
-    Shooting,
-}
-
-impl BvpMethod {
-    /// The method's name in scenes and results.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Collocation => "bvp-collocation",
-            Self::Shooting => "bvp-shooting",
-        }
-    }
-}
+/// The two BVP methods of the final solve: the scene's own `bvp.method` type.
+pub use drive::scene::BvpMethod;
 
 /// Options of a belt BVP run. The final tolerance is held here once: the homotopy and
 /// the final solve read it from this struct, no copy is made on the way down.
