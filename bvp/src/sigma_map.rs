@@ -67,24 +67,15 @@ impl SigmaMap {
         let mut entries = Vec::new();
         let mut last = f64::NEG_INFINITY;
         let mut offset = 0.0;
-        for (k, seg) in solution.segments.iter().enumerate() {
-            let mut xis: Vec<f64> = Vec::with_capacity(seg.mesh.len() * PER_INTERVAL);
-            for w in seg.mesh.windows(2) {
-                for j in 0..PER_INTERVAL {
-                    xis.push(w[0] + (w[1] - w[0]) * j as f64 / PER_INTERVAL as f64);
-                }
+        for (k, xi) in solution.sample_points(PER_INTERVAL) {
+            let s = sigma_on(&contour, sides[k], point(k, xi));
+            let mut su = s + offset;
+            if last.is_finite() && su < last - 0.5 * total {
+                offset += total;
+                su += total;
             }
-            xis.push(1.0);
-            for xi in xis {
-                let s = sigma_on(&contour, sides[k], point(k, xi));
-                let mut su = s + offset;
-                if last.is_finite() && su < last - 0.5 * total {
-                    offset += total;
-                    su += total;
-                }
-                last = su;
-                entries.push((k, xi, su));
-            }
+            last = su;
+            entries.push((k, xi, su));
         }
         Self { contour, sides: sides.to_vec(), entries }
     }

@@ -81,6 +81,17 @@ impl SegmentSolution {
     pub fn end(&self) -> &[f64] {
         self.nodes.last().expect("a segment has at least two nodes")
     }
+
+    /// y(ξ): the exact node values at ξ ≤ 0 and ξ ≥ 1, the dense output inside.
+    pub fn state_at(&self, xi: f64) -> Vec<f64> {
+        if xi <= 0.0 {
+            self.start().to_vec()
+        } else if xi >= 1.0 {
+            self.end().to_vec()
+        } else {
+            self.eval(xi)
+        }
+    }
 }
 
 /// Work counters and outcome data of a solve. Exact counts, so that a change in
@@ -170,5 +181,21 @@ impl Solution {
     /// Dense output y_k(x).
     pub fn eval(&self, k: usize, x: f64) -> Vec<f64> {
         self.segments[k].eval(x)
+    }
+
+    /// Sample points (segment k, ξ) along all segments in order: every mesh node and
+    /// `per_interval` − 1 equally spaced points inside each mesh interval, then ξ = 1.
+    pub fn sample_points(&self, per_interval: usize) -> Vec<(usize, f64)> {
+        let n = per_interval.max(1);
+        let mut out = Vec::new();
+        for (k, seg) in self.segments.iter().enumerate() {
+            for w in seg.mesh.windows(2) {
+                for j in 0..n {
+                    out.push((k, w[0] + (w[1] - w[0]) * j as f64 / n as f64));
+                }
+            }
+            out.push((k, 1.0));
+        }
+        out
     }
 }

@@ -285,14 +285,7 @@ impl RodHangingSolution {
     /// The rod at segment `k`, normalised coordinate ξ ∈ [0, 1] (exact node values at the
     /// ends).
     pub fn point(&self, k: usize, xi: f64) -> RodPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         let pb = &self.problem;
         if is_span(k) {
@@ -363,17 +356,7 @@ impl RodHangingSolution {
     /// Points along the loop: every mesh node and `per_interval` − 1 dense points inside
     /// each mesh interval, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, RodPoint)> {
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..per_interval.max(1) {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / per_interval.max(1) as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
     }
 
     /// Checks of docs/rod-hanging.md ("Homotopy"): topology, N > 0, p ≥ 0 inside the arcs,

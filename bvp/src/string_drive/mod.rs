@@ -113,18 +113,13 @@ pub struct StringDriveSolution {
 }
 
 fn validate(d: &StringDrive) -> Result<(), BeltError> {
-    let positive = [
+    crate::belt::check_positive(&[
         ("pulley_radius", d.radius),
         ("centre_distance", d.centre_distance),
         ("length", d.length),
         ("axial_stiffness", d.axial_stiffness),
         ("mass_per_length", d.mass_per_length),
-    ];
-    for (name, value) in positive {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(BeltError::InvalidInput { name, value, reason: "must be finite and > 0" });
-        }
-    }
+    ])?;
     let non_negative = [
         ("gravity", d.gravity),
         ("driver_speed", d.driver_speed),
@@ -148,13 +143,7 @@ fn validate(d: &StringDrive) -> Result<(), BeltError> {
             reason: "a steady friction drive needs μ > 0 (without friction the belt speed is undetermined)",
         });
     }
-    if d.centre_distance <= 2.0 * d.radius {
-        return Err(BeltError::InvalidInput {
-            name: "centre_distance",
-            value: d.centre_distance,
-            reason: "must exceed twice the pulley radius (the pulleys overlap)",
-        });
-    }
+    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
     let wave_speed = (d.axial_stiffness / d.mass_per_length).sqrt();
     if d.inertia && d.driver_speed * d.radius >= wave_speed {
         return Err(BeltError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
@@ -383,14 +372,7 @@ impl StringDriveSolution {
 
     /// The belt at segment `k`, ξ ∈ [0, 1] (dense output; node values at the ends).
     pub fn point(&self, k: usize, xi: f64) -> BeltPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         let c = self.solution.params[P_C];
         let pb = &self.problem;
@@ -437,18 +419,7 @@ impl StringDriveSolution {
     /// Points along the loop: every mesh node and `per_interval` − 1 dense points inside
     /// each mesh interval, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, BeltPoint)> {
-        let n = per_interval.max(1);
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..n {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / n as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
     }
 
     /// The power scale P_ref of the balance check (W, [`crate::belt::balance`]): the

@@ -83,28 +83,17 @@ pub struct StringHangingSolution {
 
 /// Validate the physical data.
 fn validate(d: &StringHanging) -> Result<(), BeltError> {
-    let positive = [
+    crate::belt::check_positive(&[
         ("pulley_radius", d.radius),
         ("centre_distance", d.centre_distance),
         ("length", d.length),
         ("axial_stiffness", d.axial_stiffness),
         ("mass_per_length", d.mass_per_length),
-    ];
-    for (name, value) in positive {
-        if !value.is_finite() || value <= 0.0 {
-            return Err(BeltError::InvalidInput { name, value, reason: "must be finite and > 0" });
-        }
-    }
+    ])?;
     if !d.gravity.is_finite() || d.gravity < 0.0 {
         return Err(BeltError::InvalidInput { name: "gravity", value: d.gravity, reason: "must be finite and ≥ 0" });
     }
-    if d.centre_distance <= 2.0 * d.radius {
-        return Err(BeltError::InvalidInput {
-            name: "centre_distance",
-            value: d.centre_distance,
-            reason: "must exceed twice the pulley radius (the pulleys overlap)",
-        });
-    }
+    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
     if d.gravity == 0.0 && d.tight_tension() <= 0.0 {
         return Err(BeltError::WeightlessSlack { length: d.length, geometric_length: d.geometric_length() });
     }
@@ -265,14 +254,7 @@ impl StringHangingSolution {
     /// The belt at segment `k`, normalised coordinate ξ ∈ [0, 1] (dense output; exact
     /// node values at ξ = 0, 1).
     pub fn point(&self, k: usize, xi: f64) -> BeltPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         if is_span(k) {
             BeltPoint {
@@ -319,17 +301,7 @@ impl StringHangingSolution {
     /// Points sampled along the whole loop: every mesh node and `per_interval` − 1 dense
     /// points inside each mesh interval, in the direction of σ, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, BeltPoint)> {
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..per_interval.max(1) {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / per_interval.max(1) as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
     }
 
     /// Check the conditions the segment topology assumes (docs/string-hanging.md,
