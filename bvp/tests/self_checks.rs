@@ -9,6 +9,7 @@
 //! - `string-drive` with axial_stiffness = 1e17 N (shooting: imbalance 0.79 W of 780 W),
 //!   1e50 N (collocation: 1.6e17 W; shooting: 774 W), centre_distance = 1e50 m
 //!   (collocation: 5.5e38 W).
+//!
 //! And the other side: the catalogue scenes pass with balances many orders below the
 //! tolerance (closure ≤ 1e-10 of the weight, power ≤ 1e-7 of P_ref at tolerance 1e-8), so
 //! the checks cannot fire on a converged solve.

@@ -175,6 +175,8 @@ pub fn rod_guess(string: &Solution, rod: &ScaledRodHanging, nodes: usize) -> Sol
 /// pulley's horizontal diameter (φ₂_b > 0, heading downwards); whether such a state is
 /// physical is decided by the contact checks (edge forces, p ≥ 0, no span through a
 /// pulley), not by this window.
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64]) -> Result<(), String> {
     let ranges = [
         ("first contact on the driven pulley", P_PHI2A, FRAC_PI_2),

@@ -211,6 +211,8 @@ pub fn tight_guess(p: &ScaledStringDrive, nodes: usize) -> Solution {
 /// The segment topology (docs/string-drive.md, "Checks"): contact angles within 90° of
 /// their tight values, stick and slip arcs ≥ 0 (stick before slip), spans of positive
 /// length, transport rate ≥ 0. `slack` is the tolerance on the arcs (rad).
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64], slack: f64) -> Result<(), String> {
     use std::f64::consts::FRAC_PI_2;
     let ranges = [

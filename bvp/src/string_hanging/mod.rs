@@ -205,6 +205,8 @@ pub fn solve(data: &StringHanging, opts: &BeltOptions) -> Result<StringHangingSo
 /// every span has positive length. The discrete equations have other, unphysical,
 /// solutions (a belt wound once more round a pulley, at an enormous tension): this test
 /// keeps the homotopy and the final solve off them.
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64]) -> Result<(), String> {
     use std::f64::consts::FRAC_PI_2;
     let ranges = [
