@@ -4,7 +4,8 @@
 //! √(EI/T) ≈ 0.027 m) and the thin steel belt of Paper A (EI = 1.75 N·m², EA = 2e7 N).
 
 use bvp::collocation::Scheme;
-use bvp::rod_hanging::{solve, Method, RodHanging, RodHangingOptions};
+use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::rod_hanging::{solve, RodHanging};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
@@ -39,14 +40,14 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("rod_hanging");
     g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
     let methods = [
-        ("gauss6", Method::Collocation(Scheme::Gauss6)),
-        ("gauss8", Method::Collocation(Scheme::Gauss8)),
-        ("shooting", Method::Shooting),
+        ("gauss6", BvpMethod::Collocation, Scheme::Gauss6),
+        ("gauss8", BvpMethod::Collocation, Scheme::Gauss8),
+        ("shooting", BvpMethod::Shooting, Scheme::default()),
     ];
     for (scene_name, data) in [("catalogue", catalogue()), ("steel", steel())] {
-        for (name, method) in methods {
+        for (name, method, scheme) in methods {
             for tol in [1e-6, 1e-10] {
-                let opts = RodHangingOptions { method, tolerance: tol, ..Default::default() };
+                let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
                 g.bench_function(format!("{scene_name}/{name}/tol={tol:.0e}"), |b| {
                     b.iter(|| solve(black_box(&data), &opts).expect("solves"))
                 });

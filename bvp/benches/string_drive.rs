@@ -4,8 +4,8 @@
 //! 1e-10; and the gravity-free closed form (belt-creep theory, one Brent root).
 
 use bvp::collocation::Scheme;
-use bvp::string_drive::{solve, StringDrive, StringDriveOptions};
-use bvp::string_hanging::Method;
+use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::string_drive::{solve, StringDrive};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
 use std::hint::black_box;
@@ -47,9 +47,9 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("string_drive");
     g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
     for (scene, data) in [("catalogue", catalogue()), ("exudyn", exudyn())] {
-        for (name, method) in [("gauss6", Method::Collocation(Scheme::Gauss6)), ("shooting", Method::Shooting)] {
+        for (name, method, scheme) in [("gauss6", BvpMethod::Collocation, Scheme::Gauss6), ("shooting", BvpMethod::Shooting, Scheme::default())] {
             for tol in [1e-6, 1e-10] {
-                let opts = StringDriveOptions { method, tolerance: tol, ..Default::default() };
+                let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
                 g.bench_function(format!("{scene}/{name}/tol={tol:.0e}"), |b| b.iter(|| solve(black_box(&data), &opts).expect("solves")));
             }
         }

@@ -3,7 +3,8 @@
 //! at 1e-10 its residual (O(h²)) needs more than the 20 000-node cap, which it reports.
 
 use bvp::collocation::Scheme;
-use bvp::string_hanging::{solve, Method, StringHanging, StringHangingOptions};
+use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::string_hanging::{solve, StringHanging};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::hint::black_box;
 use std::time::Duration;
@@ -16,14 +17,14 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("string_hanging");
     g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
     let runs = [
-        ("gauss4", Method::Collocation(Scheme::Gauss4), &[1e-6][..]),
-        ("gauss6", Method::Collocation(Scheme::Gauss6), &[1e-6, 1e-10][..]),
-        ("gauss8", Method::Collocation(Scheme::Gauss8), &[1e-6, 1e-10][..]),
-        ("shooting", Method::Shooting, &[1e-6, 1e-10][..]),
+        ("gauss4", BvpMethod::Collocation, Scheme::Gauss4, &[1e-6][..]),
+        ("gauss6", BvpMethod::Collocation, Scheme::Gauss6, &[1e-6, 1e-10][..]),
+        ("gauss8", BvpMethod::Collocation, Scheme::Gauss8, &[1e-6, 1e-10][..]),
+        ("shooting", BvpMethod::Shooting, Scheme::default(), &[1e-6, 1e-10][..]),
     ];
-    for (name, method, tols) in runs {
+    for (name, method, scheme, tols) in runs {
         for &tol in tols {
-            let opts = StringHangingOptions { method, tolerance: tol, ..Default::default() };
+            let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
             g.bench_function(format!("{name}/tol={tol:.0e}"), |b| b.iter(|| solve(black_box(&scene()), &opts).expect("solves")));
         }
     }

@@ -437,12 +437,6 @@ fn retryable(e: &BvpError) -> bool {
     matches!(e, BvpError::NewtonDiverged { .. } | BvpError::SingularJacobian { .. } | BvpError::NonFinite { .. })
 }
 
-fn add_work(total: &mut Stats, step: &Stats) {
-    total.newton_iterations += step.newton_iterations;
-    total.jacobian_evaluations += step.jacobian_evaluations;
-    total.refinements += step.refinements;
-}
-
 /// The first point: a plain adaptive solve of `guess` at `eta`.
 fn first_point<'a, P: Problem>(
     problem: &'a P,
@@ -459,7 +453,7 @@ fn first_point<'a, P: Problem>(
     let t0 = Instant::now();
     let mut st = Stats::default();
     let a = adapt(disc, z, eta, &mut FixedEta::new(opts), opts, &mut st)?;
-    add_work(total, &st);
+    total.add_iterations(&st);
     let sol = a.solution(st, t0, 0);
     Ok((a, sol))
 }
@@ -547,7 +541,7 @@ pub fn natural_checked<P: Problem>(
         let mut st = Stats::default();
         match adapt(disc, z0, target, &mut FixedEta::new(opts), opts, &mut st) {
             Ok(a) => {
-                add_work(&mut total, &st);
+                total.add_iterations(&st);
                 let quick = st.newton_iterations <= copts.fast_iterations;
                 let sol = a.solution(st, t0, baseline);
                 if let Err(reason) = accept(&sol) {
@@ -574,7 +568,7 @@ pub fn natural_checked<P: Problem>(
                 }
             }
             Err(e) if retryable(&e) => {
-                add_work(&mut total, &st);
+                total.add_iterations(&st);
                 step /= 2.0;
                 if step < copts.min_step {
                     return Err(BvpError::ContinuationStalled {
@@ -657,7 +651,7 @@ pub fn pseudo_arclength<P: Problem>(
         let mut st = Stats::default();
         match adapt(disc, z0, eta0, &mut corrector, opts, &mut st) {
             Ok(a) => {
-                add_work(&mut total, &st);
+                total.add_iterations(&st);
                 let quick = st.newton_iterations <= copts.fast_iterations;
                 let prev = &points[points.len() - 1].solution;
                 let zp = a.disc.sample(prev)?;
@@ -687,7 +681,7 @@ pub fn pseudo_arclength<P: Problem>(
                 }
             }
             Err(e) if retryable(&e) => {
-                add_work(&mut total, &st);
+                total.add_iterations(&st);
                 ds /= 2.0;
                 if ds < copts.min_step {
                     return Err(BvpError::ContinuationStalled {

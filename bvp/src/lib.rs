@@ -10,6 +10,8 @@
 //! - `shooting`: multiple shooting on diffsol,
 //! - `continuation`: natural-parameter and pseudo-arclength continuation, fold detection,
 //! - `analytical`: closed forms used by tests and examples,
+//! - [`belt`]: what every belt problem shares — one options struct, one error type, the
+//!   stages of a run (homotopy, final solve, work counters) and the balance self-checks,
 //! - [`sigma_map`]: the belt point at a contour coordinate σ (for the common view),
 //! - [`string_hanging`]: the extensible string on two pulleys,
 //! - [`rod_hanging`]: the Kirchhoff rod on two pulleys,
@@ -26,6 +28,7 @@ pub mod analytical;
 pub mod collocation;
 pub mod continuation;
 pub mod newton;
+pub mod belt;
 pub mod scene;
 pub mod sigma_map;
 pub mod string_hanging;

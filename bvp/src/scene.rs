@@ -6,50 +6,18 @@ use drive::summary::Summary;
 use drive::view::SolutionView;
 use thiserror::Error;
 
-use crate::collocation::Scheme;
+use crate::belt::BeltError;
 use crate::problem::JacobianMode;
+use crate::rod_hanging::{self, view::RodView, RodHanging};
 use crate::solution::Stats;
-use crate::rod_hanging::{self, view::RodView, RodHanging, RodHangingError, RodHangingOptions};
-use crate::string_drive::{self, StringDrive, StringDriveError, StringDriveOptions};
-use crate::string_hanging::{self, Method, StringHanging, StringHangingError, StringHangingOptions};
+use crate::string_drive::{self, StringDrive};
+use crate::string_hanging::{self, StringHanging};
 
-/// The two BVP methods.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
-pub enum BvpMethod {
-    #[serde(rename = "bvp-collocation")]
-    /// Collocation with residual control (`bvp-collocation`).
-    Collocation,
-    /// Multiple shooting (`bvp-shooting`).
-    #[serde(rename = "bvp-shooting")]
-    Shooting,
-}
+pub use crate::belt::{BeltOptions, BvpMethod};
 
-impl BvpMethod {
-    /// The method's name in scenes and results.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Collocation => "bvp-collocation",
-            Self::Shooting => "bvp-shooting",
-        }
-    }
-}
-
-/// Options of a BVP run; defaults come from the scene's `bvp` block (DESIGN.md).
-#[derive(Debug, Clone, serde::Serialize)]
-pub struct BvpRunOptions {
-    /// Method (scene `bvp.method`; default collocation).
-    pub method: BvpMethod,
-    /// Final tolerance (scene `bvp.tolerance`; default 1e-8).
-    pub tolerance: f64,
-    /// Collocation scheme (scene `bvp.scheme`; default gauss6).
-    pub scheme: Scheme,
-    /// Collocation mesh cap (scene `bvp.max_nodes`; default 20 000).
-    pub max_nodes: usize,
-    /// Shooting intervals per segment (scene `bvp.shooting_intervals`; default 8).
-    pub shooting_intervals: usize,
-    /// Jacobians (AD by default).
-    pub jacobian: JacobianMode,
-}
+/// Options of a BVP run: the one options struct of the belt problems, its defaults
+/// overridden by the scene's `bvp` block ([`BeltOptions::from_scene`]).
+pub type BvpRunOptions = BeltOptions;
 
 /// Why a scene has no BVP solution.
 #[derive(Debug, Error)]
@@ -60,26 +28,17 @@ pub enum SceneSolveError {
     /// An option of the scene's `bvp` block is invalid.
     #[error("scene field `bvp.{field}`: {reason}")]
     InvalidOption { field: &'static str, reason: String },
-    /// The `string-hanging` problem failed.
+    /// The belt problem failed (or has no solution of its kind).
     #[error(transparent)]
-    StringHanging(#[from] StringHangingError),
-    /// The `rod-hanging` problem failed.
-    #[error(transparent)]
-    RodHanging(#[from] RodHangingError),
-    /// The `string-drive` problem failed (or has no steady solution).
-    #[error(transparent)]
-    StringDrive(#[from] StringDriveError),
+    Belt(#[from] BeltError),
 }
 
-impl BvpRunOptions {
+impl BeltOptions {
     /// Defaults overridden by the scene's `bvp` block.
     pub fn from_scene(scene: &Scene) -> Result<Self, SceneSolveError> {
         let b = scene.bvp_settings();
         Ok(Self {
-            method: match b.method {
-                drive::scene::BvpMethod::Collocation => BvpMethod::Collocation,
-                drive::scene::BvpMethod::Shooting => BvpMethod::Shooting,
-            },
+            method: b.method,
             tolerance: b.tolerance,
             scheme: b
                 .scheme
@@ -88,6 +47,7 @@ impl BvpRunOptions {
             max_nodes: b.max_nodes,
             shooting_intervals: b.shooting_intervals,
             jacobian: JacobianMode::Ad,
+            ..Self::default()
         })
     }
 }
@@ -139,22 +99,6 @@ pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
     }
 }
 
-/// The method of `opts` in the belt problems' terms.
-fn method_of(opts: &BvpRunOptions) -> Method {
-    match opts.method {
-        BvpMethod::Collocation => Method::Collocation(opts.scheme),
-        BvpMethod::Shooting => Method::Shooting,
-    }
-}
-
-/// Scheme/intervals and tolerance in words.
-fn method_detail(opts: &BvpRunOptions) -> String {
-    match opts.method {
-        BvpMethod::Collocation => format!("{}, tolerance {:.0e}", opts.scheme.name(), opts.tolerance),
-        BvpMethod::Shooting => format!("{} intervals per segment, tolerance {:.0e}", opts.shooting_intervals, opts.tolerance),
-    }
-}
-
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`) or
 /// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys, or the string in
 /// steady motion with Coulomb friction (`string-drive`).
@@ -167,15 +111,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
     match scene.belt.theory {
         Theory::String if static_frictionless => {
             let data = string_hanging_data(scene);
-            let sh_opts = StringHangingOptions {
-                method: method_of(opts),
-                tolerance: opts.tolerance,
-                max_nodes: opts.max_nodes,
-                shooting_intervals: opts.shooting_intervals,
-                jacobian: opts.jacobian,
-                ..StringHangingOptions::default()
-            };
-            let sol = string_hanging::solve(&data, &sh_opts)?;
+            let sol = string_hanging::solve(&data, opts)?;
             let notes = vec![
                 format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
@@ -185,7 +121,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 stats: sol.stats.clone(),
                 view: Box::new(sol),
                 method: opts.method.name().to_string(),
-                method_detail: method_detail(opts),
+                method_detail: opts.detail(),
                 options,
                 notes,
             })
@@ -201,15 +137,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 mass_per_length: s.mass_per_length,
                 gravity: s.gravity,
             };
-            let rh_opts = RodHangingOptions {
-                method: method_of(opts),
-                tolerance: opts.tolerance,
-                max_nodes: opts.max_nodes,
-                shooting_intervals: opts.shooting_intervals,
-                jacobian: opts.jacobian,
-                ..RodHangingOptions::default()
-            };
-            let sol = rod_hanging::solve(&data, &rh_opts)?;
+            let sol = rod_hanging::solve(&data, opts)?;
             let notes = vec![
                 format!(
                     "homotopy: the string, then {} continuation steps in log EI from EI₀ = {:.3e} N·m²",
@@ -223,7 +151,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 stats: view.solution.stats.clone(),
                 view: Box::new(view),
                 method: opts.method.name().to_string(),
-                method_detail: method_detail(opts),
+                method_detail: opts.detail(),
                 options,
                 notes,
             })
@@ -231,15 +159,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
         Theory::String if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
             let Contact::Coulomb(mu) = scene.effects.contact else { unreachable!("matched above") };
             let data = string_drive_data(scene, mu);
-            let sd_opts = StringDriveOptions {
-                method: method_of(opts),
-                tolerance: opts.tolerance,
-                max_nodes: opts.max_nodes,
-                shooting_intervals: opts.shooting_intervals,
-                jacobian: opts.jacobian,
-                ..StringDriveOptions::default()
-            };
-            let sol = string_drive::solve(&data, &sd_opts)?;
+            let sol = string_drive::solve(&data, opts)?;
             let (input, output, dissipation) = sol.power_balance();
             let mut notes = vec![
                 format!("homotopy: {} continuation steps from the tight loop at rest (torque, gravity, length, speed)", sol.homotopy_steps),
@@ -261,7 +181,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 stats: sol.stats.clone(),
                 view: Box::new(sol),
                 method: opts.method.name().to_string(),
-                method_detail: method_detail(opts),
+                method_detail: opts.detail(),
                 options,
                 notes,
             })

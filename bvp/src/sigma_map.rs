@@ -6,15 +6,52 @@
 //! physical belt this σ increases monotonically round the loop, so a table of σ at dense
 //! samples, unwrapped to increase, brackets any query, and bisection on the dense output
 //! refines it to ~1e-15 in ξ.
+//!
+//! The inverse contour map alone cannot say on which straight a point between the pulley
+//! centres (|x| ≤ H/2) lies: `Contour::sigma_nu` decides by the sign of y, so an upper
+//! span that sags below the centre line (y < 0, slack belts on small pulleys) would be
+//! read as the lower span and the σ table would fold back on itself (issue 12, item 1:
+//! every upper-span field sample then sat at one point). The MEL description puts such
+//! a point on the upper straight at ν = y − R < −R. So each segment carries its
+//! [`Side`]: a span point between the centres takes σ of its own straight; a pulley
+//! sector point (|x| > H/2) and an arc point are mapped by `sigma_nu` as before.
 
 use drive::contour::Contour;
 
 use crate::solution::Solution;
 
+/// Which part of the loop a segment is: it decides which straight of the contour a
+/// point between the pulley centres belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// A free span of the upper strand (σ runs left to right, x increasing).
+    UpperSpan,
+    /// A free span of the lower strand (σ runs right to left).
+    LowerSpan,
+    /// A contact arc on a pulley (always on the pulley circle: the sign of y decides).
+    Arc,
+}
+
+/// σ (unwrapped into [0, L_c)) of a belt point on a segment of side `side`.
+pub fn sigma_on(contour: &Contour, side: Side, point: [f64; 2]) -> f64 {
+    let (h, r) = (contour.centre_distance(), contour.radius());
+    let half = 0.5 * h;
+    let x = point[0];
+    if x.abs() <= half {
+        match side {
+            Side::UpperSpan => return contour.wrap(x + half),
+            Side::LowerSpan => return contour.wrap(h + std::f64::consts::PI * r + half - x),
+            Side::Arc => {}
+        }
+    }
+    contour.sigma_nu(point).0
+}
+
 /// σ at dense samples along the loop: (segment, ξ, σ unwrapped), in loop order.
 #[derive(Debug, Clone)]
 pub struct SigmaMap {
     contour: Contour,
+    sides: Vec<Side>,
     entries: Vec<(usize, f64, f64)>,
 }
 
@@ -22,39 +59,32 @@ pub struct SigmaMap {
 const PER_INTERVAL: usize = 8;
 
 impl SigmaMap {
-    /// The table for `solution`, whose belt point at (k, ξ) is `point(k, ξ)` (m).
-    pub fn new(contour: Contour, solution: &Solution, point: impl Fn(usize, f64) -> [f64; 2]) -> Self {
+    /// The table for `solution`, whose belt point at (k, ξ) is `point(k, ξ)` (m) and whose
+    /// segment k lies on `sides[k]`.
+    pub fn new(contour: Contour, sides: &[Side], solution: &Solution, point: impl Fn(usize, f64) -> [f64; 2]) -> Self {
+        assert_eq!(sides.len(), solution.segments.len(), "one side per segment");
         let total = contour.length();
         let mut entries = Vec::new();
         let mut last = f64::NEG_INFINITY;
         let mut offset = 0.0;
-        for (k, seg) in solution.segments.iter().enumerate() {
-            let mut xis: Vec<f64> = Vec::with_capacity(seg.mesh.len() * PER_INTERVAL);
-            for w in seg.mesh.windows(2) {
-                for j in 0..PER_INTERVAL {
-                    xis.push(w[0] + (w[1] - w[0]) * j as f64 / PER_INTERVAL as f64);
-                }
+        for (k, xi) in solution.sample_points(PER_INTERVAL) {
+            let s = sigma_on(&contour, sides[k], point(k, xi));
+            let mut su = s + offset;
+            if last.is_finite() && su < last - 0.5 * total {
+                offset += total;
+                su += total;
             }
-            xis.push(1.0);
-            for xi in xis {
-                let (s, _) = contour.sigma_nu(point(k, xi));
-                let mut su = s + offset;
-                if last.is_finite() && su < last - 0.5 * total {
-                    offset += total;
-                    su += total;
-                }
-                last = su;
-                entries.push((k, xi, su));
-            }
+            last = su;
+            entries.push((k, xi, su));
         }
-        Self { contour, entries }
+        Self { contour, sides: sides.to_vec(), entries }
     }
 
     /// A map with no samples yet (for two-phase construction of a solution object whose
     /// `point` is needed to build the table); [`SigmaMap::locate`] answers (0, 0) until it
     /// is replaced by [`SigmaMap::new`].
     pub fn empty(contour: Contour) -> Self {
-        Self { contour, entries: Vec::new() }
+        Self { contour, sides: Vec::new(), entries: Vec::new() }
     }
 
     /// The contour.
@@ -79,7 +109,7 @@ impl SigmaMap {
             return (k0, x0);
         }
         let sigma_at = |xi: f64| {
-            let (v, _) = self.contour.sigma_nu(point(k0, xi));
+            let v = sigma_on(&self.contour, self.sides[k0], point(k0, xi));
             // Unwrap to the neighbourhood of the table entry.
             v + ((s0 - v) / total).round() * total
         };

@@ -81,6 +81,17 @@ impl SegmentSolution {
     pub fn end(&self) -> &[f64] {
         self.nodes.last().expect("a segment has at least two nodes")
     }
+
+    /// y(ξ): the exact node values at ξ ≤ 0 and ξ ≥ 1, the dense output inside.
+    pub fn state_at(&self, xi: f64) -> Vec<f64> {
+        if xi <= 0.0 {
+            self.start().to_vec()
+        } else if xi >= 1.0 {
+            self.end().to_vec()
+        } else {
+            self.eval(xi)
+        }
+    }
 }
 
 /// Work counters and outcome data of a solve. Exact counts, so that a change in
@@ -104,6 +115,33 @@ pub struct Stats {
     pub max_residual: f64,
     /// Wall time in seconds.
     pub wall_seconds: f64,
+}
+
+impl Stats {
+    /// Add the iteration counters of one step (Newton iterations, Jacobians, mesh passes);
+    /// right-hand-side evaluations are counted by the caller's discretisation.
+    pub fn add_iterations(&mut self, step: &Stats) {
+        self.newton_iterations += step.newton_iterations;
+        self.jacobian_evaluations += step.jacobian_evaluations;
+        self.refinements += step.refinements;
+    }
+
+    /// Add the work counters of one stage of a run (homotopy, final solve): iterations
+    /// and right-hand-side evaluations.
+    pub fn add_work(&mut self, stage: &Stats) {
+        self.add_iterations(stage);
+        self.rhs_evaluations += stage.rhs_evaluations;
+    }
+
+    /// Close a run's total with its last stage: that stage's work, its size and residual,
+    /// and the run's wall time since `clock`.
+    pub fn close_with(&mut self, last: &Stats, clock: std::time::Instant) {
+        self.add_work(last);
+        self.unknowns = last.unknowns;
+        self.mesh_nodes = last.mesh_nodes;
+        self.max_residual = last.max_residual;
+        self.wall_seconds = clock.elapsed().as_secs_f64();
+    }
 }
 
 /// A multi-segment BVP solution; also used as an initial guess.
@@ -143,5 +181,21 @@ impl Solution {
     /// Dense output y_k(x).
     pub fn eval(&self, k: usize, x: f64) -> Vec<f64> {
         self.segments[k].eval(x)
+    }
+
+    /// Sample points (segment k, ξ) along all segments in order: every mesh node and
+    /// `per_interval` − 1 equally spaced points inside each mesh interval, then ξ = 1.
+    pub fn sample_points(&self, per_interval: usize) -> Vec<(usize, f64)> {
+        let n = per_interval.max(1);
+        let mut out = Vec::new();
+        for (k, seg) in self.segments.iter().enumerate() {
+            for w in seg.mesh.windows(2) {
+                for j in 0..n {
+                    out.push((k, w[0] + (w[1] - w[0]) * j as f64 / n as f64));
+                }
+            }
+            out.push((k, 1.0));
+        }
+        out
     }
 }

@@ -9,7 +9,8 @@
 
 use bvp::jacobian::ad_fd_mismatch;
 use bvp::rod_hanging::problem::{DRIVER_ARC, DRIVEN_ARC, UPPER_LEFT};
-use bvp::rod_hanging::{solve, RodHanging, RodHangingOptions, RodHangingSolution, ScaledRodHanging};
+use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::rod_hanging::{solve, RodHanging, RodHangingSolution, ScaledRodHanging};
 use bvp::Problem;
 
 /// The catalogue's `string-hanging` data with bending stiffness `ei` (N·m²).
@@ -25,8 +26,8 @@ fn scene(ei: f64) -> RodHanging {
     }
 }
 
-fn opts(tol: f64) -> RodHangingOptions {
-    RodHangingOptions { tolerance: tol, ..Default::default() }
+fn opts(tol: f64) -> BeltOptions {
+    BeltOptions { tolerance: tol, ..Default::default() }
 }
 
 /// The collocation solution at EI = 1e-3 N·m², tol 1e-10, solved once (≈ 5 s) and
@@ -219,7 +220,7 @@ fn max_difference(a: &RodHangingSolution, b: &RodHangingSolution) -> f64 {
     d.into_iter().fold(0.0, f64::max)
 }
 
-/// (f) Shooting as the final method (`Method::Shooting`) agrees with collocation at
+/// (f) Shooting as the final method (`BvpMethod::Shooting`) agrees with collocation at
 /// EI = 1e-3 N·m² in mid-span heights, tensions, moments, contact angles and edge forces.
 /// Both final solves run at tol 1e-10 from the same homotopy end point; the two methods
 /// discretise differently (adaptive RK integration vs order-6 collocation), so their
@@ -231,7 +232,7 @@ fn shooting_agrees_with_collocation() {
     let c = moderate_1e10();
     let s = solve(
         &scene(1e-3),
-        &RodHangingOptions { method: bvp::rod_hanging::Method::Shooting, tolerance: 1e-10, ..Default::default() },
+        &BeltOptions { method: BvpMethod::Shooting, tolerance: 1e-10, ..Default::default() },
     )
     .expect("shooting solves");
     report("collocation", c);
@@ -303,7 +304,7 @@ fn steel_belt_of_paper_a() {
     eprintln!("steel belt invariant drift {:.3e} of N_max {nmax:.6e} N", (mx - mn) / nmax);
     assert!((mx - mn) / nmax < 1e-6);
     // Independent discretisation: shooting from the same homotopy end point.
-    let sh = solve(&steel_belt(), &RodHangingOptions { method: bvp::rod_hanging::Method::Shooting, ..opts(1e-8) })
+    let sh = solve(&steel_belt(), &BeltOptions { method: BvpMethod::Shooting, ..opts(1e-8) })
         .expect("steel belt solves by shooting");
     let d = max_difference(&s, &sh);
     eprintln!("steel belt: shooting vs collocation max relative difference {d:.3e}");

@@ -8,8 +8,8 @@ use std::f64::consts::PI;
 
 use bvp::analytical::belt_creep::CreepError;
 use bvp::collocation::Scheme;
-use bvp::string_drive::{solve, StringDrive, StringDriveError, StringDriveOptions, StringDriveSolution};
-use bvp::string_hanging::Method;
+use bvp::belt::{BeltError, BeltOptions};
+use bvp::string_drive::{solve, StringDrive, StringDriveSolution};
 use drive::view::{ContactState, SolutionView};
 
 /// A rubber-like drive (scenes/string-drive.json without gravity/inertia switches).
@@ -29,12 +29,12 @@ fn base() -> StringDrive {
     }
 }
 
-fn colloc(tol: f64) -> StringDriveOptions {
-    StringDriveOptions { tolerance: tol, method: Method::Collocation(Scheme::default()), ..Default::default() }
+fn colloc(tol: f64) -> BeltOptions {
+    BeltOptions::collocation(Scheme::default(), tol)
 }
 
-fn shoot(tol: f64) -> StringDriveOptions {
-    StringDriveOptions { tolerance: tol, method: Method::Shooting, ..Default::default() }
+fn shoot(tol: f64) -> BeltOptions {
+    BeltOptions::shooting(tol)
 }
 
 fn rel(a: f64, b: f64) -> f64 {
@@ -203,23 +203,23 @@ fn hard_cases() {
 #[test]
 fn no_solution_errors() {
     let e = solve(&StringDrive { driven_torque: 1e3, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::Creep(CreepError::FrictionCapacityExceeded { capacity, .. }) if capacity > 0.0 && capacity < 1e3), "{e}");
+    assert!(matches!(e, BeltError::Creep(CreepError::FrictionCapacityExceeded { capacity, .. }) if capacity > 0.0 && capacity < 1e3), "{e}");
     let critical = base().creep_data().critical_speed().unwrap();
     let e = solve(&StringDrive { driver_speed: critical, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::Creep(CreepError::SpeedAtOrAboveCritical { .. })), "{e}");
+    assert!(matches!(e, BeltError::Creep(CreepError::SpeedAtOrAboveCritical { .. })), "{e}");
     let e = solve(&StringDrive { length: 1.7, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::Creep(CreepError::WeightlessSlack { .. })), "{e}");
+    assert!(matches!(e, BeltError::Creep(CreepError::WeightlessSlack { .. })), "{e}");
     let e = solve(&StringDrive { gravity: 9.81, length: 1.7, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::FrictionCapacityExceeded { .. }), "{e}");
+    assert!(matches!(e, BeltError::FrictionCapacityExceeded { .. }), "{e}");
     let tiny = StringDrive { gravity: 9.81, length: 1.1 * (1.0 + 0.2 * PI), driven_torque: 0.05, driven_damping: 0.0, driver_speed: 10.0, ..base() };
     let e = solve(&tiny, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::SlipReversed { weight_torque, .. } if weight_torque > 0.05), "{e}");
+    assert!(matches!(e, BeltError::SlipReversed { weight_torque, .. } if weight_torque > 0.05), "{e}");
     let e = solve(&StringDrive { friction: 0.0, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::InvalidInput { name: "coulomb", .. }), "{e}");
+    assert!(matches!(e, BeltError::InvalidInput { name: "coulomb", .. }), "{e}");
     let e = solve(&StringDrive { driver_speed: 2000.0, gravity: 9.81, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::WaveSpeedReached { belt_speed, wave_speed } if belt_speed >= wave_speed), "{e}");
+    assert!(matches!(e, BeltError::WaveSpeedReached { belt_speed, wave_speed } if belt_speed >= wave_speed), "{e}");
     let e = solve(&StringDrive { driver_speed: -1.0, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringDriveError::InvalidInput { name: "driver_speed", .. }), "{e}");
+    assert!(matches!(e, BeltError::InvalidInput { name: "driver_speed", .. }), "{e}");
 }
 
 /// The Exudyn/THREAD peer (scenes/string-drive-exudyn.json; conversion in

@@ -7,7 +7,8 @@
 
 use bvp::collocation::Scheme;
 use bvp::string_hanging::problem::{is_span, DRIVER_ARC, DRIVEN_ARC, LOWER_LEFT, LOWER_RIGHT, UPPER_LEFT, UPPER_RIGHT};
-use bvp::string_hanging::{solve, Method, StringHanging, StringHangingError, StringHangingOptions, StringHangingSolution};
+use bvp::belt::{BeltError, BeltOptions, BvpMethod};
+use bvp::string_hanging::{solve, StringHanging, StringHangingSolution};
 
 /// The catalogue's `string-hanging` (scenes/string-hanging.json).
 fn base() -> StringHanging {
@@ -23,12 +24,12 @@ fn steel() -> StringHanging {
     StringHanging { axial_stiffness: 2.0e7, mass_per_length: 0.748, length: 1.4027951, ..base() }
 }
 
-fn colloc(tol: f64) -> StringHangingOptions {
-    StringHangingOptions { tolerance: tol, method: Method::Collocation(Scheme::default()), ..Default::default() }
+fn colloc(tol: f64) -> BeltOptions {
+    BeltOptions::collocation(Scheme::default(), tol)
 }
 
-fn shoot(tol: f64) -> StringHangingOptions {
-    StringHangingOptions { tolerance: tol, method: Method::Shooting, ..Default::default() }
+fn shoot(tol: f64) -> BeltOptions {
+    BeltOptions::shooting(tol)
 }
 
 /// Largest deviation of E = T + T²/(2EA) − ρ g y from its mean over dense samples,
@@ -200,7 +201,7 @@ fn hard_cases_solve_from_the_data_alone() {
 #[test]
 fn impossible_scenes_are_named_errors() {
     let e = solve(&StringHanging { gravity: 0.0, ..base() }, &colloc(1e-8)).unwrap_err();
-    assert!(matches!(e, StringHangingError::WeightlessSlack { .. }), "{e}");
+    assert!(matches!(e, BeltError::WeightlessSlack { .. }), "{e}");
     assert!(e.to_string().contains("1.41"), "{e}");
     let e = solve(&StringHanging { centre_distance: 0.1, ..base() }, &colloc(1e-8)).unwrap_err();
     assert!(e.to_string().contains("centre_distance"), "{e}");
@@ -224,7 +225,7 @@ fn contact_checks_catch_violations() {
         c[0] = -c[0].abs();
     }
     let e = lifted.check_contact().unwrap_err();
-    assert!(matches!(e, StringHangingError::ContactViolated(_)), "{e}");
+    assert!(matches!(e, BeltError::ContactViolated(_)), "{e}");
 
     let mut inside = sol.clone();
     // Pull the first node after the driver's departure point into the driver pulley.
@@ -244,14 +245,15 @@ fn contact_checks_catch_violations() {
 /// than 2000 nodes (its residual falls like h²), so the final solve names the cap.
 #[test]
 fn mesh_cap_is_reported() {
-    let o = StringHangingOptions {
-        method: Method::Collocation(Scheme::Gauss4),
+    let o = BeltOptions {
+        method: BvpMethod::Collocation,
+        scheme: Scheme::Gauss4,
         tolerance: 1e-10,
         max_nodes: 2000,
         ..Default::default()
     };
     match solve(&base(), &o) {
-        Err(StringHangingError::Solver { stage, cause: bvp::BvpError::MeshCapReached { max_nodes, residual, tolerance } }) => {
+        Err(BeltError::Solver { stage, cause: bvp::BvpError::MeshCapReached { max_nodes, residual, tolerance } }) => {
             assert_eq!(stage, "final solve");
             assert_eq!(max_nodes, 2000);
             assert!(residual > tolerance && tolerance == 1e-10);

@@ -16,15 +16,13 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::time::Instant;
 
 use serde::Serialize;
-use thiserror::Error;
 
-use crate::collocation::{CollocationOptions, Scheme};
-use crate::continuation::{self, ContinuationOptions};
-use crate::error::BvpError;
-use crate::problem::JacobianMode;
+use crate::belt::run::{self, StageError};
+use crate::belt::{balance, BeltError, BeltOptions, BvpMethod};
+use crate::collocation::Scheme;
 use crate::solution::{Solution, Stats};
-use crate::string_hanging::{self, add_stats, final_solve, finish_stats, StringHanging, StringHangingError, StringHangingOptions};
-pub use crate::string_hanging::{Method, Scales};
+use crate::string_hanging::{self, StringHanging};
+pub use crate::string_hanging::Scales;
 pub use problem::ScaledRodHanging;
 use problem::*;
 
@@ -59,56 +57,6 @@ impl RodHanging {
             gravity: self.gravity,
         }
     }
-}
-
-/// Options of [`solve`].
-#[derive(Debug, Clone, Serialize)]
-pub struct RodHangingOptions {
-    /// Final method. Default: collocation, order 6.
-    pub method: Method,
-    /// Tolerance of the final solve. Default 1e-8; valid (1e-13, 1e-2].
-    pub tolerance: f64,
-    /// Mesh cap of the collocation solves (total nodes). Default 20 000.
-    pub max_nodes: usize,
-    /// Shooting intervals per segment. Default 8.
-    pub shooting_intervals: usize,
-    /// Jacobians by AD (default) or finite differences.
-    pub jacobian: JacobianMode,
-    /// Tolerance of the collocation solves along the homotopy path. Default 1e-5.
-    pub homotopy_tolerance: f64,
-    /// Boundary-layer length √(EI₀/T) of the homotopy start, relative to H. Default 0.05.
-    pub start_layer: f64,
-}
-
-impl Default for RodHangingOptions {
-    fn default() -> Self {
-        Self {
-            method: Method::Collocation(Scheme::default()),
-            tolerance: 1e-8,
-            max_nodes: 20_000,
-            shooting_intervals: 8,
-            jacobian: JacobianMode::Ad,
-            homotopy_tolerance: 1e-5,
-            start_layer: 0.05,
-        }
-    }
-}
-
-/// Why a `rod-hanging` scene has no computed solution.
-#[derive(Debug, Clone, Error)]
-pub enum RodHangingError {
-    /// A physical input is non-finite or out of range.
-    #[error("invalid input: {name} = {value} ({reason})")]
-    InvalidInput { name: &'static str, value: f64, reason: &'static str },
-    /// The string of the same data (the homotopy start) failed.
-    #[error("string of the same data: {0}")]
-    String(StringHangingError),
-    /// The solver failed (homotopy or final solve).
-    #[error("{stage}: {cause}")]
-    Solver { stage: &'static str, cause: BvpError },
-    /// The solution violates a contact condition of the assumed segment topology.
-    #[error("contact condition violated: {0}")]
-    ContactViolated(String),
 }
 
 /// One point of the rod in physical units.
@@ -156,10 +104,8 @@ pub struct RodHangingSolution {
     pub solution: Solution,
     /// Scales (moments scale by force·length).
     pub scales: Scales,
-    /// Final method.
-    pub method: Method,
-    /// Tolerance of the final solve.
-    pub tolerance: f64,
+    /// Options of the run (method and tolerance of the final solve among them).
+    pub options: BeltOptions,
     /// Work of the rod computation (homotopy + final solve; string solve excluded).
     pub stats: Stats,
     /// Homotopy points (including the start).
@@ -170,19 +116,17 @@ pub struct RodHangingSolution {
     pub bending_start: f64,
 }
 
-fn validate(d: &RodHanging, opts: &RodHangingOptions) -> Result<(), RodHangingError> {
+fn validate(d: &RodHanging, opts: &BeltOptions) -> Result<(), BeltError> {
     if !(d.bending_stiffness.is_finite() && d.bending_stiffness > 0.0) {
-        return Err(RodHangingError::InvalidInput {
+        return Err(BeltError::InvalidInput {
             name: "bending_stiffness",
             value: d.bending_stiffness,
             reason: "must be finite and > 0 (EI = 0 is the string)",
         });
     }
-    if !(opts.tolerance > 1e-13 && opts.tolerance <= 1e-2) {
-        return Err(RodHangingError::InvalidInput { name: "tolerance", value: opts.tolerance, reason: "must lie in (1e-13, 1e-2]" });
-    }
+    opts.check_tolerance()?;
     if !(opts.start_layer > 0.0 && opts.start_layer.is_finite()) {
-        return Err(RodHangingError::InvalidInput { name: "start_layer", value: opts.start_layer, reason: "must be finite and > 0" });
+        return Err(BeltError::InvalidInput { name: "start_layer", value: opts.start_layer, reason: "must be finite and > 0" });
     }
     Ok(())
 }
@@ -231,6 +175,8 @@ pub fn rod_guess(string: &Solution, rod: &ScaledRodHanging, nodes: usize) -> Sol
 /// pulley's horizontal diameter (φ₂_b > 0, heading downwards); whether such a state is
 /// physical is decided by the contact checks (edge forces, p ≥ 0, no span through a
 /// pulley), not by this window.
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64]) -> Result<(), String> {
     let ranges = [
         ("first contact on the driven pulley", P_PHI2A, FRAC_PI_2),
@@ -261,18 +207,19 @@ fn topology_check(p: &[f64]) -> Result<(), String> {
 }
 
 /// Solve a `rod-hanging` scene from its data alone.
-pub fn solve(data: &RodHanging, opts: &RodHangingOptions) -> Result<RodHangingSolution, RodHangingError> {
-    let start = Instant::now();
+pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution, BeltError> {
+    let clock = Instant::now();
     validate(data, opts)?;
-    let sopts = StringHangingOptions {
-        method: Method::Collocation(Scheme::default()),
+    // The start: the string of the same data by collocation (gauss6, 1e-8), with the
+    // run's mesh cap, Jacobian mode and homotopy tolerance.
+    let sopts = BeltOptions {
+        method: BvpMethod::Collocation,
+        scheme: Scheme::default(),
         tolerance: 1e-8,
-        max_nodes: opts.max_nodes,
-        jacobian: opts.jacobian,
-        homotopy_tolerance: opts.homotopy_tolerance,
-        ..StringHangingOptions::default()
+        shooting_intervals: BeltOptions::default().shooting_intervals,
+        ..opts.clone()
     };
-    let string = string_hanging::solve(&data.string(), &sopts).map_err(RodHangingError::String)?;
+    let string = string_hanging::solve(&data.string(), &sopts).map_err(|e| BeltError::StringStart(Box::new(e)))?;
     let scales = string.scales;
     let (h, fr) = (scales.length, scales.force);
     let sp = &string.problem;
@@ -289,13 +236,6 @@ pub fn solve(data: &RodHanging, opts: &RodHangingOptions) -> Result<RodHangingSo
         bending: data.bending_stiffness / (fr * h * h),
     };
     let guess = rod_guess(&string.solution, &problem, 81);
-    let path_opts = CollocationOptions {
-        scheme: Scheme::default(),
-        tolerance: opts.homotopy_tolerance,
-        max_nodes: opts.max_nodes,
-        jacobian: opts.jacobian,
-        ..CollocationOptions::default()
-    };
     let physical = |s: &Solution| -> Result<(), String> {
         topology_check(&s.params)?;
         let n_min = [DRIVEN_ARC, DRIVER_ARC]
@@ -313,35 +253,23 @@ pub fn solve(data: &RodHanging, opts: &RodHangingOptions) -> Result<RodHangingSo
             ))
         }
     };
-    let mut total = Stats::default();
-    let branch = continuation::natural_checked(&problem, &guess, 0.0, 1.0, &ContinuationOptions::default(), &path_opts, physical)
-        .map_err(|cause| RodHangingError::Solver { stage: "homotopy in log EI from the string", cause })?;
-    let homotopy_steps = branch.points.len();
-    add_stats(&mut total, &branch.stats);
-    let at_scene = branch.last().expect("a branch ends at its target").clone();
-    let solution = final_solve(
-        &problem,
-        &at_scene,
-        opts.method,
-        opts.tolerance,
-        opts.max_nodes,
-        opts.shooting_intervals,
-        opts.jacobian,
-    )
-    .map_err(|cause| RodHangingError::Solver { stage: "final solve", cause })?;
-    finish_stats(&mut total, &solution.stats, start);
+    let solved = run::homotopy_and_final_solve(&problem, &guess, opts, physical, clock).map_err(|e| match e {
+        StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy in log EI from the string", cause },
+        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
+    })?;
     let sol = RodHangingSolution {
         data: *data,
         problem,
-        solution,
+        solution: solved.solution,
         scales,
-        method: opts.method,
-        tolerance: opts.tolerance,
-        stats: total,
-        homotopy_steps,
+        options: opts.clone(),
+        stats: solved.stats,
+        homotopy_steps: solved.homotopy_steps,
         string,
         bending_start: bending_start_scaled * fr * h * h,
     };
+    let weight = data.mass_per_length * data.gravity * data.length;
+    balance::check_closure(sol.closure_defect(), weight, fr)?;
     sol.check_contact()?;
     Ok(sol)
 }
@@ -359,14 +287,7 @@ impl RodHangingSolution {
     /// The rod at segment `k`, normalised coordinate ξ ∈ [0, 1] (exact node values at the
     /// ends).
     pub fn point(&self, k: usize, xi: f64) -> RodPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         let pb = &self.problem;
         if is_span(k) {
@@ -437,37 +358,27 @@ impl RodHangingSolution {
     /// Points along the loop: every mesh node and `per_interval` − 1 dense points inside
     /// each mesh interval, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, RodPoint)> {
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..per_interval.max(1) {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / per_interval.max(1) as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
     }
 
     /// Checks of docs/rod-hanging.md ("Homotopy"): topology, N > 0, p ≥ 0 inside the arcs,
     /// all four edge forces ≥ 0, no span point inside a pulley.
-    pub fn check_contact(&self) -> Result<(), RodHangingError> {
-        topology_check(&self.solution.params).map_err(RodHangingError::ContactViolated)?;
+    pub fn check_contact(&self) -> Result<(), BeltError> {
+        topology_check(&self.solution.params).map_err(BeltError::ContactViolated)?;
         let d = &self.data;
         let fr = self.scales.force;
         let pressure_floor = -1e-9 * (d.mass_per_length * d.gravity + fr / d.radius);
         let inside = d.radius * (1.0 - 1e-6);
         for (k, xi, pt) in self.samples(4) {
             if !(pt.x.is_finite() && pt.y.is_finite() && pt.tension.is_finite() && pt.moment.is_finite()) {
-                return Err(RodHangingError::ContactViolated(format!("non-finite solution in segment {k} at ξ = {xi:.4}")));
+                return Err(BeltError::ContactViolated(format!("non-finite solution in segment {k} at ξ = {xi:.4}")));
             }
             if let Some(p) = pt.pressure {
                 if pt.tension <= 0.0 {
-                    return Err(RodHangingError::ContactViolated(format!("axial force {:.4e} N ≤ 0 on an arc", pt.tension)));
+                    return Err(BeltError::ContactViolated(format!("axial force {:.4e} N ≤ 0 on an arc", pt.tension)));
                 }
                 if p < pressure_floor {
-                    return Err(RodHangingError::ContactViolated(format!(
+                    return Err(BeltError::ContactViolated(format!(
                         "contact pressure {p:.4e} N/m < 0 at ({:.5}, {:.5}) m",
                         pt.x, pt.y
                     )));
@@ -476,7 +387,7 @@ impl RodHangingSolution {
                 for (name, cx) in [("driver", -0.5 * d.centre_distance), ("driven", 0.5 * d.centre_distance)] {
                     let dist = (pt.x - cx).hypot(pt.y);
                     if dist < inside {
-                        return Err(RodHangingError::ContactViolated(format!(
+                        return Err(BeltError::ContactViolated(format!(
                             "free span passes through the {name} pulley: distance {dist:.6} m < R at ({:.5}, {:.5}) m",
                             pt.x, pt.y
                         )));
@@ -493,7 +404,7 @@ impl RodHangingSolution {
             ("driver last contact", e.driver_end),
         ] {
             if v < floor {
-                return Err(RodHangingError::ContactViolated(format!("edge force {v:.4e} N < 0 at the {what}: the pulley would pull")));
+                return Err(BeltError::ContactViolated(format!("edge force {v:.4e} N < 0 at the {what}: the pulley would pull")));
             }
         }
         Ok(())

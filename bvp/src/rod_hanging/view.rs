@@ -24,7 +24,7 @@ impl RodView {
     pub fn new(solution: RodHangingSolution) -> Self {
         let d = &solution.data;
         let contour = Contour::new(d.radius, d.centre_distance).expect("validated geometry");
-        let map = SigmaMap::new(contour, &solution.solution, |k, xi| {
+        let map = SigmaMap::new(contour, &crate::string_hanging::problem::SIDES, &solution.solution, |k, xi| {
             let p = solution.point(k, xi);
             [p.x, p.y]
         });

@@ -17,14 +17,12 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 use serde::Serialize;
-use thiserror::Error;
 
 use crate::analytical::belt_creep::{CreepData, CreepError, CreepSolution};
-use crate::collocation::{CollocationOptions, Scheme};
-use crate::continuation::{self, ContinuationOptions};
+use crate::belt::run::{self, StageError};
+use crate::belt::{balance, BeltError, BeltOptions};
 use crate::error::BvpError;
 use crate::solution::{Solution, Stats};
-use crate::string_hanging::{add_stats, final_solve, finish_stats, Method, StringHangingOptions};
 pub use problem::ScaledStringDrive;
 use problem::*;
 
@@ -83,41 +81,6 @@ impl StringDrive {
     }
 }
 
-/// Options of [`solve`]: those of the hanging string (final method, tolerance in
-/// (1e-13, 1e-2], default 1e-8; collocation mesh cap; shooting intervals; Jacobian mode;
-/// homotopy tolerance), which the drive's homotopy and final solve use the same way.
-pub type StringDriveOptions = StringHangingOptions;
-
-/// Why a `string-drive` scene has no computed steady solution.
-#[derive(Debug, Clone, Error)]
-pub enum StringDriveError {
-    /// A physical input is non-finite or out of range.
-    #[error("invalid input: {name} = {value} ({reason})")]
-    InvalidInput { name: &'static str, value: f64, reason: &'static str },
-    /// Decided by belt-creep theory before any iteration (no gravity: exact).
-    #[error(transparent)]
-    Creep(#[from] CreepError),
-    /// With gravity: the stick zone of a pulley vanished on the homotopy path, i.e. the
-    /// torque exceeds the friction capacity of the sagging belt.
-    #[error("no steady solution: resisting torque M₂ + d₂ω₁ = {torque:.6} N·m exceeds the friction capacity; on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}", path[0], path[1], path[2], path[3])]
-    FrictionCapacityExceeded { torque: f64, path: [f64; 4], reason: String },
-    /// With gravity: a slip arc shrank to zero on the homotopy path — the resisting torque
-    /// is below the torque of the belt's own weight hanging on the pulley (≈ 2ρgR²), so
-    /// friction in the slip zone would have to reverse; that topology is not modelled.
-    #[error("no steady solution of the modelled topology: resisting torque {torque:.6} N·m is so small that on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}; the belt's weight on the pulley (≈ 2ρgR² = {weight_torque:.4e} N·m) would drive it", path[0], path[1], path[2], path[3])]
-    SlipReversed { torque: f64, weight_torque: f64, path: [f64; 4], reason: String },
-    /// With inertia the belt speed must stay below the longitudinal wave speed √(EA/ρ)
-    /// (ρc² < EA in (D2)).
-    #[error("no steady solution: belt speed ω₁R = {belt_speed} m/s reaches the longitudinal wave speed √(EA/ρ) = {wave_speed} m/s")]
-    WaveSpeedReached { belt_speed: f64, wave_speed: f64 },
-    /// The solver failed (homotopy or final solve).
-    #[error("{stage}: {cause}")]
-    Solver { stage: &'static str, cause: BvpError },
-    /// The solution violates a condition of the assumed segment topology or contact law.
-    #[error("contact condition violated: {0}")]
-    ContactViolated(String),
-}
-
 /// Scales of the nondimensionalisation (docs/string-drive.md, "Scaling").
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Scales {
@@ -140,10 +103,8 @@ pub struct StringDriveSolution {
     pub solution: Solution,
     /// Scales.
     pub scales: Scales,
-    /// Final method.
-    pub method: Method,
-    /// Final tolerance.
-    pub tolerance: f64,
+    /// Options of the run (method and tolerance of the final solve among them).
+    pub options: BeltOptions,
     /// Work of the whole run (homotopy + final solve).
     pub stats: Stats,
     /// Accepted homotopy steps.
@@ -151,19 +112,14 @@ pub struct StringDriveSolution {
     sigma_map: crate::sigma_map::SigmaMap,
 }
 
-fn validate(d: &StringDrive) -> Result<(), StringDriveError> {
-    let positive = [
+fn validate(d: &StringDrive) -> Result<(), BeltError> {
+    crate::belt::check_positive(&[
         ("pulley_radius", d.radius),
         ("centre_distance", d.centre_distance),
         ("length", d.length),
         ("axial_stiffness", d.axial_stiffness),
         ("mass_per_length", d.mass_per_length),
-    ];
-    for (name, value) in positive {
-        if !(value.is_finite() && value > 0.0) {
-            return Err(StringDriveError::InvalidInput { name, value, reason: "must be finite and > 0" });
-        }
-    }
+    ])?;
     let non_negative = [
         ("gravity", d.gravity),
         ("driver_speed", d.driver_speed),
@@ -177,26 +133,20 @@ fn validate(d: &StringDrive) -> Result<(), StringDriveError> {
                 "driven_torque" => "must be finite and ≥ 0 (a driven pulley that drives swaps the roles of the pulleys)",
                 _ => "must be finite and ≥ 0",
             };
-            return Err(StringDriveError::InvalidInput { name, value, reason });
+            return Err(BeltError::InvalidInput { name, value, reason });
         }
     }
     if !(d.friction.is_finite() && d.friction > 0.0) {
-        return Err(StringDriveError::InvalidInput {
+        return Err(BeltError::InvalidInput {
             name: "coulomb",
             value: d.friction,
             reason: "a steady friction drive needs μ > 0 (without friction the belt speed is undetermined)",
         });
     }
-    if d.centre_distance <= 2.0 * d.radius {
-        return Err(StringDriveError::InvalidInput {
-            name: "centre_distance",
-            value: d.centre_distance,
-            reason: "must exceed twice the pulley radius (the pulleys overlap)",
-        });
-    }
+    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
     let wave_speed = (d.axial_stiffness / d.mass_per_length).sqrt();
     if d.inertia && d.driver_speed * d.radius >= wave_speed {
-        return Err(StringDriveError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
+        return Err(BeltError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
     }
     Ok(())
 }
@@ -261,6 +211,8 @@ pub fn tight_guess(p: &ScaledStringDrive, nodes: usize) -> Solution {
 /// The segment topology (docs/string-drive.md, "Checks"): contact angles within 90° of
 /// their tight values, stick and slip arcs ≥ 0 (stick before slip), spans of positive
 /// length, transport rate ≥ 0. `slack` is the tolerance on the arcs (rad).
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64], slack: f64) -> Result<(), String> {
     use std::f64::consts::FRAC_PI_2;
     let ranges = [
@@ -298,26 +250,16 @@ fn topology_check(p: &[f64], slack: f64) -> Result<(), String> {
 }
 
 /// Solve a `string-drive` scene from its data alone.
-pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriveSolution, StringDriveError> {
-    let start = Instant::now();
+pub fn solve(data: &StringDrive, opts: &BeltOptions) -> Result<StringDriveSolution, BeltError> {
+    let clock = Instant::now();
     validate(data)?;
-    if !(opts.tolerance > 1e-13 && opts.tolerance <= 1e-2) {
-        return Err(StringDriveError::InvalidInput { name: "tolerance", value: opts.tolerance, reason: "must lie in (1e-13, 1e-2]" });
-    }
+    opts.check_tolerance()?;
     if data.gravity == 0.0 {
         // Exact no-solution cases of belt-creep theory, before any iteration.
         data.creep()?;
     }
     let (problem, scales) = scaled_problem(data);
-    let path_opts = CollocationOptions {
-        scheme: Scheme::default(),
-        tolerance: opts.homotopy_tolerance,
-        max_nodes: opts.max_nodes,
-        jacobian: opts.jacobian,
-        ..CollocationOptions::default()
-    };
-    let guess = tight_guess(&problem, 5);
-    let mut total = Stats::default();
+    let start = tight_guess(&problem, 5);
     let last_rejection: RefCell<Option<String>> = RefCell::new(None);
     let physical = |s: &Solution| -> Result<(), String> {
         let verdict = physical_check(s, scales.force);
@@ -326,50 +268,45 @@ pub fn solve(data: &StringDrive, opts: &StringDriveOptions) -> Result<StringDriv
         }
         verdict
     };
-    let branch = continuation::natural_checked(&problem, &guess, 0.0, 1.0, &ContinuationOptions::default(), &path_opts, physical)
-        .map_err(|cause| {
-            if let BvpError::ContinuationStalled { eta, .. } = &cause {
-                let path = ScaledStringDrive::phases(*eta);
-                if let Some(reason) = last_rejection.borrow().as_ref().filter(|r| r.contains("slip arc")) {
-                    return StringDriveError::SlipReversed {
-                        torque: data.driven_torque + data.driven_damping * data.driver_speed,
-                        weight_torque: 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius,
-                        path,
-                        reason: reason.clone(),
-                    };
-                }
-                if let Some(reason) = last_rejection.borrow().as_ref().filter(|r| r.contains("stick arc")) {
-                    return StringDriveError::FrictionCapacityExceeded {
-                        torque: data.driven_torque + data.driven_damping * data.driver_speed,
-                        path,
-                        reason: reason.clone(),
-                    };
-                }
-            }
-            StringDriveError::Solver { stage: "homotopy from the tight loop at rest", cause }
-        })?;
-    let homotopy_steps = branch.points.len();
-    add_stats(&mut total, &branch.stats);
-    let at_scene = branch.last().expect("a branch ends at its target").clone();
-    let solution = final_solve(&problem, &at_scene, opts.method, opts.tolerance, opts.max_nodes, opts.shooting_intervals, opts.jacobian)
-        .map_err(|cause| StringDriveError::Solver { stage: "final solve", cause })?;
-    finish_stats(&mut total, &solution.stats, start);
+    let solved = run::homotopy_and_final_solve(&problem, &start, opts, physical, clock).map_err(|e| match e {
+        StageError::Homotopy(cause) => homotopy_failure(data, cause, last_rejection.borrow().as_deref()),
+        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
+    })?;
     let mut sol = StringDriveSolution {
         data: *data,
         problem,
-        solution,
+        solution: solved.solution,
         scales,
-        method: opts.method,
-        tolerance: opts.tolerance,
-        stats: total,
-        homotopy_steps,
+        options: opts.clone(),
+        stats: solved.stats,
+        homotopy_steps: solved.homotopy_steps,
         sigma_map: crate::sigma_map::SigmaMap::empty(
             drive::contour::Contour::new(data.radius, data.centre_distance).expect("validated geometry"),
         ),
     };
     sol.sigma_map = sol.build_sigma_map();
+    let (input, output, dissipation) = sol.power_balance();
+    balance::check_power(input - output - dissipation, sol.power_scale())?;
     sol.check_contact()?;
     Ok(sol)
+}
+
+/// The named error of a homotopy that stalled: the friction capacity or a reversed slip
+/// when the last rejected point says so (its stick or slip arc vanished), else the
+/// solver's failure.
+fn homotopy_failure(data: &StringDrive, cause: BvpError, last_rejection: Option<&str>) -> BeltError {
+    if let BvpError::ContinuationStalled { eta, .. } = &cause {
+        let path = ScaledStringDrive::phases(*eta);
+        let torque = data.driven_torque + data.driven_damping * data.driver_speed;
+        if let Some(reason) = last_rejection.filter(|r| r.contains("slip arc")) {
+            let weight_torque = 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius;
+            return BeltError::SlipReversed { torque, weight_torque, path, reason: reason.to_string() };
+        }
+        if let Some(reason) = last_rejection.filter(|r| r.contains("stick arc")) {
+            return BeltError::FrictionCapacityExceeded { torque, path, reason: reason.to_string() };
+        }
+    }
+    BeltError::Solver { stage: "homotopy from the tight loop at rest", cause }
 }
 
 /// The acceptance test of every homotopy point: topology and T̃ > 0 on the arcs.
@@ -437,14 +374,7 @@ impl StringDriveSolution {
 
     /// The belt at segment `k`, ξ ∈ [0, 1] (dense output; node values at the ends).
     pub fn point(&self, k: usize, xi: f64) -> BeltPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         let c = self.solution.params[P_C];
         let pb = &self.problem;
@@ -491,18 +421,15 @@ impl StringDriveSolution {
     /// Points along the loop: every mesh node and `per_interval` − 1 dense points inside
     /// each mesh interval, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, BeltPoint)> {
-        let n = per_interval.max(1);
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..n {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / n as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
+    }
+
+    /// The power scale P_ref of the balance check (W, [`crate::belt::balance`]): the
+    /// scene's resisting power (M₂ + d₂ω₁) ω₁, or F_ref ω₁R for a drive without load.
+    pub fn power_scale(&self) -> f64 {
+        let d = &self.data;
+        let resisting = (d.driven_torque + d.driven_damping * d.driver_speed) * d.driver_speed;
+        if resisting > 0.0 { resisting } else { self.scales.force * d.driver_speed * d.radius }
     }
 
     /// Power balance (W): (input M_in ω₁, output (M₂ + d₂ω₂) ω₂, slip dissipation
@@ -537,8 +464,8 @@ impl StringDriveSolution {
     /// Check the conditions the segment topology assumes (docs/string-drive.md,
     /// "Checks"): topology, T̃ > 0, p ≥ 0, no span inside a pulley, slip direction, and
     /// the stick-zone friction bound.
-    pub fn check_contact(&self) -> Result<(), StringDriveError> {
-        let v = |s: String| StringDriveError::ContactViolated(s);
+    pub fn check_contact(&self) -> Result<(), BeltError> {
+        let v = |s: String| BeltError::ContactViolated(s);
         topology_check(&self.solution.params, 1e-9).map_err(v)?;
         let d = &self.data;
         let w = d.mass_per_length * d.gravity;

@@ -40,6 +40,11 @@ pub fn is_slip(k: usize) -> bool {
     matches!(k, DRIVEN_SLIP | DRIVER_SLIP)
 }
 
+/// The side of the loop of each segment, in segment order (for the σ map).
+pub const SIDES: [crate::sigma_map::Side; 8] = {
+    use crate::sigma_map::Side::{Arc, LowerSpan, UpperSpan};
+    [UpperSpan, UpperSpan, Arc, Arc, LowerSpan, LowerSpan, Arc, Arc]
+};
 /// Span state (x, y, F̃_x, F̃_y, s); arc state (T̃, s, m).
 pub const SPAN_DIM: usize = 5;
 /// Arc state dimension.

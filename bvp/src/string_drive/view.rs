@@ -13,7 +13,7 @@ use crate::string_hanging::view::wrap_angle;
 impl StringDriveSolution {
     pub(super) fn build_sigma_map(&self) -> SigmaMap {
         let contour = Contour::new(self.data.radius, self.data.centre_distance).expect("validated geometry");
-        SigmaMap::new(contour, &self.solution, |k, xi| {
+        SigmaMap::new(contour, &super::problem::SIDES, &self.solution, |k, xi| {
             let p = self.point(k, xi);
             [p.x, p.y]
         })

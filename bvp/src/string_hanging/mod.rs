@@ -2,7 +2,8 @@
 //! frictionless pulleys, as the six-segment BVP derived in `docs/string-hanging.md`.
 //!
 //! [`solve`] reaches the scene from the tight, weightless closed form by the homotopy of
-//! the note, then solves at the requested tolerance with the requested method, checks the
+//! the note, then solves at the requested tolerance with the requested method
+//! ([`crate::belt::run`]), checks the closure balance ([`crate::belt::balance`]) and the
 //! contact conditions (p ≥ 0 on the arcs, no span inside a pulley) and returns a
 //! [`StringHangingSolution`], which implements the common [`SolutionView`].
 
@@ -13,13 +14,9 @@ use std::f64::consts::PI;
 use std::time::Instant;
 
 use serde::Serialize;
-use thiserror::Error;
 
-use crate::collocation::{self, CollocationOptions, Scheme};
-use crate::continuation::{self, ContinuationOptions};
-use crate::error::BvpError;
-use crate::problem::JacobianMode;
-use crate::shooting::{self, ShootingOptions};
+use crate::belt::run::{self, StageError};
+use crate::belt::{balance, BeltError, BeltOptions};
 use crate::solution::{Solution, Stats};
 pub use problem::ScaledStringHanging;
 use problem::*;
@@ -54,63 +51,6 @@ impl StringHanging {
     }
 }
 
-/// Which BVP method computes the final solution.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub enum Method {
-    /// Collocation with the given scheme.
-    Collocation(Scheme),
-    /// Multiple shooting on diffsol.
-    Shooting,
-}
-
-/// Options of [`solve`].
-#[derive(Debug, Clone, Serialize)]
-pub struct StringHangingOptions {
-    /// Final method. Default: collocation, order 6.
-    pub method: Method,
-    /// Tolerance of the final solve (the method's own tolerance definition; see
-    /// [`collocation`] and [`shooting`]). Default 1e-8; valid (1e-13, 1e-2].
-    pub tolerance: f64,
-    /// Mesh cap of the collocation solves (total nodes). Default 20 000.
-    pub max_nodes: usize,
-    /// Shooting intervals per segment. Default 8.
-    pub shooting_intervals: usize,
-    /// Jacobians by AD (default) or finite differences.
-    pub jacobian: JacobianMode,
-    /// Tolerance of the collocation solves along the homotopy path. Default 1e-5.
-    pub homotopy_tolerance: f64,
-}
-
-impl Default for StringHangingOptions {
-    fn default() -> Self {
-        Self {
-            method: Method::Collocation(Scheme::default()),
-            tolerance: 1e-8,
-            max_nodes: 20_000,
-            shooting_intervals: 8,
-            jacobian: JacobianMode::Ad,
-            homotopy_tolerance: 1e-5,
-        }
-    }
-}
-
-/// Why a `string-hanging` scene has no computed solution.
-#[derive(Debug, Clone, Error)]
-pub enum StringHangingError {
-    /// A physical input is non-finite or out of range.
-    #[error("invalid input: {name} = {value} ({reason})")]
-    InvalidInput { name: &'static str, value: f64, reason: &'static str },
-    /// A weightless belt longer than the contour has no unique equilibrium.
-    #[error("no unique equilibrium: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m hangs slack in any shape; add gravity or shorten the belt")]
-    WeightlessSlack { length: f64, geometric_length: f64 },
-    /// The solver failed (homotopy or final solve).
-    #[error("{stage}: {cause}")]
-    Solver { stage: &'static str, cause: BvpError },
-    /// The solution violates a contact condition of the assumed segment topology.
-    #[error("contact condition violated: {0}")]
-    ContactViolated(String),
-}
-
 /// Scales of the nondimensionalisation (docs/string-hanging.md, "Scaling").
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct Scales {
@@ -131,10 +71,8 @@ pub struct StringHangingSolution {
     pub solution: Solution,
     /// Scales.
     pub scales: Scales,
-    /// Method and tolerance of the final solve.
-    pub method: Method,
-    /// Tolerance of the final solve.
-    pub tolerance: f64,
+    /// Options of the run (method and tolerance of the final solve among them).
+    pub options: BeltOptions,
     /// Work of the whole computation (homotopy + final solve); `wall_seconds` is the
     /// total wall time.
     pub stats: Stats,
@@ -144,31 +82,20 @@ pub struct StringHangingSolution {
 }
 
 /// Validate the physical data.
-fn validate(d: &StringHanging) -> Result<(), StringHangingError> {
-    let positive = [
+fn validate(d: &StringHanging) -> Result<(), BeltError> {
+    crate::belt::check_positive(&[
         ("pulley_radius", d.radius),
         ("centre_distance", d.centre_distance),
         ("length", d.length),
         ("axial_stiffness", d.axial_stiffness),
         ("mass_per_length", d.mass_per_length),
-    ];
-    for (name, value) in positive {
-        if !value.is_finite() || value <= 0.0 {
-            return Err(StringHangingError::InvalidInput { name, value, reason: "must be finite and > 0" });
-        }
-    }
+    ])?;
     if !d.gravity.is_finite() || d.gravity < 0.0 {
-        return Err(StringHangingError::InvalidInput { name: "gravity", value: d.gravity, reason: "must be finite and ≥ 0" });
+        return Err(BeltError::InvalidInput { name: "gravity", value: d.gravity, reason: "must be finite and ≥ 0" });
     }
-    if d.centre_distance <= 2.0 * d.radius {
-        return Err(StringHangingError::InvalidInput {
-            name: "centre_distance",
-            value: d.centre_distance,
-            reason: "must exceed twice the pulley radius (the pulleys overlap)",
-        });
-    }
+    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
     if d.gravity == 0.0 && d.tight_tension() <= 0.0 {
-        return Err(StringHangingError::WeightlessSlack { length: d.length, geometric_length: d.geometric_length() });
+        return Err(BeltError::WeightlessSlack { length: d.length, geometric_length: d.geometric_length() });
     }
     Ok(())
 }
@@ -222,76 +149,14 @@ pub fn tight_guess(p: &ScaledStringHanging, nodes: usize) -> Solution {
     })
 }
 
-/// Add the work counters of one stage (homotopy, final solve) to a run's total.
-pub(crate) fn add_stats(total: &mut Stats, s: &Stats) {
-    total.newton_iterations += s.newton_iterations;
-    total.jacobian_evaluations += s.jacobian_evaluations;
-    total.rhs_evaluations += s.rhs_evaluations;
-    total.refinements += s.refinements;
-}
-
-/// Close a run's total with the final solve: its work, its size and residual, and the
-/// run's wall time since `start`.
-pub(crate) fn finish_stats(total: &mut Stats, last: &Stats, start: Instant) {
-    add_stats(total, last);
-    total.unknowns = last.unknowns;
-    total.mesh_nodes = last.mesh_nodes;
-    total.max_residual = last.max_residual;
-    total.wall_seconds = start.elapsed().as_secs_f64();
-}
-
-/// The final solve of a belt problem from the end point of its homotopy, by `method` at
-/// `tolerance` (collocation: mesh cap `max_nodes`; shooting: `shooting_intervals` per
-/// segment).
-pub(crate) fn final_solve<P: crate::problem::Problem>(
-    problem: &P,
-    guess: &Solution,
-    method: Method,
-    tolerance: f64,
-    max_nodes: usize,
-    shooting_intervals: usize,
-    jacobian: JacobianMode,
-) -> Result<Solution, BvpError> {
-    match method {
-        Method::Collocation(scheme) => {
-            let o = CollocationOptions { scheme, tolerance, max_nodes, jacobian, ..CollocationOptions::default() };
-            collocation::solve(problem, guess, &o)
-        }
-        Method::Shooting => {
-            let o = ShootingOptions {
-                tolerance,
-                intervals_per_segment: shooting_intervals,
-                jacobian,
-                ..ShootingOptions::default()
-            };
-            shooting::solve(problem, guess, &o)
-        }
-    }
-}
-
 /// Solve a `string-hanging` scene from its data alone (homotopy of the note, then the
 /// final solve with `opts.method` at `opts.tolerance`, then the contact checks).
-pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<StringHangingSolution, StringHangingError> {
-    let start = Instant::now();
+pub fn solve(data: &StringHanging, opts: &BeltOptions) -> Result<StringHangingSolution, BeltError> {
+    let clock = Instant::now();
     validate(data)?;
-    if !(opts.tolerance > 1e-13 && opts.tolerance <= 1e-2) {
-        return Err(StringHangingError::InvalidInput {
-            name: "tolerance",
-            value: opts.tolerance,
-            reason: "must lie in (1e-13, 1e-2]",
-        });
-    }
+    opts.check_tolerance()?;
     let (problem, scales) = scaled_problem(data);
-    let homotopy_tol = opts.homotopy_tolerance;
-    let path_opts = CollocationOptions {
-        scheme: Scheme::default(),
-        tolerance: homotopy_tol,
-        max_nodes: opts.max_nodes,
-        jacobian: opts.jacobian,
-        ..CollocationOptions::default()
-    };
-    let guess = tight_guess(&problem, 5);
-    let mut total = Stats::default();
+    let start = tight_guess(&problem, 5);
     // Every accepted homotopy point must stay on the physical branch: positive tension on
     // both arcs and a closure defect far below it (docs/string-hanging.md, "Homotopy").
     let physical = |s: &Solution| -> Result<(), String> {
@@ -311,44 +176,25 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
             ))
         }
     };
-    let branch = continuation::natural_checked(
-        &problem,
-        &guess,
-        0.0,
-        1.0,
-        &ContinuationOptions::default(),
-        &path_opts,
-        physical,
-    )
-    .map_err(|cause| StringHangingError::Solver { stage: "homotopy from the tight weightless loop", cause })?;
-    let homotopy_steps = branch.points.len();
-    add_stats(&mut total, &branch.stats);
-    let at_scene = branch.last().expect("a branch ends at its target").clone();
-    let solution = final_solve(
-        &problem,
-        &at_scene,
-        opts.method,
-        opts.tolerance,
-        opts.max_nodes,
-        opts.shooting_intervals,
-        opts.jacobian,
-    )
-    .map_err(|cause| StringHangingError::Solver { stage: "final solve", cause })?;
-    finish_stats(&mut total, &solution.stats, start);
+    let solved = run::homotopy_and_final_solve(&problem, &start, opts, physical, clock).map_err(|e| match e {
+        StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy from the tight weightless loop", cause },
+        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
+    })?;
     let mut sol = StringHangingSolution {
         data: *data,
         problem,
-        solution,
+        solution: solved.solution,
         scales,
-        method: opts.method,
-        tolerance: opts.tolerance,
-        stats: total,
-        homotopy_steps,
+        options: opts.clone(),
+        stats: solved.stats,
+        homotopy_steps: solved.homotopy_steps,
         sigma_map: crate::sigma_map::SigmaMap::empty(
             drive::contour::Contour::new(data.radius, data.centre_distance).expect("validated geometry"),
         ),
     };
     sol.sigma_map = sol.build_sigma_map();
+    let weight = data.mass_per_length * data.gravity * data.length;
+    balance::check_closure(sol.closure_defect(), weight, scales.force)?;
     sol.check_contact()?;
     Ok(sol)
 }
@@ -359,6 +205,8 @@ pub fn solve(data: &StringHanging, opts: &StringHangingOptions) -> Result<String
 /// every span has positive length. The discrete equations have other, unphysical,
 /// solutions (a belt wound once more round a pulley, at an enormous tension): this test
 /// keeps the homotopy and the final solve off them.
+// The negated comparisons are deliberate: a NaN parameter must fail these checks.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 fn topology_check(p: &[f64]) -> Result<(), String> {
     use std::f64::consts::FRAC_PI_2;
     let ranges = [
@@ -408,14 +256,7 @@ impl StringHangingSolution {
     /// The belt at segment `k`, normalised coordinate ξ ∈ [0, 1] (dense output; exact
     /// node values at ξ = 0, 1).
     pub fn point(&self, k: usize, xi: f64) -> BeltPoint {
-        let seg = &self.solution.segments[k];
-        let y = if xi <= 0.0 {
-            seg.start().to_vec()
-        } else if xi >= 1.0 {
-            seg.end().to_vec()
-        } else {
-            seg.eval(xi)
-        };
+        let y = self.solution.segments[k].state_at(xi);
         let (lh, fr) = (self.scales.length, self.scales.force);
         if is_span(k) {
             BeltPoint {
@@ -462,40 +303,30 @@ impl StringHangingSolution {
     /// Points sampled along the whole loop: every mesh node and `per_interval` − 1 dense
     /// points inside each mesh interval, in the direction of σ, with their segment and ξ.
     pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, BeltPoint)> {
-        let mut out = Vec::new();
-        for (k, seg) in self.solution.segments.iter().enumerate() {
-            for w in seg.mesh.windows(2) {
-                for j in 0..per_interval.max(1) {
-                    let xi = w[0] + (w[1] - w[0]) * j as f64 / per_interval.max(1) as f64;
-                    out.push((k, xi, self.point(k, xi)));
-                }
-            }
-            out.push((k, 1.0, self.point(k, 1.0)));
-        }
-        out
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
     }
 
     /// Check the conditions the segment topology assumes (docs/string-hanging.md,
     /// "Checks"): p ≥ 0 on the arcs, T > 0, no span point inside a pulley.
-    pub fn check_contact(&self) -> Result<(), StringHangingError> {
-        topology_check(&self.solution.params).map_err(StringHangingError::ContactViolated)?;
+    pub fn check_contact(&self) -> Result<(), BeltError> {
+        topology_check(&self.solution.params).map_err(BeltError::ContactViolated)?;
         let d = &self.data;
         let pressure_floor = -1e-9 * (d.mass_per_length * d.gravity + self.scales.force / d.radius);
         let inside = d.radius * (1.0 - 1e-6);
         for (k, xi, pt) in self.samples(4) {
             let finite = pt.x.is_finite() && pt.y.is_finite() && pt.tension.is_finite() && pt.material.is_finite();
             if !finite {
-                return Err(StringHangingError::ContactViolated(format!("non-finite solution in segment {k} at ξ = {xi:.4}")));
+                return Err(BeltError::ContactViolated(format!("non-finite solution in segment {k} at ξ = {xi:.4}")));
             }
             if pt.tension <= 0.0 {
-                return Err(StringHangingError::ContactViolated(format!(
+                return Err(BeltError::ContactViolated(format!(
                     "tension {:.4e} N ≤ 0 at ({:.5}, {:.5}) m",
                     pt.tension, pt.x, pt.y
                 )));
             }
             if let Some(p) = pt.pressure {
                 if p < pressure_floor {
-                    return Err(StringHangingError::ContactViolated(format!(
+                    return Err(BeltError::ContactViolated(format!(
                         "contact force {p:.4e} N/m < 0 on the {} pulley at ({:.5}, {:.5}) m: the belt would lift off inside the arc",
                         if k == DRIVER_ARC { "driver" } else { "driven" },
                         pt.x,
@@ -506,7 +337,7 @@ impl StringHangingSolution {
                 for (name, cx) in [("driver", -0.5 * d.centre_distance), ("driven", 0.5 * d.centre_distance)] {
                     let dist = (pt.x - cx).hypot(pt.y);
                     if dist < inside {
-                        return Err(StringHangingError::ContactViolated(format!(
+                        return Err(BeltError::ContactViolated(format!(
                             "free span passes through the {name} pulley: distance {dist:.6} m from its centre < R = {:.6} m at ({:.5}, {:.5}) m",
                             d.radius, pt.x, pt.y
                         )));

@@ -23,6 +23,11 @@ pub fn is_span(k: usize) -> bool {
     !matches!(k, DRIVEN_ARC | DRIVER_ARC)
 }
 
+/// The side of the loop of each segment, in segment order (for the σ map).
+pub const SIDES: [crate::sigma_map::Side; 6] = {
+    use crate::sigma_map::Side::{Arc, LowerSpan, UpperSpan};
+    [UpperSpan, UpperSpan, Arc, LowerSpan, LowerSpan, Arc]
+};
 /// Span state layout: (x, y, F_x, F_y, s).
 pub const SPAN_DIM: usize = 5;
 /// Arc state layout: (T, s).

@@ -29,7 +29,7 @@ impl StringHangingSolution {
     /// The σ map of this solution (docs: [`crate::sigma_map`]).
     pub(super) fn build_sigma_map(&self) -> SigmaMap {
         let contour = Contour::new(self.data.radius, self.data.centre_distance).expect("validated geometry");
-        SigmaMap::new(contour, &self.solution, |k, xi| {
+        SigmaMap::new(contour, &super::problem::SIDES, &self.solution, |k, xi| {
             let p = self.point(k, xi);
             [p.x, p.y]
         })

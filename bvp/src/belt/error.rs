@@ -1,0 +1,52 @@
+//! The one error type of every belt problem: why a belt scene has no computed solution.
+//! Each variant carries the numbers a user needs.
+
+use thiserror::Error;
+
+use crate::analytical::belt_creep::CreepError;
+use crate::error::BvpError;
+
+use super::balance::Balance;
+
+/// Why a belt problem (string, Kirchhoff rod, string drive) has no computed solution.
+#[derive(Debug, Clone, Error)]
+pub enum BeltError {
+    /// A physical input or an option is non-finite or out of range.
+    #[error("invalid input: {name} = {value} ({reason})")]
+    InvalidInput { name: &'static str, value: f64, reason: &'static str },
+    /// A weightless belt longer than the contour has no unique equilibrium.
+    #[error("no unique equilibrium: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m hangs slack in any shape; add gravity or shorten the belt")]
+    WeightlessSlack { length: f64, geometric_length: f64 },
+    /// Decided by belt-creep theory before any iteration (drive without gravity: exact).
+    #[error(transparent)]
+    Creep(#[from] CreepError),
+    /// Drive with gravity: the stick zone of a pulley vanished on the homotopy path, i.e.
+    /// the torque exceeds the friction capacity of the sagging belt.
+    #[error("no steady solution: resisting torque M₂ + d₂ω₁ = {torque:.6} N·m exceeds the friction capacity; on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}", path[0], path[1], path[2], path[3])]
+    FrictionCapacityExceeded { torque: f64, path: [f64; 4], reason: String },
+    /// Drive with gravity: a slip arc shrank to zero on the homotopy path — the resisting
+    /// torque is below the torque of the belt's own weight hanging on the pulley
+    /// (≈ 2ρgR²), so friction in the slip zone would have to reverse; that topology is
+    /// not modelled.
+    #[error("no steady solution of the modelled topology: resisting torque {torque:.6} N·m is so small that on the homotopy path (torque {:.3}, gravity {:.3}, length {:.3}, speed {:.3} of the scene's) {reason}; the belt's weight on the pulley (≈ 2ρgR² = {weight_torque:.4e} N·m) would drive it", path[0], path[1], path[2], path[3])]
+    SlipReversed { torque: f64, weight_torque: f64, path: [f64; 4], reason: String },
+    /// Drive with inertia: the belt speed must stay below the longitudinal wave speed
+    /// √(EA/ρ) (ρc² < EA in (D2)).
+    #[error("no steady solution: belt speed ω₁R = {belt_speed} m/s reaches the longitudinal wave speed √(EA/ρ) = {wave_speed} m/s")]
+    WaveSpeedReached { belt_speed: f64, wave_speed: f64 },
+    /// Kirchhoff rod: the string of the same data (the homotopy start) failed.
+    #[error("string of the same data: {0}")]
+    StringStart(Box<BeltError>),
+    /// The solver failed (homotopy or final solve).
+    #[error("{stage}: {cause}")]
+    Solver { stage: &'static str, cause: BvpError },
+    /// The solution violates a contact condition of the assumed segment topology.
+    #[error("contact condition violated: {0}")]
+    ContactViolated(String),
+    /// A balance the solver reports failed its check ([`crate::belt::balance`]): the
+    /// converged discrete solution does not satisfy the belt's equilibrium, e.g. when the
+    /// scene's numbers lie beyond what double precision resolves (EA ≥ 1e17 N, a centre
+    /// distance of 1e50 m).
+    #[error("self-check failed: {0}; the solution is not trustworthy (scene numbers such as an axial stiffness of 1e17 N or a centre distance of 1e50 m lie beyond what double precision resolves against the belt's weight and load)")]
+    BalanceFailed(Balance),
+}

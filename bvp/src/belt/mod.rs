@@ -1,0 +1,38 @@
+//! What every belt problem shares: one options struct ([`BeltOptions`]), one error type
+//! ([`BeltError`]), the stages of a run (homotopy, final solve, work counters:
+//! [`run`]) and the self-checks of the balances a run reports ([`balance`]).
+//!
+//! The belt models (`string_hanging`, `rod_hanging`, `string_drive`) supply their scaled
+//! problem, start, acceptance test and point output; docs/bvp-engine.md ("Adding a belt
+//! theory") says what a new theory adds.
+
+pub mod balance;
+pub mod error;
+pub mod options;
+pub mod run;
+
+pub use error::BeltError;
+pub use options::{BeltOptions, BvpMethod};
+
+/// Each named input finite and > 0, else [`BeltError::InvalidInput`] naming the first
+/// that is not.
+pub fn check_positive(inputs: &[(&'static str, f64)]) -> Result<(), BeltError> {
+    for &(name, value) in inputs {
+        if !(value.is_finite() && value > 0.0) {
+            return Err(BeltError::InvalidInput { name, value, reason: "must be finite and > 0" });
+        }
+    }
+    Ok(())
+}
+
+/// The pulleys must not overlap: H > 2R.
+pub fn check_pulleys_apart(radius: f64, centre_distance: f64) -> Result<(), BeltError> {
+    if centre_distance > 2.0 * radius {
+        return Ok(());
+    }
+    Err(BeltError::InvalidInput {
+        name: "centre_distance",
+        value: centre_distance,
+        reason: "must exceed twice the pulley radius (the pulleys overlap)",
+    })
+}
