@@ -240,3 +240,11 @@ fn coarse_time_step_is_refused() {
     let scene = write_scene("coarse-step.json", &transient_drive(serde_json::json!({"elements": 32, "time_step": 0.1})));
     fails_with(&["solve", scene.to_str().unwrap(), "--method", "fem"], "fem.time_step");
 }
+
+/// Numbers in error messages are printed with significant digits (issue 12, "smaller
+/// ones"): a tolerance of 1e-16 is named as `1e-16`, not as sixteen fixed digits.
+#[test]
+fn numbers_in_messages_have_significant_digits() {
+    let err = fails_with(&["solve", "scenes/string-hanging.json", "--tolerance", "1e-16"], "tolerance = 1e-16");
+    assert!(!err.contains("0000000"), "a long run of fixed digits in: {err}");
+}

@@ -417,10 +417,10 @@ pub mod belt_creep {
     #[derive(Debug, Clone, PartialEq, Error)]
     pub enum CreepError {
         /// A datum is non-finite or out of range.
-        #[error("invalid input: {name} = {value} ({reason})")]
+        #[error("invalid input: {name} = {} ({reason})", numerics::Sig(*value))]
         InvalidInput { name: &'static str, value: f64, reason: &'static str },
         /// The belt is not stretched on: no pretension, no torque, no unique shape.
-        #[error("no steady solution: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m has no pretension; add gravity or shorten the belt")]
+        #[error("no steady solution: without gravity a belt of length L = {} m not shorter than the contour L_geom = {} m has no pretension; add gravity or shorten the belt", numerics::Sig(*length), numerics::Sig(*geometric_length))]
         WeightlessSlack { length: f64, geometric_length: f64 },
         /// The driver speed reaches the critical speed (effective tension ≤ 0).
         #[error("no steady solution: driver speed ω₁ = {driver_speed} rad/s is at or above the critical speed {critical_speed:.6} rad/s, where the effective tension T − ρc²λ of the unloaded belt vanishes")]

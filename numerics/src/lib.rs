@@ -12,6 +12,7 @@
 //!   [`linear::LinearError`];
 //! - [`quadrature`]: integration rules on [−1, 1] (Gauss–Legendre 1…5 points, Simpson,
 //!   trapezoidal) — fem's element rules and bvp's collocation nodes;
+//! - [`fmt`]: numbers in messages with significant digits ([`Sig`]);
 //! - [`newton`]: one damped Newton for F(z) = 0 over a [`newton::NewtonProblem`]
 //!   (residual, Jacobian factorisation and solve, optional norm / merit / admissibility /
 //!   step-acceptance / regularisation / convergence hooks), with natural-monotonicity or
@@ -27,11 +28,13 @@
 //! Errors are typed enums carrying the numbers; the linear solvers are generic over the
 //! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
 
+pub mod fmt;
 pub mod linear;
 pub mod newton;
 pub mod quadrature;
 pub mod scalar;
 
+pub use fmt::Sig;
 pub use linear::{BorderedLu, LinearError, SparseLu, TripletLu};
 pub use newton::{NewtonError, NewtonOptions, NewtonProblem, NewtonStats};
 pub use quadrature::Rule;

@@ -1,6 +1,7 @@
 //! The one error type of every belt problem: why a belt scene has no computed solution.
 //! Each variant carries the numbers a user needs.
 
+use numerics::Sig;
 use thiserror::Error;
 
 use crate::analytical::belt_creep::CreepError;
@@ -12,10 +13,10 @@ use super::balance::Balance;
 #[derive(Debug, Clone, Error)]
 pub enum BeltError {
     /// A physical input or an option is non-finite or out of range.
-    #[error("invalid input: {name} = {value} ({reason})")]
+    #[error("invalid input: {name} = {} ({reason})", Sig(*value))]
     InvalidInput { name: &'static str, value: f64, reason: &'static str },
     /// A weightless belt longer than the contour has no unique equilibrium.
-    #[error("no unique equilibrium: without gravity a belt of length L = {length} m not shorter than the contour L_geom = {geometric_length} m hangs slack in any shape; add gravity or shorten the belt")]
+    #[error("no unique equilibrium: without gravity a belt of length L = {} m not shorter than the contour L_geom = {} m hangs slack in any shape; add gravity or shorten the belt", Sig(*length), Sig(*geometric_length))]
     WeightlessSlack { length: f64, geometric_length: f64 },
     /// Decided by belt-creep theory before any iteration (drive without gravity: exact).
     #[error(transparent)]
@@ -32,7 +33,7 @@ pub enum BeltError {
     SlipReversed { torque: f64, weight_torque: f64, path: [f64; 4], reason: String },
     /// Drive with inertia: the belt speed must stay below the longitudinal wave speed
     /// √(EA/ρ) (ρc² < EA in (D2)).
-    #[error("no steady solution: belt speed ω₁R = {belt_speed} m/s reaches the longitudinal wave speed √(EA/ρ) = {wave_speed} m/s")]
+    #[error("no steady solution: belt speed ω₁R = {} m/s reaches the longitudinal wave speed √(EA/ρ) = {} m/s", Sig(*belt_speed), Sig(*wave_speed))]
     WaveSpeedReached { belt_speed: f64, wave_speed: f64 },
     /// Kirchhoff rod: the string of the same data (the homotopy start) failed.
     #[error("string of the same data: {0}")]
