@@ -47,14 +47,20 @@
 //! (docs/fem-string.md §12).
 //!
 //! # Adding an element formulation
-//! One new file in `fem/src/formulation/` implementing [`formulation::Formulation`] (a
-//! name, a strain energy density, the integration rule of each term — or a whole element
-//! energy) and one line in [`formulation::registry`]. Assembly, solvers, the view and
-//! the harness need no change; the AD-vs-finite-difference unit test covers every
-//! registered formulation automatically.
+//! No fork needed: in any crate, implement [`Formulation`] (a name, a strain energy
+//! density, the integration rule of each term — or a whole element energy) against the
+//! re-exports of [`formulation`] ([`formulation::ElementContext`],
+//! [`formulation::TermRules`], [`formulation::Rule`], [`Scalar`],
+//! [`formulation::Theory`], …) and call [`register_formulation`] once at start-up.
+//! Assembly, solvers, the view and the harness need no change and find it by name; the
+//! workspace's `examples/custom_formulation.rs` defines one, runs `converge` and the
+//! `gate` with it. A formulation shipped with `fem` is a file in `fem/src/formulation/`
+//! and one line in its built-in list; the AD-vs-finite-difference unit test covers every
+//! built-in formulation automatically.
 //!
 //! # Entry points (the contract of the CLI and the verification harness)
-//! [`available_formulations`] (the registry, by name), [`default_formulation`],
+//! [`available_formulations`] (the registry, by name), [`register_formulation`],
+//! [`default_formulation`],
 //! [`FemOptions::from_scene`] and [`solve_scene`] (or [`solve_scene_with`] with explicit
 //! [`SolverSettings`]).
 //!
@@ -90,6 +96,8 @@ pub mod string_drive;
 pub mod static_homotopy;
 
 pub use error::{FemError, NewtonFailure};
+pub use formulation::{Formulation, RegistryError};
+pub use numerics::Scalar;
 pub use options::{FemOptions, SolverSettings};
 pub use problem::FemProblem;
 pub use solution::FemSolution;
@@ -130,7 +138,8 @@ pub struct FemRun {
     pub history: Option<drive::result::History>,
 }
 
-/// Names of the element formulations registered with the plug-in trait, default first.
+/// Names of the registered element formulations: the built-in ones (default first), then
+/// those added by [`register_formulation`] in registration order.
 pub fn available_formulations() -> Vec<&'static str> {
     formulation::registry().iter().map(|k| k.name()).collect()
 }
@@ -139,6 +148,18 @@ pub fn available_formulations() -> Vec<&'static str> {
 /// `string-*` for strings, `rod-*` for Kirchhoff rods (docs/fem-rod.md §4).
 pub fn formulations_for(theory: Theory) -> Vec<&'static str> {
     formulation::registry().iter().filter(|k| k.theory() == theory).map(|k| k.name()).collect()
+}
+
+/// Register an element formulation defined outside this crate, process-wide: from then
+/// on [`solve_scene`], [`available_formulations`], [`formulations_for`] and the
+/// verification harness (`converge`, `report`, `gate`) treat it like a built-in one. See
+/// [`formulation::register`] (why the registry is process-wide, and the checks).
+///
+/// # Errors
+/// [`RegistryError`]: an empty or malformed name, a name already registered, an
+/// integration rule that does not exist.
+pub fn register_formulation<F: formulation::Formulation>(f: F) -> Result<(), RegistryError> {
+    formulation::register(f)
 }
 
 /// The default formulation (`string-simpson`: the Simpson rule samples the strain where

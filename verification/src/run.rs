@@ -8,8 +8,10 @@
 //!
 //! Methods are values behind the [`Method`] trait. The built-in ones are the BVP
 //! variants ([`BvpSolver`]) and every formulation in the `fem` registry
-//! ([`FemFormulation`], one per name of [`fem::available_formulations`]); a test or an
-//! experiment can pass its own implementor to a study.
+//! ([`FemFormulation`], one per name of [`fem::available_formulations`]) — including
+//! formulations another crate added with [`fem::register_formulation`], which are
+//! studied, reported and gated like the built-in ones; a test or an experiment can pass
+//! its own implementor to a study.
 
 use std::fmt;
 use std::time::Instant;
@@ -361,11 +363,10 @@ impl Method for FemFormulation {
     }
 }
 
-/// The belt theory a registered formulation discretises (`None` if not registered).
+/// The belt theory a registered formulation discretises (`None` if not registered) —
+/// built-in or added from outside `fem` by [`fem::register_formulation`].
 pub fn formulation_theory(name: &str) -> Option<Theory> {
-    [Theory::String, Theory::Kirchhoff, Theory::Cosserat, Theory::Shell]
-        .into_iter()
-        .find(|&t| fem::formulations_for(t).contains(&name))
+    fem::formulation::find(name).map(|k| k.theory())
 }
 
 /// Names of the registered FE formulations, default first.

@@ -9,21 +9,57 @@
 //! Hessians by forward-mode AD (`num_dual::Dual2SVec64<8>`), exact.
 //!
 //! # Adding a formulation
-//! 1. A new file `fem/src/formulation/my_element.rs` with a unit struct and
-//!    `impl Formulation for MyElement { … }` (copy `string_simpson.rs`);
-//! 2. `mod my_element;` below and one line `Arc::new(my_element::MyElement),` in
-//!    [`registry`].
+//! From any crate (no fork of `fem`): a unit struct with `impl Formulation for MyElement`
+//! written against the re-exports of this module ([`ElementContext`], [`TermParams`],
+//! [`TermRules`], [`Rule`], [`Scalar`], [`Theory`], [`NDOF`], [`standard_terms`],
+//! [`biot_density`]), then one call [`register`]`(MyElement)` at start-up. From then on
+//! [`crate::solve_scene`] and the verification harness find it by name like a built-in
+//! one. The workspace's `examples/custom_formulation.rs` does this end to end.
 //!
-//! The AD-vs-finite-difference test and the consistency checks in this module's tests
-//! run over every registered formulation, so a new one is checked without writing a test.
+//! ```
+//! use fem::formulation::{self, biot_density, Formulation, Rule, Scalar, TermRules};
+//!
+//! /// A string with the strain energy integrated by the 2-point Gauss rule.
+//! struct StringGauss2;
+//!
+//! impl Formulation for StringGauss2 {
+//!     fn name(&self) -> &'static str { "string-gauss2-doc" }
+//!     fn description(&self) -> &'static str { "string, Biot strain, 2-point Gauss membrane rule" }
+//!     fn strain_measure(&self) -> &'static str { "Biot" }
+//!     fn rules(&self) -> TermRules {
+//!         TermRules { strain: Rule::Gauss(2), gravity: Rule::Gauss(3), contact: Rule::Gauss(3), bending: Rule::Gauss(3) }
+//!     }
+//!     fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {
+//!         biot_density(stretch, axial_stiffness)
+//!     }
+//! }
+//!
+//! formulation::register(StringGauss2).unwrap();
+//! assert!(fem::available_formulations().contains(&"string-gauss2-doc"));
+//! // a second registration of the name is refused, the first stays
+//! assert!(matches!(formulation::register(StringGauss2), Err(formulation::RegistryError::Duplicate { .. })));
+//! ```
+//!
+//! A formulation shipped with the crate instead gets a file in `fem/src/formulation/`
+//! and one line in the built-in list (`built_in` below). The AD-vs-finite-difference
+//! test and the consistency checks in this module's tests run over every built-in
+//! formulation, so a new one is checked without writing a test.
 
-use std::sync::Arc;
+use std::sync::{Arc, LazyLock, PoisonError, RwLock, RwLockReadGuard};
 
 use nalgebra::{Const, SVector, U1};
 use num_dual::{gradient, hessian, Dual2SVec64, Dual64, DualSVec64};
 
-use crate::kinematics::{ElementContext, PointFields, Scalar, TermParams, NDOF, NU_DOFS, S_DOFS};
-use crate::quadrature::Rule;
+use crate::kinematics::{NU_DOFS, S_DOFS};
+
+// The surface an element formulation is written against, in one place, so that a crate
+// outside `fem` can `use fem::formulation::*`-style import what `impl Formulation` needs:
+// the element context and its point fields, the term parameters, the unknowns per
+// element, the scalar trait the energy is generic over (AD duals and f64), the
+// integration rules, and the belt theory.
+pub use crate::kinematics::{ElementContext, PointFields, TermParams, NDOF};
+pub use crate::quadrature::{QuadratureError, Rule};
+pub use numerics::Scalar;
 
 mod rod_gauss;
 mod rod_simpson;
@@ -516,14 +552,116 @@ impl<F: Formulation> Kernel for F {
     }
 }
 
-/// Every registered formulation, default first. **Add a new formulation here** (one line).
-pub fn registry() -> Vec<Arc<dyn Kernel>> {
+/// The formulations shipped with the crate, default first. **Add a built-in formulation
+/// here** (one line); an outside crate calls [`register`] instead.
+fn built_in() -> Vec<Arc<dyn Kernel>> {
     vec![Arc::new(StringSimpson), Arc::new(StringGauss), Arc::new(RodSimpson), Arc::new(RodGauss)]
+}
+
+/// The process-wide registry: the built-in formulations, then the registered ones in
+/// registration order. Entries are only ever added, so a name once found stays valid.
+static REGISTRY: LazyLock<RwLock<Vec<Arc<dyn Kernel>>>> = LazyLock::new(|| RwLock::new(built_in()));
+
+/// The registry for reading. No code panics while holding the lock, but a poisoned lock
+/// still holds a consistent list (entries are pushed whole), so it is read anyway.
+fn entries() -> RwLockReadGuard<'static, Vec<Arc<dyn Kernel>>> {
+    REGISTRY.read().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Every registered formulation: the built-in ones (default first), then those added by
+/// [`register`], in registration order. A snapshot: later registrations do not change it.
+pub fn registry() -> Vec<Arc<dyn Kernel>> {
+    entries().clone()
 }
 
 /// The registered formulation called `name`.
 pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
-    registry().into_iter().find(|k| k.name() == name)
+    entries().iter().find(|k| k.name() == name).cloned()
+}
+
+/// Why [`register`] refused a formulation.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum RegistryError {
+    /// The name is empty.
+    #[error("a formulation needs a name (description: `{description}`)")]
+    EmptyName {
+        /// The formulation's description, to tell which one it was.
+        description: &'static str,
+    },
+    /// The name is not lowercase ASCII letters, digits and `-` (the names are typed on
+    /// the command line and in scene files, `fem.formulations`).
+    #[error("formulation name `{name}`: use lowercase ASCII letters, digits and `-` only (offending character {offending:?})")]
+    InvalidName {
+        /// The name given.
+        name: &'static str,
+        /// The first character that is not allowed.
+        offending: char,
+    },
+    /// A formulation of that name is already registered (built-in or outside).
+    #[error("a formulation named `{name}` is already registered (registered: {registered:?})")]
+    Duplicate {
+        /// The name given.
+        name: &'static str,
+        /// The registered names at the time.
+        registered: Vec<&'static str>,
+    },
+    /// One of the formulation's integration rules does not exist (e.g. `Gauss(9)`).
+    #[error("formulation `{name}`: {term} rule: {source}")]
+    InvalidRule {
+        /// The formulation's name.
+        name: &'static str,
+        /// The term whose rule is invalid (`strain`, `gravity`, `contact`, `bending`).
+        term: &'static str,
+        /// The rule's own error.
+        source: crate::quadrature::QuadratureError,
+    },
+}
+
+/// Add a formulation to the process-wide registry, after the built-in ones: from then on
+/// [`find`], [`registry`], [`crate::available_formulations`], [`crate::formulations_for`],
+/// [`crate::solve_scene`] and the verification harness (`converge`, `report`, `gate`) see
+/// it exactly like a built-in formulation. This is how a crate outside `fem` plugs in an
+/// element formulation (see the crate docs and `examples/custom_formulation.rs` of the
+/// workspace).
+///
+/// The registry is process-wide rather than a value passed to the harness because a
+/// formulation is found by *name* everywhere — in scene files (`fem.formulations`), on
+/// the command line, in reports and in `FemOptions` — and every one of those paths
+/// already resolves names through this crate; one call at start-up then reaches all of
+/// them without threading a registry argument through every study, gate and solve.
+/// Registration only adds (there is no removal), so results of a name never change once
+/// it is registered.
+///
+/// # Errors
+/// [`RegistryError::EmptyName`], [`RegistryError::InvalidName`],
+/// [`RegistryError::Duplicate`] (nothing is replaced: a built-in formulation cannot be
+/// shadowed), [`RegistryError::InvalidRule`].
+pub fn register<F: Formulation>(formulation: F) -> Result<(), RegistryError> {
+    register_kernel(Arc::new(formulation))
+}
+
+/// [`register`] for a formulation already behind its object-safe face.
+///
+/// # Errors
+/// As [`register`].
+pub fn register_kernel(kernel: Arc<dyn Kernel>) -> Result<(), RegistryError> {
+    let name = kernel.name();
+    if name.is_empty() {
+        return Err(RegistryError::EmptyName { description: kernel.description() });
+    }
+    if let Some(offending) = name.chars().find(|c| !(c.is_ascii_lowercase() || c.is_ascii_digit() || *c == '-')) {
+        return Err(RegistryError::InvalidName { name, offending });
+    }
+    let rules = kernel.rules();
+    for (term, rule) in [("strain", rules.strain), ("gravity", rules.gravity), ("contact", rules.contact), ("bending", rules.bending)] {
+        rule.validate().map_err(|source| RegistryError::InvalidRule { name, term, source })?;
+    }
+    let mut reg = REGISTRY.write().unwrap_or_else(PoisonError::into_inner);
+    if reg.iter().any(|k| k.name() == name) {
+        return Err(RegistryError::Duplicate { name, registered: reg.iter().map(|k| k.name()).collect() });
+    }
+    reg.push(kernel);
+    Ok(())
 }
 
 #[cfg(test)]
