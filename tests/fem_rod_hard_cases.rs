@@ -131,3 +131,25 @@ fn very_slack_loop() {
     );
     assert!(fe.get("y_upper_mid").unwrap() > fe.get("y_lower_mid").unwrap());
 }
+
+/// The CLI's side of docs/fem-rod.md §10: the coarse reproducer (7 elements)
+/// exits 2 naming the compressive edge force and the elements needed; an admissible but
+/// unresolved mesh (32 elements, h/ℓ_b = 2.4) exits 0 with a printed warning.
+#[test]
+fn cli_refuses_inadmissible_and_warns_on_unresolved_rod_meshes() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/rod-hanging.json");
+    let run = |elements: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_beltcheck"))
+            .args(["solve", scene, "--method", "fem", "--formulation", "rod-simpson", "--elements", elements])
+            .output()
+            .unwrap()
+    };
+    let coarse = run("7");
+    let err = String::from_utf8_lossy(&coarse.stderr);
+    assert_eq!(coarse.status.code(), Some(2), "{err}");
+    assert!(err.contains("inadmissible contact") && err.contains("edge force") && err.contains("use at least"), "{err}");
+    let unresolved = run("32");
+    let out = String::from_utf8_lossy(&unresolved.stdout);
+    assert_eq!(unresolved.status.code(), Some(0), "{}", String::from_utf8_lossy(&unresolved.stderr));
+    assert!(out.contains("warning: unresolved bending layer"), "{out}");
+}

@@ -82,7 +82,7 @@ pub enum FemError {
     },
 
     /// The converged static solution is no belt-on-pulley equilibrium
-    /// (docs/fem-rod.md §10): a contact edge on the inner side of its pulley, a
+    /// (docs/fem-rod.md §10): a contact zone over the inner point of its pulley, a
     /// compressive edge force, or contact force on a pulley with no contact zone — an
     /// artefact of a mesh that does not resolve the contact (usually too coarse).
     #[error("inadmissible contact on the {pulley} pulley: {quantity} = {value:.6e}, limit {limit:.6e} — an artefact of the mesh of {elements} elements, not a belt resting on the pulley; {}", advice(*.elements_needed))]
