@@ -41,7 +41,7 @@ pub struct EdgeLayer {
     pub sigma: f64,
     /// Axial force N at the edge, N.
     pub axial_force: f64,
-    /// ℓ_b = √(EI/N), m (∞ if N ≤ 0).
+    /// ℓ_b = √(EI/N), m (0 if N ≤ 0: a compressed edge is never resolved).
     pub layer_length: f64,
     /// Length of the element holding the edge, m.
     pub element_size: f64,
