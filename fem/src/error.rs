@@ -81,6 +81,46 @@ pub enum FemError {
         last_failure: String,
     },
 
+    /// The converged static solution is no belt-on-pulley equilibrium
+    /// (docs/fem-rod.md §10): a contact zone over the inner point of its pulley, a
+    /// compressive edge force, or contact force on a pulley with no contact zone — an
+    /// artefact of a mesh that does not resolve the contact (usually too coarse).
+    #[error("inadmissible contact on the {pulley} pulley: {quantity} = {value:.6e}, limit {limit:.6e} — an artefact of the mesh of {elements} elements, not a belt resting on the pulley; {}", advice(*.elements_needed))]
+    InadmissibleContact {
+        /// `driver` or `driven`.
+        pulley: String,
+        /// What was checked (with its unit).
+        quantity: String,
+        /// Its value.
+        value: f64,
+        /// The admissible bound it crosses.
+        limit: f64,
+        /// Elements of the mesh.
+        elements: usize,
+        /// Elements a mesh needs to resolve the bending layers at the contact edges
+        /// (`None`: the layers are resolved, or a string).
+        elements_needed: Option<usize>,
+    },
+
+    /// The belt rests on a pulley (the penalty carries contact force) but no contact zone
+    /// could be located (docs/fem-rod.md §10): for a rod whose bending layer √(EI/N) is
+    /// not small against R the belt does not wrap the pulley — a near point contact the
+    /// edge recovery (§5) does not represent.
+    #[error("unreported contact on the {pulley} pulley: the belt rests on it (contact force {load:.6e} N, limit {limit:.6e} N) but no contact zone could be located; bending layer √(EI/N) = {layer_length:.3e} m against the pulley radius R = {radius:.3e} m{} — no FE answer for this scene: {}", if .layer_length.is_finite() { format!(" (ℓ_b/R = {:.3})", .layer_length / .radius) } else { String::new() }, if .layer_length.is_finite() && *.layer_length >= 0.5 * *.radius { "the belt does not wrap the pulley; use a larger pulley radius or a smaller EI" } else { "refine the mesh (--elements)" })]
+    UnreportedContact {
+        /// `driver` or `driven`.
+        pulley: String,
+        /// Sum of the penalty contact forces on the pulley, N.
+        load: f64,
+        /// The tolerance, N.
+        limit: f64,
+        /// √(EI/N) with N the axial force where the contact force is largest, m
+        /// (∞ for a string).
+        layer_length: f64,
+        /// R, m.
+        radius: f64,
+    },
+
     /// A non-finite number appeared where a result was expected.
     #[error("non-finite {what}")]
     NonFinite {
@@ -231,6 +271,14 @@ pub enum NewtonFailure {
         /// σ of the point, m.
         sigma: f64,
     },
+}
+
+/// What to do about an inadmissible contact.
+fn advice(elements_needed: Option<usize>) -> String {
+    match elements_needed {
+        Some(n) => format!("use at least {n} elements (--elements {n}) so that one element spans the bending layer √(EI/N) at the contact edges"),
+        None => "refine the mesh (--elements) or change the penalty (fem.penalty)".into(),
+    }
 }
 
 /// " at t = … s" of a transient step, " in the steady state" of the direct solve.

@@ -77,6 +77,7 @@ use drive::scene::{Analysis, Scene, Theory};
 use drive::summary::Summary;
 use drive::view::SolutionView;
 
+pub mod admissibility;
 pub mod assembly;
 pub mod dofs;
 pub mod element;
@@ -136,6 +137,9 @@ pub struct FemRun {
     pub terms: Vec<String>,
     /// Time history of a drive transient (docs/fem-drive.md §8); `None` for static runs.
     pub history: Option<drive::result::History>,
+    /// Stated warnings about the result (e.g. an unresolved bending layer,
+    /// docs/fem-rod.md §10); empty for a clean result.
+    pub notes: Vec<String>,
 }
 
 /// Names of the registered element formulations: the built-in ones (default first), then
@@ -198,7 +202,8 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
 /// [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
 /// [`FemError::InvalidOption`], [`FemError::IllPosed`] (weightless slack loop), and the
 /// solver failures [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
-/// [`FemError::SingularTangent`], [`FemError::NonFinite`].
+/// [`FemError::SingularTangent`], [`FemError::NonFinite`], and
+/// [`FemError::InadmissibleContact`] (a static solution that is no belt-on-pulley state).
 pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSettings) -> Result<FemRun, FemError> {
     let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
     drive_settings.stop_at_steady = true;
@@ -246,6 +251,9 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
     let contour = data.contour()?;
     let mesh = mesh::Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (solution, report, unknowns) = data.solve(mesh, kernel.clone(), settings)?;
+    // a converged discrete equilibrium that is no belt-on-pulley state is an error, an
+    // unresolved bending layer a warning (docs/fem-rod.md §10)
+    let notes = admissibility::check(&solution)?;
     let summary = solution.summary();
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
@@ -268,7 +276,7 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None })
+    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None, notes })
 }
 
 #[cfg(test)]

@@ -355,7 +355,10 @@ impl Method for FemFormulation {
                 elements: Some(run.stats.elements),
             },
             options: run.options,
-            notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
+            // the FE's stated warnings (e.g. an unresolved bending layer) follow the work note
+            notes: std::iter::once(format!("homotopy: {} steps", run.stats.homotopy_steps))
+                .chain(run.notes.iter().map(|w| format!("warning: {w}")))
+                .collect(),
             terms: run.terms,
             history: run.history,
             not_steady,

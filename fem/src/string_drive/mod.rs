@@ -510,7 +510,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history) })
+    Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history), notes: Vec::new() })
 }
 
 /// What both drive solvers start from (docs/fem-drive.md §3): the checked inputs μ, ω₁,

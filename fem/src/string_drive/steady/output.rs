@@ -110,7 +110,7 @@ pub(super) fn finish(
         elements: opts.elements,
         homotopy_steps: homotopy.steps + report.continuation_steps,
     };
-    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None })
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: Vec::new() })
 }
 
 /// Per element the point states the common view reads (docs/fem-drive.md §8): the
