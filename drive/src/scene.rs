@@ -677,6 +677,26 @@ impl Scene {
 
     fn validate_analysis(&self) -> Result<(), SceneError> {
         let e = &self.effects;
+        if self.analysis != Analysis::Static {
+            // One rule for both methods (issue 12, "four quadrants"): the BVP refused these
+            // and the FE either refused them with a misleading message (speed) or solved
+            // them (torque). Neither sense is modelled by both yet, so both refuse here.
+            let d = &self.drive;
+            for (field, value, unit, what) in [
+                ("drive.driver_speed", d.driver_speed, "rad/s", "a driver turning counter-clockwise (the upper span becomes the tight one; with gravity not the mirror image of the clockwise drive)"),
+                ("drive.driven_torque", d.driven_torque, "N·m", "a load that drives (the slip zones swap pulleys)"),
+            ] {
+                if value < 0.0 {
+                    return Err(SceneError::NotAllowed {
+                        path: field.into(),
+                        reason: format!(
+                            "must be ≥ 0 (got {} {unit}): {what} is not modelled yet by either method; without gravity, mirror the scene",
+                            crate::error::num(&value)
+                        ),
+                    });
+                }
+            }
+        }
         match self.analysis {
             Analysis::Static => {
                 if e.inertia == Some(true) {
