@@ -30,7 +30,7 @@ pub enum FemError {
     },
 
     /// The scene has no unique equilibrium (e.g. a weightless slack loop).
-    #[error("no unique equilibrium: belt length L = {length} m exceeds the contour length L_geom = {geometric_length} m and no gravity holds it taut (a weightless slack loop can take any shape)")]
+    #[error("no unique equilibrium: belt length L = {} m exceeds the contour length L_geom = {} m and no gravity holds it taut (a weightless slack loop can take any shape)", numerics::Sig(*length), numerics::Sig(*geometric_length))]
     IllPosed {
         /// L, m.
         length: f64,
@@ -56,7 +56,7 @@ pub enum FemError {
     },
 
     /// The sparse tangent could not be factorised.
-    #[error("singular tangent at η = {eta}, Newton iteration {iteration}: {detail}")]
+    #[error("singular tangent at η = {}, Newton iteration {iteration}: {detail}", numerics::Sig(*eta))]
     SingularTangent {
         /// Homotopy parameter.
         eta: f64,
@@ -193,7 +193,7 @@ pub enum FemError {
     },
 
     /// A time step of the drive transient failed (Newton did not converge).
-    #[error("time step {step} (t = {time} s) failed: {reason}")]
+    #[error("time step {step} (t = {} s) failed: {reason}", numerics::Sig(*time))]
     DriveStepFailed {
         /// Step number (1-based).
         step: usize,
