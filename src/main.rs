@@ -61,6 +61,10 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Solve one scene and print its summary (optionally write the result JSON).
+    ///
+    /// `beltcheck quantities` says what each summary name means: e.g. `tension_tight` /
+    /// `tension_slack` are the axial forces in the driver's / the driven pulley's stick
+    /// zones, by both methods.
     Solve(SolveArgs),
     /// Convergence study of one scene: BVP tolerance sweeps and FE mesh sequences held
     /// against the tightest BVP run, with observed orders, Richardson extrapolation and
@@ -74,6 +78,9 @@ enum Command {
     /// with a table of what drifted, 0 if everything holds, 2 for a usage or input error
     /// (missing or invalid scene, bad tolerance, unknown formulation).
     Gate(GateArgs),
+    /// List every summary quantity of the result format: its JSON name, unit and
+    /// meaning (a scene produces only those its layout and effects call for).
+    Quantities,
 }
 
 /// What a study runs (shared by `converge` and `report`).
@@ -198,6 +205,10 @@ fn main() -> ExitCode {
         Some(Command::Solve(args)) => run_solve(&args),
         Some(Command::Converge(args)) => run_converge(&args),
         Some(Command::Report(args)) => run_report(&args),
+        Some(Command::Quantities) => {
+            print_quantities();
+            Ok(())
+        }
         Some(Command::Gate(args)) => match run_gate(&args) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -306,6 +317,34 @@ fn solve_once(scene: &Scene, method: &dyn Method, disc: Discretisation) -> Resul
     let mut solved = method.solve(scene, disc).map_err(|e| anyhow::Error::new(e).context(method.label()))?;
     solved.cost.wall_seconds = start.elapsed().as_secs_f64();
     Ok(solved)
+}
+
+/// The glossary of the summary: one line a quantity, from the typed ids of
+/// `drive::summary` (one source for the names, units and meanings).
+fn print_quantities() {
+    use drive::summary::{PulleyId, PulleyQuantity, Quantity};
+    println!("{:<28} {:<6} meaning", "name", "unit");
+    for q in Quantity::ALL {
+        // The pulley quantities mean the same for every pulley: list them once, as
+        // `<pulley>.name` with the pulleys named below.
+        if let Quantity::Pulley(p, _) = q {
+            if p != PulleyId::Driver {
+                continue;
+            }
+        }
+        let name = match q {
+            Quantity::Pulley(_, pq) => format!("<pulley>.{}", pq.name()),
+            Quantity::Global(_) => q.name().to_string(),
+        };
+        println!("{:<28} {:<6} {}", name, q.unit(), q.meaning());
+    }
+    let pulleys: Vec<&str> = PulleyId::ALL.iter().map(|p| p.name()).collect();
+    println!(
+        "\n<pulley> is one of {} (driver/driven: the two-pulley loop; pulley: a one-pulley scene); {} quantities a pulley.",
+        pulleys.join(", "),
+        PulleyQuantity::ALL.len()
+    );
+    println!("A quantity a scene does not produce is absent from its result (never 0, never null).");
 }
 
 fn run_solve(args: &SolveArgs) -> Result<()> {

@@ -230,3 +230,28 @@ fn report_shows_the_peer_results() {
         assert!(md.contains(row), "`{row}` missing");
     }
 }
+
+/// `beltcheck quantities` is the glossary of the result format: every summary name
+/// appears (pulley quantities once, as `<pulley>.name`) with its unit, and the
+/// tight/slack tensions are defined as the axial forces in the two stick zones — the
+/// definition both methods use.
+#[test]
+fn quantities_lists_every_summary_name_with_its_meaning() {
+    let o = beltcheck(&["quantities"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    for name in drive::summary::SCALAR_NAMES {
+        let listed = match name.split_once('.') {
+            Some((_, q)) => format!("<pulley>.{q}"),
+            None => name.to_string(),
+        };
+        assert!(out.lines().any(|l| l.split_whitespace().next() == Some(listed.as_str())), "{name} missing:\n{out}");
+    }
+    let tight = out.lines().find(|l| l.starts_with("tension_tight ")).expect("tension_tight listed");
+    assert!(tight.contains(" N ") && tight.contains("driver's stick zone"), "{tight}");
+    let slack = out.lines().find(|l| l.starts_with("tension_slack ")).expect("tension_slack listed");
+    assert!(slack.contains("driven pulley's stick zone"), "{slack}");
+    // The solve help points to the glossary.
+    let help = stdout(&beltcheck(&["solve", "--help"]));
+    assert!(help.contains("beltcheck quantities") && help.contains("stick"), "{help}");
+}

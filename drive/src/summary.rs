@@ -153,6 +153,47 @@ impl Global {
             Global::YOut => "y_out",
         }
     }
+    /// The unit of the quantity (SI).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Global::YUpperMid | Global::YLowerMid | Global::YIn | Global::YOut => "m",
+            Global::TensionUpperMid
+            | Global::TensionLowerMid
+            | Global::TensionTight
+            | Global::TensionSlack
+            | Global::TensionIn
+            | Global::TensionOut => "N",
+            Global::MomentUpperMid | Global::MomentLowerMid => "N·m",
+            Global::DrivenSpeed | Global::PulleySpeed => "rad/s",
+            Global::TransportRate => "m/s",
+        }
+    }
+
+    /// What the quantity is, in one line (the `beltcheck quantities` table and the
+    /// help text print it).
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            Global::YUpperMid => "y of the centreline at x = 0 on the upper span",
+            Global::YLowerMid => "y of the centreline at x = 0 on the lower span",
+            Global::TensionUpperMid => "axial force at x = 0 on the upper span (not the effective tension)",
+            Global::TensionLowerMid => "axial force at x = 0 on the lower span (not the effective tension)",
+            Global::MomentUpperMid => "bending moment at x = 0 on the upper span",
+            Global::MomentLowerMid => "bending moment at x = 0 on the lower span",
+            Global::TensionTight => {
+                "axial force in the driver's stick zone in steady motion (the tight side for a positive load)"
+            }
+            Global::TensionSlack => {
+                "axial force in the driven pulley's stick zone in steady motion (the slack side for a positive load)"
+            }
+            Global::DrivenSpeed => "angular speed ω₂ of the driven pulley, clockwise positive",
+            Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time)",
+            Global::PulleySpeed => "angular speed ω of the single pulley of a one-pulley scene, clockwise positive",
+            Global::TensionIn => "axial force at the inflow end of a one-pulley scene",
+            Global::TensionOut => "axial force at the outflow end of a one-pulley scene",
+            Global::YIn => "y of the centreline at the inflow end section of a one-pulley scene",
+            Global::YOut => "y of the centreline at the outflow end section of a one-pulley scene",
+        }
+    }
 }
 
 impl PulleyId {
@@ -197,6 +238,48 @@ impl PulleyQuantity {
             PulleyQuantity::EdgeForceEnd => "edge_force_end",
             PulleyQuantity::EdgePressureStart => "edge_pressure_start",
             PulleyQuantity::EdgePressureEnd => "edge_pressure_end",
+        }
+    }
+}
+
+impl PulleyQuantity {
+    /// The unit of the quantity (SI; angles in rad).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            PulleyQuantity::ContactArc
+            | PulleyQuantity::ContactStart
+            | PulleyQuantity::ContactEnd
+            | PulleyQuantity::StickArc
+            | PulleyQuantity::SlipArc => "rad",
+            PulleyQuantity::Torque => "N·m",
+            PulleyQuantity::EdgeForceStart | PulleyQuantity::EdgeForceEnd => "N",
+            PulleyQuantity::EdgePressureStart | PulleyQuantity::EdgePressureEnd => "N/m",
+        }
+    }
+
+    /// What the quantity is, in one line.
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            PulleyQuantity::ContactArc => "angle of the contact zone",
+            PulleyQuantity::ContactStart => {
+                "polar angle atan2(y − y_c, x − x_c) ∈ (−π, π] of the first contact point in the direction of σ"
+            }
+            PulleyQuantity::ContactEnd => {
+                "polar angle atan2(y − y_c, x − x_c) ∈ (−π, π] of the last contact point in the direction of σ"
+            }
+            PulleyQuantity::StickArc => "angle of the stick zone (friction drives)",
+            PulleyQuantity::SlipArc => "angle of the slip zone (friction drives)",
+            PulleyQuantity::Torque => "moment of the belt on the pulley about its axis, clockwise positive",
+            PulleyQuantity::EdgeForceStart => {
+                "concentrated normal reaction at the first contact point (unshearable rods)"
+            }
+            PulleyQuantity::EdgeForceEnd => "concentrated normal reaction at the last contact point (unshearable rods)",
+            PulleyQuantity::EdgePressureStart => {
+                "contact pressure per unit reference length just inside the zone at its first point (Cosserat rods)"
+            }
+            PulleyQuantity::EdgePressureEnd => {
+                "contact pressure per unit reference length just inside the zone at its last point (Cosserat rods)"
+            }
         }
     }
 }
@@ -253,6 +336,22 @@ impl Quantity {
         match self {
             Quantity::Global(g) => g as usize,
             Quantity::Pulley(p, q) => Global::ALL.len() + p as usize * PulleyQuantity::ALL.len() + q as usize,
+        }
+    }
+
+    /// The unit (SI; angles in rad).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Quantity::Global(g) => g.unit(),
+            Quantity::Pulley(_, q) => q.unit(),
+        }
+    }
+
+    /// What the quantity is, in one line (for a pulley quantity: of that pulley).
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            Quantity::Global(g) => g.meaning(),
+            Quantity::Pulley(_, q) => q.meaning(),
         }
     }
 
@@ -526,6 +625,35 @@ mod tests {
         s.set("driver.torque", None).unwrap();
         assert_eq!(s.get("driver.torque"), None);
         assert_eq!(s.scalars().len(), SCALAR_NAMES.len() - 1);
+    }
+
+    /// Every quantity has a unit and a meaning, and the unit follows from its name's
+    /// family (so a new quantity cannot be added with the unit of its neighbour).
+    #[test]
+    fn units_and_meanings_follow_the_names() {
+        for q in Quantity::ALL {
+            let (name, unit) = (q.name(), q.unit());
+            assert!(q.meaning().len() > 10, "{name}");
+            let leaf = name.rsplit('.').next().unwrap();
+            let expected = if leaf.starts_with("tension") || leaf.starts_with("edge_force") {
+                "N"
+            } else if leaf.starts_with("edge_pressure") {
+                "N/m"
+            } else if leaf.starts_with("y_") {
+                "m"
+            } else if leaf.starts_with("moment") || leaf == "torque" {
+                "N·m"
+            } else if leaf.ends_with("_speed") {
+                "rad/s"
+            } else if leaf == "transport_rate" {
+                "m/s"
+            } else if leaf.ends_with("_arc") || leaf.starts_with("contact_") {
+                "rad"
+            } else {
+                panic!("{name}: no unit family")
+            };
+            assert_eq!(unit, expected, "{name}");
+        }
     }
 
     #[test]
