@@ -20,14 +20,18 @@
 //!   full Newton correction in the scaled maximum norm max_i |Δz_i| / (1 + |z_i|)
 //!   (weights at the current iterate; a problem may supply its own norm) — see the
 //!   module for the exact algorithm and for how fem's three Newton loops map onto it.
-//!
-//! Not here yet: continuation (step control, fold detection). bvp's and fem's homotopy
-//! loops are being restructured by their owners; the generic parts move here once one
-//! copy can replace both.
+//! - [`continuation`]: continuation in a scalar parameter η — step control
+//!   ([`continuation::StepControl`], the growth rules of bvp's and fem's homotopies as
+//!   [`continuation::Growth`]), natural-parameter continuation over a
+//!   [`continuation::Homotopy`], pseudo-arclength continuation over a
+//!   [`continuation::Branch`] with fold detection, and fold location by Brent's method.
+//!   The caller keeps its predictor, corrector and mesh transfer; what moves here is the
+//!   part every continuation repeats.
 //!
 //! Errors are typed enums carrying the numbers; the linear solvers are generic over the
 //! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
 
+pub mod continuation;
 pub mod fmt;
 pub mod linear;
 pub mod newton;
