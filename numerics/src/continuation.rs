@@ -740,7 +740,7 @@ mod tests {
         // upper half, root x = 0, η = 1 there to O(δ²)
         let xa = points[f0.before].1[0];
         let xb = points[f0.before + 1].1[0];
-        let x = locate_fold(|x| Ok::<f64, Diverged>(x), xa, xb, 1e-12).unwrap();
+        let x = locate_fold(Ok::<f64, Diverged>, xa, xb, 1e-12).unwrap();
         assert!(x.abs() < 1e-11, "{x}");
         let eta = (1.0 - x * x).sqrt();
         assert!((eta - 1.0).abs() < 1e-20_f64.max(x * x));
