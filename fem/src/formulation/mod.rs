@@ -61,16 +61,13 @@ pub use crate::kinematics::{ElementContext, PointFields, TermParams, NDOF};
 pub use crate::quadrature::{QuadratureError, Rule};
 pub use numerics::Scalar;
 
-mod rod_gauss;
-mod rod_simpson;
-mod string_gauss;
-mod string_simpson;
+mod built_in;
+pub mod terms;
 
+pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
 pub use drive::scene::Theory;
-pub use rod_gauss::RodGauss;
-pub use rod_simpson::RodSimpson;
-pub use string_gauss::StringGauss;
-pub use string_simpson::StringSimpson;
+pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, PenaltyContact, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
+use terms::EnergySum;
 
 /// The integration rule of each energy term (§7.3; docs/fem-string.md §6).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -135,115 +132,152 @@ pub trait Formulation: Send + Sync + 'static {
     }
 }
 
-/// The element energy Σ of the active terms (docs/fem-string.md §4):
-/// U (F8) with the density `w(λ)` integrated per unstretched length (× ∂σS),
-/// W (F9) if `el.params.weight` is set, V_γ (F10) if `el.params.penalty` is set, the
-/// bending energy (docs/fem-rod.md K7) if `el.params.bending_stiffness` is set, each
-/// with its rule from `rules`. `q` are the effective unknowns (after the augmented map).
+/// The element energy Σ of the active terms (docs/fem-string.md §4): the units of
+/// [`StandardTerms`] that `el.params` switches on — U (F8) with the density `w(λ)`
+/// integrated per unstretched length (× ∂σS), W (F9) if `el.params.weight` is set, V_γ
+/// (F10) if `el.params.penalty` is set, the bending energy (docs/fem-rod.md K7) if
+/// `el.params.bending_stiffness` is set — each with its rule from `rules`. `q` are the
+/// effective unknowns (after the augmented map).
 pub fn standard_terms<D: Scalar>(
     el: &ElementContext,
     q: &[D; NDOF],
     rules: &TermRules,
     w: impl Fn(D) -> D,
 ) -> D {
-    let jac = el.jacobian();
-    let mut total = D::zero();
-    for term in Term::ALL {
-        if !term.active(&el.params) {
-            continue;
-        }
-        for &(xi, wt) in term.rule(rules).points() {
-            let p = el.fields(q, xi);
-            total += term.density(el, &p, &w) * (wt * jac);
-        }
-    }
-    total
-}
-
-/// The energy terms of a string element (docs/fem-string.md §4).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Term {
-    /// Strain energy U, density W(λ) ∂σS (F8).
-    Strain,
-    /// Gravity potential W, density ρ g y ∂σS (F9).
-    Gravity,
-    /// Penalty contact V_γ, density ½ P ⟨−γ⟩² (F10).
-    Contact,
-    /// Bending energy U_b, density ½ EI θ_σ²/∂σS (docs/fem-rod.md K7).
-    Bending,
-}
-
-impl Term {
-    /// All terms, in assembly order.
-    pub const ALL: [Term; 4] = [Term::Strain, Term::Gravity, Term::Contact, Term::Bending];
-
-    /// True if the scene calls for the term (strain always).
-    pub fn active(self, params: &TermParams) -> bool {
-        match self {
-            Term::Strain => true,
-            Term::Gravity => params.weight.is_some(),
-            Term::Contact => params.penalty.is_some(),
-            Term::Bending => params.bending_stiffness.is_some(),
-        }
-    }
-
-    /// The term's rule.
-    pub fn rule(self, rules: &TermRules) -> Rule {
-        match self {
-            Term::Strain => rules.strain,
-            Term::Gravity => rules.gravity,
-            Term::Contact => rules.contact,
-            Term::Bending => rules.bending,
-        }
-    }
-
-    /// Energy per unit contour length σ at a point, J/m (a zero for an inactive term).
-    #[inline]
-    pub fn density<D: Scalar>(self, el: &ElementContext, p: &PointFields<D>, w: &impl Fn(D) -> D) -> D {
-        match self {
-            Term::Strain => w(el.stretch(p)) * p.ds,
-            Term::Gravity => el.params.weight.map_or(D::zero(), |weight| el.height(p) * p.ds * weight),
-            Term::Contact => match (el.params.penalty, el.gap(p)) {
-                (Some(penalty), Some(gap)) if gap.re() < 0.0 => gap * gap * (0.5 * penalty),
-                _ => D::zero(),
-            },
-            Term::Bending => el.params.bending_stiffness.map_or(D::zero(), |ei| {
-                let k = el.angle_rate(p);
-                k * k / p.ds * (0.5 * ei)
-            }),
-        }
-    }
+    let mut sum = EnergySum::new(el, q);
+    StandardTerms::new(&el.params, rules, w).visit(&mut sum);
+    sum.total
 }
 
 /// Energy and gradient of a standard element, per point by `DualSVec64<3>` as
-/// [`pointwise_derivatives`].
-fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(DualSVec64<3>) -> DualSVec64<3>) -> (f64, [f64; NDOF]) {
-    let jac = el.jacobian();
-    let mut energy = 0.0;
-    let mut grad = [0.0; NDOF];
-    for term in Term::ALL {
-        if !term.active(&el.params) {
-            continue;
-        }
-        for &(xi, wt) in term.rule(rules).points() {
-            let p = el.fields(q, xi);
+/// [`pointwise_derivatives`] (the visitor over the element's terms).
+struct PointGradient<'a> {
+    el: &'a ElementContext,
+    q: &'a [f64; NDOF],
+    energy: f64,
+    grad: [f64; NDOF],
+}
+
+impl TermVisitor<DualSVec64<3>> for PointGradient<'_> {
+    #[inline]
+    fn visit<T: EnergyTerm<DualSVec64<3>>>(&mut self, term: &T) {
+        let (el, jac) = (self.el, self.el.jacobian());
+        for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
+            let p = el.fields(self.q, xi);
             let var = |v: f64, i: usize| DualSVec64::<3>::from_re(v).derivative(i);
             let pd = PointFields { sigma: p.sigma, s: DualSVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: DualSVec64::<3>::from_re(p.d2nu) };
-            let f = term.density(el, &pd, &w);
+            let f = term.density(el, &pd, k);
             let scale = wt * jac;
             let g3 = f.eps.unwrap_generic(Const::<3>, U1);
-            energy += scale * f.re;
+            self.energy += scale * f.re;
             let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
             for (k, &i) in S_DOFS.iter().enumerate() {
-                grad[i] += scale * wd[k] * g3[0];
+                self.grad[i] += scale * wd[k] * g3[0];
             }
             for (k, &i) in NU_DOFS.iter().enumerate() {
-                grad[i] += scale * (wv[k] * g3[1] + wd[k] * g3[2]);
+                self.grad[i] += scale * (wv[k] * g3[1] + wd[k] * g3[2]);
             }
         }
     }
-    (energy, grad)
 }
+
+fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(DualSVec64<3>) -> DualSVec64<3>) -> (f64, [f64; NDOF]) {
+    let mut v = PointGradient { el, q, energy: 0.0, grad: [0.0; NDOF] };
+    StandardTerms::new(&el.params, rules, w).visit(&mut v);
+    (v.energy, v.grad)
+}
+
+/// The linear map B (V × 8) from an element's unknowns to the point values
+/// u = (∂σS, ν, ∂σν[, ∂²σν]) at ξ: row 0 the ∂σS weights on the s unknowns, rows 1, 2
+/// (and 3 for V = 4) the ν, ∂σν (, ∂²σν) weights on the ν unknowns.
+#[inline]
+fn point_map<const V: usize>(xi: f64, h: f64) -> [[f64; NDOF]; V] {
+    let (wv, wd) = crate::hermite::weights(xi, h);
+    let mut b = [[0.0; NDOF]; V];
+    for (k, &i) in S_DOFS.iter().enumerate() {
+        b[0][i] = wd[k];
+    }
+    for (k, &i) in NU_DOFS.iter().enumerate() {
+        b[1][i] = wv[k];
+        b[2][i] = wd[k];
+    }
+    if let Some(row) = b.get_mut(3) {
+        let w2 = crate::hermite::second_weights(xi, h);
+        for (k, &i) in NU_DOFS.iter().enumerate() {
+            row[i] = w2[k];
+        }
+    }
+    b
+}
+
+/// One integration point's share of an element's gradient and Hessian (docs/fem-string.md
+/// §7): with the point's density derivatives g = ∂_u f, H = ∂²_u f and u = B q,
+/// grad += s Bᵀ g and hess += s Bᵀ H B for the weight s = w · dσ/dξ.
+#[inline]
+#[allow(clippy::needless_range_loop)] // the V × 8 products read clearer with indices
+fn add_point<const V: usize>(b: &[[f64; NDOF]; V], g: &[f64; V], h: &[[f64; V]; V], scale: f64, grad: &mut [f64; NDOF], hess: &mut [[f64; NDOF]; NDOF]) {
+    // Bᵀ H, then (Bᵀ H) B
+    let mut bth = [[0.0; V]; NDOF];
+    for i in 0..NDOF {
+        for a in 0..V {
+            let bi = b[a][i];
+            if bi != 0.0 {
+                grad[i] += scale * bi * g[a];
+                for c in 0..V {
+                    bth[i][c] += bi * h[a][c];
+                }
+            }
+        }
+    }
+    for (row, bt) in hess.iter_mut().zip(&bth) {
+        for (j, hv) in row.iter_mut().enumerate() {
+            let mut s = bt[0] * b[0][j];
+            for a in 1..V {
+                s += bt[a] * b[a][j];
+            }
+            *hv += scale * s;
+        }
+    }
+}
+
+/// Energy, gradient and Hessian of a standard element summed over its terms and their
+/// points with the density differentiated per point by `Dual2SVec64<V>` with respect to
+/// the V point values (V = 3: ∂σS, ν, ∂σν; V = 4: and ∂²σν), see [`add_point`].
+struct PointHessian<'a, const V: usize> {
+    el: &'a ElementContext,
+    q: &'a [f64; NDOF],
+    out: ElementDerivatives,
+}
+
+/// The two per-point visitors differ only in the dual type and whether ∂²σν is a
+/// variable (V = 4) or a constant (V = 3).
+macro_rules! point_hessian {
+    ($v:literal, curvature: $curvature:literal) => {
+        impl TermVisitor<Dual2SVec64<$v>> for PointHessian<'_, $v> {
+            #[inline]
+            fn visit<T: EnergyTerm<Dual2SVec64<$v>>>(&mut self, term: &T) {
+                let (el, jac) = (self.el, self.el.jacobian());
+                for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
+                    let p = el.fields(self.q, xi);
+                    let var = |v: f64, i: usize| Dual2SVec64::<$v>::from_re(v).derivative(i);
+                    let d2nu = if $curvature { var(p.d2nu, 3) } else { Dual2SVec64::<$v>::from_re(p.d2nu) };
+                    let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<$v>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu };
+                    let f = term.density(el, &pd, k);
+                    let scale = wt * jac;
+                    let g = f.v1.unwrap_generic(U1, Const::<$v>);
+                    let h = f.v2.unwrap_generic(Const::<$v>, Const::<$v>);
+                    self.out.energy += scale * f.re;
+                    let g: [f64; $v] = std::array::from_fn(|a| g[a]);
+                    let h: [[f64; $v]; $v] = std::array::from_fn(|a| std::array::from_fn(|c| h[(a, c)]));
+                    add_point(&point_map::<$v>(xi, el.geometry.h), &g, &h, scale, &mut self.out.gradient, &mut self.out.hessian);
+                }
+            }
+        }
+    };
+}
+
+point_hessian!(3, curvature: false);
+point_hessian!(4, curvature: true);
 
 /// Energy, gradient and Hessian of a standard element (docs/fem-string.md §7): at each
 /// integration point the density is differentiated by `Dual2SVec64<3>` with respect to
@@ -251,52 +285,9 @@ fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w
 /// (u = B q, B 3 × 8); then g += w Bᵀ ∂_u f and K += w Bᵀ ∂²_u f B. Exact (the chain
 /// rule through a linear map), and equal to AD over all 8 unknowns.
 fn pointwise_derivatives(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<3>) -> Dual2SVec64<3>) -> ElementDerivatives {
-    let jac = el.jacobian();
-    let mut out = ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
-    for term in Term::ALL {
-        if !term.active(&el.params) {
-            continue;
-        }
-        for &(xi, wt) in term.rule(rules).points() {
-            let p = el.fields(q, xi);
-            let var = |v: f64, i: usize| Dual2SVec64::<3>::from_re(v).derivative(i);
-            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: Dual2SVec64::<3>::from_re(p.d2nu) };
-            let f = term.density(el, &pd, &w);
-            let scale = wt * jac;
-            let g3 = f.v1.unwrap_generic(U1, Const::<3>);
-            let h3 = f.v2.unwrap_generic(Const::<3>, Const::<3>);
-            out.energy += scale * f.re;
-            // B: row 0 = ∂σS weights on the s unknowns, rows 1, 2 = ν, ∂σν on the ν unknowns
-            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-            let mut b = [[0.0; NDOF]; 3];
-            for (k, &i) in S_DOFS.iter().enumerate() {
-                b[0][i] = wd[k];
-            }
-            for (k, &i) in NU_DOFS.iter().enumerate() {
-                b[1][i] = wv[k];
-                b[2][i] = wd[k];
-            }
-            // Bᵀ H, then (Bᵀ H) B
-            let mut bth = [[0.0; 3]; NDOF];
-            for i in 0..NDOF {
-                for a in 0..3 {
-                    let bi = b[a][i];
-                    if bi != 0.0 {
-                        out.gradient[i] += scale * bi * g3[a];
-                        for c in 0..3 {
-                            bth[i][c] += bi * h3[(a, c)];
-                        }
-                    }
-                }
-            }
-            for (row, bt) in out.hessian.iter_mut().zip(&bth) {
-                for (j, h) in row.iter_mut().enumerate() {
-                    *h += scale * (bt[0] * b[0][j] + bt[1] * b[1][j] + bt[2] * b[2][j]);
-                }
-            }
-        }
-    }
-    out
+    let mut v = PointHessian::<3> { el, q, out: ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] } };
+    StandardTerms::new(&el.params, rules, w).visit(&mut v);
+    v.out
 }
 
 /// True if the 3-variable per-point path applies: no bending term (it needs ∂²σν) and
@@ -319,53 +310,9 @@ fn plain(el: &ElementContext) -> bool {
 #[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
 fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
     let qe = el.effective(q);
-    let jac = el.jacobian();
-    let mut energy = 0.0;
-    let mut ge = [0.0; NDOF];
-    let mut he = [[0.0; NDOF]; NDOF];
-    for term in Term::ALL {
-        if !term.active(&el.params) {
-            continue;
-        }
-        for &(xi, wt) in term.rule(rules).points() {
-            let p = el.fields(&qe, xi);
-            let var = |v: f64, i: usize| Dual2SVec64::<4>::from_re(v).derivative(i);
-            let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<4>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: var(p.d2nu, 3) };
-            let f = term.density(el, &pd, &w);
-            let scale = wt * jac;
-            let g4 = f.v1.unwrap_generic(U1, Const::<4>);
-            let h4 = f.v2.unwrap_generic(Const::<4>, Const::<4>);
-            energy += scale * f.re;
-            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-            let w2 = crate::hermite::second_weights(xi, el.geometry.h);
-            let mut b = [[0.0; NDOF]; 4];
-            for (k, &i) in S_DOFS.iter().enumerate() {
-                b[0][i] = wd[k];
-            }
-            for (k, &i) in NU_DOFS.iter().enumerate() {
-                b[1][i] = wv[k];
-                b[2][i] = wd[k];
-                b[3][i] = w2[k];
-            }
-            let mut bth = [[0.0; 4]; NDOF];
-            for i in 0..NDOF {
-                for a in 0..4 {
-                    let bi = b[a][i];
-                    if bi != 0.0 {
-                        ge[i] += scale * bi * g4[a];
-                        for c in 0..4 {
-                            bth[i][c] += bi * h4[(a, c)];
-                        }
-                    }
-                }
-            }
-            for (row, bt) in he.iter_mut().zip(&bth) {
-                for (j, h) in row.iter_mut().enumerate() {
-                    *h += scale * (bt[0] * b[0][j] + bt[1] * b[1][j] + bt[2] * b[2][j] + bt[3] * b[3][j]);
-                }
-            }
-        }
-    }
+    let mut v = PointHessian::<4> { el, q: &qe, out: ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] } };
+    StandardTerms::new(&el.params, rules, w).visit(&mut v);
+    let ElementDerivatives { energy, gradient: ge, hessian: he } = v.out;
     // chain rule through the augmented map (K9)
     let alpha = el.alpha();
     let mut jm = [[0.0; NDOF]; NDOF];
@@ -555,7 +502,7 @@ impl<F: Formulation> Kernel for F {
 /// The formulations shipped with the crate, default first. **Add a built-in formulation
 /// here** (one line); an outside crate calls [`register`] instead.
 fn built_in() -> Vec<Arc<dyn Kernel>> {
-    vec![Arc::new(StringSimpson), Arc::new(StringGauss), Arc::new(RodSimpson), Arc::new(RodGauss)]
+    vec![Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)]
 }
 
 /// The process-wide registry: the built-in formulations, then the registered ones in

@@ -1,6 +1,7 @@
 //! Element kernels of the direct steady solve: the gap and stretch of an element at a point, the transport-inertia energy (AD over point values).
 
 use super::*;
+use crate::formulation::terms::{EnergySum, TermVisitor, TransportInertia};
 
 /// The gap γ at a point of an element and its gradient in the element's q; `None`
 /// where no pulley can be reached (F10).
@@ -38,14 +39,10 @@ pub(super) fn element_stretch(el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f6
     (lam, std::array::from_fn(|i| g[i]))
 }
 
-/// −T of (D8) for one element with c an unknown: −∫ ρc²|∂σr|²/(2∂σS) dσ (strain rule).
+/// −T of (D8) for one element with c an unknown: the [`TransportInertia`] term unit
+/// integrated with the strain rule, −∫ ρc²|∂σr|²/(2∂σS) dσ.
 pub(super) fn inertia_energy<D: Scalar>(el: &ElementContext, q: &[D; NDOF], c: D, rho: f64, rule: Rule) -> D {
-    let jac = el.jacobian();
-    let mut total = c * 0.0;
-    for &(xi, wt) in rule.points() {
-        let p = el.fields(q, xi);
-        let t = el.tangent_length(&p);
-        total -= t * t / p.ds * c * c * (0.5 * rho * wt * jac);
-    }
-    total
+    let mut sum = EnergySum::new(el, q);
+    sum.visit(&TransportInertia { rule, rho, speed: c });
+    sum.total
 }
