@@ -25,6 +25,10 @@ pub enum SceneSolveError {
     /// The scene asks for a model the BVP crate does not have (yet).
     #[error("no BVP model for this scene: {0}")]
     Unsupported(String),
+    /// A layout or theory the contract describes but the BVP does not solve yet (the
+    /// issue that brings it is named).
+    #[error(transparent)]
+    NotYetSolvable(#[from] drive::NotYetSolvable),
     /// An option of the scene's `bvp` block is invalid.
     #[error("scene field `bvp.{field}`: {reason}")]
     InvalidOption { field: &'static str, reason: String },
@@ -102,7 +106,15 @@ pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`) or
 /// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys, or the string in
 /// steady motion with Coulomb friction (`string-drive`).
+///
+/// # Errors
+/// [`SceneSolveError::NotYetSolvable`] for a one-pulley, Cosserat or shell scene (before
+/// anything else), [`SceneSolveError::Unsupported`] for another model it does not have,
+/// else the belt problem's failure.
 pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneSolveError> {
+    if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Bvp) {
+        return Err(e.into());
+    }
     let static_frictionless = matches!(scene.analysis, Analysis::Static)
         && matches!(scene.effects.contact, Contact::Frictionless)
         && scene.drive.driver_speed == 0.0

@@ -311,6 +311,154 @@ impl Contour {
     }
 }
 
+/// The three regions of the open contour of a one-pulley scene, in the order σ meets
+/// them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OpenRegion {
+    /// σ ∈ [0, D): Cartesian, y = R, from the inflow end x = −D in +x.
+    InflowSpan,
+    /// σ ∈ [D, D + πR): polar about the pulley centre (the origin), clockwise from the
+    /// top.
+    PulleyArc,
+    /// σ ∈ [D + πR, 2D + πR]: Cartesian, y = −R, in −x to the outflow end x = −D.
+    OutflowSpan,
+}
+
+impl OpenRegion {
+    /// All regions in the order of increasing σ.
+    pub const ALL: [OpenRegion; 3] = [OpenRegion::InflowSpan, OpenRegion::PulleyArc, OpenRegion::OutflowSpan];
+}
+
+/// The open contour g(σ) of a one-pulley scene (Paper C, spec §2.2; DESIGN.md
+/// `drive.layout = "one-pulley"`): the pulley of radius R (to the belt centreline) is
+/// centred at the origin; σ ∈ [0, 2D + πR] starts at the inflow end (−D, R), runs along
+/// the upper side in +x, clockwise round the pulley, and along the lower side in −x to
+/// the outflow end (−D, −R). t_g, n_g and α follow the conventions of [`Contour`]
+/// (n_g outward, eq. 38: ∂σ t_g = −α n_g). The domain is open: σ is not wrapped; a σ
+/// beyond an end continues the end's straight line.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OpenContour {
+    radius: f64,
+    end_distance: f64,
+}
+
+impl OpenContour {
+    /// A contour with pulley radius R > 0 and end distance D > 0 (m).
+    ///
+    /// # Errors
+    /// [`SceneError::NotPositive`] / [`SceneError::NotFinite`] naming
+    /// `drive.pulley_radius` or `drive.end_distance`.
+    pub fn new(radius: f64, end_distance: f64) -> Result<Self, SceneError> {
+        crate::scene::check_positive("drive.pulley_radius", radius)?;
+        crate::scene::check_positive("drive.end_distance", end_distance)?;
+        Ok(OpenContour { radius, end_distance })
+    }
+
+    /// Pulley radius R, m.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// End distance D, m.
+    pub fn end_distance(&self) -> f64 {
+        self.end_distance
+    }
+
+    /// L = 2D + πR, m: the length of the domain.
+    pub fn length(&self) -> f64 {
+        2.0 * self.end_distance + PI * self.radius
+    }
+
+    /// The σ at which each region starts: [0, D, D + πR].
+    pub fn transitions(&self) -> [f64; 3] {
+        [0.0, self.end_distance, self.end_distance + PI * self.radius]
+    }
+
+    /// Region and local coordinate u = σ − σ₀ (negative before the inflow end).
+    fn locate(&self, sigma: f64) -> (OpenRegion, f64) {
+        let t = self.transitions();
+        if sigma < t[1] {
+            (OpenRegion::InflowSpan, sigma)
+        } else if sigma < t[2] {
+            (OpenRegion::PulleyArc, sigma - t[1])
+        } else {
+            // also NaN lands here and propagates
+            (OpenRegion::OutflowSpan, sigma - t[2])
+        }
+    }
+
+    /// The region containing σ (a region owns its start point).
+    pub fn region(&self, sigma: f64) -> OpenRegion {
+        self.locate(sigma).0
+    }
+
+    /// α(σ): 0 on the spans, 1/R on the arc, 1/m.
+    pub fn alpha(&self, sigma: f64) -> f64 {
+        if self.region(sigma) == OpenRegion::PulleyArc {
+            1.0 / self.radius
+        } else {
+            0.0
+        }
+    }
+
+    /// n_g(σ): outward unit normal; on the arc (sin φ, cos φ) with φ = (σ − D)/R the
+    /// clockwise angle from the top.
+    pub fn n_g(&self, sigma: f64) -> [f64; 2] {
+        match self.locate(sigma) {
+            (OpenRegion::InflowSpan, _) => [0.0, 1.0],
+            (OpenRegion::OutflowSpan, _) => [0.0, -1.0],
+            (OpenRegion::PulleyArc, u) => {
+                let phi = u / self.radius;
+                [phi.sin(), phi.cos()]
+            }
+        }
+    }
+
+    /// t_g(σ) = ∂σ g, with n = (−t_y, t_x).
+    pub fn t_g(&self, sigma: f64) -> [f64; 2] {
+        let n = self.n_g(sigma);
+        [n[1], -n[0]]
+    }
+
+    /// g(σ), m.
+    pub fn g(&self, sigma: f64) -> [f64; 2] {
+        let (d, r) = (self.end_distance, self.radius);
+        match self.locate(sigma) {
+            (OpenRegion::InflowSpan, u) => [-d + u, r],
+            (OpenRegion::OutflowSpan, u) => [-u, -r],
+            (OpenRegion::PulleyArc, _) => {
+                let n = self.n_g(sigma);
+                [r * n[0], r * n[1]]
+            }
+        }
+    }
+
+    /// r = g(σ) + ν n_g(σ), m (eq. 27, planar).
+    pub fn position(&self, sigma: f64, nu: f64) -> [f64; 2] {
+        let g = self.g(sigma);
+        let n = self.n_g(sigma);
+        [g[0] + nu * n[0], g[1] + nu * n[1]]
+    }
+
+    /// The inverse of [`OpenContour::position`]: x ≥ 0 maps polar about the origin
+    /// (σ = D + R·φ, φ ∈ [0, π] clockwise from the top, ν = |p| − R); x < 0 maps to the
+    /// vertical normal line of the upper (y ≥ 0) or lower span. Both maps agree on
+    /// x = 0; the round trip holds for ν > −R.
+    pub fn sigma_nu(&self, point: [f64; 2]) -> (f64, f64) {
+        let (d, r) = (self.end_distance, self.radius);
+        let [x, y] = point;
+        if x >= 0.0 {
+            let phi = x.atan2(y); // clockwise from +y, in [0, π]
+            (d + r * phi, x.hypot(y) - r)
+        } else if y >= 0.0 {
+            (x + d, y - r)
+        } else {
+            (d + PI * r - x, -y - r)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     //! Eq. (38) by central finite differences, continuity at the transitions,
@@ -503,5 +651,44 @@ mod tests {
             Contour::new(f64::NAN, 1.0),
             Err(SceneError::NotFinite { .. })
         ));
+    }
+
+    /// The open contour of a one-pulley scene: eq. (38) by central differences inside
+    /// every region, continuity of g and t_g at the transitions, the ends where spec §2.2
+    /// puts them, and the (σ, ν) round trip.
+    #[test]
+    fn open_contour_geometry() {
+        let (r, d) = (0.1, 0.5);
+        let c = OpenContour::new(r, d).unwrap();
+        assert!((c.length() - (2.0 * d + PI * r)).abs() < 1e-15);
+        assert_eq!(c.g(0.0), [-d, r]);
+        let end = c.g(c.length());
+        assert!((end[0] + d).abs() < 1e-15 && (end[1] + r).abs() < 1e-15, "{end:?}");
+        assert_eq!(c.t_g(0.0), [1.0, 0.0]);
+        let h = 1e-6;
+        for k in 0..200 {
+            let sigma = c.length() * (k as f64 + 0.5) / 200.0;
+            let (g0, g1) = (c.g(sigma - h), c.g(sigma + h));
+            if c.region(sigma - h) != c.region(sigma + h) {
+                continue;
+            }
+            let t = c.t_g(sigma);
+            for i in 0..2 {
+                assert!(((g1[i] - g0[i]) / (2.0 * h) - t[i]).abs() < 1e-8, "∂σ g at σ = {sigma}");
+                let dt = (c.t_g(sigma + h)[i] - c.t_g(sigma - h)[i]) / (2.0 * h);
+                assert!((dt + c.alpha(sigma) * c.n_g(sigma)[i]).abs() < 1e-7, "∂σ t_g at σ = {sigma}");
+            }
+            for nu in [-0.05, 0.0, 0.03] {
+                let (s2, n2) = c.sigma_nu(c.position(sigma, nu));
+                assert!((s2 - sigma).abs() < 1e-12 && (n2 - nu).abs() < 1e-12, "round trip at σ = {sigma}, ν = {nu}");
+            }
+        }
+        for t in c.transitions() {
+            let (a, b) = (c.g(t - 1e-12), c.g(t));
+            assert!((a[0] - b[0]).abs() < 1e-10 && (a[1] - b[1]).abs() < 1e-10, "g jumps at σ = {t}");
+            let (a, b) = (c.t_g(t - 1e-12), c.t_g(t));
+            assert!((a[0] - b[0]).abs() < 1e-9 && (a[1] - b[1]).abs() < 1e-9, "t_g jumps at σ = {t}");
+        }
+        assert!(matches!(OpenContour::new(r, 0.0), Err(SceneError::NotPositive { .. })));
     }
 }

@@ -162,6 +162,29 @@ pub enum SceneError {
         pulley_radius: f64,
     },
 
+    /// A one-pulley scene must prescribe exactly two of `tension_in`, `tension_out`,
+    /// `pulley_speed`, `stick_slip_angle`, at least one a tension (spec §2.3: with c given,
+    /// the four are tied by two relations).
+    #[error("layout `one-pulley` prescribes exactly two of `drive.tension_in`, `drive.tension_out`, `drive.pulley_speed`, `drive.stick_slip_angle`, at least one a tension; got {}", given_list(.given))]
+    OnePulleyPrescription {
+        /// The prescriptions given, with their values.
+        given: Vec<(String, f64)>,
+    },
+
+    /// The transport rate reaches a critical speed of the belt: the stiffness named by
+    /// `path` (EA, or GA of a Cosserat rod) does not exceed χ = ρc².
+    #[error("`{path}` = {} N must exceed χ = ρc² = {}·{}² = {} N: the belt moves at or above its critical speed (`drive.transport_rate`)", num(.stiffness), num(.mass_per_length), num(.transport_rate), num(&(.mass_per_length * .transport_rate * .transport_rate)))]
+    SpeedAtOrAboveCritical {
+        /// `belt.axial_stiffness` or `belt.shear_stiffness`.
+        path: String,
+        /// The stiffness, N.
+        stiffness: f64,
+        /// ρ, kg/m.
+        mass_per_length: f64,
+        /// c, m/s.
+        transport_rate: f64,
+    },
+
     /// Any other inconsistency of one value (a name with forbidden characters, a
     /// mesh sequence that does not increase, ...).
     #[error("`{path}`: {reason}")]
@@ -180,7 +203,9 @@ impl SceneError {
         match self {
             SceneError::Io { .. }
             | SceneError::Syntax { .. }
-            | SceneError::PulleysOverlap { .. } => None,
+            | SceneError::PulleysOverlap { .. }
+            | SceneError::OnePulleyPrescription { .. } => None,
+            SceneError::SpeedAtOrAboveCritical { path, .. } => Some(path),
             SceneError::UnknownField { path, .. }
             | SceneError::DuplicateKey { path, .. }
             | SceneError::MissingField { path, .. }
@@ -218,6 +243,15 @@ pub fn clip(text: &str) -> String {
     } else {
         text.to_string()
     }
+}
+
+/// "none" or "`a` = 1, `b` = 2".
+fn given_list(given: &[(String, f64)]) -> String {
+    if given.is_empty() {
+        return "none".into();
+    }
+    let items: Vec<String> = given.iter().map(|(n, v)| format!("`drive.{n}` = {}", num(v))).collect();
+    format!("{}: {}", items.len(), items.join(", "))
 }
 
 /// "; did you mean `x`?" or "; expected one of `a`, `b`".

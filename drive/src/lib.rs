@@ -7,7 +7,10 @@
 //!   that name the field path (unknown fields with the nearest valid name suggested)
 //!   and validated (signs, geometry, theory/effect/analysis compatibility);
 //! - [`contour`]: the compound contour g(σ) of two pulleys with t_g, n_g, α
-//!   (§5 of the reference, eqs. 27 and 38) and the inverse map point → (σ, ν);
+//!   (§5 of the reference, eqs. 27 and 38) and the inverse map point → (σ, ν), and the
+//!   open contour of a one-pulley scene ([`OpenContour`]);
+//! - [`pending`]: what the scene format describes but no solver solves yet
+//!   ([`NotYetSolvable`], naming the issue that brings it);
 //! - [`view`]: the common solution view ([`SolutionView`]) through which the harness
 //!   samples any solution, and [`sample_fields`];
 //! - [`summary`], [`result`]: the named scalars and the result JSON of DESIGN.md;
@@ -43,6 +46,7 @@
 
 pub mod contour;
 pub mod error;
+pub mod pending;
 pub mod result;
 pub mod scene;
 mod schema;
@@ -50,12 +54,13 @@ mod suggest;
 pub mod summary;
 pub mod view;
 
-pub use contour::{Contour, Pulley, Region};
+pub use contour::{Contour, OpenContour, OpenRegion, Pulley, Region};
+pub use pending::{not_yet_solvable, NotYetSolvable, Solver, Unsolved};
 pub use error::{ResultError, SceneError};
 pub use result::{Cost, Fields, History, RunResult, FIELD_NORM_NAMES};
 pub use scene::{
-    Analysis, Belt, BvpMethod, BvpSettings, Contact, DriveGeometry, Effects, ElasticLayer,
-    FemSettings, GateSettings, Scene, Theory,
+    Analysis, Belt, BvpMethod, BvpSettings, Camber, Contact, DriveGeometry, Effects, ElasticLayer, End,
+    FemSettings, GateSettings, Layout, OnePulleyLoad, Plate, Scene, Section, Theory,
 };
 pub use summary::{Global, PulleyId, PulleyQuantity, PulleySummary, Quantity, Summary, SCALAR_NAMES};
 pub use view::{sample_fields, ContactState, SolutionView};

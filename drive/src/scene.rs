@@ -11,12 +11,30 @@
 //! 3. [`Scene::validate`]: finiteness, signs and ranges, geometry, and the
 //!    compatibility of theory, effects and analysis (rules below).
 //!
+//! # Layouts (`drive.layout`)
+//! - `two-pulley` (default): the closed loop over two pulleys — `centre_distance`,
+//!   `driver_speed`, `driven_torque` required, `driven_damping` optional, `belt.length`
+//!   required;
+//! - `one-pulley` (Paper C, spec §2.2): one pulley at the origin with open ends —
+//!   `end_distance` D > 0 and `transport_rate` c > 0 required, exactly two of
+//!   `tension_in`, `tension_out` (> 0), `pulley_speed`, `stick_slip_angle` (|φ_B| ≤ π),
+//!   at least one a tension ([`SceneError::OnePulleyPrescription`]); `belt.length` and
+//!   the two-pulley fields are not allowed; analysis `steady`; EA and (Cosserat) GA
+//!   must exceed χ = ρc² ([`SceneError::SpeedAtOrAboveCritical`]).
+//!
+//! A field of the other layout, and a field of the other kind of belt (plate parameters
+//! outside theory `shell`, a section inside it), is a [`SceneError::NotAllowed`] naming
+//! it; a missing required one a [`SceneError::MissingField`].
+//!
 //! # Compatibility rules (checked by [`Scene::validate`])
 //! - theory `string`: `bending_stiffness` and `shear_stiffness` absent (or `null`);
 //! - theory `kirchhoff`: `bending_stiffness` required (> 0), `shear_stiffness` absent;
-//! - theory `cosserat`: both required (> 0);
-//! - theory `shell` (Kirchhoff–Love, unshearable): `bending_stiffness` required,
-//!   `shear_stiffness` absent;
+//! - theory `cosserat`: both required (> 0): a = EI, b₁ = EA, b₂ = GA of spec §1;
+//! - theory `shell` (Kirchhoff–Love, unshearable): the plate `width` b, `thickness`
+//!   h < b, `youngs_modulus` E, `poisson_ratio` −1 < ν < 0.5, `density` ρ_V required,
+//!   `camber` optional (exactly one of `curvature`, `edge_length_difference`);
+//!   `axial_stiffness`, `bending_stiffness`, `mass_per_length` not given but derived
+//!   ([`Plate::section`]); `shear_stiffness` absent;
 //! - contact `elastic_layer`: theory `shell` only;
 //! - analysis `static`: no motion, so `driver_speed`, `driven_torque` and
 //!   `driven_damping` must be 0, `inertia` must not be `true`, and Coulomb friction is
@@ -125,24 +143,202 @@ impl Peer {
     }
 }
 
+/// How the belt runs (`drive.layout`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+pub enum Layout {
+    /// The closed loop over two pulleys (`"two-pulley"`, the default): DESIGN.md's drive,
+    /// σ ∈ [0, 2H + 2πR) ([`Contour`]).
+    #[default]
+    #[serde(rename = "two-pulley")]
+    TwoPulley,
+    /// One pulley centred at the origin with open ends (`"one-pulley"`, Paper C, spec
+    /// §2.2): the belt enters at x = −D along the upper side moving in +x, wraps
+    /// clockwise and leaves at x = −D along the lower side; σ ∈ [0, 2D + πR]
+    /// ([`crate::contour::OpenContour`]).
+    #[serde(rename = "one-pulley")]
+    OnePulley,
+}
+
+impl Layout {
+    /// The JSON spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::TwoPulley => "two-pulley",
+            Layout::OnePulley => "one-pulley",
+        }
+    }
+
+    fn is_two_pulley(&self) -> bool {
+        *self == Layout::TwoPulley
+    }
+}
+
+impl fmt::Display for Layout {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Pulley geometry and the loads of the drive (`drive` block).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+///
+/// Which fields a scene gives depends on [`DriveGeometry::layout`] (the schema walk names a
+/// missing or misplaced one): `two-pulley` takes `centre_distance`, `driver_speed`,
+/// `driven_torque` (required) and `driven_damping`; `one-pulley` takes `end_distance`,
+/// `transport_rate` (required) and exactly two of `tension_in`, `tension_out`,
+/// `pulley_speed`, `stick_slip_angle`, at least one a tension. The two-pulley numbers of a
+/// one-pulley scene are 0 and are not written.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DriveGeometry {
-    /// R, m, > 0: radius of both pulleys *to the belt centreline*. Required.
+    /// Closed loop over two pulleys or one pulley with open ends. Optional, default
+    /// `two-pulley`.
+    #[serde(default)]
+    pub layout: Layout,
+    /// R, m, > 0: radius of the pulleys *to the belt centreline*. Required.
     pub pulley_radius: f64,
-    /// H, m, > 2R: distance of the pulley centres (−H/2, 0) and (+H/2, 0). Required.
+    /// H, m, > 2R: distance of the pulley centres (−H/2, 0) and (+H/2, 0). Required for
+    /// `two-pulley`; 0 (not allowed in the JSON) for `one-pulley`.
+    #[serde(default)]
     pub centre_distance: f64,
     /// ω₁, rad/s, finite, clockwise positive (the upper span moves in +x); must be 0
-    /// in a static analysis. Required.
+    /// in a static analysis. Required for `two-pulley`; 0 for `one-pulley`.
+    #[serde(default)]
     pub driver_speed: f64,
     /// M₂, N·m, finite: torque resisting the motion of the driven pulley; must be 0
-    /// in a static analysis. Required.
+    /// in a static analysis. Required for `two-pulley`; 0 for `one-pulley`.
+    #[serde(default)]
     pub driven_torque: f64,
     /// d₂, N·m·s, ≥ 0: viscous resistance of the driven pulley, resisting torque
-    /// d₂·ω₂ in addition to M₂; must be 0 in a static analysis. Optional, default 0.
+    /// d₂·ω₂ in addition to M₂; must be 0 in a static analysis. Optional, default 0;
+    /// `two-pulley` only.
     #[serde(default)]
     pub driven_damping: f64,
+    /// D, m, > 0 (`one-pulley`): distance of the two end sections x = −D from the pulley
+    /// centre. Required for `one-pulley`.
+    #[serde(default)]
+    pub end_distance: Option<f64>,
+    /// c, m/s, > 0 (`one-pulley`): prescribed transport rate (mass flux / ρ). Required for
+    /// `one-pulley`.
+    #[serde(default)]
+    pub transport_rate: Option<f64>,
+    /// N_in, N, > 0 (`one-pulley`): axial force at the inflow end (upper side).
+    #[serde(default)]
+    pub tension_in: Option<f64>,
+    /// N_out, N, > 0 (`one-pulley`): axial force at the outflow end (lower side).
+    #[serde(default)]
+    pub tension_out: Option<f64>,
+    /// ω, rad/s, finite, clockwise positive (`one-pulley`): prescribed pulley speed.
+    #[serde(default)]
+    pub pulley_speed: Option<f64>,
+    /// φ_B, rad, in [−π, π] (`one-pulley`): polar angle of the stick-to-slip transition
+    /// point, prescribed directly (Paper C).
+    #[serde(default)]
+    pub stick_slip_angle: Option<f64>,
+}
+
+/// The two prescribed quantities of a one-pulley scene (spec §2.3): exactly two of the
+/// four, at least one a tension.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OnePulleyLoad {
+    /// N_in and N_out given; ω and φ_B are outputs (`prescribe: tensions`).
+    Tensions {
+        /// N_in, N.
+        tension_in: f64,
+        /// N_out, N.
+        tension_out: f64,
+    },
+    /// φ_B and one tension given (Paper C's choice); ω and the other tension outputs.
+    Transition {
+        /// φ_B, rad.
+        stick_slip_angle: f64,
+        /// The end whose tension is given and its value, N.
+        tension: (End, f64),
+    },
+    /// ω and one tension given ("the usual approach"); φ_B and the other tension outputs.
+    PulleySpeed {
+        /// ω, rad/s.
+        pulley_speed: f64,
+        /// The end whose tension is given and its value, N.
+        tension: (End, f64),
+    },
+}
+
+/// An open end of a one-pulley scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum End {
+    /// The inflow end on the upper side.
+    In,
+    /// The outflow end on the lower side.
+    Out,
+}
+
+impl DriveGeometry {
+    /// Names and values of the one-pulley prescriptions given, in the order
+    /// `tension_in`, `tension_out`, `pulley_speed`, `stick_slip_angle`.
+    fn one_pulley_given(&self) -> Vec<(&'static str, f64)> {
+        [
+            ("tension_in", self.tension_in),
+            ("tension_out", self.tension_out),
+            ("pulley_speed", self.pulley_speed),
+            ("stick_slip_angle", self.stick_slip_angle),
+        ]
+        .into_iter()
+        .filter_map(|(n, v)| v.map(|v| (n, v)))
+        .collect()
+    }
+
+    /// The prescribed pair of a one-pulley scene; `None` for a two-pulley scene or a pair
+    /// that [`Scene::validate`] refuses.
+    pub fn one_pulley_load(&self) -> Option<OnePulleyLoad> {
+        if self.layout != Layout::OnePulley {
+            return None;
+        }
+        let tension = match (self.tension_in, self.tension_out) {
+            (Some(t), None) => Some((End::In, t)),
+            (None, Some(t)) => Some((End::Out, t)),
+            _ => None,
+        };
+        match (self.tension_in, self.tension_out, self.pulley_speed, self.stick_slip_angle) {
+            (Some(tension_in), Some(tension_out), None, None) => Some(OnePulleyLoad::Tensions { tension_in, tension_out }),
+            (_, _, None, Some(stick_slip_angle)) => tension.map(|tension| OnePulleyLoad::Transition { stick_slip_angle, tension }),
+            (_, _, Some(pulley_speed), None) => tension.map(|tension| OnePulleyLoad::PulleySpeed { pulley_speed, tension }),
+            _ => None,
+        }
+    }
+}
+
+/// Writes the fields of the scene's layout only (a one-pulley scene has no
+/// `centre_distance`, `driver_speed`, `driven_torque`, `driven_damping`), so that
+/// [`Scene::from_json_str`] reads the written scene back.
+impl Serialize for DriveGeometry {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(None)?;
+        if !self.layout.is_two_pulley() {
+            m.serialize_entry("layout", &self.layout)?;
+        }
+        m.serialize_entry("pulley_radius", &self.pulley_radius)?;
+        match self.layout {
+            Layout::TwoPulley => {
+                m.serialize_entry("centre_distance", &self.centre_distance)?;
+                m.serialize_entry("driver_speed", &self.driver_speed)?;
+                m.serialize_entry("driven_torque", &self.driven_torque)?;
+                m.serialize_entry("driven_damping", &self.driven_damping)?;
+            }
+            Layout::OnePulley => {
+                for (name, v) in [("end_distance", self.end_distance), ("transport_rate", self.transport_rate)] {
+                    if let Some(v) = v {
+                        m.serialize_entry(name, &v)?;
+                    }
+                }
+                for (name, v) in self.one_pulley_given() {
+                    m.serialize_entry(name, &v)?;
+                }
+            }
+        }
+        m.end()
+    }
 }
 
 /// Structural theory of the belt (`belt.theory`).
@@ -178,26 +374,176 @@ impl fmt::Display for Theory {
 }
 
 /// The belt (`belt` block). Stiffnesses are of the whole cross-section.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+///
+/// Theory `shell` gives the plate parameters (`width`, `thickness`, `youngs_modulus`,
+/// `poisson_ratio`, `density`, optional `camber`) instead of `axial_stiffness`,
+/// `bending_stiffness` and `mass_per_length`; the reader fills those three with the
+/// planar-limit section of the plate ([`Plate::section`]) and does not write them back.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Belt {
     /// Structural theory. Required.
     pub theory: Theory,
-    /// L, m, > 0: unstretched length of the closed belt. Required. May be shorter
-    /// than the contour 2H + 2πR (stretched on).
+    /// L, m, > 0: unstretched length of the closed belt. Required for layout
+    /// `two-pulley`; not allowed (0 here) for `one-pulley`, whose belt has open ends.
+    /// May be shorter than the contour 2H + 2πR (stretched on).
+    #[serde(default)]
     pub length: f64,
-    /// EA, N, > 0: axial stiffness, N = EA·(λ − 1). Required.
+    /// EA, N, > 0: axial stiffness, N = EA·(λ − 1). Required (`cosserat`: b₁); derived
+    /// for `shell`.
+    #[serde(default)]
     pub axial_stiffness: f64,
     /// EI, N·m², > 0: bending stiffness, M = EI·κ. Required for `kirchhoff`,
-    /// `cosserat`, `shell`; absent or `null` for `string`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    /// `cosserat` (a); derived for `shell`; absent or `null` for `string`.
+    #[serde(default)]
     pub bending_stiffness: Option<f64>,
-    /// GA, N, > 0: shear stiffness, Q = GA·γ. Required for `cosserat`; absent or
+    /// GA, N, > 0: shear stiffness, Q = GA·γ. Required for `cosserat` (b₂); absent or
     /// `null` otherwise.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub shear_stiffness: Option<f64>,
-    /// ρ, kg/m, > 0: mass per unit unstretched length. Required.
+    /// ρ, kg/m, > 0: mass per unit unstretched length. Required; derived for `shell`.
+    #[serde(default)]
     pub mass_per_length: f64,
+    /// b, m, > 0: width of the shell (`shell` only, required).
+    #[serde(default)]
+    pub width: Option<f64>,
+    /// h, m, > 0 and < b: thickness of the shell (`shell` only, required).
+    #[serde(default)]
+    pub thickness: Option<f64>,
+    /// E, Pa, > 0: Young's modulus of the shell (`shell` only, required).
+    #[serde(default)]
+    pub youngs_modulus: Option<f64>,
+    /// ν, −1 < ν < 0.5: Poisson's ratio of the shell (`shell` only, required).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    /// ρ_V, kg/m³, > 0: density of the shell material (`shell` only, required).
+    #[serde(default)]
+    pub density: Option<f64>,
+    /// Camber imperfection of the shell (`shell` only, optional; absent = straight).
+    #[serde(default)]
+    pub camber: Option<Camber>,
+}
+
+/// Camber imperfection of a shell belt (`belt.camber`, spec §4.3): exactly one of the
+/// two fields.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camber {
+    /// κ_c, 1/m, finite: in-plane curvature of the unstretched belt's centre line.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub curvature: Option<f64>,
+    /// ΔL, m, finite: length difference of the two belt edges.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_length_difference: Option<f64>,
+}
+
+/// The plate parameters of a shell belt (theory `shell`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Plate {
+    /// b, m.
+    pub width: f64,
+    /// h, m.
+    pub thickness: f64,
+    /// E, Pa.
+    pub youngs_modulus: f64,
+    /// ν.
+    pub poisson_ratio: f64,
+    /// ρ_V, kg/m³.
+    pub density: f64,
+}
+
+/// The section of a belt seen as a rod in the plane: what the planar models use.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Section {
+    /// EA, N.
+    pub axial_stiffness: f64,
+    /// EI, N·m².
+    pub bending_stiffness: f64,
+    /// ρ, kg/m.
+    pub mass_per_length: f64,
+}
+
+impl Plate {
+    /// The planar limit of the plate strip: EA = E b h, EI = E b h³ / (12 (1 − ν²)) (the
+    /// plate's bending stiffness D times the width: a wide strip bends in cylindrical
+    /// bending), ρ = ρ_V b h.
+    pub fn section(&self) -> Section {
+        let (b, h, e, nu) = (self.width, self.thickness, self.youngs_modulus, self.poisson_ratio);
+        Section {
+            axial_stiffness: e * b * h,
+            bending_stiffness: e * b * h.powi(3) / (12.0 * (1.0 - nu * nu)),
+            mass_per_length: self.density * b * h,
+        }
+    }
+}
+
+impl Belt {
+    /// The plate parameters of a shell belt (`None` unless all five are given).
+    pub fn plate(&self) -> Option<Plate> {
+        Some(Plate {
+            width: self.width?,
+            thickness: self.thickness?,
+            youngs_modulus: self.youngs_modulus?,
+            poisson_ratio: self.poisson_ratio?,
+            density: self.density?,
+        })
+    }
+
+    /// For theory `shell`: `axial_stiffness`, `bending_stiffness` and `mass_per_length`
+    /// set to the plate's [`Plate::section`] (the reader calls this; call it after
+    /// building a shell belt in code). Other theories are returned unchanged.
+    pub fn with_derived_section(mut self) -> Belt {
+        if self.theory == Theory::Shell {
+            if let Some(s) = self.plate().map(|p| p.section()) {
+                self.axial_stiffness = s.axial_stiffness;
+                self.bending_stiffness = Some(s.bending_stiffness);
+                self.mass_per_length = s.mass_per_length;
+            }
+        }
+        self
+    }
+}
+
+/// Writes what a scene file gives: no `length` for a one-pulley belt (0), no section for
+/// a shell (derived from the plate), so that [`Scene::from_json_str`] reads it back.
+impl Serialize for Belt {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(None)?;
+        m.serialize_entry("theory", &self.theory)?;
+        if self.length != 0.0 {
+            m.serialize_entry("length", &self.length)?;
+        }
+        let shell = self.theory == Theory::Shell;
+        if !shell {
+            m.serialize_entry("axial_stiffness", &self.axial_stiffness)?;
+            if let Some(v) = self.bending_stiffness {
+                m.serialize_entry("bending_stiffness", &v)?;
+            }
+        }
+        if let Some(v) = self.shear_stiffness {
+            m.serialize_entry("shear_stiffness", &v)?;
+        }
+        if !shell {
+            m.serialize_entry("mass_per_length", &self.mass_per_length)?;
+        }
+        let plate = [
+            ("width", self.width),
+            ("thickness", self.thickness),
+            ("youngs_modulus", self.youngs_modulus),
+            ("poisson_ratio", self.poisson_ratio),
+            ("density", self.density),
+        ];
+        for (name, v) in plate {
+            if let Some(v) = v {
+                m.serialize_entry(name, &v)?;
+            }
+        }
+        if let Some(c) = &self.camber {
+            m.serialize_entry("camber", c)?;
+        }
+        m.end()
+    }
 }
 
 /// Contact model between belt and pulleys (`effects.contact`).
@@ -466,12 +812,13 @@ impl Scene {
     pub fn from_json_str(text: &str) -> Result<Scene, SceneError> {
         let mut value = crate::schema::parse_strict(text)?;
         crate::schema::check_scene(&mut value)?;
-        let scene: Scene = serde_json::from_value(value)
+        let mut scene: Scene = serde_json::from_value(value)
             // unreachable after the schema walk; kept as an error, not a panic
             .map_err(|e| SceneError::Invalid {
                 path: "<scene>".into(),
                 reason: e.to_string(),
             })?;
+        scene.belt = scene.belt.with_derived_section();
         scene.validate()?;
         Ok(scene)
     }
@@ -585,16 +932,79 @@ impl Scene {
 
     fn validate_drive(&self) -> Result<(), SceneError> {
         let d = &self.drive;
-        Contour::new(d.pulley_radius, d.centre_distance)?;
-        check_finite("drive.driver_speed", d.driver_speed)?;
-        check_finite("drive.driven_torque", d.driven_torque)?;
-        check_non_negative("drive.driven_damping", d.driven_damping)?;
+        match d.layout {
+            Layout::TwoPulley => {
+                Contour::new(d.pulley_radius, d.centre_distance)?;
+                check_finite("drive.driver_speed", d.driver_speed)?;
+                check_finite("drive.driven_torque", d.driven_torque)?;
+                check_non_negative("drive.driven_damping", d.driven_damping)?;
+            }
+            Layout::OnePulley => self.validate_one_pulley()?,
+        }
+        Ok(())
+    }
+
+    /// Spec §2.2–2.3: R, D, c > 0; the tensions > 0, ω finite, φ_B in [−π, π]; exactly
+    /// two prescriptions, at least one a tension; EA (and GA of a Cosserat rod) above
+    /// χ = ρc²; analysis `steady` (Paper C solves the steady motion).
+    fn validate_one_pulley(&self) -> Result<(), SceneError> {
+        let d = &self.drive;
+        check_positive("drive.pulley_radius", d.pulley_radius)?;
+        for (path, v) in [("drive.end_distance", d.end_distance), ("drive.transport_rate", d.transport_rate)] {
+            // both required by the schema walk; a scene built in code may lack them
+            let v = v.ok_or_else(|| SceneError::Required { path: path.into(), reason: "for layout `one-pulley`".into() })?;
+            check_positive(path, v)?;
+        }
+        for (path, v) in [("drive.tension_in", d.tension_in), ("drive.tension_out", d.tension_out)] {
+            if let Some(v) = v {
+                check_positive(path, v)?;
+            }
+        }
+        if let Some(w) = d.pulley_speed {
+            check_finite("drive.pulley_speed", w)?;
+        }
+        if let Some(phi) = d.stick_slip_angle {
+            check_finite("drive.stick_slip_angle", phi)?;
+            if phi.abs() > std::f64::consts::PI {
+                return Err(SceneError::OutOfRange {
+                    path: "drive.stick_slip_angle".into(),
+                    value: phi,
+                    range: "a polar angle about the pulley centre, −π ≤ φ_B ≤ π rad".into(),
+                });
+            }
+        }
+        if d.one_pulley_load().is_none() {
+            let given = d.one_pulley_given().into_iter().map(|(n, v)| (n.to_string(), v)).collect();
+            return Err(SceneError::OnePulleyPrescription { given });
+        }
+        if self.analysis != Analysis::Steady {
+            return Err(SceneError::NotAllowed {
+                path: "analysis".into(),
+                reason: format!(
+                    "layout `one-pulley` is the belt in steady motion over one pulley (Paper C), so the analysis must be `steady` (got `{}`)",
+                    self.analysis
+                ),
+            });
+        }
+        let (rho, c) = (self.belt.mass_per_length, d.transport_rate.unwrap_or(0.0));
+        let chi = rho * c * c;
+        let stiffnesses = [("belt.axial_stiffness", Some(self.belt.axial_stiffness)), ("belt.shear_stiffness", self.belt.shear_stiffness)];
+        for (path, k) in stiffnesses {
+            if let Some(k) = k.filter(|&k| k <= chi) {
+                return Err(SceneError::SpeedAtOrAboveCritical { path: path.into(), stiffness: k, mass_per_length: rho, transport_rate: c });
+            }
+        }
         Ok(())
     }
 
     fn validate_belt(&self) -> Result<(), SceneError> {
         let b = &self.belt;
-        check_positive("belt.length", b.length)?;
+        if self.drive.layout == Layout::TwoPulley {
+            check_positive("belt.length", b.length)?;
+        }
+        if b.theory == Theory::Shell {
+            self.validate_plate()?;
+        }
         check_positive("belt.axial_stiffness", b.axial_stiffness)?;
         check_positive("belt.mass_per_length", b.mass_per_length)?;
         let theory = b.theory;
@@ -639,6 +1049,52 @@ impl Scene {
                         crate::error::num(&v)
                     ),
                 });
+            }
+        }
+        Ok(())
+    }
+
+    /// The plate of a shell: every parameter given and positive, h < b (a shell is thin),
+    /// −1 < ν < 0.5, camber with exactly one finite field.
+    fn validate_plate(&self) -> Result<(), SceneError> {
+        let b = &self.belt;
+        let plate = [
+            ("belt.width", b.width),
+            ("belt.thickness", b.thickness),
+            ("belt.youngs_modulus", b.youngs_modulus),
+            ("belt.density", b.density),
+        ];
+        for (path, v) in plate {
+            let v = v.ok_or_else(|| SceneError::Required { path: path.into(), reason: "for theory `shell`".into() })?;
+            check_positive(path, v)?;
+        }
+        let nu = b.poisson_ratio.ok_or_else(|| SceneError::Required { path: "belt.poisson_ratio".into(), reason: "for theory `shell`".into() })?;
+        check_finite("belt.poisson_ratio", nu)?;
+        if !(nu > -1.0 && nu < 0.5) {
+            return Err(SceneError::OutOfRange { path: "belt.poisson_ratio".into(), value: nu, range: "−1 < ν < 0.5 (a stable isotropic material)".into() });
+        }
+        if let (Some(h), Some(w)) = (b.thickness, b.width) {
+            if h >= w {
+                return Err(SceneError::OutOfRange {
+                    path: "belt.thickness".into(),
+                    value: h,
+                    range: format!("a shell is thin: h < b = `belt.width` = {} m", crate::error::num(&w)),
+                });
+            }
+        }
+        if let Some(c) = &b.camber {
+            match (c.curvature, c.edge_length_difference) {
+                (Some(v), None) => check_finite("belt.camber.curvature", v)?,
+                (None, Some(v)) => check_finite("belt.camber.edge_length_difference", v)?,
+                (k, d) => {
+                    return Err(SceneError::Invalid {
+                        path: "belt.camber".into(),
+                        reason: format!(
+                            "give exactly one of `curvature` (κ_c, 1/m) and `edge_length_difference` (ΔL, m); got {}",
+                            if k.is_some() && d.is_some() { "both" } else { "neither" }
+                        ),
+                    })
+                }
             }
         }
         Ok(())
@@ -763,10 +1219,20 @@ impl Scene {
     // -----------------------------------------------------------------------
     // Derived quantities
 
-    /// The compound contour g(σ) of this scene's pulleys (assumes a validated scene;
-    /// an invalid one gives meaningless numbers, never a panic).
+    /// The compound contour g(σ) of this scene's two pulleys (assumes a validated
+    /// two-pulley scene; an invalid or one-pulley one gives meaningless numbers, never a
+    /// panic — see [`Scene::open_contour`]).
     pub fn contour(&self) -> Contour {
         Contour::new_unchecked(self.drive.pulley_radius, self.drive.centre_distance)
+    }
+
+    /// The open contour of a one-pulley scene (`None` for the two-pulley loop, whose
+    /// contour is [`Scene::contour`]; assumes a validated scene).
+    pub fn open_contour(&self) -> Option<crate::contour::OpenContour> {
+        match self.drive.layout {
+            Layout::OnePulley => crate::contour::OpenContour::new(self.drive.pulley_radius, self.drive.end_distance?).ok(),
+            Layout::TwoPulley => None,
+        }
     }
 
     /// L_geom = 2H + 2πR, m: length of the contour.

@@ -59,32 +59,95 @@ impl Kind {
     }
 }
 
+/// When a key may or must appear.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Need {
+    /// Required in every scene.
+    Always,
+    /// Optional in every scene.
+    Optional,
+    /// Required where the condition holds, not allowed elsewhere.
+    In(Cond),
+    /// Optional where the condition holds, not allowed elsewhere.
+    OptionalIn(Cond),
+}
+
+/// A choice of the scene that decides which fields exist.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Cond {
+    /// `drive.layout` is `two-pulley` (or absent).
+    TwoPulley,
+    /// `drive.layout` is `one-pulley`.
+    OnePulley,
+    /// `belt.theory` is `shell`.
+    Shell,
+    /// `belt.theory` is not `shell`.
+    NotShell,
+}
+
+impl Cond {
+    fn holds(self, ctx: Ctx) -> bool {
+        match self {
+            Cond::TwoPulley => !ctx.one_pulley,
+            Cond::OnePulley => ctx.one_pulley,
+            Cond::Shell => ctx.shell,
+            Cond::NotShell => !ctx.shell,
+        }
+    }
+
+    /// Why a field of this condition is not allowed in the scene at hand.
+    fn refusal(self) -> &'static str {
+        match self {
+            Cond::TwoPulley => "it belongs to layout `two-pulley` (the closed loop over two pulleys); this scene's `drive.layout` is `one-pulley` (one pulley, open ends)",
+            Cond::OnePulley => "it belongs to layout `one-pulley` (one pulley, open ends); this scene's layout is `two-pulley` — set `drive.layout` to \"one-pulley\" or remove the field",
+            Cond::Shell => "it is a plate parameter of theory `shell`; this scene's belt is a rod or string",
+            Cond::NotShell => "theory `shell` derives it from the plate parameters (EA = E b h, EI = E b h³/(12(1 − ν²)), ρ = ρ_V b h); give `width`, `thickness`, `youngs_modulus`, `poisson_ratio`, `density` instead",
+        }
+    }
+}
+
+/// The choices of a scene that decide which fields exist, read before the walk.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Ctx {
+    one_pulley: bool,
+    shell: bool,
+}
+
+impl Ctx {
+    fn of(root: &Value) -> Ctx {
+        Ctx {
+            one_pulley: root.pointer("/drive/layout").and_then(Value::as_str) == Some("one-pulley"),
+            shell: root.pointer("/belt/theory").and_then(Value::as_str) == Some("shell"),
+        }
+    }
+}
+
 /// One allowed key of a block.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Field {
     pub name: &'static str,
     pub kind: Kind,
-    pub required: bool,
+    pub need: Need,
     /// What the field is, with unit (for "missing field" messages).
     pub what: &'static str,
 }
 
 const fn req(name: &'static str, kind: Kind, what: &'static str) -> Field {
-    Field {
-        name,
-        kind,
-        required: true,
-        what,
-    }
+    Field { name, kind, need: Need::Always, what }
 }
 
 const fn opt(name: &'static str, kind: Kind, what: &'static str) -> Field {
-    Field {
-        name,
-        kind,
-        required: false,
-        what,
-    }
+    Field { name, kind, need: Need::Optional, what }
+}
+
+/// Required where `cond` holds, not allowed elsewhere.
+const fn req_in(cond: Cond, name: &'static str, kind: Kind, what: &'static str) -> Field {
+    Field { name, kind, need: Need::In(cond), what }
+}
+
+/// Optional where `cond` holds, not allowed elsewhere.
+const fn opt_in(cond: Cond, name: &'static str, kind: Kind, what: &'static str) -> Field {
+    Field { name, kind, need: Need::OptionalIn(cond), what }
 }
 
 pub(crate) const THEORIES: &[&str] = &["string", "kirchhoff", "cosserat", "shell"];
@@ -92,56 +155,41 @@ pub(crate) const ANALYSES: &[&str] = &["static", "steady", "transient"];
 pub(crate) const BVP_METHODS: &[&str] = &["bvp-collocation", "bvp-shooting"];
 pub(crate) const CONTACT_MODELS: &[&str] = &["frictionless", "coulomb", "elastic_layer"];
 
+pub(crate) const LAYOUTS: &[&str] = &["two-pulley", "one-pulley"];
+
 pub(crate) const DRIVE: &[Field] = &[
-    req(
-        "pulley_radius",
-        Kind::Number,
-        "pulley radius R to the belt centreline, m",
-    ),
-    req(
-        "centre_distance",
-        Kind::Number,
-        "centre distance H of the pulleys, m",
-    ),
-    req(
-        "driver_speed",
-        Kind::Number,
-        "driver speed ω₁, rad/s, clockwise positive",
-    ),
-    req(
-        "driven_torque",
-        Kind::Number,
-        "torque M₂ resisting the driven pulley, N·m",
-    ),
-    opt(
-        "driven_damping",
-        Kind::Number,
-        "viscous damping of the driven pulley, N·m·s",
-    ),
+    opt("layout", Kind::Choice { what: "drive layout", variants: LAYOUTS }, "drive layout"),
+    req("pulley_radius", Kind::Number, "pulley radius R to the belt centreline, m"),
+    req_in(Cond::TwoPulley, "centre_distance", Kind::Number, "centre distance H of the pulleys, m"),
+    req_in(Cond::TwoPulley, "driver_speed", Kind::Number, "driver speed ω₁, rad/s, clockwise positive"),
+    req_in(Cond::TwoPulley, "driven_torque", Kind::Number, "torque M₂ resisting the driven pulley, N·m"),
+    opt_in(Cond::TwoPulley, "driven_damping", Kind::Number, "viscous damping of the driven pulley, N·m·s"),
+    req_in(Cond::OnePulley, "end_distance", Kind::Number, "distance D of the end sections x = −D from the pulley centre, m"),
+    req_in(Cond::OnePulley, "transport_rate", Kind::Number, "transport rate c, m/s"),
+    opt_in(Cond::OnePulley, "tension_in", Kind::Number, "axial force at the inflow end, N"),
+    opt_in(Cond::OnePulley, "tension_out", Kind::Number, "axial force at the outflow end, N"),
+    opt_in(Cond::OnePulley, "pulley_speed", Kind::Number, "pulley speed ω, rad/s, clockwise positive"),
+    opt_in(Cond::OnePulley, "stick_slip_angle", Kind::Number, "polar angle φ_B of the stick-to-slip transition, rad"),
+];
+
+pub(crate) const CAMBER: &[Field] = &[
+    opt("curvature", Kind::Number, "camber curvature κ_c, 1/m"),
+    opt("edge_length_difference", Kind::Number, "length difference of the belt edges, m"),
 ];
 
 pub(crate) const BELT: &[Field] = &[
-    req(
-        "theory",
-        Kind::Choice {
-            what: "belt theory",
-            variants: THEORIES,
-        },
-        "belt theory",
-    ),
-    req("length", Kind::Number, "unstretched belt length L, m"),
-    req("axial_stiffness", Kind::Number, "axial stiffness EA, N"),
-    opt(
-        "bending_stiffness",
-        Kind::Number,
-        "bending stiffness EI, N·m²",
-    ),
+    req("theory", Kind::Choice { what: "belt theory", variants: THEORIES }, "belt theory"),
+    req_in(Cond::TwoPulley, "length", Kind::Number, "unstretched belt length L, m"),
+    req_in(Cond::NotShell, "axial_stiffness", Kind::Number, "axial stiffness EA, N"),
+    opt_in(Cond::NotShell, "bending_stiffness", Kind::Number, "bending stiffness EI, N·m²"),
     opt("shear_stiffness", Kind::Number, "shear stiffness GA, N"),
-    req(
-        "mass_per_length",
-        Kind::Number,
-        "mass per unit length ρ, kg/m",
-    ),
+    req_in(Cond::NotShell, "mass_per_length", Kind::Number, "mass per unit length ρ, kg/m"),
+    req_in(Cond::Shell, "width", Kind::Number, "shell width b, m"),
+    req_in(Cond::Shell, "thickness", Kind::Number, "shell thickness h, m"),
+    req_in(Cond::Shell, "youngs_modulus", Kind::Number, "Young's modulus E of the shell, Pa"),
+    req_in(Cond::Shell, "poisson_ratio", Kind::Number, "Poisson's ratio ν of the shell"),
+    req_in(Cond::Shell, "density", Kind::Number, "density ρ_V of the shell material, kg/m³"),
+    opt_in(Cond::Shell, "camber", Kind::Object(CAMBER), "camber imperfection of the shell"),
 ];
 
 pub(crate) const ELASTIC_LAYER: &[Field] = &[
@@ -352,7 +400,8 @@ impl<'de> serde::de::Visitor<'de> for Strict<'_> {
 
 /// Walks a whole scene document (root path `<scene>`).
 pub(crate) fn check_scene(value: &mut Value) -> Result<(), SceneError> {
-    check_object(value, SCENE, "")
+    let ctx = Ctx::of(value);
+    check_object(value, SCENE, "", ctx)
 }
 
 /// `path.key`; a key that is empty or has characters other than ASCII letters,
@@ -410,7 +459,7 @@ fn wrong_type(path: &str, kind: Kind, v: &Value) -> SceneError {
     }
 }
 
-fn check_object(value: &mut Value, fields: &'static [Field], path: &str) -> Result<(), SceneError> {
+fn check_object(value: &mut Value, fields: &'static [Field], path: &str, ctx: Ctx) -> Result<(), SceneError> {
     let Value::Object(map) = value else {
         return Err(wrong_type(path, Kind::Object(fields), value));
     };
@@ -422,15 +471,21 @@ fn check_object(value: &mut Value, fields: &'static [Field], path: &str) -> Resu
     }
     for f in fields {
         let p = join(path, f.name);
+        let (required, allowed) = match f.need {
+            Need::Always => (true, None),
+            Need::Optional => (false, None),
+            Need::In(c) => (c.holds(ctx), Some(c)),
+            Need::OptionalIn(c) => (false, Some(c)),
+        };
         match map.get(f.name) {
-            None if f.required => {
+            None if required => {
                 return Err(SceneError::MissingField {
                     path: p,
                     what: f.what.into(),
                 })
             }
             None => {}
-            Some(Value::Null) if f.required => {
+            Some(Value::Null) if required => {
                 return Err(SceneError::WrongType {
                     path: p,
                     expected: f.kind.expected(),
@@ -440,9 +495,13 @@ fn check_object(value: &mut Value, fields: &'static [Field], path: &str) -> Resu
             Some(Value::Null) => {
                 map.remove(f.name);
             }
+            Some(_) if allowed.is_some_and(|c| !c.holds(ctx)) => {
+                let reason = allowed.map_or("", Cond::refusal);
+                return Err(SceneError::NotAllowed { path: p, reason: reason.into() });
+            }
             Some(_) => {
                 if let Some(v) = map.get_mut(f.name) {
-                    check_value(v, f.kind, &p)?;
+                    check_value(v, f.kind, &p, ctx)?;
                 }
             }
         }
@@ -450,7 +509,7 @@ fn check_object(value: &mut Value, fields: &'static [Field], path: &str) -> Resu
     Ok(())
 }
 
-fn check_value(v: &mut Value, kind: Kind, path: &str) -> Result<(), SceneError> {
+fn check_value(v: &mut Value, kind: Kind, path: &str, ctx: Ctx) -> Result<(), SceneError> {
     let ok = match kind {
         Kind::Number => v.is_number(),
         Kind::Count => is_count(v),
@@ -465,7 +524,7 @@ fn check_value(v: &mut Value, kind: Kind, path: &str) -> Result<(), SceneError> 
             }
             return Err(unknown_variant(path, what, s, variants));
         }
-        Kind::Object(fields) => return check_object(v, fields, path),
+        Kind::Object(fields) => return check_object(v, fields, path, ctx),
         Kind::CountList => {
             let Value::Array(items) = v else {
                 return Err(wrong_type(path, kind, v));
@@ -539,8 +598,8 @@ fn check_contact(v: &mut Value, path: &str) -> Result<(), SceneError> {
             let Some((key, inner)) = map.iter_mut().next() else { return Ok(()) };
             let p = join(path, key);
             match key.as_str() {
-                "coulomb" => check_value(inner, Kind::Number, &p),
-                "elastic_layer" => check_object(inner, ELASTIC_LAYER, &p),
+                "coulomb" => check_value(inner, Kind::Number, &p, Ctx::default()),
+                "elastic_layer" => check_object(inner, ELASTIC_LAYER, &p, Ctx::default()),
                 "frictionless" => Err(SceneError::Invalid {
                     path: path.into(),
                     reason: r#"`frictionless` takes no value: write "contact": "frictionless""#.into(),
@@ -613,7 +672,7 @@ mod tests {
     #[test]
     fn null_optional_is_removed() {
         let mut v: Value = serde_json::json!({"gravity": null, "contact": "frictionless"});
-        check_object(&mut v, EFFECTS, "effects").unwrap();
+        check_object(&mut v, EFFECTS, "effects", Ctx::default()).unwrap();
         assert!(v.get("gravity").is_none());
     }
 
@@ -645,7 +704,7 @@ mod tests {
                 table.len(),
                 "{name}: struct and table differ in field count"
             );
-            check_object(&mut v, table, name).unwrap();
+            check_object(&mut v, table, name, Ctx::default()).unwrap();
         }
         let mut contact = serde_json::to_value(Contact::ElasticLayer(ElasticLayer {
             normal_stiffness: 1.0,

@@ -32,9 +32,19 @@ fn seeds() -> Vec<Value> {
         json!({
           "name": "shell-runoff",
           "drive": {"pulley_radius": 0.1, "centre_distance": 1.0, "driver_speed": 1.0, "driven_torque": 0.0},
-          "belt": {"theory": "shell", "length": 2.7, "axial_stiffness": 1e7, "bending_stiffness": 0.05, "mass_per_length": 0.5},
+          "belt": {"theory": "shell", "length": 2.7, "width": 0.2, "thickness": 1e-3, "youngs_modulus": 2.1e11,
+                   "poisson_ratio": 0.3, "density": 7850.0, "camber": {"curvature": 1e-3}},
           "effects": {"contact": {"elastic_layer": {"normal_stiffness": 1e9, "tangential_stiffness": 1e8}}},
           "analysis": "transient"
+        }),
+        json!({
+          "name": "cosserat-pulley",
+          "drive": {"layout": "one-pulley", "pulley_radius": 0.1, "end_distance": 0.5, "transport_rate": 2.0,
+                    "tension_in": 15.0, "tension_out": 10.0},
+          "belt": {"theory": "cosserat", "axial_stiffness": 1.0e4, "bending_stiffness": 0.01,
+                   "shear_stiffness": 1.0e3, "mass_per_length": 0.1},
+          "effects": {"inertia": true, "contact": {"coulomb": 0.3}},
+          "analysis": "steady"
         }),
     ]
 }

@@ -9,6 +9,11 @@ pub enum FemError {
     #[error("no finite element model for this scene: {0}")]
     Unsupported(String),
 
+    /// A layout or theory the contract describes but the FE does not solve yet (the issue
+    /// that brings it is named).
+    #[error(transparent)]
+    NotYetSolvable(#[from] drive::NotYetSolvable),
+
     /// A formulation name that is not registered.
     #[error("unknown element formulation `{name}`; registered: {available:?}")]
     UnknownFormulation {

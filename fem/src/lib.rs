@@ -199,12 +199,16 @@ pub fn string_hanging_data(scene: &Scene, opts: &FemOptions, settings: &SolverSe
 /// # Errors
 /// Drive scenes: [`FemError::FrictionCapacityExceeded`], [`FemError::SpeedAtOrAboveCritical`], [`FemError::EntrySlip`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`] besides the static ones below.
-/// [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
+/// [`FemError::NotYetSolvable`] (a one-pulley, Cosserat or shell scene: before anything
+/// else), [`FemError::Unsupported`] (not a static string scene), [`FemError::UnknownFormulation`],
 /// [`FemError::InvalidOption`], [`FemError::IllPosed`] (weightless slack loop), and the
 /// solver failures [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
 /// [`FemError::SingularTangent`], [`FemError::NonFinite`], and
 /// [`FemError::InadmissibleContact`] (a static solution that is no belt-on-pulley state).
 pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSettings) -> Result<FemRun, FemError> {
+    if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
+        return Err(e.into());
+    }
     let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
     drive_settings.stop_at_steady = true;
     solve_problem(&FemProblem::from_scene(scene), opts, settings, &drive_settings)

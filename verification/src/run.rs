@@ -126,13 +126,17 @@ impl fmt::Display for NotSteady {
 /// Why a method produced no solution. The solvers' own errors are kept as values
 /// ([`RunError::Bvp`], [`RunError::Fem`]: match on them, or follow
 /// [`std::error::Error::source`]); their message is the solver's. Serialised as
-/// `{"kind": "not_applicable" | "failed" | "not_steady", "message": "…"}`.
+/// `{"kind": "not_applicable" | "not_yet_solvable" | "failed" | "not_steady", "message": "…"}`.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
     /// The method has no model for this scene (e.g. a formulation for another belt
     /// theory): not a failure of the method, but nothing to compare either.
     #[error("not applicable: {0}")]
     NotApplicable(String),
+    /// The scene's layout or theory is in the contract but no solver solves it yet: the
+    /// refusal names the issue that brings it. Nothing was solved.
+    #[error(transparent)]
+    NotYetSolvable(drive::NotYetSolvable),
     /// A method outside this crate failed, or a method was given the wrong kind of
     /// discretisation.
     #[error("{0}")]
@@ -156,10 +160,12 @@ pub enum RunError {
 }
 
 impl RunError {
-    /// `not_applicable`, `failed` or `not_steady`: the kind written to JSON.
+    /// `not_applicable`, `not_yet_solvable`, `failed` or `not_steady`: the kind written
+    /// to JSON.
     pub fn kind(&self) -> &'static str {
         match self {
             RunError::NotApplicable(_) => "not_applicable",
+            RunError::NotYetSolvable(_) => "not_yet_solvable",
             RunError::NotSteady(_) => "not_steady",
             _ => "failed",
         }
@@ -272,6 +278,7 @@ impl Method for BvpSolver {
         }
         let run = bvp::scene::solve_scene(scene, &opts).map_err(|e| match e {
             SceneSolveError::Unsupported(m) => RunError::NotApplicable(m),
+            SceneSolveError::NotYetSolvable(e) => RunError::NotYetSolvable(e),
             other => RunError::Bvp(other.into()),
         })?;
         Ok(Solved {
@@ -325,6 +332,9 @@ impl Method for FemFormulation {
         let Discretisation::Elements(elements) = disc else {
             return Err(RunError::Failed(format!("{}: an FE method is refined by mesh, not by {disc}", self.label())));
         };
+        if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
+            return Err(RunError::NotYetSolvable(e));
+        }
         if let Some(theory) = formulation_theory(&self.name).filter(|&t| t != scene.belt.theory) {
             return Err(RunError::NotApplicable(format!(
                 "formulation `{}` discretises theory `{theory}`, the scene's belt is theory `{}` (its formulations: {})",
@@ -340,6 +350,7 @@ impl Method for FemFormulation {
         };
         let run = fem::solve_scene(scene, &opts).map_err(|e| match e {
             fem::FemError::Unsupported(_) => RunError::NotApplicable(no_fe_model(scene)),
+            fem::FemError::NotYetSolvable(e) => RunError::NotYetSolvable(e),
             #[allow(unreachable_patterns)]
             other => RunError::Fem(other),
         })?;
@@ -381,8 +392,12 @@ pub fn registered_formulations() -> Vec<&'static str> {
 /// registered formulation of its belt theory (a rod scene gets a rod formulation).
 ///
 /// # Errors
+/// [`RunError::NotYetSolvable`] for a layout or theory the FE does not solve yet;
 /// [`RunError::NotApplicable`] if no registered formulation discretises the theory.
 pub fn default_formulation(scene: &Scene) -> Result<String, RunError> {
+    if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
+        return Err(RunError::NotYetSolvable(e));
+    }
     if let Some(first) = scene.fem_settings().formulations.first() {
         return Ok(first.clone());
     }

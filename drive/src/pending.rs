@@ -1,0 +1,87 @@
+//! What the contract can describe but no solver solves yet, and which issue brings it.
+//!
+//! The scene format runs ahead of the solvers: `drive.layout = "one-pulley"` and the
+//! theories `cosserat` and `shell` are read and validated here so that scene files and
+//! other tools can use them now. A solver that meets such a scene refuses it with
+//! [`NotYetSolvable`] — naming the scene, the layout or theory, and the issue that brings
+//! it — before it reads anything else; it never solves something else in its place (a
+//! one-pulley scene is no two-pulley loop with H = 0). Each issue deletes its rows from
+//! [`not_yet_solvable`] when it lands.
+
+use std::fmt;
+
+use serde::Serialize;
+
+use crate::scene::{Analysis, Layout, Scene, Theory};
+
+/// The two independent ways to solve a scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Solver {
+    /// The multi-segment BVP (crate `bvp`).
+    Bvp,
+    /// The MEL finite elements (crate `fem`).
+    Fem,
+}
+
+impl fmt::Display for Solver {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Solver::Bvp => "BVP",
+            Solver::Fem => "finite element solver",
+        })
+    }
+}
+
+/// The part of a scene a solver cannot solve yet.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Unsolved {
+    /// A drive layout (`drive.layout`).
+    Layout(Layout),
+    /// A belt theory (`belt.theory`) in an analysis.
+    Theory(Theory, Analysis),
+}
+
+impl fmt::Display for Unsolved {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Unsolved::Layout(l) => write!(f, "layout `{l}`"),
+            Unsolved::Theory(t, a) => write!(f, "theory `{t}` (analysis `{a}`)"),
+        }
+    }
+}
+
+/// A solver's refusal of a scene it cannot solve yet (the CLI exits 2 and writes nothing).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error, Serialize)]
+#[error("scene `{scene}`: the {solver} does not solve {unsolved} yet; it comes with issue {issue} ({title}) — nothing was solved")]
+pub struct NotYetSolvable {
+    /// Scene name.
+    pub scene: String,
+    /// Which solver refuses.
+    pub solver: Solver,
+    /// What it cannot solve.
+    pub unsolved: Unsolved,
+    /// The issue that brings it.
+    pub issue: u32,
+    /// The issue's subject, in short.
+    pub title: &'static str,
+}
+
+const PAPER_C: (u32, &str) = (13, "Cosserat rod, static and on one pulley, Paper C");
+const PAPER_D: (u32, &str) = (14, "Cosserat two-pulley drive in steady motion, Paper D");
+const PAPER_E: (u32, &str) = (15, "Kirchhoff–Love shell, lateral run-off, Paper E");
+
+/// Why `solver` cannot solve `scene` yet, or `None` if the scene's layout and theory are
+/// ones it has (it may still refuse an analysis or effect it has no model for, with its
+/// own error). Both solvers have the same gaps today; the argument names who refuses.
+pub fn not_yet_solvable(scene: &Scene, solver: Solver) -> Option<NotYetSolvable> {
+    let (unsolved, (issue, title)) = match (scene.drive.layout, scene.belt.theory, scene.analysis) {
+        (Layout::OnePulley, _, _) => (Unsolved::Layout(Layout::OnePulley), PAPER_C),
+        (_, Theory::Cosserat, a @ Analysis::Static) => (Unsolved::Theory(Theory::Cosserat, a), PAPER_C),
+        (_, Theory::Cosserat, a) => (Unsolved::Theory(Theory::Cosserat, a), PAPER_D),
+        (_, Theory::Shell, a) => (Unsolved::Theory(Theory::Shell, a), PAPER_E),
+        (Layout::TwoPulley, Theory::String | Theory::Kirchhoff, _) => return None,
+    };
+    Some(NotYetSolvable { scene: scene.name.clone(), solver, unsolved, issue, title })
+}

@@ -1,0 +1,49 @@
+//! End to end: a scene the contract describes but no solver solves yet (spec §2.2's
+//! `cosserat-pulley`, a Cosserat drive, a shell) is refused by every method of `solve`
+//! and by `converge` with exit status 2, a message naming the scene, the layout or theory
+//! and the issue that brings it, and no result file — never solved as something else.
+
+mod common;
+
+use common::{beltcheck, stderr, temp};
+use serde_json::json;
+
+fn write(name: &str, scene: &serde_json::Value) -> std::path::PathBuf {
+    let path = temp("cli-layouts", name);
+    std::fs::write(&path, scene.to_string()).unwrap();
+    path
+}
+
+#[test]
+fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
+    let pulley = json!({
+      "name": "cosserat-pulley",
+      "drive": {"layout": "one-pulley", "pulley_radius": 0.1, "end_distance": 0.5,
+                "transport_rate": 2.0, "tension_in": 15.0, "tension_out": 10.0},
+      "belt": {"theory": "string", "axial_stiffness": 1.0e4, "mass_per_length": 0.1},
+      "effects": {"inertia": true, "contact": {"coulomb": 0.3}},
+      "analysis": "steady"
+    });
+    let mut cosserat: serde_json::Value = serde_json::from_str(&std::fs::read_to_string("scenes/string-drive.json").unwrap()).unwrap();
+    cosserat["name"] = json!("cosserat-drive");
+    cosserat["belt"]["theory"] = json!("cosserat");
+    cosserat["belt"]["bending_stiffness"] = json!(0.005);
+    cosserat["belt"]["shear_stiffness"] = json!(1e3);
+    let cases = [(write("pulley.json", &pulley), "layout `one-pulley`", "issue 13"), (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14")];
+    for (scene, what, issue) in &cases {
+        for method in ["bvp-collocation", "bvp-shooting", "fem"] {
+            let out = temp("cli-layouts", &format!("{method}.json"));
+            let _ = std::fs::remove_file(&out);
+            let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", method, "--json", out.to_str().unwrap()]);
+            let err = stderr(&o);
+            assert_eq!(o.status.code(), Some(2), "{method}: {err}");
+            for part in [what, issue, "nothing was solved"] {
+                assert!(err.contains(part), "{method}: `{part}` missing in {err}");
+            }
+            assert!(!out.exists(), "{method}: a result was written");
+        }
+    }
+    let o = beltcheck(&["converge", cases[0].0.to_str().unwrap(), "--elements", "8,16"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("issue 13"), "{}", stderr(&o));
+}
