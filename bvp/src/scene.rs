@@ -8,7 +8,7 @@ use thiserror::Error;
 
 use crate::belt::BeltError;
 use crate::problem::JacobianMode;
-use crate::rod_hanging::{self, view::RodView, RodHanging};
+use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
 use crate::string_drive::{self, StringDrive};
 use crate::string_hanging::{self, StringHanging};
@@ -114,7 +114,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let sol = string_hanging::solve(&data, opts)?;
             let notes = vec![
                 format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
-                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
             Ok(BvpRun {
                 summary: sol.summary(),
@@ -141,15 +141,15 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let notes = vec![
                 format!(
                     "homotopy: the string, then {} continuation steps in log EI from EI₀ = {:.3e} N·m²",
-                    sol.homotopy_steps, sol.bending_start
+                    sol.homotopy_steps,
+                    sol.bending_start()
                 ),
-                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
-            let view = RodView::new(sol);
             Ok(BvpRun {
-                summary: view.summary(),
-                stats: view.solution.stats.clone(),
-                view: Box::new(view),
+                summary: sol.summary(),
+                stats: sol.stats.clone(),
+                view: Box::new(sol),
                 method: opts.method.name().to_string(),
                 method_detail: opts.detail(),
                 options,
