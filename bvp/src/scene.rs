@@ -6,7 +6,7 @@ use drive::summary::Summary;
 use drive::view::SolutionView;
 use thiserror::Error;
 
-use crate::belt::BeltError;
+use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
 use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
@@ -70,6 +70,22 @@ pub struct BvpRun {
     pub notes: Vec<String>,
 }
 
+impl BvpRun {
+    /// The run of a solved belt problem with options `opts` (as JSON: `options`) and its
+    /// diagnostics `notes`.
+    fn of<L: SectionLaw + 'static>(sol: BeltSolution<L>, opts: &BvpRunOptions, options: serde_json::Value, notes: Vec<String>) -> Self {
+        Self {
+            summary: sol.summary(),
+            stats: sol.stats.clone(),
+            view: Box::new(sol),
+            method: opts.method.name().to_string(),
+            method_detail: opts.detail(),
+            options,
+            notes,
+        }
+    }
+}
+
 /// The physical data of a `string-hanging` scene.
 pub fn string_hanging_data(scene: &Scene) -> StringHanging {
     StringHanging {
@@ -85,12 +101,7 @@ pub fn string_hanging_data(scene: &Scene) -> StringHanging {
 /// The physical data of a steady `string-drive` scene with Coulomb coefficient `mu`.
 pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
     StringDrive {
-        radius: scene.drive.pulley_radius,
-        centre_distance: scene.drive.centre_distance,
-        length: scene.belt.length,
-        axial_stiffness: scene.belt.axial_stiffness,
-        mass_per_length: scene.belt.mass_per_length,
-        gravity: scene.effects.gravity.unwrap_or(0.0),
+        belt: string_hanging_data(scene),
         inertia: scene.effects.inertia == Some(true),
         friction: mu,
         driver_speed: scene.drive.driver_speed,
@@ -116,15 +127,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
-            Ok(BvpRun {
-                summary: sol.summary(),
-                stats: sol.stats.clone(),
-                view: Box::new(sol),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         Theory::Kirchhoff if static_frictionless => {
             let s = string_hanging_data(scene);
@@ -146,15 +149,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                 ),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
-            Ok(BvpRun {
-                summary: sol.summary(),
-                stats: sol.stats.clone(),
-                view: Box::new(sol),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         Theory::String if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
             let Contact::Coulomb(mu) = scene.effects.contact else { unreachable!("matched above") };
@@ -176,15 +171,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                     ));
                 }
             }
-            Ok(BvpRun {
-                summary: sol.summary(),
-                stats: sol.stats.clone(),
-                view: Box::new(sol),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         _ => Err(SceneSolveError::Unsupported(format!(
             "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys, and the string in steady motion with Coulomb friction",

@@ -57,6 +57,17 @@ impl<'a, D: Copy> Rows<'a, D> {
     }
 }
 
+/// The physical loop a solution lies on: the pulleys and the belt's weight.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Pulleys {
+    /// Pulley radius R to the belt centreline (m).
+    pub radius: f64,
+    /// Centre distance H (m).
+    pub centre_distance: f64,
+    /// Weight per unstretched length ρg (N/m); 0 without gravity.
+    pub weight: f64,
+}
+
 /// One point of the belt in physical units (SI): what a law outputs at (segment, ξ).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BeltPoint {
@@ -91,6 +102,28 @@ pub struct BeltPoint {
     pub torque: Option<f64>,
 }
 
+impl BeltPoint {
+    /// A point with the outputs every law has (x, y, N, λ, s, the tangent angle θ); the
+    /// others `None` until the law sets them.
+    pub fn new(x: f64, y: f64, theta: f64, tension: f64, stretch: f64, material: f64) -> Self {
+        Self {
+            x,
+            y,
+            theta: Some(theta),
+            tension,
+            effective_tension: None,
+            shear: None,
+            moment: None,
+            stretch,
+            material,
+            pressure: None,
+            friction: None,
+            angle: None,
+            torque: None,
+        }
+    }
+}
+
 /// A belt theory as the one belt BVP asks for it (module docs). `Self` is the scaled
 /// problem along its homotopy path (η = 1 is the scene); `Data` the scene's physical data.
 pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
@@ -100,19 +133,26 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
     /// start; the Kirchhoff rod keeps the string solution of the same data).
     type Start: Clone + std::fmt::Debug + Send + Sync;
 
-    /// Pulley radius R and centre distance H (m).
-    fn geometry(data: &Self::Data) -> (f64, f64);
-
-    /// Weight per unstretched length ρg (N/m); 0 without gravity.
-    fn weight(data: &Self::Data) -> f64;
-
     /// Coulomb coefficient μ of the arcs with friction; `None` when frictionless.
     fn friction(_data: &Self::Data) -> Option<f64> {
         None
     }
 
-    /// 1. State component names of a segment of `kind` (its dimension is their number).
-    fn state_names(&self, kind: SegmentKind) -> &'static [&'static str];
+    /// 1. State component names of a span.
+    const SPAN_STATES: &'static [&'static str];
+    /// 1. State component names of an arc (of every kind, unless
+    /// [`SectionLaw::state_names`] says otherwise).
+    const ARC_STATES: &'static [&'static str];
+
+    /// 1. State component names of a segment of `kind` (its dimension is their number);
+    /// a law whose stick and slip states differ (the Cosserat rod: λ is a state in slip
+    /// only) overrides this.
+    fn state_names(&self, kind: SegmentKind) -> &'static [&'static str] {
+        match kind {
+            SegmentKind::Span => Self::SPAN_STATES,
+            SegmentKind::Arc(_) => Self::ARC_STATES,
+        }
+    }
 
     /// 1. Names of the law's own parameters, after the topology's (λ₁, λ₂ of the
     /// Cosserat drive); none by default.

@@ -15,7 +15,7 @@ use drive::view::{ContactState, SolutionView};
 use crate::sigma_map::SigmaMap;
 use crate::solution::{Solution, Stats};
 
-use super::law::{BeltPoint, Scales, SectionLaw};
+use super::law::{BeltPoint, Pulleys, Scales, SectionLaw};
 use super::problem::BeltProblem;
 use super::run::{self, StageError};
 use super::topology::{ArcKind, Pulley, Scaling, SegmentKind, Topology};
@@ -41,6 +41,8 @@ pub struct BeltSolution<L: SectionLaw> {
     pub solution: Solution,
     /// Scales.
     pub scales: Scales,
+    /// The pulleys and the belt's weight (SI units).
+    pub pulleys: Pulleys,
     /// Options of the run (method and tolerance of the final solve among them).
     pub options: BeltOptions,
     /// Work of the run (homotopy + final solve); `wall_seconds` is its wall time.
@@ -105,6 +107,8 @@ pub struct Run<'a, L: SectionLaw> {
     pub problem: BeltProblem<L>,
     /// The scales.
     pub scales: Scales,
+    /// The pulleys and the belt's weight.
+    pub pulleys: Pulleys,
     /// The homotopy start (a solution at η = 0).
     pub guess: &'a Solution,
     /// Kept with the solution.
@@ -121,7 +125,7 @@ pub fn solve<L: SectionLaw>(
     clock: Instant,
     failure: impl FnOnce(StageError, Option<&str>) -> BeltError,
 ) -> Result<BeltSolution<L>, BeltError> {
-    let Run { data, problem, scales, guess, start } = run;
+    let Run { data, problem, scales, pulleys, guess, start } = run;
     let last_rejection: RefCell<Option<String>> = RefCell::new(None);
     let accept = |s: &Solution| -> Result<(), String> {
         let verdict = on_branch(&problem, s, scales.force);
@@ -134,13 +138,13 @@ pub fn solve<L: SectionLaw>(
         Ok(s) => s,
         Err(e) => return Err(failure(e, last_rejection.borrow().as_deref())),
     };
-    let (radius, centre_distance) = L::geometry(&data);
-    let contour = Contour::new(radius, centre_distance).expect("validated geometry");
+    let contour = Contour::new(pulleys.radius, pulleys.centre_distance).expect("validated geometry");
     let mut sol = BeltSolution {
         data,
         problem,
         solution: solved.solution,
         scales,
+        pulleys,
         options: opts.clone(),
         stats: solved.stats,
         homotopy_steps: solved.homotopy_steps,
@@ -247,9 +251,9 @@ impl<L: SectionLaw> BeltSolution<L> {
         let topo = self.topology();
         let (window, slack) = self.problem.law.admissible_window();
         topo.check(&self.solution.params, window, slack).map_err(v)?;
-        let (radius, centre_distance) = L::geometry(&self.data);
+        let Pulleys { radius, centre_distance, weight } = self.pulleys;
         let fr = self.scales.force;
-        let pressure_floor = -1e-9 * (L::weight(&self.data) + fr / radius);
+        let pressure_floor = -1e-9 * (weight + fr / radius);
         let inside = radius * (1.0 - 1e-6);
         let mu = L::friction(&self.data);
         let stick_tension = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);

@@ -92,20 +92,8 @@ impl SectionLaw for ScaledRodHanging {
     type Data = RodHanging;
     type Start = StringHangingSolution;
 
-    fn geometry(d: &RodHanging) -> (f64, f64) {
-        (d.radius, d.centre_distance)
-    }
-
-    fn weight(d: &RodHanging) -> f64 {
-        d.mass_per_length * d.gravity
-    }
-
-    fn state_names(&self, kind: SegmentKind) -> &'static [&'static str] {
-        match kind {
-            SegmentKind::Span => &["x", "y", "theta", "M", "Q_x", "Q_y", "s"],
-            SegmentKind::Arc(_) => &["N", "s"],
-        }
-    }
+    const SPAN_STATES: &'static [&'static str] = &["x", "y", "theta", "M", "Q_x", "Q_y", "s"];
+    const ARC_STATES: &'static [&'static str] = &["N", "s"];
 
     fn span_rhs<D: Scalar>(&self, _: &Topology, l: D, y: &[D], _: &[D], eta: D, f: &mut [D]) {
         // (R2) times the span length ℓ.
@@ -169,19 +157,9 @@ impl SectionLaw for ScaledRodHanging {
     fn point(&self, d: &RodHanging, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], _: &[f64]) -> BeltPoint {
         let (lh, fr) = (sc.length, sc.force);
         let rod = |x: f64, yy: f64, theta: f64, moment: f64, tension: f64, shear: f64, material: f64| BeltPoint {
-            x,
-            y: yy,
-            theta: Some(theta),
-            tension,
-            effective_tension: None,
             shear: Some(shear),
             moment: Some(moment),
-            stretch: 1.0 + tension / d.axial_stiffness,
-            material,
-            pressure: None,
-            friction: None,
-            angle: None,
-            torque: None,
+            ..BeltPoint::new(x, yy, theta, tension, 1.0 + tension / d.axial_stiffness, material)
         };
         match (topology.segment(k).pulley(), phi) {
             (Some(pulley), Some(phi)) => {

@@ -148,7 +148,7 @@ pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution
     };
     let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
     let guess = rod_guess(&string.solution, &problem, 81);
-    let run = Run { data: *data, problem, scales, guess: &guess, start: string };
+    let run = Run { data: *data, problem, scales, pulleys: data.string().pulleys(), guess: &guess, start: string };
     solution::solve(run, opts, clock, |e, _| match e {
         StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy in log EI from the string", cause },
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },

@@ -24,23 +24,16 @@ use crate::belt::topology::{ArcKind, ContactModel, Pulley, Scaling, Topology};
 use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, Scales};
 use crate::error::BvpError;
 use crate::solution::Solution;
+use crate::string_hanging::StringHanging;
 pub use law::ScaledStringDrive;
 
-/// Physical data of a steady drive scene (SI units).
+/// Physical data of a steady drive scene (SI units): the loop of the string at rest
+/// (pulleys, belt, gravity; its fields read through `Deref`) and the drive's motion and
+/// loads.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StringDrive {
-    /// Pulley radius R to the belt centreline (m).
-    pub radius: f64,
-    /// Centre distance H (m).
-    pub centre_distance: f64,
-    /// Unstretched loop length L (m).
-    pub length: f64,
-    /// Axial stiffness EA (N).
-    pub axial_stiffness: f64,
-    /// Mass per unstretched length ρ (kg/m).
-    pub mass_per_length: f64,
-    /// Gravity g ≥ 0 (m/s²); 0 = no gravity effect.
-    pub gravity: f64,
+    /// The pulleys, the belt and gravity, as for the string at rest.
+    pub belt: StringHanging,
     /// Persistent transport inertia (ρc² terms).
     pub inertia: bool,
     /// Coulomb coefficient μ > 0.
@@ -53,12 +46,15 @@ pub struct StringDrive {
     pub driven_damping: f64,
 }
 
-impl StringDrive {
-    /// L_geom = 2H + 2πR.
-    pub fn geometric_length(&self) -> f64 {
-        2.0 * self.centre_distance + 2.0 * PI * self.radius
-    }
+impl std::ops::Deref for StringDrive {
+    type Target = StringHanging;
 
+    fn deref(&self) -> &StringHanging {
+        &self.belt
+    }
+}
+
+impl StringDrive {
     /// The gravity-free data of belt-creep theory.
     pub fn creep_data(&self) -> CreepData {
         CreepData {
@@ -85,15 +81,8 @@ impl StringDrive {
 pub type StringDriveSolution = BeltSolution<ScaledStringDrive>;
 
 fn validate(d: &StringDrive) -> Result<(), BeltError> {
-    crate::belt::check_positive(&[
-        ("pulley_radius", d.radius),
-        ("centre_distance", d.centre_distance),
-        ("length", d.length),
-        ("axial_stiffness", d.axial_stiffness),
-        ("mass_per_length", d.mass_per_length),
-    ])?;
+    d.belt.check_loop()?;
     let non_negative = [
-        ("gravity", d.gravity),
         ("driver_speed", d.driver_speed),
         ("driven_torque", d.driven_torque),
         ("driven_damping", d.driven_damping),
@@ -115,7 +104,6 @@ fn validate(d: &StringDrive) -> Result<(), BeltError> {
             reason: "a steady friction drive needs μ > 0 (without friction the belt speed is undetermined)",
         });
     }
-    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
     let wave_speed = (d.axial_stiffness / d.mass_per_length).sqrt();
     if d.inertia && d.driver_speed * d.radius >= wave_speed {
         return Err(BeltError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
@@ -168,7 +156,7 @@ pub fn solve(data: &StringDrive, opts: &BeltOptions) -> Result<StringDriveSoluti
     }
     let (problem, scales) = scaled_problem(data);
     let guess = tight_start(&problem, 5);
-    let run = Run { data: *data, problem, scales, guess: &guess, start: () };
+    let run = Run { data: *data, problem, scales, pulleys: data.pulleys(), guess: &guess, start: () };
     solution::solve(run, opts, clock, |e, last_rejection| match e {
         StageError::Homotopy(cause) => homotopy_failure(data, cause, last_rejection),
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },

@@ -18,11 +18,12 @@ use serde::Serialize;
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, tight_guess, Run};
 use crate::belt::topology::{ContactModel, Topology};
+use crate::belt::law::Pulleys;
 use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, Scales};
 pub use law::ScaledStringHanging;
 
 /// Physical data of the scene (SI units).
-#[derive(Debug, Clone, Copy, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StringHanging {
     /// Pulley radius R to the belt centreline (m).
     pub radius: f64,
@@ -49,24 +50,37 @@ impl StringHanging {
     pub fn tight_tension(&self) -> f64 {
         self.axial_stiffness * (self.geometric_length() / self.length - 1.0)
     }
+
+    /// The pulleys and the belt's weight ρg.
+    pub fn pulleys(&self) -> Pulleys {
+        Pulleys { radius: self.radius, centre_distance: self.centre_distance, weight: self.mass_per_length * self.gravity }
+    }
 }
 
 /// A solved `string-hanging` scene.
 pub type StringHangingSolution = BeltSolution<ScaledStringHanging>;
 
+impl StringHanging {
+    /// The checks every loop on two pulleys needs: R, H, L, EA, ρ finite and > 0,
+    /// g finite and ≥ 0, pulleys apart (H > 2R).
+    pub fn check_loop(&self) -> Result<(), BeltError> {
+        crate::belt::check_positive(&[
+            ("pulley_radius", self.radius),
+            ("centre_distance", self.centre_distance),
+            ("length", self.length),
+            ("axial_stiffness", self.axial_stiffness),
+            ("mass_per_length", self.mass_per_length),
+        ])?;
+        if !self.gravity.is_finite() || self.gravity < 0.0 {
+            return Err(BeltError::InvalidInput { name: "gravity", value: self.gravity, reason: "must be finite and ≥ 0" });
+        }
+        crate::belt::check_pulleys_apart(self.radius, self.centre_distance)
+    }
+}
+
 /// Validate the physical data.
 fn validate(d: &StringHanging) -> Result<(), BeltError> {
-    crate::belt::check_positive(&[
-        ("pulley_radius", d.radius),
-        ("centre_distance", d.centre_distance),
-        ("length", d.length),
-        ("axial_stiffness", d.axial_stiffness),
-        ("mass_per_length", d.mass_per_length),
-    ])?;
-    if !d.gravity.is_finite() || d.gravity < 0.0 {
-        return Err(BeltError::InvalidInput { name: "gravity", value: d.gravity, reason: "must be finite and ≥ 0" });
-    }
-    crate::belt::check_pulleys_apart(d.radius, d.centre_distance)?;
+    d.check_loop()?;
     if d.gravity == 0.0 && d.tight_tension() <= 0.0 {
         return Err(BeltError::WeightlessSlack { length: d.length, geometric_length: d.geometric_length() });
     }
@@ -112,7 +126,7 @@ pub fn solve(data: &StringHanging, opts: &BeltOptions) -> Result<StringHangingSo
     opts.check_tolerance()?;
     let (problem, scales) = scaled_problem(data);
     let guess = tight_start(&problem, 5);
-    let run = Run { data: *data, problem, scales, guess: &guess, start: () };
+    let run = Run { data: *data, problem, scales, pulleys: data.pulleys(), guess: &guess, start: () };
     solution::solve(run, opts, clock, |e, _| match e {
         StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy from the tight weightless loop", cause },
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
