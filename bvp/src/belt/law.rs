@@ -192,7 +192,8 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
 
     /// 3. A span meets `pulley` at angle `phi` and continues on an arc of `kind`;
     /// `jump` is the topology's closure jump where it applies (the driver's first contact
-    /// of a frictionless loop), added to the axial force there.
+    /// of a frictionless loop), added to the axial force there; `p` the parameter vector
+    /// (the Cosserat law's F̃ = (C2) at the stick stretch λ_i reads it).
     #[allow(clippy::too_many_arguments)]
     fn contact_start<D: Scalar>(
         &self,
@@ -202,12 +203,15 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         span_end: &[D],
         arc_start: &[D],
         jump: Option<D>,
+        p: &[D],
         eta: D,
         rows: &mut Rows<D>,
     );
 
-    /// 3. Two arcs on one pulley (stick → slip): by default every state is continuous.
-    fn arc_to_arc<D: Scalar>(&self, from_end: &[D], to_start: &[D], rows: &mut Rows<D>) {
+    /// 3. Two arcs on `pulley` (stick → slip), with the parameter vector `p` (a law
+    /// whose stick stretch λ_i is its own parameter writes λ = λ_i here): by default
+    /// every state is continuous.
+    fn arc_to_arc<D: Scalar>(&self, _pulley: Pulley, from_end: &[D], to_start: &[D], _p: &[D], rows: &mut Rows<D>) {
         for j in 0..from_end.len() {
             rows.push(to_start[j] - from_end[j]);
         }
@@ -223,6 +227,7 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         arc_end: &[D],
         span_start: &[D],
         closes_loop: bool,
+        p: &[D],
         eta: D,
         rows: &mut Rows<D>,
     );

@@ -70,11 +70,11 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
                 Junction::MidSpan => self.law.mid_span(yb[k], ya[next], &mut rows),
                 Junction::ContactStart { pulley, angle } => {
                     let jump = topo.closure_jump().filter(|_| pulley == Pulley::Driver).map(|i| p[i]);
-                    self.law.contact_start(self.arc_kind(next), pulley, p[angle], yb[k], ya[next], jump, eta, &mut rows);
+                    self.law.contact_start(self.arc_kind(next), pulley, p[angle], yb[k], ya[next], jump, p, eta, &mut rows);
                 }
-                Junction::ArcToArc { .. } => self.law.arc_to_arc(yb[k], ya[next], &mut rows),
+                Junction::ArcToArc { pulley, .. } => self.law.arc_to_arc(pulley, yb[k], ya[next], p, &mut rows),
                 Junction::ContactEnd { pulley, angle, closes_loop } => {
-                    self.law.contact_end(pulley, p[angle], yb[k], ya[next], closes_loop, eta, &mut rows);
+                    self.law.contact_end(pulley, p[angle], yb[k], ya[next], closes_loop, p, eta, &mut rows);
                 }
             }
         }

@@ -118,7 +118,7 @@ impl SectionLaw for ScaledRodHanging {
         f[1] = ds;
     }
 
-    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, eta: D, rows: &mut Rows<D>) {
+    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: &[D], eta: D, rows: &mut Rows<D>) {
         // On the circle, tangential, M = −EIλ/R, N carried over (minus the closure jump).
         let ei = self.bending_at(eta);
         let (px, py) = on_pulley(self.radius, pulley, phi);
@@ -135,7 +135,7 @@ impl SectionLaw for ScaledRodHanging {
         rows.push(arc[1] - e[6]);
     }
 
-    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, eta: D, rows: &mut Rows<D>) {
+    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: &[D], eta: D, rows: &mut Rows<D>) {
         // Leaves the pulley at φ: on the circle, tangential (θ unwrapped by +2π where the
         // loop closes, see module doc), M = −EIλ/R, N continuous, s continuous.
         let ei = self.bending_at(eta);

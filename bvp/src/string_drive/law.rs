@@ -158,13 +158,13 @@ impl SectionLaw for ScaledStringDrive {
         f[2] = if gravity { dphi * (dt + w * phi.cos() * ds) * r } else { dphi * dt * r };
     }
 
-    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: D, rows: &mut Rows<D>) {
+    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: &[D], _: D, rows: &mut Rows<D>) {
         // Tangential entry into the stick zone; the accumulated torque starts at 0.
         string_contact_start(self.radius, pulley, phi, e, arc, jump, rows);
         rows.push(arc[2]);
     }
 
-    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: D, rows: &mut Rows<D>) {
+    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: &[D], _: D, rows: &mut Rows<D>) {
         string_contact_end(self.radius, pulley, phi, arc_end, s, closes_loop, rows);
     }
 

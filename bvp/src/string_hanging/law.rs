@@ -114,11 +114,11 @@ impl SectionLaw for ScaledStringHanging {
         f[1] = -dphi * self.radius / stretch;
     }
 
-    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: D, rows: &mut Rows<D>) {
+    fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: &[D], _: D, rows: &mut Rows<D>) {
         string_contact_start(self.radius, pulley, phi, e, arc, jump, rows);
     }
 
-    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: D, rows: &mut Rows<D>) {
+    fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: &[D], _: D, rows: &mut Rows<D>) {
         string_contact_end(self.radius, pulley, phi, arc_end, s, closes_loop, rows);
     }
 
