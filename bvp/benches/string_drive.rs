@@ -5,6 +5,7 @@
 
 use bvp::collocation::Scheme;
 use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::string_hanging::StringHanging;
 use bvp::string_drive::{solve, StringDrive};
 use criterion::{criterion_group, criterion_main, Criterion};
 use std::f64::consts::PI;
@@ -13,12 +14,14 @@ use std::time::Duration;
 
 fn catalogue() -> StringDrive {
     StringDrive {
-        radius: 0.1,
-        centre_distance: 0.5,
-        length: 1.6,
-        axial_stiffness: 1.0e4,
-        mass_per_length: 0.5,
-        gravity: 9.81,
+        belt: StringHanging {
+            radius: 0.1,
+            centre_distance: 0.5,
+            length: 1.6,
+            axial_stiffness: 1.0e4,
+            mass_per_length: 0.5,
+            gravity: 9.81,
+        },
         inertia: true,
         friction: 0.4,
         driver_speed: 60.0,
@@ -29,12 +32,14 @@ fn catalogue() -> StringDrive {
 
 fn exudyn() -> StringDrive {
     StringDrive {
-        radius: 0.1,
-        centre_distance: 0.1 * PI,
-        length: 0.38 * PI,
-        axial_stiffness: 7600.0,
-        mass_per_length: 0.8288 / 0.95,
-        gravity: 9.81,
+        belt: StringHanging {
+            radius: 0.1,
+            centre_distance: 0.1 * PI,
+            length: 0.38 * PI,
+            axial_stiffness: 7600.0,
+            mass_per_length: 0.8288 / 0.95,
+            gravity: 9.81,
+        },
         inertia: true,
         friction: 0.5,
         driver_speed: 12.0,
@@ -54,7 +59,7 @@ fn bench(c: &mut Criterion) {
             }
         }
     }
-    let creep = StringDrive { gravity: 0.0, ..catalogue() }.creep_data();
+    let creep = StringDrive { belt: StringHanging { gravity: 0.0, ..catalogue().belt }, ..catalogue() }.creep_data();
     g.bench_function("closed_form/belt_creep", |b| b.iter(|| black_box(&creep).solve().expect("solves")));
     g.finish();
 }

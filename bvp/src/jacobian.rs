@@ -190,3 +190,18 @@ pub fn ad_fd_mismatch<P: Problem>(problem: &P, x: f64, ys: &[Vec<f64>], ya: &[&[
     let (gf, df) = bc_jacobian(problem, JacobianMode::FiniteDifference, ya, yb, p, eta);
     worst.max(scaled(&ga, &gf)).max(scaled(&da, &df))
 }
+
+/// [`ad_fd_mismatch`] at an arbitrary but fixed point of a problem with parameters `p`
+/// at η: segment k's state y_i = 0.3 + 0.17 i − 0.05 k at x = 0.37, its end values
+/// 0.2 + 0.1 (i + j) with j = 2k at ξ = 0 and 2k + 1 at ξ = 1 — generic values, so that
+/// no derivative vanishes by symmetry.
+pub fn ad_fd_mismatch_sampled<P: Problem>(problem: &P, p: &[f64], eta: f64) -> f64 {
+    let m = problem.n_segments();
+    let state = |k: usize| (0..problem.dim(k)).map(|i| 0.3 + 0.17 * i as f64 - 0.05 * k as f64).collect();
+    let ys: Vec<Vec<f64>> = (0..m).map(state).collect();
+    let end = |j: usize| -> Vec<f64> { (0..problem.dim(j / 2)).map(|i| 0.2 + 0.1 * (i + j) as f64).collect() };
+    let ends: Vec<Vec<f64>> = (0..2 * m).map(end).collect();
+    let ya: Vec<&[f64]> = (0..m).map(|k| ends[2 * k].as_slice()).collect();
+    let yb: Vec<&[f64]> = (0..m).map(|k| ends[2 * k + 1].as_slice()).collect();
+    ad_fd_mismatch(problem, 0.37, &ys, &ya, &yb, p, eta)
+}

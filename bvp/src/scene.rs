@@ -6,9 +6,9 @@ use drive::summary::Summary;
 use drive::view::SolutionView;
 use thiserror::Error;
 
-use crate::belt::BeltError;
+use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
-use crate::rod_hanging::{self, view::RodView, RodHanging};
+use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
 use crate::string_drive::{self, StringDrive};
 use crate::string_hanging::{self, StringHanging};
@@ -74,6 +74,22 @@ pub struct BvpRun {
     pub notes: Vec<String>,
 }
 
+impl BvpRun {
+    /// The run of a solved belt problem with options `opts` (as JSON: `options`) and its
+    /// diagnostics `notes`.
+    fn of<L: SectionLaw + 'static>(sol: BeltSolution<L>, opts: &BvpRunOptions, options: serde_json::Value, notes: Vec<String>) -> Self {
+        Self {
+            summary: sol.summary(),
+            stats: sol.stats.clone(),
+            view: Box::new(sol),
+            method: opts.method.name().to_string(),
+            method_detail: opts.detail(),
+            options,
+            notes,
+        }
+    }
+}
+
 /// The physical data of a `string-hanging` scene.
 pub fn string_hanging_data(scene: &Scene) -> StringHanging {
     StringHanging {
@@ -89,12 +105,7 @@ pub fn string_hanging_data(scene: &Scene) -> StringHanging {
 /// The physical data of a steady `string-drive` scene with Coulomb coefficient `mu`.
 pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
     StringDrive {
-        radius: scene.drive.pulley_radius,
-        centre_distance: scene.drive.centre_distance,
-        length: scene.belt.length,
-        axial_stiffness: scene.belt.axial_stiffness,
-        mass_per_length: scene.belt.mass_per_length,
-        gravity: scene.effects.gravity.unwrap_or(0.0),
+        belt: string_hanging_data(scene),
         inertia: scene.effects.inertia == Some(true),
         friction: mu,
         driver_speed: scene.drive.driver_speed,
@@ -126,17 +137,9 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let sol = string_hanging::solve(&data, opts)?;
             let notes = vec![
                 format!("homotopy: {} continuation steps from the tight weightless loop", sol.homotopy_steps),
-                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
-            Ok(BvpRun {
-                summary: sol.summary(),
-                stats: sol.stats.clone(),
-                view: Box::new(sol),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         Theory::Kirchhoff if static_frictionless => {
             let s = string_hanging_data(scene);
@@ -153,20 +156,12 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let notes = vec![
                 format!(
                     "homotopy: the string, then {} continuation steps in log EI from EI₀ = {:.3e} N·m²",
-                    sol.homotopy_steps, sol.bending_start
+                    sol.homotopy_steps,
+                    sol.bending_start()
                 ),
-                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect()),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
-            let view = RodView::new(sol);
-            Ok(BvpRun {
-                summary: view.summary(),
-                stats: view.solution.stats.clone(),
-                view: Box::new(view),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         Theory::String if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
             let Contact::Coulomb(mu) = scene.effects.contact else { unreachable!("matched above") };
@@ -188,15 +183,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                     ));
                 }
             }
-            Ok(BvpRun {
-                summary: sol.summary(),
-                stats: sol.stats.clone(),
-                view: Box::new(sol),
-                method: opts.method.name().to_string(),
-                method_detail: opts.detail(),
-                options,
-                notes,
-            })
+            Ok(BvpRun::of(sol, opts, options, notes))
         }
         _ => Err(SceneSolveError::Unsupported(format!(
             "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys, and the string in steady motion with Coulomb friction",

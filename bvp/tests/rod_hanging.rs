@@ -7,11 +7,25 @@
 //! ≈ 13 s (release, 2 test threads, ≈ 15 s CPU; ≈ 20 s when another build shares the
 //! cores); the EI = 1e-3, tol 1e-10 solve is shared by four tests.
 
-use bvp::jacobian::ad_fd_mismatch;
-use bvp::rod_hanging::problem::{DRIVER_ARC, DRIVEN_ARC, UPPER_LEFT};
-use bvp::belt::{BeltOptions, BvpMethod};
+use bvp::jacobian::ad_fd_mismatch_sampled;
+use bvp::belt::topology::ContactModel;
+use bvp::belt::{BeltOptions, BeltProblem, BeltSolution, BvpMethod, Pulley, SectionLaw, Topology};
 use bvp::rod_hanging::{solve, RodHanging, RodHangingSolution, ScaledRodHanging};
 use bvp::Problem;
+
+/// Segments of the frictionless two-pulley topology (pinned by its unit tests): the
+/// upper span half ending at mid-span, the driven arc, the lower span half ending at
+/// mid-span, the driver arc.
+const UPPER_LEFT: usize = 0;
+const DRIVEN_ARC: usize = 2;
+const LOWER_RIGHT: usize = 3;
+const DRIVER_ARC: usize = 5;
+
+/// Contact angles (first, last contact) of the driver (`true`) or driven pulley.
+fn angles<L: SectionLaw>(s: &BeltSolution<L>, driver: bool) -> (f64, f64) {
+    let a = s.contact_angles(if driver { Pulley::Driver } else { Pulley::Driven });
+    (a[0], a[1])
+}
 
 /// The catalogue's `string-hanging` data with bending stiffness `ei` (N·m²).
 fn scene(ei: f64) -> RodHanging {
@@ -38,13 +52,13 @@ fn moderate_1e10() -> &'static RodHangingSolution {
 }
 
 fn report(tag: &str, s: &RodHangingSolution) {
-    let e = s.edge_forces();
+    let e = s.edge_forces().expect("the rod has edge forces");
     let (up, lo) = s.mid_span();
     eprintln!(
         "{tag}: EI = {:.3e} (EI0 = {:.3e}), steps {}, nodes {}, edge forces driven {:.6e} / {:.6e}, driver {:.6e} / {:.6e} N; \
          mid upper y {:.8} m N {:.8} N M {:.6e} N·m; mid lower y {:.8} m N {:.8} N M {:.6e}; defect {:.2e} N; angles driven {:?} driver {:?}",
         s.data.bending_stiffness,
-        s.bending_start,
+        s.bending_start(),
         s.homotopy_steps,
         s.stats.mesh_nodes,
         e.driven_start,
@@ -53,13 +67,13 @@ fn report(tag: &str, s: &RodHangingSolution) {
         e.driver_end,
         up.y,
         up.tension,
-        up.moment,
+        up.moment.unwrap(),
         lo.y,
         lo.tension,
-        lo.moment,
-        s.closure_defect(),
-        s.contact_angles(false),
-        s.contact_angles(true),
+        lo.moment.unwrap(),
+        s.closure_defect().unwrap(),
+        angles(s, false),
+        angles(s, true),
     );
 }
 
@@ -69,14 +83,11 @@ fn report(tag: &str, s: &RodHangingSolution) {
 /// derivative scale; 1e-6 leaves a wide margin while catching any wrong AD entry (O(1)).
 #[test]
 fn ad_jacobians_match_finite_differences() {
-    let pb = ScaledRodHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length: 3.2, bending_start: 3e-3, bending: 2e-5 };
+    let law = ScaledRodHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length: 3.2, bending_start: 3e-3, bending: 2e-5 };
+    let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
     assert_eq!(pb.n_bc(), 41);
     let p = [0.4, 0.6, 0.5, 0.45, 1.7, -1.4, -1.8, -4.6, 0.01];
-    let ys: Vec<Vec<f64>> = (0..6).map(|k| (0..pb.dim(k)).map(|i| 0.3 + 0.17 * i as f64 - 0.05 * k as f64).collect()).collect();
-    let ends: Vec<Vec<f64>> = (0..12).map(|j| (0..pb.dim(j / 2)).map(|i| 0.2 + 0.1 * (i + j) as f64).collect()).collect();
-    let ya: Vec<&[f64]> = (0..6).map(|k| ends[2 * k].as_slice()).collect();
-    let yb: Vec<&[f64]> = (0..6).map(|k| ends[2 * k + 1].as_slice()).collect();
-    let worst = ad_fd_mismatch(&pb, 0.37, &ys, &ya, &yb, &p, 0.8);
+    let worst = ad_fd_mismatch_sampled(&pb, &p, 0.8);
     assert!(worst <= 1e-6, "AD vs central differences: {worst:e}");
 }
 
@@ -91,13 +102,13 @@ fn ad_jacobians_match_finite_differences() {
 fn invariant_r7_is_constant() {
     let s = moderate_1e10();
     let pts = s.samples(6);
-    let e: Vec<f64> = pts.iter().map(|(_, _, p)| s.invariant(p)).collect();
+    let e: Vec<f64> = pts.iter().map(|(_, _, p)| s.invariant(p).unwrap()).collect();
     let nmax = pts.iter().map(|(_, _, p)| p.tension).fold(0.0, f64::max);
     let (lo, hi) = e.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     let drift = (hi - lo) / nmax;
-    eprintln!("invariant drift {drift:.3e} (N_max {nmax:.6} N), closure defect {:.3e} N", s.closure_defect());
+    eprintln!("invariant drift {drift:.3e} (N_max {nmax:.6} N), closure defect {:.3e} N", s.closure_defect().unwrap());
     assert!(drift < 1e-7, "drift {drift:.3e}");
-    assert!(s.closure_defect().abs() < 1e-7 * nmax);
+    assert!(s.closure_defect().unwrap().abs() < 1e-7 * nmax);
 }
 
 /// (c) EI → 0: at EI = 1e-6 N·m² the mid-span heights and tensions approach the
@@ -118,10 +129,10 @@ fn small_bending_stiffness_approaches_the_string() {
     for ei in [4e-6, 1e-6] {
         let s = solve(&scene(ei), &opts(1e-8)).expect("solves");
         report(&format!("EI={ei:e}"), &s);
-        let st = &s.string;
+        let st = &s.start;
         let (up, lo) = s.mid_span();
         let sup = st.point(UPPER_LEFT, 1.0);
-        let slo = st.point(bvp::rod_hanging::problem::LOWER_RIGHT, 1.0);
+        let slo = st.point(LOWER_RIGHT, 1.0);
         let lb = (ei / sup.tension).sqrt();
         let dy = (up.y - sup.y).abs().max((lo.y - slo.y).abs());
         let dt = ((up.tension - sup.tension) / sup.tension).abs().max(((lo.tension - slo.tension) / slo.tension).abs());
@@ -133,8 +144,8 @@ fn small_bending_stiffness_approaches_the_string() {
         assert!(dt < lb / h, "tensions differ by {dt:e} > ℓ_b/H = {:e}", lb / h);
         let w = s.data.mass_per_length * s.data.gravity;
         let (mu, ml) = (ei * w / up.tension, -ei * w / lo.tension);
-        eprintln!("mid-span M upper {:.6e} (EI ρg/N {mu:.6e}), lower {:.6e} ({ml:.6e}) N·m", up.moment, lo.moment);
-        assert!((up.moment - mu).abs() < 1e-3 * mu.abs() && (lo.moment - ml).abs() < 1e-3 * ml.abs());
+        eprintln!("mid-span M upper {:.6e} (EI ρg/N {mu:.6e}), lower {:.6e} ({ml:.6e}) N·m", up.moment.unwrap(), lo.moment.unwrap());
+        assert!((up.moment.unwrap() - mu).abs() < 1e-3 * mu.abs() && (lo.moment.unwrap() - ml).abs() < 1e-3 * ml.abs());
         diffs.push((dy, dt));
     }
     // Measured: the differences fall by ≈ 4 when EI falls by 4 (O(EI) = O(ℓ_b²), the
@@ -153,13 +164,13 @@ fn small_bending_stiffness_approaches_the_string() {
 fn moderate_bending_stiffness_pushes() {
     let s = moderate_1e10();
     report("EI=1e-3", s);
-    let e = s.edge_forces();
+    let e = s.edge_forces().expect("the rod has edge forces");
     for v in [e.driven_start, e.driven_end, e.driver_start, e.driver_end] {
         assert!(v >= 0.0, "edge force {v}");
     }
     let pmin = s.samples(4).iter().filter_map(|(_, _, p)| p.pressure).fold(f64::INFINITY, f64::min);
     let (up, lo) = s.mid_span();
-    eprintln!("p_min {pmin:.6e} N/m, mid-span M upper {:.6e} lower {:.6e} N·m", up.moment, lo.moment);
+    eprintln!("p_min {pmin:.6e} N/m, mid-span M upper {:.6e} lower {:.6e} N·m", up.moment.unwrap(), lo.moment.unwrap());
     assert!(pmin >= -1e-9 * s.scales.force);
 }
 
@@ -172,12 +183,12 @@ fn moderate_bending_stiffness_pushes() {
 #[test]
 fn left_right_symmetry() {
     let s = moderate_1e10();
-    let (a2, b2) = s.contact_angles(false);
-    let (a1, b1) = s.contact_angles(true);
+    let (a2, b2) = angles(s, false);
+    let (a1, b1) = angles(s, true);
     eprintln!("angles driven ({a2:.10}, {b2:.10}) driver ({a1:.10}, {b1:.10})");
     assert!((a1 + std::f64::consts::PI + b2).abs() < 1e-7, "{a1} vs {b2}");
     assert!((b1 + std::f64::consts::PI + a2).abs() < 1e-7, "{b1} vs {a2}");
-    let e = s.edge_forces();
+    let e = s.edge_forces().expect("the rod has edge forces");
     let f = s.scales.force;
     assert!((e.driven_start - e.driver_end).abs() < 1e-7 * f, "{e:?}");
     assert!((e.driven_end - e.driver_start).abs() < 1e-7 * f, "{e:?}");
@@ -200,15 +211,15 @@ fn max_difference(a: &RodHangingSolution, b: &RodHangingSolution) -> f64 {
         (la.y - lb.y).abs() / h,
         (ua.tension - ub.tension).abs() / t,
         (la.tension - lb.tension).abs() / t,
-        (ua.moment - ub.moment).abs() / (t * h),
-        (la.moment - lb.moment).abs() / (t * h),
+        (ua.moment.unwrap() - ub.moment.unwrap()).abs() / (t * h),
+        (la.moment.unwrap() - lb.moment.unwrap()).abs() / (t * h),
     ];
     for driver in [false, true] {
-        let (p, q) = (a.contact_angles(driver), b.contact_angles(driver));
+        let (p, q) = (angles(a, driver), angles(b, driver));
         d.push((p.0 - q.0).abs());
         d.push((p.1 - q.1).abs());
     }
-    let (ea, eb) = (a.edge_forces(), b.edge_forces());
+    let (ea, eb) = (a.edge_forces().expect("the rod has edge forces"), b.edge_forces().expect("the rod has edge forces"));
     for (u, v) in [
         (ea.driven_start, eb.driven_start),
         (ea.driven_end, eb.driven_end),
@@ -276,10 +287,10 @@ fn steel_belt_of_paper_a() {
     let s = solve(&steel_belt(), &opts(1e-8)).expect("steel belt solves");
     report("steel belt", &s);
     let (up, lo) = s.mid_span();
-    let e = s.edge_forces();
-    let (a2, b2) = s.contact_angles(false);
-    let (a1, b1) = s.contact_angles(true);
-    let (sup, slo) = (s.string.point(UPPER_LEFT, 1.0), s.string.point(bvp::rod_hanging::problem::LOWER_RIGHT, 1.0));
+    let e = s.edge_forces().expect("the rod has edge forces");
+    let (a2, b2) = angles(&s, false);
+    let (a1, b1) = angles(&s, true);
+    let (sup, slo) = (s.start.point(UPPER_LEFT, 1.0), s.start.point(LOWER_RIGHT, 1.0));
     eprintln!(
         "steel belt string: mid upper y {:.8} m T {:.6} N, lower y {:.8} m T {:.6} N",
         sup.y, sup.tension, slo.y, slo.tension
@@ -298,7 +309,7 @@ fn steel_belt_of_paper_a() {
     assert!(up.y > lo.y);
     assert!((a1 + std::f64::consts::PI + b2).abs() < 1e-7 && (b1 + std::f64::consts::PI + a2).abs() < 1e-7);
     let pts = s.samples(4);
-    let inv: Vec<f64> = pts.iter().map(|(_, _, p)| s.invariant(p)).collect();
+    let inv: Vec<f64> = pts.iter().map(|(_, _, p)| s.invariant(p).unwrap()).collect();
     let nmax = pts.iter().map(|(_, _, p)| p.tension).fold(0.0, f64::max);
     let (mn, mx) = inv.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
     eprintln!("steel belt invariant drift {:.3e} of N_max {nmax:.6e} N", (mx - mn) / nmax);
@@ -320,10 +331,10 @@ fn very_small_bending_stiffness() {
     let ei = 1e-8;
     let s = solve(&scene(ei), &opts(1e-8)).expect("EI = 1e-8 solves");
     report("EI=1e-8", &s);
-    let st = &s.string;
+    let st = &s.start;
     let (up, lo) = s.mid_span();
     let sup = st.point(UPPER_LEFT, 1.0);
-    let slo = st.point(bvp::rod_hanging::problem::LOWER_RIGHT, 1.0);
+    let slo = st.point(LOWER_RIGHT, 1.0);
     let lb = (ei / sup.tension).sqrt();
     let h = s.data.centre_distance;
     let dy = (up.y - sup.y).abs().max((lo.y - slo.y).abs());
@@ -347,13 +358,13 @@ fn very_slack_loop() {
     let s = solve(&d, &opts(1e-8)).expect("very slack solves");
     report("very slack", &s);
     let (up, lo) = s.mid_span();
-    let (a2, b2) = s.contact_angles(false);
-    let (a1, b1) = s.contact_angles(true);
+    let (a2, b2) = angles(&s, false);
+    let (a1, b1) = angles(&s, true);
     let (w2, w1) = ((a2 - b2).to_degrees(), (a1 - b1).to_degrees());
     eprintln!("very slack L/L_geom {:.4}: wraps driven {w2:.3}° driver {w1:.3}°", d.length / lg);
     assert!(up.y > lo.y);
     assert!(w2 > 0.0 && w2 < 180.0 && w1 > 0.0 && w1 < 180.0);
-    let e = s.edge_forces();
+    let e = s.edge_forces().expect("the rod has edge forces");
     for v in [e.driven_start, e.driven_end, e.driver_start, e.driver_end] {
         assert!(v >= 0.0, "edge force {v}");
     }

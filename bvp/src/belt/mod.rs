@@ -1,18 +1,29 @@
-//! What every belt problem shares: one options struct ([`BeltOptions`]), one error type
-//! ([`BeltError`]), the stages of a run (homotopy, final solve, work counters:
-//! [`run`]) and the self-checks of the balances a run reports ([`balance`]).
+//! The one belt BVP: a segment [`topology`] built from the scene, a section [`law`] per
+//! belt theory, and what every belt problem shares — the problem they make together
+//! ([`problem::BeltProblem`]), one solution type and one view ([`solution`]), one options
+//! struct ([`BeltOptions`]), one error type ([`BeltError`]), the stages of a run
+//! (homotopy, final solve, work counters: [`run`]) and the self-checks of the balances a
+//! run reports ([`balance`]).
 //!
-//! The belt models (`string_hanging`, `rod_hanging`, `string_drive`) supply their scaled
-//! problem, start, acceptance test and point output; docs/bvp-engine.md ("Adding a belt
-//! theory") says what a new theory adds.
+//! The belt models (`string_hanging`, `rod_hanging`, `string_drive`) are section laws
+//! with their scaling and homotopy start; docs/bvp-engine.md ("Adding a belt theory")
+//! says what a new theory adds.
 
 pub mod balance;
 pub mod error;
+pub mod law;
 pub mod options;
+pub mod problem;
 pub mod run;
+pub mod solution;
+pub mod topology;
 
 pub use error::BeltError;
+pub use law::{BeltPoint, Scales, SectionLaw};
 pub use options::{BeltOptions, BvpMethod};
+pub use problem::BeltProblem;
+pub use solution::{BeltSolution, EdgeForces};
+pub use topology::{ArcKind, Pulley, SegmentKind, Topology};
 
 /// Each named input finite and > 0, else [`BeltError::InvalidInput`] naming the first
 /// that is not.

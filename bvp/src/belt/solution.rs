@@ -1,0 +1,496 @@
+//! One solution type and one view for every belt problem: a solved [`BeltProblem`] with
+//! its data, scales and work counters ([`BeltSolution`]), the stages that make it
+//! ([`solve`]: homotopy with the acceptance test, final solve, balance and contact
+//! checks), its point output along the loop, and the common [`SolutionView`] (σ lookup
+//! through [`crate::sigma_map`], the summary from the topology and the law's points).
+
+use std::cell::RefCell;
+use std::f64::consts::PI;
+use std::time::Instant;
+
+use drive::contour::Contour;
+use drive::summary::{PulleySummary, Summary};
+use drive::view::{ContactState, SolutionView};
+
+use crate::sigma_map::SigmaMap;
+use crate::solution::{Solution, Stats};
+
+use super::law::{BeltPoint, Pulleys, Scales, SectionLaw};
+use super::problem::BeltProblem;
+use super::run::{self, StageError};
+use super::topology::{ArcKind, Pulley, Scaling, SegmentKind, Topology};
+use super::{BeltError, BeltOptions};
+
+/// Wrap an angle to (−π, π].
+pub fn wrap_angle(a: f64) -> f64 {
+    let mut w = a.rem_euclid(2.0 * PI);
+    if w > PI {
+        w -= 2.0 * PI;
+    }
+    w
+}
+
+/// A solved belt problem.
+#[derive(Debug, Clone)]
+pub struct BeltSolution<L: SectionLaw> {
+    /// The physical data.
+    pub data: L::Data,
+    /// The scaled problem (topology and law; η = 1 is the scene).
+    pub problem: BeltProblem<L>,
+    /// The BVP solution in scaled variables at η = 1.
+    pub solution: Solution,
+    /// Scales.
+    pub scales: Scales,
+    /// The pulleys and the belt's weight (SI units).
+    pub pulleys: Pulleys,
+    /// Options of the run (method and tolerance of the final solve among them).
+    pub options: BeltOptions,
+    /// Work of the run (homotopy + final solve); `wall_seconds` is its wall time.
+    pub stats: Stats,
+    /// Accepted homotopy points (start included).
+    pub homotopy_steps: usize,
+    /// What the homotopy started from, kept with the solution (the Kirchhoff rod: the
+    /// string solution of the same data).
+    pub start: L::Start,
+    sigma_map: SigmaMap,
+}
+
+/// Concentrated contact reactions at the four contact boundaries (N): the jump of the
+/// transverse force Q where a span meets an arc (the Kirchhoff rod's (R6)).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct EdgeForces {
+    /// Driven pulley, first contact.
+    pub driven_start: f64,
+    /// Driven pulley, last contact.
+    pub driven_end: f64,
+    /// Driver pulley, first contact.
+    pub driver_start: f64,
+    /// Driver pulley, last contact.
+    pub driver_end: f64,
+}
+
+/// The acceptance test of every homotopy point: the topology's check with the law's
+/// window, the arc force (arc state 0) > 0, and on a frictionless loop a closure jump
+/// far below it (docs/string-hanging.md, "Homotopy").
+pub fn on_branch<L: SectionLaw>(problem: &BeltProblem<L>, s: &Solution, force_scale: f64) -> Result<(), String> {
+    let topo = &problem.topology;
+    let (window, slack) = problem.law.admissible_window();
+    topo.check(&s.params, window, slack)?;
+    let name = problem.law.arc_force_name();
+    let f_min = (0..topo.len())
+        .filter(|&k| !topo.is_span(k))
+        .flat_map(|k| s.segments[k].nodes.iter().map(|y| y[0]))
+        .fold(f64::INFINITY, f64::min);
+    match topo.closure_jump() {
+        Some(j) => {
+            let defect = s.params[j].abs();
+            if f_min > 0.0 && defect <= 1e-3 * f_min {
+                Ok(())
+            } else {
+                Err(format!(
+                    "left the physical branch: smallest arc {name} {:.3e} N, closure defect {:.3e} N",
+                    f_min * force_scale,
+                    defect * force_scale
+                ))
+            }
+        }
+        None if f_min > 0.0 => Ok(()),
+        None => Err(format!("{name} {:.3e} N ≤ 0 on an arc", f_min * force_scale)),
+    }
+}
+
+/// The unscaled start of a run and what a failed stage means.
+pub struct Run<'a, L: SectionLaw> {
+    /// The physical data.
+    pub data: L::Data,
+    /// The scaled problem.
+    pub problem: BeltProblem<L>,
+    /// The scales.
+    pub scales: Scales,
+    /// The pulleys and the belt's weight.
+    pub pulleys: Pulleys,
+    /// The homotopy start (a solution at η = 0).
+    pub guess: &'a Solution,
+    /// Kept with the solution.
+    pub start: L::Start,
+}
+
+/// Solve a belt problem: homotopy η: 0 → 1 from the guess with [`on_branch`] as the
+/// acceptance test, the final solve, then the law's balance check and the contact
+/// checks ([`BeltSolution::check_contact`]). `failure` names a failed stage; it gets the
+/// last rejection of the acceptance test.
+pub fn solve<L: SectionLaw>(
+    run: Run<'_, L>,
+    opts: &BeltOptions,
+    clock: Instant,
+    failure: impl FnOnce(StageError, Option<&str>) -> BeltError,
+) -> Result<BeltSolution<L>, BeltError> {
+    let Run { data, problem, scales, pulleys, guess, start } = run;
+    let last_rejection: RefCell<Option<String>> = RefCell::new(None);
+    let accept = |s: &Solution| -> Result<(), String> {
+        let verdict = on_branch(&problem, s, scales.force);
+        if let Err(r) = &verdict {
+            *last_rejection.borrow_mut() = Some(r.clone());
+        }
+        verdict
+    };
+    let solved = match run::homotopy_and_final_solve(&problem, guess, opts, accept, clock) {
+        Ok(s) => s,
+        Err(e) => return Err(failure(e, last_rejection.borrow().as_deref())),
+    };
+    let contour = Contour::new(pulleys.radius, pulleys.centre_distance).expect("validated geometry");
+    let mut sol = BeltSolution {
+        data,
+        problem,
+        solution: solved.solution,
+        scales,
+        pulleys,
+        options: opts.clone(),
+        stats: solved.stats,
+        homotopy_steps: solved.homotopy_steps,
+        start,
+        sigma_map: SigmaMap::empty(contour),
+    };
+    sol.sigma_map = SigmaMap::new(contour, &sol.problem.topology.sides(), &sol.solution, |k, xi| {
+        let p = sol.point(k, xi);
+        [p.x, p.y]
+    });
+    L::check_balance(&sol)?;
+    sol.check_contact()?;
+    Ok(sol)
+}
+
+impl<L: SectionLaw> BeltSolution<L> {
+    /// The topology.
+    pub fn topology(&self) -> &Topology {
+        &self.problem.topology
+    }
+
+    /// The belt at segment `k`, normalised coordinate ξ ∈ [0, 1] (dense output; exact
+    /// node values at ξ = 0, 1).
+    pub fn point(&self, k: usize, xi: f64) -> BeltPoint {
+        let y = self.solution.segments[k].state_at(xi);
+        let p = &self.solution.params;
+        let phi = match self.topology().segment(k).scaling {
+            Scaling::Arc { start, end, .. } => {
+                let (pa, pb) = (p[start], p[end]);
+                Some(pa + xi.clamp(0.0, 1.0) * (pb - pa))
+            }
+            Scaling::Span { .. } => None,
+        };
+        self.problem.law.point(&self.data, &self.scales, self.topology(), k, phi, &y, p)
+    }
+
+    /// Points sampled along the whole loop: every mesh node and `per_interval` − 1 dense
+    /// points inside each mesh interval, in the direction of σ, with their segment and ξ.
+    pub fn samples(&self, per_interval: usize) -> Vec<(usize, f64, BeltPoint)> {
+        self.solution.sample_points(per_interval).into_iter().map(|(k, xi)| (k, xi, self.point(k, xi))).collect()
+    }
+
+    /// The belt at mid-span (x = 0, a mesh node): (upper, lower).
+    pub fn mid_span(&self) -> (BeltPoint, BeltPoint) {
+        let (upper, lower) = self.topology().mid_spans();
+        (self.point(upper, 1.0), self.point(lower, 1.0))
+    }
+
+    /// Contact angles of `pulley`: (first contact, [stick → slip,] last contact), rad,
+    /// unwrapped, decreasing.
+    pub fn contact_angles(&self, pulley: Pulley) -> Vec<f64> {
+        self.topology().contact_angles(pulley, &self.solution.params)
+    }
+
+    /// The closure jump f (N) of a frictionless loop: the tension jump the discrete
+    /// solution needs at the driver's first contact; 0 for the exact solution.
+    pub fn closure_defect(&self) -> Option<f64> {
+        self.topology().closure_jump().map(|j| self.solution.params[j] * self.scales.force)
+    }
+
+    /// The law's first integral at a point (N), where it has one.
+    pub fn invariant(&self, point: &BeltPoint) -> Option<f64> {
+        L::first_integral(&self.data, point)
+    }
+
+    /// Concentrated edge forces (jumps of Q at the contact boundaries), where the law
+    /// outputs Q.
+    pub fn edge_forces(&self) -> Option<EdgeForces> {
+        let topo = self.topology();
+        let v = |k: usize, xi: f64| self.point(k, xi).shear;
+        let jumps = |pulley: Pulley| -> Option<(f64, f64)> {
+            let (before, after) = topo.spans_around(pulley);
+            let (first, last) = (topo.first_arc(pulley), topo.last_arc(pulley));
+            Some((v(before, 1.0)? - v(first, 0.0)?, v(last, 1.0)? - v(after, 0.0)?))
+        };
+        let (driven_start, driven_end) = jumps(Pulley::Driven)?;
+        let (driver_start, driver_end) = jumps(Pulley::Driver)?;
+        Some(EdgeForces { driven_start, driven_end, driver_start, driver_end })
+    }
+
+    /// Transport rate c (m/s) of a drive.
+    pub fn transport_rate(&self) -> Option<f64> {
+        self.topology().motion().map(|m| self.solution.params[m.transport] * self.scales.speed)
+    }
+
+    /// Driven pulley speed ω₂ (rad/s) of a drive.
+    pub fn driven_speed(&self) -> Option<f64> {
+        self.topology().motion().map(|m| self.solution.params[m.driven_speed] * self.scales.speed / self.scales.length)
+    }
+
+    /// Torque of the belt on `pulley` (N·m, clockwise positive) where the law integrates
+    /// it: its value at the last contact.
+    pub fn torque(&self, pulley: Pulley) -> Option<f64> {
+        self.point(self.topology().last_arc(pulley), 1.0).torque
+    }
+
+    /// Check the conditions the segment topology assumes (docs/string-hanging.md,
+    /// docs/rod-hanging.md, docs/string-drive.md, "Checks"): the topology, every value
+    /// finite, the law's positive force, p ≥ 0 on the arcs, the stick-zone friction bound
+    /// |f_t| ≤ μp and the slip direction with friction, no span point inside a pulley,
+    /// edge forces ≥ 0 where the law has them.
+    pub fn check_contact(&self) -> Result<(), BeltError> {
+        let v = BeltError::ContactViolated;
+        let topo = self.topology();
+        let (window, slack) = self.problem.law.admissible_window();
+        topo.check(&self.solution.params, window, slack).map_err(v)?;
+        let Pulleys { radius, centre_distance, weight } = self.pulleys;
+        let fr = self.scales.force;
+        let pressure_floor = -1e-9 * (weight + fr / radius);
+        let inside = radius * (1.0 - 1e-6);
+        let mu = L::friction(&self.data);
+        let stick_tension = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
+        let (t_tight, t_slack) = (stick_tension(Pulley::Driver), stick_tension(Pulley::Driven));
+        for (k, xi, pt) in self.samples(4) {
+            let optional = [pt.theta, pt.effective_tension, pt.shear, pt.moment, pt.pressure, pt.friction];
+            let finite = [pt.x, pt.y, pt.tension, pt.material].iter().chain(optional.iter().flatten()).all(|v| v.is_finite());
+            if !finite {
+                return Err(v(format!("non-finite solution in segment {k} at ξ = {xi:.4}")));
+            }
+            let kind = topo.segment(k).kind;
+            if let Some((name, value)) = L::positive_force(kind, &pt) {
+                if value <= 0.0 {
+                    return Err(v(format!("{name} {value:.4e} N ≤ 0 at ({:.5}, {:.5}) m", pt.x, pt.y)));
+                }
+            }
+            let Some(pulley) = topo.segment(k).pulley() else {
+                for pulley in [Pulley::Driver, Pulley::Driven] {
+                    let dist = (pt.x - pulley.centre_x() * centre_distance).hypot(pt.y);
+                    if dist < inside {
+                        return Err(v(format!(
+                            "free span passes through the {} pulley: distance {dist:.6} m from its centre < R = {radius:.6} m at ({:.5}, {:.5}) m",
+                            pulley.name(),
+                            pt.x,
+                            pt.y
+                        )));
+                    }
+                }
+                continue;
+            };
+            let name = pulley.name();
+            let p = pt.pressure.unwrap_or(f64::NAN);
+            if p < pressure_floor {
+                return Err(v(format!(
+                    "contact force {p:.4e} N/m < 0 on the {name} pulley at ({:.5}, {:.5}) m: the belt would lift off inside the arc",
+                    pt.x, pt.y
+                )));
+            }
+            let (Some(mu), Some(tau)) = (mu, pt.friction) else { continue };
+            if kind == SegmentKind::Arc(ArcKind::Stick) && tau.abs() > mu * p - pressure_floor {
+                return Err(v(format!(
+                    "the stick zone on the {name} pulley needs friction {:.4e} N/m > μp = {:.4e} N/m at ({:.5}, {:.5}) m",
+                    tau.abs(),
+                    mu * p,
+                    pt.x,
+                    pt.y
+                )));
+            }
+            let tol = 1e-9 * fr;
+            if kind == SegmentKind::Arc(ArcKind::Slip) {
+                match (pulley, t_tight, t_slack) {
+                    (Pulley::Driver, Some(t), _) if pt.tension > t + tol => {
+                        return Err(v(format!(
+                            "slip direction: tension {:.6e} N above the stick tension {t:.6e} N in the driver's slip zone",
+                            pt.tension
+                        )));
+                    }
+                    (Pulley::Driven, _, Some(t)) if pt.tension < t - tol => {
+                        return Err(v(format!(
+                            "slip direction: tension {:.6e} N below the stick tension {t:.6e} N in the driven slip zone",
+                            pt.tension
+                        )));
+                    }
+                    _ => {}
+                }
+            }
+        }
+        if let Some(e) = self.edge_forces() {
+            let floor = -1e-7 * fr;
+            for (what, f) in [
+                ("driven first contact", e.driven_start),
+                ("driven last contact", e.driven_end),
+                ("driver first contact", e.driver_start),
+                ("driver last contact", e.driver_end),
+            ] {
+                if f < floor {
+                    return Err(v(format!("edge force {f:.4e} N < 0 at the {what}: the pulley would pull")));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The belt point at contour coordinate σ, with its segment.
+    pub fn at_sigma(&self, sigma: f64) -> (usize, BeltPoint) {
+        let (k, xi) = self.sigma_map.locate(sigma, |k, xi| {
+            let p = self.point(k, xi);
+            [p.x, p.y]
+        });
+        (k, self.point(k, xi))
+    }
+
+    fn pulley_summary(&self, pulley: Pulley, edges: Option<EdgeForces>) -> PulleySummary {
+        let angles = self.contact_angles(pulley);
+        let (a, b) = (angles[0], angles[angles.len() - 1]);
+        let stick_slip = (angles.len() == 3).then(|| (a - angles[1], angles[1] - b));
+        let (edge_start, edge_end) = match (pulley, edges) {
+            (Pulley::Driver, Some(e)) => (Some(e.driver_start), Some(e.driver_end)),
+            (Pulley::Driven, Some(e)) => (Some(e.driven_start), Some(e.driven_end)),
+            (_, None) => (None, None),
+        };
+        PulleySummary {
+            contact_arc: Some(a - b),
+            contact_start: Some(wrap_angle(a)),
+            contact_end: Some(wrap_angle(b)),
+            stick_arc: stick_slip.map(|s| s.0),
+            slip_arc: stick_slip.map(|s| s.1),
+            torque: self.torque(pulley),
+            edge_force_start: edge_start,
+            edge_force_end: edge_end,
+            ..PulleySummary::default()
+        }
+    }
+}
+
+impl<L: SectionLaw> SolutionView for BeltSolution<L> {
+    fn contour(&self) -> &Contour {
+        self.sigma_map.contour()
+    }
+
+    fn position(&self, sigma: f64) -> [f64; 2] {
+        let (_, pt) = self.at_sigma(sigma);
+        [pt.x, pt.y]
+    }
+
+    fn axial_force(&self, sigma: f64) -> f64 {
+        self.at_sigma(sigma).1.tension
+    }
+
+    fn bending_moment(&self, sigma: f64) -> Option<f64> {
+        self.at_sigma(sigma).1.moment
+    }
+
+    fn transverse_force(&self, sigma: f64) -> Option<f64> {
+        self.at_sigma(sigma).1.shear
+    }
+
+    fn contact_pressure(&self, sigma: f64) -> Option<f64> {
+        // Per unit contour length on the arc: p / λ (belt centreline on the contour); the
+        // Kirchhoff rod's edge forces are concentrated and reported in the summary.
+        let (_, pt) = self.at_sigma(sigma);
+        Some(pt.pressure.map_or(0.0, |p| p / pt.stretch))
+    }
+
+    fn friction_traction(&self, sigma: f64) -> Option<f64> {
+        // f_t per unstretched length, + in the direction of travel = +σ (ω₁ ≥ 0,
+        // validated); per unit contour length f_t/λ, as the pressure.
+        if !self.topology().has_friction() {
+            return None;
+        }
+        let (_, pt) = self.at_sigma(sigma);
+        Some(pt.friction.map_or(0.0, |f| f / pt.stretch))
+    }
+
+    fn contact_state(&self, sigma: f64) -> ContactState {
+        match self.topology().segment(self.at_sigma(sigma).0).kind {
+            SegmentKind::Span => ContactState::Free,
+            SegmentKind::Arc(ArcKind::Frictionless) => ContactState::Contact,
+            SegmentKind::Arc(ArcKind::Stick) => ContactState::Stick,
+            SegmentKind::Arc(ArcKind::Slip) => ContactState::Slip,
+        }
+    }
+
+    fn material_coordinate(&self, sigma: f64) -> f64 {
+        self.at_sigma(sigma).1.material
+    }
+
+    fn summary(&self) -> Summary {
+        let topo = self.topology();
+        let (upper, lower) = self.mid_span();
+        let stick_start = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
+        let edges = self.edge_forces();
+        Summary {
+            y_upper_mid: Some(upper.y),
+            y_lower_mid: Some(lower.y),
+            tension_upper_mid: Some(upper.tension),
+            tension_lower_mid: Some(lower.tension),
+            moment_upper_mid: upper.moment,
+            moment_lower_mid: lower.moment,
+            tension_tight: stick_start(Pulley::Driver),
+            tension_slack: stick_start(Pulley::Driven),
+            driven_speed: self.driven_speed(),
+            transport_rate: self.transport_rate(),
+            driver: Some(self.pulley_summary(Pulley::Driver, edges)),
+            driven: Some(self.pulley_summary(Pulley::Driven, edges)),
+            ..Summary::default()
+        }
+    }
+}
+
+/// A law whose start is the tight loop (straight spans, half-turn arcs, uniform tension).
+pub trait TightLoop: SectionLaw {
+    /// The state of a segment of `kind` at a point of the tight loop: position (x, y),
+    /// span force (F_x, F_y), tension `tension`, material coordinate `material` (scaled).
+    fn tight_state(&self, kind: SegmentKind, position: [f64; 2], force: [f64; 2], tension: f64, material: f64) -> Vec<f64>;
+}
+
+/// The tight loop as a solution at η = 0 on `nodes` nodes per segment: tension `tension`
+/// and stretch `stretch` throughout (scaled), straight spans of unstretched length
+/// 1/(2λ) each half, half-turn arcs of unstretched length πR/λ on pulleys of scaled
+/// radius `radius` (with friction all stick: the slip arcs have zero length).
+pub fn tight_guess<L: TightLoop>(problem: &BeltProblem<L>, tension: f64, stretch: f64, radius: f64, nodes: usize) -> Solution {
+    let topo = &problem.topology;
+    let l = 0.5 / stretch;
+    let arc = PI * radius / stretch;
+    let params = topo.tight_params(l);
+    // Start of each segment's material coordinate and its unstretched length.
+    let mut s0 = Vec::with_capacity(topo.len());
+    let mut acc = 0.0;
+    for seg in topo.segments() {
+        let length = match seg.kind {
+            SegmentKind::Span => l,
+            SegmentKind::Arc(ArcKind::Slip) => 0.0,
+            SegmentKind::Arc(_) => arc,
+        };
+        s0.push((acc, length));
+        acc += length;
+    }
+    Solution::from_fn(topo.len(), nodes, params, 0.0, |k, x| {
+        let seg = topo.segment(k);
+        let (start, length) = s0[k];
+        let material = start + length * x;
+        match seg.pulley() {
+            Some(_) => problem.law.tight_state(seg.kind, [0.0, 0.0], [0.0, 0.0], tension, material),
+            None => {
+                // Upper spans run left to right at y = R, lower spans right to left at −R;
+                // the first half of each ends at x = 0.
+                let upper = seg.side == crate::sigma_map::Side::UpperSpan;
+                let first_half = topo.junction(k) == super::topology::Junction::MidSpan;
+                let (x0, dir, y) = match (upper, first_half) {
+                    (true, true) => (-0.5, 1.0, radius),
+                    (true, false) => (0.0, 1.0, radius),
+                    (false, true) => (0.5, -1.0, -radius),
+                    (false, false) => (0.0, -1.0, -radius),
+                };
+                problem.law.tight_state(seg.kind, [x0 + dir * 0.5 * x, y], [dir * tension, 0.0], tension, material)
+            }
+        }
+    })
+}
