@@ -360,15 +360,16 @@ pub fn biot_density<D: Scalar>(stretch: D, axial_stiffness: f64) -> D {
     e * e * (0.5 * axial_stiffness)
 }
 
-/// Result of an element evaluation with derivatives.
+/// Result of an element evaluation with derivatives, for N local unknowns (8: the
+/// string layout of every formulation).
 #[derive(Debug, Clone, Copy)]
-pub struct ElementDerivatives {
+pub struct ElementDerivatives<const N: usize = NDOF> {
     /// Energy, J.
     pub energy: f64,
     /// ∂E/∂q.
-    pub gradient: [f64; NDOF],
+    pub gradient: [f64; N],
     /// ∂²E/∂q², row-major.
-    pub hessian: [[f64; NDOF]; NDOF],
+    pub hessian: [[f64; N]; N],
 }
 
 /// The object-safe face of a [`Formulation`], used by assembly, solvers and the view.
