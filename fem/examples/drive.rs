@@ -11,13 +11,10 @@ use fem::string_drive::{DriveSettings, FrictionMethod};
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let path = args.get(1).map(String::as_str).unwrap_or("fem/tests/scenes/drive-creep.json");
-    let scene = match drive::Scene::from_path(Path::new(path)) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            std::process::exit(2);
-        }
-    };
+    let scene = drive::Scene::from_path(Path::new(path)).unwrap_or_else(|e| {
+        eprintln!("error: {e}");
+        std::process::exit(2)
+    });
     let mut opts = fem::FemOptions::from_scene(&scene, fem::default_formulation());
     if let Some(n) = args.get(2).and_then(|a| a.parse().ok()) {
         opts.elements = n;

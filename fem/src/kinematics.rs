@@ -7,7 +7,7 @@
 
 use drive::contour::{Contour, Region};
 
-use crate::element::STRING;
+use crate::element::{ElementLayout, STRING};
 use crate::hermite;
 use crate::mesh::ElementGeometry;
 
@@ -105,6 +105,18 @@ impl ElementContext {
             dnu: comb(&wd, NU_DOFS),
             d2nu: comb(&w2, NU_DOFS),
         }
+    }
+
+    /// Value, ∂σ and ∂²σ at ξ of field number `field` of a 1-D Hermite `layout`, from
+    /// the element's N local unknowns in layout order — for any field set ({s, ν},
+    /// {s, ν, θ}); [`Self::fields`] is the string layout's named version.
+    #[inline]
+    pub fn field<D: Scalar, const N: usize>(&self, layout: ElementLayout, q: &[D; N], field: usize, xi: f64) -> [D; 3] {
+        let (wv, wd) = hermite::weights(xi, self.geometry.h);
+        let w2 = hermite::second_weights(xi, self.geometry.h);
+        let i = layout.hermite_indices(field);
+        let comb = |w: &[f64; 4]| -> D { q[i[0]] * w[0] + q[i[1]] * w[1] + q[i[2]] * w[2] + q[i[3]] * w[3] };
+        [comb(&wv), comb(&wd), comb(&w2)]
     }
 
     /// The effective local unknowns q̃ = m(q) of the augmented approximation

@@ -79,6 +79,7 @@ use drive::view::SolutionView;
 
 pub mod admissibility;
 pub mod assembly;
+pub mod continuation;
 pub mod dofs;
 pub mod element;
 mod error;
@@ -95,6 +96,8 @@ pub mod solution;
 pub mod stamp;
 pub mod string_drive;
 pub mod static_homotopy;
+#[cfg(test)]
+mod test_rng;
 
 pub use error::{FemError, NewtonFailure};
 pub use formulation::{Formulation, RegistryError};

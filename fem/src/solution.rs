@@ -233,19 +233,24 @@ impl FemSolution {
         best
     }
 
-    /// The contact zone of a pulley: the hull of {γ < 0} in the σ-window where the gap
-    /// to that pulley is defined (its arc and the span parts with |x − x_k| < R),
-    /// boundaries by bisection on the interpolant between scan points (not snapped to
-    /// nodes). `None` if the belt does not touch the pulley.
-    pub fn contact_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+    /// The σ-window (start, end) where the gap to `pulley` is defined — its arc ± R,
+    /// unwrapped — and the contour length L_c, m.
+    fn contact_window(&self, pulley: Pulley) -> (f64, f64, f64) {
         let c = self.mesh.contour();
         let arc = match pulley {
             Pulley::Driven => Region::DrivenArc,
             Pulley::Driver => Region::DriverArc,
         };
         let (a, b) = c.region_bounds(arc);
-        let (w0, w1) = (a - c.radius(), b + c.radius());
-        let l = c.length();
+        (a - c.radius(), b + c.radius(), c.length())
+    }
+
+    /// The contact zone of a pulley: the hull of {γ < 0} in the σ-window where the gap
+    /// to that pulley is defined (its arc and the span parts with |x − x_k| < R),
+    /// boundaries by bisection on the interpolant between scan points (not snapped to
+    /// nodes). `None` if the belt does not touch the pulley.
+    pub fn contact_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let (w0, w1, l) = self.contact_window(pulley);
         // elements overlapping the window, unwrapped (the driver's window runs past L_c)
         let mut parts: Vec<(f64, usize, f64)> = Vec::new(); // (start, element, offset)
         for (e, g) in self.mesh.elements().iter().enumerate() {
@@ -286,8 +291,8 @@ impl FemSolution {
         Some(ContactZone {
             sigma_start,
             sigma_end,
-            angle_start: c.polar_angle(pulley, self.position(sigma_start)),
-            angle_end: c.polar_angle(pulley, self.position(sigma_end)),
+            angle_start: self.mesh.contour().polar_angle(pulley, self.position(sigma_start)),
+            angle_end: self.mesh.contour().polar_angle(pulley, self.position(sigma_end)),
             intervals: entries.len().max(1),
             recovered: false,
             edge_force_start: None,
@@ -493,14 +498,7 @@ impl FemSolution {
     /// the discrete equilibrium.
     pub fn contact_forces(&self, pulley: Pulley) -> Vec<(f64, f64)> {
         let Some(penalty) = self.params.penalty else { return Vec::new() };
-        let c = self.mesh.contour();
-        let arc = match pulley {
-            Pulley::Driven => Region::DrivenArc,
-            Pulley::Driver => Region::DriverArc,
-        };
-        let (a, b) = c.region_bounds(arc);
-        let (w0, w1) = (a - c.radius(), b + c.radius());
-        let l = c.length();
+        let (w0, w1, l) = self.contact_window(pulley);
         let rule = self.kernel.rules().contact;
         let mut out = Vec::new();
         for (e, g) in self.mesh.elements().iter().enumerate() {

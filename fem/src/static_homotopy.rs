@@ -11,6 +11,7 @@ use std::sync::Arc;
 use drive::contour::Contour;
 
 use crate::assembly::Assembler;
+use crate::continuation::{self, Attempt, Homotopy, StepControl, Stop};
 use crate::error::FemError;
 use crate::formulation::Kernel;
 use crate::kinematics::TermParams;
@@ -283,96 +284,128 @@ impl StringHanging {
         report.steps = 1;
         report.last = r;
 
-        let trivial = self.gravity.is_none() && self.length == l0;
-        let mut eta = 0.0;
-        let mut step = settings.initial_step;
-        let mut prev: Option<(f64, Vec<f64>)> = None; // previous accepted point for the secant
-        let mut last_failure = String::new();
-        let mut attempts = 0usize;
-        // the path is smooth within each phase [0, ½], [½, 1], kinked at ½
-        let phase = |a: f64, b: f64| if b <= 0.5 { 0 } else if a >= 0.5 { 1 } else { 2 };
-        while !trivial && eta < 1.0 {
-            attempts += 1;
-            if attempts > settings.max_steps {
-                return Err(FemError::HomotopyStalled {
-                    eta,
-                    step,
+        if self.gravity.is_none() && self.length == l0 {
+            return Ok(z);
+        }
+        let fast = (2 * settings.max_step_iterations) / 5;
+        let slow = (3 * settings.max_step_iterations) / 5;
+        // step control on the Newton iterations of the accepted step
+        // fast: ≤ 40 % of the iteration limit (8 of 20), slow: > 60 % (12)
+        let grow = |done: f64, _step: f64, iterations: usize| {
+            if iterations <= fast {
+                2.0 * done
+            } else if iterations <= slow {
+                1.25 * done
+            } else {
+                0.6 * done
+            }
+            .clamp(settings.min_step, settings.max_step)
+        };
+        let control = StepControl { initial: settings.initial_step, min_step: settings.min_step, max_attempts: settings.max_steps, shrink: 0.25, grow: &grow };
+        let mut path = StaticPath { data: self, asm, lu, l0, scales, newton_settings, tolerance: settings.update_tolerance, z, prev: None, report };
+        match continuation::natural(&mut path, &control) {
+            Ok(_) => Ok(path.z),
+            Err(Stop::Aborted(never)) => match never {},
+            Err(Stop::Stalled(s)) => {
+                let last = s.last.unwrap_or_default();
+                Err(FemError::HomotopyStalled {
+                    eta: s.eta,
+                    step: s.step,
                     min_step: settings.min_step,
-                    steps: report.steps,
-                    last_failure: format!("step limit {} reached; {last_failure}", settings.max_steps),
-                });
-            }
-            // hit the phase boundary η = ½ and η = 1 exactly
-            let mut target = (eta + step).min(1.0);
-            if eta < 0.5 && target > 0.5 {
-                target = 0.5;
-            }
-            let (params, length) = self.at(target, l0);
-            let (_, length_now) = self.at(eta, l0);
-            let mut trial = z.clone();
-            match &prev {
-                // secant predictor within a phase; unknowns of nodes in contact are kept
-                // (extrapolating them would push them into the pulley, against the penalty)
-                Some((eta_p, z_p)) if phase(*eta_p, eta) == phase(eta, target) && phase(eta, target) < 2 => {
-                    let f = (target - eta) / (eta - eta_p);
-                    for i in 0..trial.len() {
-                        trial[i] += f * (z[i] - z_p[i]);
-                    }
-                    keep_contact_nodes(asm, &z, &mut trial, &params, length_now);
-                }
-                _ => scale_material(asm, &mut trial, length / length_now),
-            }
-            let outcome = newton::solve(asm, lu, &mut trial, &params, length, scales, newton_settings);
-            let outcome = match outcome {
-                Err(NewtonFailure::Inadmissible) => {
-                    // the predictor overshot into ∂σS ≤ 0: retry from the last point itself
-                    trial = z.clone();
-                    scale_material(asm, &mut trial, length / length_now);
-                    newton::solve(asm, lu, &mut trial, &params, length, scales, newton_settings)
-                }
-                o => o,
-            };
-            match outcome {
-                Ok(r) => {
-                    report.newton_iterations += r.iterations;
-                    report.steps += 1;
-                    report.last = r;
-                    prev = Some((eta, std::mem::replace(&mut z, trial)));
-                    let done = target - eta;
-                    eta = target;
-                    // step control on the Newton iterations of the accepted step
-                    // fast: ≤ 40 % of the iteration limit (8 of 20), slow: > 60 % (12)
-                    let fast = (2 * settings.max_step_iterations) / 5;
-                    let slow = (3 * settings.max_step_iterations) / 5;
-                    step = if r.iterations <= fast {
-                        2.0 * done
-                    } else if r.iterations <= slow {
-                        1.25 * done
-                    } else {
-                        0.6 * done
-                    }
-                    .clamp(settings.min_step, settings.max_step);
-                }
-                Err(f) => {
-                    if let NewtonFailure::Diverged { iterations, .. } = &f {
-                        report.newton_iterations += iterations;
-                    }
-                    report.rejected += 1;
-                    last_failure = to_error(f, target, settings.update_tolerance).to_string();
-                    step *= 0.25;
-                    if step < settings.min_step {
-                        return Err(FemError::HomotopyStalled {
-                            eta,
-                            step,
-                            min_step: settings.min_step,
-                            steps: report.steps,
-                            last_failure,
-                        });
-                    }
-                }
+                    steps: path.report.steps,
+                    last_failure: if s.attempts_exhausted { format!("step limit {} reached; {last}", settings.max_steps) } else { last },
+                })
             }
         }
-        Ok(z)
+    }
+}
+
+/// The two-phase homotopy of §9 as a [`Homotopy`]: the path is smooth within each phase
+/// [0, ½] (gravity on), [½, 1] (length to L), kinked at ½, which a step hits exactly.
+struct StaticPath<'a> {
+    data: &'a StringHanging,
+    asm: &'a Assembler,
+    lu: &'a mut SparseLu,
+    l0: f64,
+    scales: &'a Scales,
+    newton_settings: &'a NewtonSettings,
+    tolerance: f64,
+    /// Last accepted state.
+    z: Vec<f64>,
+    /// The accepted point before it, for the secant predictor.
+    prev: Option<(f64, Vec<f64>)>,
+    report: &'a mut HomotopyReport,
+}
+
+/// The phase of a step from a to b: 0 or 1 within a phase, 2 across the kink.
+fn phase(a: f64, b: f64) -> u8 {
+    if b <= 0.5 {
+        0
+    } else if a >= 0.5 {
+        1
+    } else {
+        2
+    }
+}
+
+impl Homotopy for StaticPath<'_> {
+    /// The failure as the error it would be, in words.
+    type Failure = String;
+    type Error = std::convert::Infallible;
+
+    fn target(&self, eta: f64, step: f64) -> f64 {
+        // hit the phase boundary η = ½ and η = 1 exactly
+        let target = (eta + step).min(1.0);
+        if eta < 0.5 && target > 0.5 {
+            0.5
+        } else {
+            target
+        }
+    }
+
+    fn solve_at(&mut self, eta: f64, target: f64) -> Result<Attempt<String>, Self::Error> {
+        let (asm, z) = (self.asm, &self.z);
+        let (params, length) = self.data.at(target, self.l0);
+        let (_, length_now) = self.data.at(eta, self.l0);
+        let mut trial = z.clone();
+        match &self.prev {
+            // secant predictor within a phase; unknowns of nodes in contact are kept
+            // (extrapolating them would push them into the pulley, against the penalty)
+            Some((eta_p, z_p)) if phase(*eta_p, eta) == phase(eta, target) && phase(eta, target) < 2 => {
+                let f = (target - eta) / (eta - eta_p);
+                for i in 0..trial.len() {
+                    trial[i] += f * (z[i] - z_p[i]);
+                }
+                keep_contact_nodes(asm, z, &mut trial, &params, length_now);
+            }
+            _ => scale_material(asm, &mut trial, length / length_now),
+        }
+        let outcome = newton::solve(asm, self.lu, &mut trial, &params, length, self.scales, self.newton_settings);
+        let outcome = match outcome {
+            Err(NewtonFailure::Inadmissible) => {
+                // the predictor overshot into ∂σS ≤ 0: retry from the last point itself
+                trial = z.clone();
+                scale_material(asm, &mut trial, length / length_now);
+                newton::solve(asm, self.lu, &mut trial, &params, length, self.scales, self.newton_settings)
+            }
+            o => o,
+        };
+        Ok(match outcome {
+            Ok(r) => {
+                self.report.newton_iterations += r.iterations;
+                self.report.steps += 1;
+                self.report.last = r;
+                self.prev = Some((eta, std::mem::replace(&mut self.z, trial)));
+                Attempt::Accepted { iterations: r.iterations }
+            }
+            Err(f) => {
+                if let NewtonFailure::Diverged { iterations, .. } = &f {
+                    self.report.newton_iterations += iterations;
+                }
+                self.report.rejected += 1;
+                Attempt::Rejected(to_error(f, target, self.tolerance).to_string())
+            }
+        })
     }
 }
 

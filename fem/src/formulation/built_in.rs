@@ -23,29 +23,12 @@ pub struct BuiltIn {
 }
 
 impl Formulation for BuiltIn {
-    fn name(&self) -> &'static str {
-        self.name
-    }
-
-    fn description(&self) -> &'static str {
-        self.description
-    }
-
-    fn strain_measure(&self) -> &'static str {
-        "Biot"
-    }
-
-    fn theory(&self) -> Theory {
-        self.theory
-    }
-
-    fn rules(&self) -> TermRules {
-        self.rules
-    }
-
-    fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D {
-        biot_density(stretch, axial_stiffness)
-    }
+    fn name(&self) -> &'static str { self.name }
+    fn description(&self) -> &'static str { self.description }
+    fn strain_measure(&self) -> &'static str { "Biot" }
+    fn theory(&self) -> Theory { self.theory }
+    fn rules(&self) -> TermRules { self.rules }
+    fn strain_energy_density<D: Scalar>(&self, stretch: D, axial_stiffness: f64) -> D { biot_density(stretch, axial_stiffness) }
 }
 
 const GAUSS3: Rule = Rule::Gauss(3);

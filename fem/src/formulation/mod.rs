@@ -66,7 +66,7 @@ pub mod terms;
 
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
 pub use drive::scene::Theory;
-pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, PenaltyContact, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
+pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
 use terms::EnergySum;
 
 /// The integration rule of each energy term (§7.3; docs/fem-string.md §6).
@@ -360,15 +360,16 @@ pub fn biot_density<D: Scalar>(stretch: D, axial_stiffness: f64) -> D {
     e * e * (0.5 * axial_stiffness)
 }
 
-/// Result of an element evaluation with derivatives.
+/// Result of an element evaluation with derivatives, for N local unknowns (8: the
+/// string layout of every formulation).
 #[derive(Debug, Clone, Copy)]
-pub struct ElementDerivatives {
+pub struct ElementDerivatives<const N: usize = NDOF> {
     /// Energy, J.
     pub energy: f64,
     /// ∂E/∂q.
-    pub gradient: [f64; NDOF],
+    pub gradient: [f64; N],
     /// ∂²E/∂q², row-major.
-    pub hessian: [[f64; NDOF]; NDOF],
+    pub hessian: [[f64; N]; N],
 }
 
 /// The object-safe face of a [`Formulation`], used by assembly, solvers and the view.
@@ -621,15 +622,7 @@ mod tests {
     use crate::mesh::ElementGeometry;
     use drive::contour::{Contour, Region};
 
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::test_rng::Rng;
 
     fn context(region: Region, sa: f64, h: f64) -> ElementContext {
         ElementContext {

@@ -10,6 +10,9 @@
 //! Hessian paths of `formulation`) walk a term list through a [`TermVisitor`], so a new
 //! effect is a new unit, not a new branch in every integrator.
 //!
+//! An effect is a [`PointDensity`]; a formulation gives it a rule ([`Integrated`]),
+//! which makes it an [`EnergyTerm`].
+//!
 //! | unit | effect | density, J/m |
 //! |---|---|---|
 //! | [`Strain`] | membrane strain (F8) | W(λ) ∂σS |
@@ -52,90 +55,79 @@ pub trait TermVisitor<D: Scalar> {
     fn visit<T: EnergyTerm<D>>(&mut self, term: &T);
 }
 
+/// The energy density of one effect at a point, J per unit contour length σ, over the
+/// point values — what a term is before a formulation gives it an integration rule
+/// ([`Integrated`]).
+pub trait PointDensity<D: Scalar> {
+    /// Energy per unit σ at the point with values `p`, J/m.
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D;
+}
+
+/// An effect's density with the integration rule a formulation gives it: an
+/// [`EnergyTerm`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Integrated<T> {
+    /// Integration rule.
+    pub rule: Rule,
+    /// The effect.
+    pub effect: T,
+}
+
+impl<D: Scalar, T: PointDensity<D>> EnergyTerm<D> for Integrated<T> {
+    fn rule(&self) -> Rule {
+        self.rule
+    }
+
+    #[inline]
+    fn density(&self, el: &ElementContext, p: &PointFields<D>, _point: usize) -> D {
+        self.effect.density(el, p)
+    }
+}
+
 /// Membrane strain energy U (F8): W(λ) ∂σS with the formulation's strain energy density
-/// W per unstretched length (`law`, a function of the stretch λ = |∂σr|/∂σS (F4)).
+/// W(λ) per unstretched length (J/m) as a function of the stretch λ = |∂σr|/∂σS (F4).
 #[derive(Debug, Clone, Copy)]
-pub struct Strain<W> {
-    /// Integration rule.
-    pub rule: Rule,
-    /// W(λ), J/m.
-    pub law: W,
-}
+pub struct Strain<W>(pub W);
 
-impl<D: Scalar, W: Fn(D) -> D> EnergyTerm<D> for Strain<W> {
-    fn rule(&self) -> Rule {
-        self.rule
-    }
-
-    #[inline]
-    fn density(&self, el: &ElementContext, p: &PointFields<D>, _point: usize) -> D {
-        (self.law)(el.stretch(p)) * p.ds
+impl<D: Scalar, W: Fn(D) -> D> PointDensity<D> for Strain<W> {
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
+        (self.0)(el.stretch(p)) * p.ds
     }
 }
 
-/// Gravity potential W (F9): ρg y ∂σS.
+/// Gravity potential W (F9): ρg y ∂σS, with ρg in N per unstretched metre.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Gravity {
-    /// Integration rule.
-    pub rule: Rule,
-    /// ρg, N per unstretched metre.
-    pub weight: f64,
-}
+pub struct Gravity(pub f64);
 
-impl<D: Scalar> EnergyTerm<D> for Gravity {
-    fn rule(&self) -> Rule {
-        self.rule
-    }
-
-    #[inline]
-    fn density(&self, el: &ElementContext, p: &PointFields<D>, _point: usize) -> D {
-        el.height(p) * p.ds * self.weight
+impl<D: Scalar> PointDensity<D> for Gravity {
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
+        el.height(p) * p.ds * self.0
     }
 }
 
-/// Penalty normal contact V_γ (F10): ½ P ⟨−γ⟩² with the gap γ of
-/// [`ElementContext::gap`] (zero where no pulley can be reached).
+/// Penalty normal contact V_γ (F10): ½ P ⟨−γ⟩² with the penalty factor P in N/m² and the
+/// gap γ of [`ElementContext::gap`] (zero where no pulley can be reached).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PenaltyContact {
-    /// Integration rule.
-    pub rule: Rule,
-    /// P, N/m².
-    pub penalty: f64,
-}
+pub struct PenaltyContact(pub f64);
 
-impl<D: Scalar> EnergyTerm<D> for PenaltyContact {
-    fn rule(&self) -> Rule {
-        self.rule
-    }
-
-    #[inline]
-    fn density(&self, el: &ElementContext, p: &PointFields<D>, _point: usize) -> D {
+impl<D: Scalar> PointDensity<D> for PenaltyContact {
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
         match el.gap(p) {
-            Some(gap) if gap.re() < 0.0 => gap * gap * (0.5 * self.penalty),
+            Some(gap) if gap.re() < 0.0 => gap * gap * (0.5 * self.0),
             _ => D::zero(),
         }
     }
 }
 
-/// Kirchhoff bending energy U_b (docs/fem-rod.md K7): ½ EI θ_σ² / ∂σS with the angle
-/// rate θ_σ of [`ElementContext::angle_rate`] (needs ∂²σν).
+/// Kirchhoff bending energy U_b (docs/fem-rod.md K7): ½ EI θ_σ² / ∂σS with EI in N·m²
+/// and the angle rate θ_σ of [`ElementContext::angle_rate`] (needs ∂²σν).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Bending {
-    /// Integration rule.
-    pub rule: Rule,
-    /// EI, N·m².
-    pub stiffness: f64,
-}
+pub struct Bending(pub f64);
 
-impl<D: Scalar> EnergyTerm<D> for Bending {
-    fn rule(&self) -> Rule {
-        self.rule
-    }
-
-    #[inline]
-    fn density(&self, el: &ElementContext, p: &PointFields<D>, _point: usize) -> D {
+impl<D: Scalar> PointDensity<D> for Bending {
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
         let k = el.angle_rate(p);
-        k * k / p.ds * (0.5 * self.stiffness)
+        k * k / p.ds * (0.5 * self.0)
     }
 }
 
@@ -177,13 +169,13 @@ impl<D: Scalar> EnergyTerm<D> for TransportInertia<D> {
 #[derive(Debug, Clone, Copy)]
 pub struct StandardTerms<W> {
     /// U (F8).
-    pub strain: Strain<W>,
+    pub strain: Integrated<Strain<W>>,
     /// W (F9).
-    pub gravity: Option<Gravity>,
+    pub gravity: Option<Integrated<Gravity>>,
     /// V_γ (F10).
-    pub contact: Option<PenaltyContact>,
+    pub contact: Option<Integrated<PenaltyContact>>,
     /// U_b (K7).
-    pub bending: Option<Bending>,
+    pub bending: Option<Integrated<Bending>>,
 }
 
 impl<W> StandardTerms<W> {
@@ -191,10 +183,10 @@ impl<W> StandardTerms<W> {
     /// strain energy density W(λ).
     pub fn new(params: &TermParams, rules: &TermRules, law: W) -> StandardTerms<W> {
         StandardTerms {
-            strain: Strain { rule: rules.strain, law },
-            gravity: params.weight.map(|weight| Gravity { rule: rules.gravity, weight }),
-            contact: params.penalty.map(|penalty| PenaltyContact { rule: rules.contact, penalty }),
-            bending: params.bending_stiffness.map(|stiffness| Bending { rule: rules.bending, stiffness }),
+            strain: Integrated { rule: rules.strain, effect: Strain(law) },
+            gravity: params.weight.map(|w| Integrated { rule: rules.gravity, effect: Gravity(w) }),
+            contact: params.penalty.map(|p| Integrated { rule: rules.contact, effect: PenaltyContact(p) }),
+            bending: params.bending_stiffness.map(|ei| Integrated { rule: rules.bending, effect: Bending(ei) }),
         }
     }
 
@@ -339,9 +331,8 @@ mod tests {
     use nalgebra::SVector;
     use num_dual::gradient;
 
-    struct Tether {
-        k: f64,
-    }
+    /// The tether of stiffness k (N/m²).
+    struct Tether(f64);
 
     impl HistoryTerm for Tether {
         type State = f64;
@@ -353,7 +344,7 @@ mod tests {
         }
         fn density<D: Scalar>(&self, _el: &ElementContext, p: &PointFields<D>, state: &f64) -> D {
             let d = p.nu - *state;
-            d * d * (0.5 * self.k)
+            d * d * (0.5 * self.0)
         }
         fn advance(&self, _el: &ElementContext, p: &PointFields<f64>, _previous: &f64) -> f64 {
             p.nu
@@ -382,7 +373,7 @@ mod tests {
     #[test]
     fn history_term_sees_the_last_converged_step_only() {
         let els = contexts();
-        let mut hist = TermHistory::new(Tether { k: 250.0 }, &els);
+        let mut hist = TermHistory::new(Tether(250.0), &els);
         assert_eq!(hist.states(1).len(), 3);
         let uniform = |el: &ElementContext, a: f64, slope: f64| -> [f64; NDOF] {
             let (sa, sb) = (el.geometry.sigma_a, el.geometry.sigma_a + el.geometry.h);
@@ -416,7 +407,7 @@ mod tests {
     #[test]
     fn history_term_gradient_matches_finite_differences() {
         let els = contexts();
-        let mut hist = TermHistory::new(Tether { k: 40.0 }, &els);
+        let mut hist = TermHistory::new(Tether(40.0), &els);
         let el = els[1];
         let q0 = [0.14, 1.0, 0.001, 0.02, 0.19, 1.01, 0.0015, -0.01];
         hist.commit(&els, |_| q0);

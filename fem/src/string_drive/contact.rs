@@ -196,42 +196,14 @@ fn pack(q: &[f64; NDOF], a: f64, phi: f64) -> SVector<f64, NEXT> {
 
 /// Energy, gradient and Hessian of the extra terms of an element in (q, a, φ), exact
 /// (forward-mode AD over all 10 variables).
-pub fn element_derivatives(
-    el: &ElementContext,
-    q: &[f64; NDOF],
-    a: f64,
-    phi: f64,
-    points: &[PointState],
-    sp: &StepParams,
-    strain_rule: Rule,
-) -> (f64, [f64; NEXT], [[f64; NEXT]; NEXT]) {
-    let (e, g, h) = hessian(
-        |v| {
-            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-            element_energy(el, &qq, v[NDOF], v[NDOF + 1], points, sp, strain_rule)
-        },
-        &pack(q, a, phi),
-    );
+pub fn element_derivatives(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; NEXT], [[f64; NEXT]; NEXT]) {
+    let (e, g, h) = hessian(|v| element_energy(el, &std::array::from_fn(|i| v[i]), v[NDOF], v[NDOF + 1], points, sp, strain_rule), &pack(q, a, phi));
     (e, std::array::from_fn(|i| g[i]), std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])))
 }
 
 /// Energy and gradient of the extra terms (AD, first order).
-pub fn element_gradient(
-    el: &ElementContext,
-    q: &[f64; NDOF],
-    a: f64,
-    phi: f64,
-    points: &[PointState],
-    sp: &StepParams,
-    strain_rule: Rule,
-) -> (f64, [f64; NEXT]) {
-    let (e, g) = gradient(
-        |v| {
-            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-            element_energy(el, &qq, v[NDOF], v[NDOF + 1], points, sp, strain_rule)
-        },
-        &pack(q, a, phi),
-    );
+pub fn element_gradient(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; NEXT]) {
+    let (e, g) = gradient(|v| element_energy(el, &std::array::from_fn(|i| v[i]), v[NDOF], v[NDOF + 1], points, sp, strain_rule), &pack(q, a, phi));
     (e, std::array::from_fn(|i| g[i]))
 }
 
@@ -277,15 +249,7 @@ mod tests {
     use crate::kinematics::TermParams;
     use crate::mesh::ElementGeometry;
 
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::test_rng::Rng;
 
     #[test]
     fn ad_matches_finite_differences() {

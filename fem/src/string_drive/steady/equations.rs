@@ -283,19 +283,8 @@ impl SteadyProblem<'_> {
                 })
                 .collect();
             for (e, (_, g, h)) in per.iter().enumerate() {
-                let idx = self.asm.dofs().element(e);
-                for (i, gi) in idx.iter().enumerate() {
-                    let Some(gi) = gi else { continue };
-                    residual[*gi] += g[i];
-                    if with_jacobian {
-                        for (j, gj) in idx.iter().enumerate() {
-                            if gj.is_some() {
-                                values.push(h[i][j]);
-                            }
-                        }
-                        values.push(h[i][NDOF]);
-                    }
-                }
+                // the c column after each row's q columns
+                scatter(self.asm.dofs().element(e), g, &|i, j| h[i][j], Some(NDOF), &mut residual, with_jacobian.then_some(&mut values));
             }
         }
         // friction points (DS1)–(DS4)
@@ -336,18 +325,7 @@ impl SteadyProblem<'_> {
         }
         let mut results = Vec::with_capacity(self.points.len());
         for (i, (r, j, res)) in per.into_iter().enumerate() {
-            let v = self.variables(i);
-            for (a, ga) in v.iter().enumerate() {
-                let Some(ga) = ga else { continue };
-                residual[*ga] += r[a];
-                if with_jacobian {
-                    for (b, gb) in v.iter().enumerate() {
-                        if gb.is_some() {
-                            values.push(j[a][b]);
-                        }
-                    }
-                }
-            }
+            scatter(&self.variables(i), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
             results.push(res);
         }
         // (DS1)–(DS3): the consistent friction load of every element with friction points
@@ -363,18 +341,7 @@ impl SteadyProblem<'_> {
             .collect();
         for (e, load) in loads.into_iter().enumerate() {
             let Some((r, j)) = load else { continue };
-            let v = self.element_variables(e, owners[e]);
-            for (a, ga) in v.iter().enumerate() {
-                let Some(ga) = ga else { continue };
-                residual[*ga] += r[a];
-                if with_jacobian {
-                    for (b, gb) in v.iter().enumerate() {
-                        if gb.is_some() {
-                            values.push(j[a][b]);
-                        }
-                    }
-                }
-            }
+            scatter(&self.element_variables(e, owners[e]), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
         }
         // the driven pulley's torque balance (DS3) divided by R: + (M₂ + d₂ω₂)/R
         residual[self.iw()] += (sp.torque + sp.damping * w2) / sp.radius;
@@ -456,5 +423,26 @@ impl SteadyProblem<'_> {
             }
         }
         (r, j, PointResult { point: pt, traction: tau, normal, velocity: v, slip: slip && b > 0.0 })
+    }
+}
+
+/// Add a local residual `r` into `residual` at the global indices `idx` (None: a fixed
+/// unknown, skipped) and, if `values` is given, the local Jacobian block `jac(a, b)` in
+/// pattern order: per present row a, the present columns b, then the column `extra` of
+/// that row if given (the c column of the inertia term).
+fn scatter(idx: &[Option<usize>], r: &[f64], jac: &dyn Fn(usize, usize) -> f64, extra: Option<usize>, residual: &mut [f64], mut values: Option<&mut Vec<f64>>) {
+    for (a, ga) in idx.iter().enumerate() {
+        let Some(ga) = ga else { continue };
+        residual[*ga] += r[a];
+        if let Some(values) = values.as_deref_mut() {
+            for (b, gb) in idx.iter().enumerate() {
+                if gb.is_some() {
+                    values.push(jac(a, b));
+                }
+            }
+            if let Some(b) = extra {
+                values.push(jac(a, b));
+            }
+        }
     }
 }

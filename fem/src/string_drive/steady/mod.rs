@@ -29,6 +29,7 @@ use super::contact::reachable_pulley;
 mod equations;
 mod fitting;
 mod kernels;
+mod load_path;
 mod output;
 mod semismooth;
 mod topology;
@@ -36,6 +37,7 @@ mod topology;
 pub use equations::*;
 pub use fitting::*;
 use kernels::*;
+use load_path::LoadPath;
 use output::*;
 pub use semismooth::*;
 pub use topology::*;
@@ -133,56 +135,21 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
     let w = variable_weights(&asm, h, r, omega1, f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
-    let mut eta: f64 = 0.0;
-    let mut step: f64 = 1.0;
-    let min_step = 1e-4;
-    let mut last_results: Vec<PointResult> = Vec::new();
-    let mut first = true;
-    loop {
-        let target = if first { 0.0 } else { (eta + step).min(1.0) };
-        let prob = SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(target), strain_rule };
-        let mut xt = x.clone();
-        match newton(&prob, &mut xt, &w, &scales, tol, max_it) {
-            Ok(n) => {
-                report.newton_iterations += n.iterations;
-                report.continuation_steps += 1;
-                x = xt;
-                eta = target;
-                last_results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
-                if inertia {
-                    let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &x[..asm.len()], params, length, kernel.clone());
-                    let c = x[asm.len()];
-                    check_critical(&sol, eta * b.mass_per_length * c * c)?;
-                }
-                if !first && n.iterations <= 6 {
-                    step *= 2.0;
-                }
-                first = false;
-                if eta >= 1.0 {
-                    break;
-                }
-            }
-            Err(reason) => {
-                report.newton_iterations += max_it;
-                report.rejected += 1;
-                step *= 0.5;
-                if first || step < min_step {
-                    // the continuation stalls where a pulley's load reaches what its
-                    // contact can carry, R Σ w μ P⟨−γ⟩ of the last converged state (full
-                    // slip): within 5 % of it, the named error with the whole load
-                    let demand = load_torque + damping * x[asm.len() + 1];
-                    for pulley in [Pulley::Driven, Pulley::Driver] {
-                        let pts: Vec<&PointResult> = last_results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
-                        let capacity = r * pts.iter().map(|p| p.point.weight * mu * p.normal).sum::<f64>();
-                        if !pts.is_empty() && target * demand >= 0.95 * capacity {
-                            return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity, time: None });
-                        }
-                    }
-                    return Err(FemError::HomotopyStalled { eta, step, min_step, steps: report.continuation_steps, last_failure: reason.to_string() });
-                }
-            }
-        }
-    }
+    let mut path = LoadPath {
+        problem: SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule },
+        at: &sp_at,
+        w: &w,
+        scales: &scales,
+        tolerance: tol,
+        max_iterations: max_it,
+        kernel: &kernel,
+        inertia: inertia.then_some(b.mass_per_length),
+        x,
+        results: Vec::new(),
+        report: &mut report,
+    };
+    path.run()?;
+    let (x, last_results) = (path.x, path.results);
     let mut state = State { asm, x, results: last_results, rho: inertia.then_some(b.mass_per_length) };
     report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 

@@ -1,0 +1,104 @@
+//! The load continuation of the direct steady solve (docs/fem-drive.md §12): η scales the
+//! driven load M₂, d₂ and the transport inertia ρ. η = 0 first (the static start carried
+//! into the steady unknowns), then η → 1 by [`crate::continuation::natural`], the step
+//! doubled after a solve of at most 6 Newton iterations and halved after a failure.
+
+use super::*;
+use crate::continuation::{self, Attempt, Homotopy, StepControl, Stop};
+
+/// Smallest step of the load continuation.
+const MIN_STEP: f64 = 1e-4;
+
+/// Newton iterations up to which a converged step doubles the next one.
+const FAST_SOLVE: usize = 6;
+
+/// The steady problem along η, and its last converged state.
+pub(super) struct LoadPath<'a> {
+    /// The steady equations at η (everything but the η-scaled parameters).
+    pub problem: SteadyProblem<'a>,
+    /// The η-scaled parameters.
+    pub at: &'a dyn Fn(f64) -> SteadyParams,
+    /// Variable weights and row scales of the semismooth Newton.
+    pub w: &'a [f64],
+    pub scales: &'a [f64],
+    /// Newton tolerance and iteration limit.
+    pub tolerance: f64,
+    pub max_iterations: usize,
+    pub kernel: &'a Arc<dyn Kernel>,
+    /// ρ of the belt, kg/m, if the transport inertia is on (the critical speed is checked
+    /// on every converged state).
+    pub inertia: Option<f64>,
+    /// Last converged unknowns X and their point results.
+    pub x: Vec<f64>,
+    pub results: Vec<PointResult>,
+    pub report: &'a mut SteadyReport,
+}
+
+impl Homotopy for LoadPath<'_> {
+    type Failure = NewtonFailure;
+    type Error = FemError;
+
+    fn solve_at(&mut self, _eta: f64, target: f64) -> Result<Attempt<NewtonFailure>, FemError> {
+        let prob = SteadyProblem { sp: (self.at)(target), ..self.problem };
+        let mut xt = self.x.clone();
+        match newton(&prob, &mut xt, self.w, self.scales, self.tolerance, self.max_iterations) {
+            Ok(n) => {
+                self.report.newton_iterations += n.iterations;
+                self.report.continuation_steps += 1;
+                self.x = xt;
+                self.results = prob.evaluate(&self.x, false).map(|e| e.results).unwrap_or_default();
+                if let Some(rho) = self.inertia {
+                    let asm = prob.asm;
+                    let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &self.x[..asm.len()], prob.params, prob.length, self.kernel.clone());
+                    let c = self.x[asm.len()];
+                    check_critical(&sol, target * rho * c * c)?;
+                }
+                Ok(Attempt::Accepted { iterations: n.iterations })
+            }
+            Err(reason) => {
+                self.report.newton_iterations += self.max_iterations;
+                self.report.rejected += 1;
+                Ok(Attempt::Rejected(reason))
+            }
+        }
+    }
+}
+
+impl LoadPath<'_> {
+    /// Solve at η = 0, then continue to η = 1.
+    ///
+    /// # Errors
+    /// [`FemError::FrictionCapacityExceeded`] (stalled within 5 % of what a pulley's
+    /// contact can carry), [`FemError::HomotopyStalled`], [`FemError::SpeedAtOrAboveCritical`].
+    pub(super) fn run(&mut self) -> Result<(), FemError> {
+        if let Attempt::Rejected(reason) = self.solve_at(0.0, 0.0)? {
+            return Err(self.stalled(0.0, 0.5, 0.0, &reason));
+        }
+        let grow = |_done: f64, step: f64, iterations: usize| if iterations <= FAST_SOLVE { 2.0 * step } else { step };
+        let control = StepControl { initial: 1.0, min_step: MIN_STEP, max_attempts: usize::MAX, shrink: 0.5, grow: &grow };
+        match continuation::natural(self, &control) {
+            Ok(_) => Ok(()),
+            Err(Stop::Aborted(e)) => Err(e),
+            Err(Stop::Stalled(s)) => {
+                let reason = s.last.map_or_else(String::new, |r| r.to_string());
+                Err(self.stalled(s.eta, s.step, s.target, &reason))
+            }
+        }
+    }
+
+    /// The continuation stalls where a pulley's load reaches what its contact can
+    /// carry, R Σ w μ P⟨−γ⟩ of the last converged state (full slip): within 5 % of it,
+    /// the named error with the whole load; else [`FemError::HomotopyStalled`].
+    fn stalled(&self, eta: f64, step: f64, target: f64, reason: &dyn std::fmt::Display) -> FemError {
+        let sp = (self.at)(1.0);
+        let demand = sp.torque + sp.damping * self.x[self.problem.asm.len() + 1];
+        for pulley in [Pulley::Driven, Pulley::Driver] {
+            let pts: Vec<&PointResult> = self.results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
+            let capacity = sp.radius * pts.iter().map(|p| p.point.weight * sp.mu * p.normal).sum::<f64>();
+            if !pts.is_empty() && target * demand >= 0.95 * capacity {
+                return FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity, time: None };
+            }
+        }
+        FemError::HomotopyStalled { eta, step, min_step: MIN_STEP, steps: self.report.continuation_steps, last_failure: reason.to_string() }
+    }
+}
