@@ -368,6 +368,7 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
         },
         fields,
         options: Some(run.options.clone()),
+        surface: None,
         history: run.history.clone(),
     };
     result.check()?;

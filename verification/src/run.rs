@@ -91,8 +91,8 @@ pub struct Solved {
     pub terms: Vec<String>,
     /// Diagnostics worth keeping (homotopy steps, closure defects, …).
     pub notes: Vec<String>,
-    /// Time history of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
-    pub history: Option<drive::result::History>,
+    /// Quantities in time of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
+    pub history: Option<drive::result::TimeSeries>,
     /// `Some` for a transient FE run that stopped at `fem.max_steps` before its steady
     /// state (the solution is the last state, not the steady one); `None` for a run
     /// that reached what it solves for. [`execute`] turns `Some` into
@@ -371,7 +371,7 @@ impl Method for FemFormulation {
                 .chain(run.notes.iter().map(|w| format!("warning: {w}")))
                 .collect(),
             terms: run.terms,
-            history: run.history,
+            history: run.history.map(Into::into),
             not_steady,
         })
     }
