@@ -101,6 +101,22 @@ struct StudyArgs {
     /// σ samples of the field norms (16 … 100000).
     #[arg(long, default_value_t = verification::study::DEFAULT_SAMPLES)]
     samples: usize,
+    /// What the runs are held against: a BVP run (collocation gauss6 at 1e-11), the
+    /// closed form of the scene's model (the elastic catenary loop of a static string),
+    /// or Richardson extrapolation of the first studied FE formulation over the study's
+    /// meshes (three or more, one refinement ratio; for models with no BVP).
+    #[arg(long, value_enum, default_value_t = ReferenceArg::Bvp)]
+    reference: ReferenceArg,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum ReferenceArg {
+    /// A BVP run at a tight tolerance.
+    Bvp,
+    /// The closed form of the scene's model.
+    ClosedForm,
+    /// Richardson extrapolation of the finest FE runs.
+    Richardson,
 }
 
 #[derive(clap::Args)]
@@ -407,6 +423,7 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
         },
         fields,
         options: Some(run.options.clone()),
+        surface: None,
         history: run.history.clone(),
     };
     result.check()?;
@@ -577,6 +594,18 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
         plan = plan.with_formulations(&args.formulations);
     }
     plan.samples = args.samples;
+    match args.reference {
+        ReferenceArg::Bvp => {}
+        ReferenceArg::ClosedForm => plan.reference = verification::reference::Reference::ClosedForm,
+        ReferenceArg::Richardson => {
+            let formulation = match args.formulations.first() {
+                Some(f) => f.clone(),
+                None => verification::run::default_formulation(scene)?,
+            };
+            let levels = plan.meshes.iter().map(|&n| Discretisation::Elements(n)).collect();
+            plan.reference = verification::reference::Reference::Richardson { formulation, levels };
+        }
+    }
     plan.validate()?;
     Ok(plan)
 }

@@ -254,6 +254,19 @@ fn given_list(given: &[(String, f64)]) -> String {
     format!("{}: {}", items.len(), items.join(", "))
 }
 
+impl ResultError {
+    /// The same error with `prefix` before the name of the offending entry (a frame's
+    /// fields report `history.frames[1].fields.x[3]`).
+    pub fn within(self, prefix: &str) -> ResultError {
+        match self {
+            ResultError::NotFinite { quantity, value } => ResultError::NotFinite { quantity: format!("{prefix}{quantity}"), value },
+            ResultError::FieldLength { field, len, expected } => ResultError::FieldLength { field: format!("{prefix}{field}"), len, expected },
+            ResultError::UnknownField { field, suggestion } => ResultError::UnknownField { field: format!("{prefix}{field}"), suggestion },
+            other => other,
+        }
+    }
+}
+
 /// "; did you mean `x`?" or "; expected one of `a`, `b`".
 fn unknown_hint(suggestion: Option<&str>, allowed: &[String]) -> String {
     match suggestion {
@@ -289,6 +302,16 @@ pub enum ResultError {
         len: usize,
         /// Length of `sigma`.
         expected: usize,
+    },
+    /// A field or channel name the result format does not define (a surface field
+    /// outside [`crate::result::SURFACE_FIELD_NAMES`], a history channel that is no
+    /// lowercase identifier).
+    #[error("`{field}` is not a field of the result format{}", unknown_hint(.suggestion.as_deref(), &[]))]
+    UnknownField {
+        /// Full name, e.g. `surface.zz`.
+        field: String,
+        /// The nearest valid name.
+        suggestion: Option<String>,
     },
     /// A name that is not a summary scalar (see [`crate::summary::SCALAR_NAMES`]).
     #[error("`{name}` is not a summary quantity{}", unknown_hint(.suggestion.as_deref(), &[]))]

@@ -1,9 +1,17 @@
 //! The result of one run, exactly DESIGN.md's "Result format" (`beltcheck solve
 //! --json`): `scene`, `method`, `converged`, `summary`, `cost`, `fields`, and
-//! `options` (the solver options used, for reproducibility).
+//! `options` (the solver options used, for reproducibility) — and, where a model
+//! produces them, fields in the three shapes of the contract:
+//! - along σ ([`Fields`], `fields`): the planar models;
+//! - over the mid-surface (σ, ζ) ([`SurfaceFields`], `surface`): the shell;
+//! - in time ([`TimeSeries`], `history`): scalar channels per time step and optional
+//!   frames of fields along σ or over (σ, ζ) at chosen instants. The friction drive's
+//!   channels ([`History`]) are one such series.
 //!
 //! Write results with [`RunResult::to_json_pretty`], which refuses non-finite
 //! numbers (serde_json would silently write NaN as `null`).
+
+use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
@@ -168,6 +176,176 @@ impl History {
     }
 }
 
+impl From<History> for TimeSeries {
+    /// The drive's channels under their JSON names (`driven_speed`, `driver_torque`, …):
+    /// the same `history` JSON as before.
+    fn from(h: History) -> TimeSeries {
+        let mut series = BTreeMap::new();
+        for (name, v) in h.columns().into_iter().skip(1) {
+            series.insert(name.to_string(), v.clone());
+        }
+        TimeSeries { time: h.time, series, frames: Vec::new() }
+    }
+}
+
+/// Names of the fields over the mid-surface ([`SurfaceFields`]) with their units:
+/// - `x`, `y`, `z`: the mid-surface point r(σ, ζ), m (z lateral, along the drum axes);
+/// - `membrane_force`: membrane force n_σσ per unit width along the belt, N/m;
+/// - `bending_moment`: bending moment m_σσ per unit width, N;
+/// - `contact_pressure`: interlayer pressure P γ, N/m²;
+/// - `interlayer_shear`: |u|, the tangential displacement of the elastic interlayer, m.
+pub const SURFACE_FIELD_NAMES: [&str; 7] = ["x", "y", "z", "membrane_force", "bending_moment", "contact_pressure", "interlayer_shear"];
+
+/// Fields over the mid-surface of a shell belt (`surface`): values on the grid σ_i × ζ_j,
+/// every field a matrix `[i][j]` of `sigma.len()` rows of `zeta.len()` values. JSON:
+/// `{"sigma": [...], "zeta": [...], "<name>": [[...], ...], ...}` with names of
+/// [`SURFACE_FIELD_NAMES`].
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct SurfaceFields {
+    /// Contour coordinate σ along the belt, m.
+    pub sigma: Vec<f64>,
+    /// Width coordinate ζ ∈ [−b/2, b/2] across the belt, m.
+    pub zeta: Vec<f64>,
+    /// Field name → values at (σ_i, ζ_j).
+    #[serde(flatten)]
+    pub values: BTreeMap<String, Vec<Vec<f64>>>,
+}
+
+impl SurfaceFields {
+    /// Checks names, the grid shape of every field and finite values.
+    ///
+    /// # Errors
+    /// [`ResultError::UnknownField`] for a name outside [`SURFACE_FIELD_NAMES`],
+    /// [`ResultError::FieldLength`] for a row count or row length that misses the grid,
+    /// [`ResultError::NotFinite`] naming the sample, e.g. `surface.z[3][1]`.
+    pub fn check(&self) -> Result<(), ResultError> {
+        check_finite_vec("surface.sigma", &self.sigma)?;
+        check_finite_vec("surface.zeta", &self.zeta)?;
+        for (name, rows) in &self.values {
+            if !SURFACE_FIELD_NAMES.contains(&name.as_str()) {
+                return Err(ResultError::UnknownField {
+                    field: format!("surface.{name}"),
+                    suggestion: crate::suggest::nearest(name, SURFACE_FIELD_NAMES.iter().copied()),
+                });
+            }
+            if rows.len() != self.sigma.len() {
+                return Err(ResultError::FieldLength { field: format!("surface.{name}"), len: rows.len(), expected: self.sigma.len() });
+            }
+            for (i, row) in rows.iter().enumerate() {
+                let field = format!("surface.{name}[{i}]");
+                if row.len() != self.zeta.len() {
+                    return Err(ResultError::FieldLength { field, len: row.len(), expected: self.zeta.len() });
+                }
+                check_finite_vec(&field, row)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Fields at one instant of a time series (`history.frames[k]`).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct Frame {
+    /// t, s.
+    pub time: f64,
+    /// Fields along σ at t.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub fields: Option<Fields>,
+    /// Fields over (σ, ζ) at t.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub surface: Option<SurfaceFields>,
+}
+
+/// Quantities in time (`history`): named scalar channels, one value per time step, all
+/// of the length of `time`, and optional frames of fields at chosen instants. JSON:
+/// `{"time": [...], "<channel>": [...], ..., "frames": [...]}` — a friction drive's
+/// [`History`] converts to it with the same JSON. Channel names are lowercase
+/// identifiers (`a`–`z`, `0`–`9`, `_`, `.`), other than `time` and `frames`; their units
+/// are the model's (the drive's: [`History`]).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct TimeSeries {
+    /// Time t at the end of each step, s.
+    pub time: Vec<f64>,
+    /// Channel name → one value per step.
+    #[serde(flatten)]
+    pub series: BTreeMap<String, Vec<f64>>,
+    /// Fields at chosen instants, in increasing time. Optional, default none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub frames: Vec<Frame>,
+}
+
+impl TimeSeries {
+    /// Number of recorded steps.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// True without steps.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    /// The values of a channel.
+    pub fn channel(&self, name: &str) -> Option<&[f64]> {
+        self.series.get(name).map(Vec::as_slice)
+    }
+
+    /// Appends a step: t and the value of every channel (a channel first seen here must
+    /// be the first step; [`TimeSeries::check`] refuses ragged channels).
+    pub fn push(&mut self, time: f64, values: &[(&str, f64)]) {
+        self.time.push(time);
+        for &(name, v) in values {
+            self.series.entry(name.to_string()).or_default().push(v);
+        }
+    }
+
+    /// Checks channel names and lengths, finite values, and frames in increasing time
+    /// with valid fields.
+    ///
+    /// # Errors
+    /// [`ResultError::UnknownField`] for an invalid channel name,
+    /// [`ResultError::FieldLength`] or [`ResultError::NotFinite`] naming the entry, e.g.
+    /// `history.driven_speed[3]`, `history.frames[1].surface.z[0][2]`.
+    pub fn check(&self) -> Result<(), ResultError> {
+        check_finite_vec("history.time", &self.time)?;
+        let n = self.time.len();
+        for (name, v) in &self.series {
+            let valid = !name.is_empty()
+                && !matches!(name.as_str(), "time" | "frames")
+                && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || matches!(c, '_' | '.'));
+            if !valid {
+                return Err(ResultError::UnknownField { field: format!("history.{name}"), suggestion: None });
+            }
+            if v.len() != n {
+                return Err(ResultError::FieldLength { field: format!("history.{name}"), len: v.len(), expected: n });
+            }
+            check_finite_vec(&format!("history.{name}"), v)?;
+        }
+        for (k, f) in self.frames.iter().enumerate() {
+            let at = |e: ResultError| e.within(&format!("history.frames[{k}]."));
+            check_finite_vec(&format!("history.frames[{k}].time"), std::slice::from_ref(&f.time))?;
+            if k > 0 && f.time <= self.frames[k - 1].time {
+                return Err(ResultError::NotFinite { quantity: format!("history.frames[{k}].time (not after frames[{}])", k - 1), value: f.time });
+            }
+            if let Some(fields) = &f.fields {
+                fields.check().map_err(at)?;
+            }
+            if let Some(surface) = &f.surface {
+                surface.check().map_err(at)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The first non-finite entry of `v` as [`ResultError::NotFinite`] named `name[i]`.
+fn check_finite_vec(name: &str, v: &[f64]) -> Result<(), ResultError> {
+    match v.iter().enumerate().find(|(_, x)| !x.is_finite()) {
+        Some((i, &value)) => Err(ResultError::NotFinite { quantity: format!("{name}[{i}]"), value }),
+        None => Ok(()),
+    }
+}
+
 /// Work spent on a run (`cost`).
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Cost {
@@ -202,13 +380,17 @@ pub struct RunResult {
     /// be reproduced.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub options: Option<serde_json::Value>,
-    /// Time history of a transient FE run (optional; absent for static and BVP runs).
+    /// Fields over the mid-surface (σ, ζ) of a shell run (optional).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub history: Option<History>,
+    pub surface: Option<SurfaceFields>,
+    /// Quantities in time of a transient run (optional; absent for static and BVP runs).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub history: Option<TimeSeries>,
 }
 
 impl RunResult {
-    /// Checks that nothing non-finite would be written: summary, wall time, fields.
+    /// Checks that nothing non-finite or ragged would be written: summary, wall time,
+    /// fields, surface fields, history.
     ///
     /// # Errors
     /// The first offending quantity.
@@ -222,6 +404,9 @@ impl RunResult {
         }
         if let Some(f) = &self.fields {
             f.check()?;
+        }
+        if let Some(s) = &self.surface {
+            s.check()?;
         }
         if let Some(h) = &self.history {
             h.check()?;

@@ -1,7 +1,7 @@
 //! Result JSON contract (DESIGN.md "Result format"): keys and nesting exactly as
 //! documented, absent quantities absent, round trip, no NaN written.
 
-use drive::{Cost, Fields, PulleySummary, ResultError, RunResult, Summary, SCALAR_NAMES};
+use drive::{Cost, Fields, Frame, History, PulleySummary, ResultError, RunResult, Summary, SurfaceFields, TimeSeries, SCALAR_NAMES};
 use serde_json::{json, Value};
 
 fn full_summary() -> Summary {
@@ -26,6 +26,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         },
         fields,
         options: None,
+        surface: None,
         history: None,
     }
 }
@@ -255,4 +256,87 @@ fn nan_is_never_written() {
         .unwrap_err()
         .to_string()
         .contains("cost.wall_seconds"));
+}
+
+/// Fields along σ, over (σ, ζ) and in time (issue 11 item 4): each written and read back
+/// equal, in the documented JSON shape.
+#[test]
+fn surface_and_time_fields_round_trip() {
+    let surface = SurfaceFields {
+        sigma: vec![0.0, 0.5, 1.0],
+        zeta: vec![-0.1, 0.1],
+        values: [
+            ("z".to_string(), vec![vec![0.0, 1e-3], vec![2e-3, 3e-3], vec![4e-3, 5e-3]]),
+            ("contact_pressure".to_string(), vec![vec![1e4, 2e4], vec![0.0, 0.0], vec![3e4, 1e4]]),
+        ]
+        .into(),
+    };
+    let along = Fields { sigma: vec![0.0, 1.0], x: vec![-0.2, 0.2], y: vec![0.08, 0.07], tension: vec![12.0, 11.5], moment: None };
+    let mut history = TimeSeries::default();
+    history.push(0.1, &[("runoff_velocity", 1e-4), ("lateral_position", 0.0)]);
+    history.push(0.2, &[("runoff_velocity", 2e-4), ("lateral_position", 1e-5)]);
+    history.frames = vec![
+        Frame { time: 0.1, fields: Some(along.clone()), surface: None },
+        Frame { time: 0.2, fields: None, surface: Some(surface.clone()) },
+    ];
+    let mut r = result(full_summary(), Some(along));
+    r.surface = Some(surface);
+    r.history = Some(history);
+    let text = r.to_json_pretty().unwrap();
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["surface"]["z"][1], json!([2e-3, 3e-3]), "surface.<name>[i][j] at (σ_i, ζ_j)");
+    assert_eq!(v["surface"]["zeta"], json!([-0.1, 0.1]));
+    assert_eq!(v["history"]["runoff_velocity"], json!([1e-4, 2e-4]), "channels sit beside `time`");
+    assert_eq!(v["history"]["frames"][1]["time"], json!(0.2));
+    assert_eq!(RunResult::from_json_str(&text).unwrap(), r);
+}
+
+/// The friction drive's `History` becomes a `TimeSeries` with the same JSON, and a result
+/// written before (its `history` object) reads as one.
+#[test]
+fn drive_history_is_a_time_series() {
+    let h = History {
+        time: vec![0.01, 0.02],
+        driven_speed: vec![19.0, 19.5],
+        transport_rate: vec![1.5, 1.6],
+        tension_upper_mid: vec![3.0, 3.1],
+        tension_lower_mid: vec![9.0, 9.1],
+        driver_stick_arc: vec![1.0, 1.1],
+        driver_slip_arc: vec![2.0, 1.9],
+        driver_torque: vec![0.3, 0.31],
+        driven_stick_arc: vec![1.2, 1.3],
+        driven_slip_arc: vec![1.8, 1.7],
+        driven_torque: vec![-0.1, -0.1],
+        change_rate: vec![1e-2, 1e-3],
+    };
+    let old_json = serde_json::to_value(&h).unwrap();
+    let series = TimeSeries::from(h.clone());
+    assert_eq!(series.len(), 2);
+    assert_eq!(series.channel("driver_torque"), Some(&[0.3, 0.31][..]));
+    assert_eq!(serde_json::to_value(&series).unwrap(), old_json, "the same history JSON");
+    let read: TimeSeries = serde_json::from_value(old_json).unwrap();
+    assert_eq!(read, series);
+}
+
+#[test]
+fn ragged_or_unknown_surface_and_time_fields_are_refused() {
+    let mut s = SurfaceFields { sigma: vec![0.0, 1.0], zeta: vec![0.0], values: [("z".to_string(), vec![vec![0.0], vec![0.0, 1.0]])].into() };
+    assert_eq!(s.check(), Err(ResultError::FieldLength { field: "surface.z[1]".into(), len: 2, expected: 1 }));
+    s.values = [("zz".to_string(), vec![vec![0.0], vec![0.0]])].into();
+    let e = s.check().unwrap_err();
+    assert!(e.to_string().contains("did you mean `z`"), "{e}");
+    s.values = [("y".to_string(), vec![vec![0.0], vec![f64::NAN]])].into();
+    assert!(matches!(s.check(), Err(ResultError::NotFinite { quantity, .. }) if quantity == "surface.y[1][0]"));
+
+    let mut t = TimeSeries::default();
+    t.push(0.0, &[("a", 1.0)]);
+    t.series.insert("b".into(), vec![]);
+    assert_eq!(t.check(), Err(ResultError::FieldLength { field: "history.b".into(), len: 0, expected: 1 }));
+    let mut t = TimeSeries::default();
+    t.push(0.0, &[("Bad Name", 1.0)]);
+    assert!(matches!(t.check(), Err(ResultError::UnknownField { .. })));
+    let mut t = TimeSeries::default();
+    t.push(0.0, &[("a", 1.0)]);
+    t.frames = vec![Frame { time: 0.0, fields: Some(Fields { sigma: vec![0.0], x: vec![f64::INFINITY], y: vec![0.0], tension: vec![0.0], moment: None }), surface: None }];
+    assert!(matches!(t.check(), Err(ResultError::NotFinite { quantity, .. }) if quantity == "history.frames[0].fields.x[0]"));
 }

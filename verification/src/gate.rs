@@ -53,7 +53,7 @@ pub fn gate_plan_with(scene: &Scene, bvp_tolerance: f64, meshes: Option<&[usize]
     let fem = scene.fem_settings();
     let discovered = if fem.formulations.is_empty() { Formulations::Discovered } else { Formulations::Named(fem.formulations.clone()) };
     StudyPlan {
-        reference: (BvpVariant::Collocation(Scheme::Gauss6), GATE_REFERENCE_TOLERANCE),
+        reference: crate::reference::Reference::Bvp { variant: BvpVariant::Collocation(Scheme::Gauss6), tolerance: GATE_REFERENCE_TOLERANCE },
         bvp: vec![
             BvpSweep { variant: BvpVariant::Collocation(Scheme::Gauss4), tolerances: vec![bvp_tolerance] },
             BvpSweep { variant: BvpVariant::Shooting, tolerances: vec![bvp_tolerance] },
@@ -237,7 +237,7 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
             // The BVP methods may be held to their own, tighter, limit.
             let limit = match s.family {
                 Family::Bvp => settings.bvp_tolerances.get(name).copied().unwrap_or(shared_limit),
-                Family::Fem => shared_limit,
+                Family::Fem | Family::ClosedForm => shared_limit,
             };
             let (value, reason) = match study.quantity_index(name) {
                 None => (None, "not produced by the reference for this scene".to_string()),

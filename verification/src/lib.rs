@@ -20,9 +20,11 @@
 //!
 //! Definitions of every measure: docs/verification.md and [`measure`].
 
+pub mod closed_form;
 pub mod gate;
 pub mod measure;
 pub mod plot;
+pub mod reference;
 pub mod report;
 pub mod run;
 pub mod study;

@@ -82,13 +82,14 @@ impl Quantity {
 
     /// The quantities of a reference solution: every summary scalar it produces, then
     /// the max and L2 norms of each field it has (deflection, axial force, and the
-    /// moment where present), in the order of FIELD_NORM_NAMES.
+    /// moment where present), in the order of FIELD_NORM_NAMES — none for a reference
+    /// without fields (a closed form).
     pub fn of_reference(reference: &RunData) -> Vec<Quantity> {
         let mut q: Vec<Quantity> = reference.summary.scalars().into_iter().map(|(n, _)| Quantity::named(&n)).collect();
         for name in drive::result::FIELD_NORM_NAMES {
             let quantity = Quantity::named(name);
             if let QuantityKind::FieldNorm { field, .. } = &quantity.kind {
-                if reference.samples.field(field).is_some() {
+                if reference.samples.field(field).is_some_and(|f| !f.is_empty()) {
                     q.push(quantity);
                 }
             }

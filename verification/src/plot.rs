@@ -56,6 +56,7 @@ const GRID: RGBColor = RGBColor(225, 225, 225);
 pub fn series_color(study: &Study, index: usize) -> RGBColor {
     let s = &study.series[index];
     match s.family {
+        Family::ClosedForm => RGBColor(0, 0, 0),
         Family::Bvp => {
             if s.method.contains("gauss4") {
                 RGBColor(31, 119, 180)
@@ -539,7 +540,7 @@ fn field_panel(scene: &Scene, study: &Study, area: &Area, field: &str, ydesc: &s
     let axes = SigmaAxes { caption: title, caption_font: 22, l, y: (y0, y1), y_area: 90, ydesc, y_format: None, shade: Some(s) };
     let mut chart = sigma_chart(area, axes)?;
     region_labels(&mut chart, scene)?;
-    let reference_label = format!("BVP reference ({} {})", study.reference.method, study.reference.discretisation);
+    let reference_label = format!("reference: {} {}", study.reference.method, study.reference.discretisation);
     labelled_line(&mut chart, s.sigma.iter().zip(f).map(|(&a, &b)| (a, b)).collect(), REFERENCE, 2, false, reference_label)?;
     for (i, fs, label) in fe {
         let Some(g) = fs.field(field) else { continue };
@@ -681,7 +682,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
         let mut xs = Vec::new();
         for &i in &fe {
             for (r, row) in study.series[i].rows.iter().enumerate() {
-                if let Discretisation::Elements(n) = row.run.discretisation {
+                if let Some(n) = row.run.discretisation.elements_along() {
                     xs.push(n as f64);
                     for (m, _) in &measures {
                         if let Some(e) = row_error(&study.series[i], r, *m) {
@@ -706,10 +707,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             // the first formulation and run over the mesh range.
             let first = fe.iter().find_map(|&i| {
                 let s = &study.series[i];
-                (0..s.rows.len()).find_map(|r| match s.rows[r].run.discretisation {
-                    Discretisation::Elements(n) => row_error(s, r, None).map(|e| (n as f64, e)),
-                    _ => None,
-                })
+                (0..s.rows.len()).find_map(|r| s.rows[r].run.discretisation.elements_along().and_then(|n| row_error(s, r, None).map(|e| (n as f64, e))))
             });
             let slopes: Vec<(f64, Vec<(f64, f64)>)> = first
                 .map(|(na, ea)| {
@@ -751,10 +749,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 let col = series_color(study, i);
                 let s = &study.series[i];
                 for (mi, (m, mlabel)) in measures.iter().enumerate() {
-                    let pts = error_points(s, *m, |d| match d {
-                        Discretisation::Elements(n) => Some((n as f64).log2()),
-                        _ => None,
-                    });
+                    let pts = error_points(s, *m, |d| d.elements_along().map(|n| (n as f64).log2()));
                     if !pts.is_empty() {
                         draw_measure(&mut chart, &pts, col, mi, format!("{} — {mlabel}", s.method))?;
                     }
@@ -783,7 +778,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
         }
         let (x0, x1) = log_bounds(&tols);
         let (y0, y1) = log_bounds(&errs.iter().chain(tols.iter()).copied().collect::<Vec<_>>());
-        let title = format!("BVP: error vs tolerance (reference {} {})", study.reference.method.trim_start_matches("bvp-collocation "), study.reference.discretisation);
+        let title = format!("BVP: error vs tolerance (reference {} {})", study.reference.method.trim_start_matches("BVP run bvp-collocation "), study.reference.discretisation);
         let mut chart = loglog(&right, &title, (x0, x1), (y0, y1), "requested tolerance", "relative error")?;
         chart
             .draw_series(DashedLineSeries::new([(x0, x0), (x1, x1)], 6, 6, BLACK.mix(0.5).stroke_width(1)))
@@ -910,7 +905,7 @@ pub fn work_precision_svg(scene: &Scene, study: &Study) -> Result<String, PlotEr
                     let (Some(t), Some(e)) = (row.run.wall_seconds(), row_error(s, r, *m)) else { continue };
                     let text = match row.run.discretisation {
                         Discretisation::Tolerance(tol) => fmt_tolerance(tol),
-                        Discretisation::Elements(n) => format!("{n} el."),
+                        d => format!("{} el.", d.cell()),
                     };
                     chart
                         .draw_series(std::iter::once(Text::new(format!("  {text}"), (t.max(1e-6), e), TextStyle::from(("sans-serif", 13).into_font()).color(&col))))

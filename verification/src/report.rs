@@ -326,7 +326,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     let _ = writeln!(m, "- largest relative error of a summary scalar at the finest successful tolerance, BVP variants: {}", fmt_error(worst_finest(study, Family::Bvp)));
     if study.has_fem() {
         let _ = writeln!(m, "- largest relative error of a summary scalar at the finest successful mesh, FE: {}", fmt_error(worst_finest(study, Family::Fem)));
-        let _ = writeln!(m, "- largest error of a Richardson-extrapolated FE scalar against the BVP reference (mutual convergence; over the scalars where the extrapolation is defined): {}", fmt_error(worst_mutual(study)));
+        let _ = writeln!(m, "- largest error of a Richardson-extrapolated FE scalar against the reference (mutual convergence; over the scalars where the extrapolation is defined): {}", fmt_error(worst_mutual(study)));
     }
     let _ = writeln!(m, "- study: {} runs in {} s (runs one after another, so wall times compare)\n", study.plan.run_count(), fmt_seconds(Some(study.wall_seconds)));
 
@@ -412,7 +412,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         let _ = writeln!(m, "— ({}: nothing to extrapolate)\n", fem_status(study));
     }
     for s in fe_studied {
-        let _ = writeln!(m, "{}: Richardson extrapolation over the three finest meshes with the self-convergence order p (self), and its error against the BVP reference.\n", s.method);
+        let _ = writeln!(m, "{}: Richardson extrapolation over the three finest meshes with the self-convergence order p (self), and its error against the reference.\n", s.method);
         m.push_str(&table::mutual_table(s).to_markdown());
         m.push('\n');
     }
@@ -421,7 +421,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     let _ = writeln!(m, "## Scene and options used\n");
     let _ = writeln!(m, "Reproduce the study: `{}`\n", command_of(scene_file, study));
     let plan = &study.plan;
-    let _ = writeln!(m, "- reference: {} at tolerance {}", crate::run::BvpVariant::label(plan.reference.0), fmt_tolerance(plan.reference.1));
+    let _ = writeln!(m, "- reference: {}", plan.reference.label());
     for b in &plan.bvp {
         let _ = writeln!(m, "- {}: tolerances {}", b.variant.label(), b.tolerances.iter().map(|&t| fmt_tolerance(t)).collect::<Vec<_>>().join(", "));
     }

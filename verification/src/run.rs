@@ -29,18 +29,74 @@ use serde::Serialize;
 pub enum Family {
     /// Semi-analytic BVP reference (crate `bvp`): refined by tolerance.
     Bvp,
+    /// A closed form of the model (solved to a tolerance where it is a few scalar
+    /// equations): only ever a reference ([`crate::reference`]).
+    ClosedForm,
     /// MEL finite elements (crate `fem`): refined by mesh.
     Fem,
 }
 
-/// The discretisation parameter of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// The discretisation parameter of a run: a tolerance (BVP, closed forms solved to a
+/// tolerance), a 1-D mesh along σ (the rods and strings), or a 2-D mesh over (σ, ζ) with a
+/// time step (the shell's transient). JSON: `{"tolerance": 1e-8}`, `{"elements": 64}`,
+/// `{"mesh2d": {"sigma": 64, "zeta": 4, "time_step": 0.01}}`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Discretisation {
     /// BVP: the solver's relative tolerance (its norm is defined by the `bvp` crate).
     Tolerance(f64),
     /// FE: number of elements round the loop.
     Elements(usize),
+    /// FE over the mid-surface: elements along σ and across ζ, and the time step Δt, s.
+    Mesh2d {
+        /// Elements along the belt (σ).
+        sigma: usize,
+        /// Elements across the width (ζ).
+        zeta: usize,
+        /// Time step Δt, s.
+        time_step: f64,
+    },
+}
+
+impl Discretisation {
+    /// The refinement ratio r > 1 from `self` to the finer `fine`: n_fine/n for 1-D
+    /// meshes; for 2-D meshes the common ratio of the σ and ζ element counts and of the
+    /// time steps (Δt/Δt_fine), which must agree to 1e-9 — a refinement in space alone or
+    /// time alone has no single h to extrapolate in. `None` for tolerances, mixed kinds,
+    /// ratios ≤ 1 or that differ.
+    pub fn refinement_ratio(self, fine: Discretisation) -> Option<f64> {
+        let r = match (self, fine) {
+            (Discretisation::Elements(a), Discretisation::Elements(b)) => b as f64 / a as f64,
+            (Discretisation::Mesh2d { sigma: s0, zeta: z0, time_step: t0 }, Discretisation::Mesh2d { sigma: s1, zeta: z1, time_step: t1 }) => {
+                let (rs, rz, rt) = (s1 as f64 / s0 as f64, z1 as f64 / z0 as f64, t0 / t1);
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+                if !(close(rs, rz) && close(rs, rt)) {
+                    return None;
+                }
+                rs
+            }
+            _ => return None,
+        };
+        (r.is_finite() && r > 1.0).then_some(r)
+    }
+
+    /// The element count along σ of a mesh (the x-axis of convergence plots); `None`
+    /// for a tolerance.
+    pub fn elements_along(self) -> Option<usize> {
+        match self {
+            Discretisation::Tolerance(_) => None,
+            Discretisation::Elements(n) | Discretisation::Mesh2d { sigma: n, .. } => Some(n),
+        }
+    }
+
+    /// The short form of tables and plot labels: `1e-8`, `256`, `64×4 Δt 1e-2`.
+    pub fn cell(self) -> String {
+        match self {
+            Discretisation::Tolerance(t) => fmt_tolerance(t),
+            Discretisation::Elements(n) => n.to_string(),
+            Discretisation::Mesh2d { sigma, zeta, time_step } => format!("{sigma}×{zeta} Δt {}", fmt_tolerance(time_step)),
+        }
+    }
 }
 
 impl fmt::Display for Discretisation {
@@ -48,6 +104,7 @@ impl fmt::Display for Discretisation {
         match self {
             Discretisation::Tolerance(t) => write!(f, "tol {}", fmt_tolerance(*t)),
             Discretisation::Elements(n) => write!(f, "{n} el."),
+            Discretisation::Mesh2d { sigma, zeta, time_step } => write!(f, "{sigma}×{zeta} el., Δt {} s", drive::error::num(time_step)),
         }
     }
 }
@@ -91,8 +148,8 @@ pub struct Solved {
     pub terms: Vec<String>,
     /// Diagnostics worth keeping (homotopy steps, closure defects, …).
     pub notes: Vec<String>,
-    /// Time history of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
-    pub history: Option<drive::result::History>,
+    /// Quantities in time of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
+    pub history: Option<drive::result::TimeSeries>,
     /// `Some` for a transient FE run that stopped at `fem.max_steps` before its steady
     /// state (the solution is the last state, not the steady one); `None` for a run
     /// that reached what it solves for. [`execute`] turns `Some` into
@@ -147,6 +204,12 @@ pub enum RunError {
     /// The FE solver failed.
     #[error(transparent)]
     Fem(fem::FemError),
+    /// A closed-form reference does not describe the scene or did not converge.
+    #[error(transparent)]
+    ClosedForm(crate::closed_form::ClosedFormError),
+    /// A Richardson reference could not be formed from its levels.
+    #[error(transparent)]
+    Richardson(Box<crate::reference::RichardsonError>),
     /// The solution's summary has a non-finite quantity.
     #[error("summary: {0}")]
     Summary(#[from] drive::error::ResultError),
@@ -371,7 +434,7 @@ impl Method for FemFormulation {
                 .chain(run.notes.iter().map(|w| format!("warning: {w}")))
                 .collect(),
             terms: run.terms,
-            history: run.history,
+            history: run.history.map(Into::into),
             not_steady,
         })
     }

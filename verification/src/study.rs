@@ -19,6 +19,7 @@ use drive::scene::Scene;
 use serde::Serialize;
 
 use crate::measure::{self, Quantity, QuantityKind};
+use crate::reference::{Estimate, Reference};
 use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, Run, RunError};
 
 /// Default σ samples of the field norms: enough that the sampling error of an L2 norm
@@ -96,8 +97,8 @@ pub enum StudyError {
 /// What a study runs.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StudyPlan {
-    /// Reference: variant and tolerance.
-    pub reference: (BvpVariant, f64),
+    /// What the runs are held against ([`Reference`]).
+    pub reference: Reference,
     /// BVP sweeps.
     pub bvp: Vec<BvpSweep>,
     /// FE formulations.
@@ -140,7 +141,7 @@ impl StudyPlan {
         let fem = scene.fem_settings();
         let tol = DEFAULT_TOLERANCES.to_vec();
         StudyPlan {
-            reference: (BvpVariant::Collocation(Scheme::Gauss6), REFERENCE_TOLERANCE),
+            reference: Reference::Bvp { variant: BvpVariant::Collocation(Scheme::Gauss6), tolerance: REFERENCE_TOLERANCE },
             bvp: vec![
                 BvpSweep {
                     variant: BvpVariant::Collocation(Scheme::Gauss4),
@@ -196,7 +197,20 @@ impl StudyPlan {
         if !SAMPLES_RANGE.contains(&self.samples) {
             return Err(PlanError::Samples(self.samples));
         }
-        let tols = self.bvp.iter().flat_map(|s| s.tolerances.iter()).chain(std::iter::once(&self.reference.1));
+        let reference_tolerance = match &self.reference {
+            Reference::Bvp { tolerance, .. } => Some(tolerance),
+            _ => None,
+        };
+        if let Reference::Richardson { formulation, levels } = &self.reference {
+            if !fem::available_formulations().contains(&formulation.as_str()) {
+                return Err(PlanError::UnknownFormulation { name: formulation.clone(), registered: fem::available_formulations().join(", ") });
+            }
+            let elements: Vec<usize> = levels.iter().filter_map(|d| d.elements_along()).collect();
+            if levels.len() < 3 || elements.len() != levels.len() || elements.windows(2).any(|w| w[1] <= w[0]) {
+                return Err(PlanError::Meshes(elements));
+            }
+        }
+        let tols = self.bvp.iter().flat_map(|s| s.tolerances.iter()).chain(reference_tolerance);
         for &t in tols {
             if !(t > 0.0 && t < 1.0) {
                 return Err(PlanError::Tolerance(t));
@@ -215,7 +229,7 @@ impl StudyPlan {
 
     /// Number of runs (for a progress bar).
     pub fn run_count(&self) -> usize {
-        1 + self.bvp.iter().map(|s| s.tolerances.len()).sum::<usize>() + self.fem_methods().len() * self.meshes.len()
+        self.reference.run_count() + self.bvp.iter().map(|s| s.tolerances.len()).sum::<usize>() + self.fem_methods().len() * self.meshes.len()
     }
 }
 
@@ -308,8 +322,10 @@ pub struct Study {
     pub plan: StudyPlan,
     /// The quantities of the tables: the reference's summary scalars, then field norms.
     pub quantities: Vec<Quantity>,
-    /// The reference run.
+    /// The reference, as a run whose `method` names its kind ([`Reference::label`]).
     pub reference: Run,
+    /// The error estimate of each reference scalar (Richardson references only).
+    pub reference_estimates: Vec<Estimate>,
     /// BVP series first, then FE series.
     pub series: Vec<Series>,
     /// Formulations in the `fem` registry when the study ran.
@@ -353,13 +369,12 @@ impl Study {
         progress: &mut dyn FnMut(&Progress),
     ) -> Study {
         let start = std::time::Instant::now();
-        let total = 1 + methods.iter().map(|(_, d)| d.len()).sum::<usize>();
+        let total = plan.reference.run_count() + methods.iter().map(|(_, d)| d.len()).sum::<usize>();
         let mut done = 0;
-        let (ref_variant, ref_tol) = plan.reference;
-        let ref_solver = BvpSolver { variant: ref_variant, max_nodes: plan.max_nodes };
-        progress(&Progress { done, total, label: format!("reference {} {}", ref_solver.label(), Discretisation::Tolerance(ref_tol)) });
-        let reference = execute(&ref_solver, scene, Discretisation::Tolerance(ref_tol), plan.samples);
-        done += 1;
+        progress(&Progress { done, total, label: format!("reference: {}", plan.reference.label()) });
+        let computed = plan.reference.compute(scene, plan.samples, plan.max_nodes);
+        let reference = computed.run;
+        done += plan.reference.run_count();
         let quantities = reference.data().map(Quantity::of_reference).unwrap_or_default();
 
         let mut series = Vec::new();
@@ -386,7 +401,7 @@ impl Study {
         progress(&Progress { done: total, total, label: String::new() });
 
         let registered: Vec<String> = fem::available_formulations().into_iter().map(String::from).collect();
-        let mut notes = Vec::new();
+        let mut notes = computed.notes;
         if let Err(e) = &reference.outcome {
             notes.push(format!("the reference could not be computed ({e}): no errors against it"));
         }
@@ -414,6 +429,7 @@ impl Study {
             plan: plan.clone(),
             quantities,
             reference,
+            reference_estimates: computed.estimates,
             series,
             registered_formulations: registered,
             notes,
@@ -466,8 +482,8 @@ fn make_row(run: Run, reference: &Run, quantities: &[Quantity], prev: Option<&Ro
     } else {
         scalar_errors.iter().copied().collect::<Option<Vec<f64>>>().map(|v| v.into_iter().fold(0.0, f64::max))
     };
-    let ratio = match (prev.map(|p| p.run.discretisation), run.discretisation) {
-        (Some(Discretisation::Elements(a)), Discretisation::Elements(b)) if run.family == Family::Fem => Some(b as f64 / a as f64),
+    let ratio = match prev {
+        Some(p) if run.family == Family::Fem => p.run.discretisation.refinement_ratio(run.discretisation),
         _ => None,
     };
     let (orders, scalar_order) = match (prev, ratio) {
@@ -485,13 +501,12 @@ fn make_row(run: Run, reference: &Run, quantities: &[Quantity], prev: Option<&Ro
 fn extrapolate(rows: &[Row], reference: &Run, quantities: &[Quantity]) -> Vec<Extrapolation> {
     let n = rows.len();
     let last3 = if n >= 3 { [rows[n - 3].run.data(), rows[n - 2].run.data(), rows[n - 1].run.data()] } else { [None, None, None] };
-    let elements = |r: &Row| match r.run.discretisation {
-        Discretisation::Elements(e) => e as f64,
-        Discretisation::Tolerance(_) => f64::NAN,
-    };
     let ratio = if n >= 3 {
-        let (r1, r2) = (elements(&rows[n - 2]) / elements(&rows[n - 3]), elements(&rows[n - 1]) / elements(&rows[n - 2]));
-        ((r1 - r2).abs() < 1e-9 * r2).then_some(r2)
+        let (d1, d2, d3) = (rows[n - 3].run.discretisation, rows[n - 2].run.discretisation, rows[n - 1].run.discretisation);
+        match (d1.refinement_ratio(d2), d2.refinement_ratio(d3)) {
+            (Some(r1), Some(r2)) if (r1 - r2).abs() < 1e-9 * r2 => Some(r2),
+            _ => None,
+        }
     } else {
         None
     };

@@ -2,7 +2,7 @@
 //! quantity, and the mutual convergence of FE and BVP — as plain text (terminal) and
 //! Markdown (reports). A number that does not exist is "—", never NaN.
 
-use crate::run::{fmt_tolerance, Discretisation, Family, Run};
+use crate::run::{Discretisation, Family, Run};
 use crate::study::{Series, SeriesStatus, Study};
 
 /// A rectangular table of strings.
@@ -136,12 +136,9 @@ pub fn fmt_seconds(s: Option<f64>) -> String {
     }
 }
 
-/// The discretisation cell: `1e-8` or `256`.
+/// The discretisation cell: `1e-8`, `256` or `64×4 Δt 1e-2`.
 pub fn fmt_disc(d: Discretisation) -> String {
-    match d {
-        Discretisation::Tolerance(t) => fmt_tolerance(t),
-        Discretisation::Elements(n) => n.to_string(),
-    }
+    d.cell()
 }
 
 /// The field norms the study measured (indices into `study.quantities`).
@@ -310,7 +307,7 @@ pub fn study_text(study: &Study) -> String {
         out.push_str("\nmutual convergence FE ↔ BVP: — (no FE formulation studied)\n");
     }
     for s in fe {
-        out.push_str(&format!("\nmutual convergence of {} and the BVP reference (Richardson over the three finest meshes)\n", s.method));
+        out.push_str(&format!("\nmutual convergence of {} and the reference (Richardson over the three finest meshes)\n", s.method));
         if s.extrapolation.iter().all(|e| e.order.is_none()) {
             out.push_str("  (needs three successful meshes with a constant ratio)\n");
         }
@@ -322,6 +319,7 @@ pub fn study_text(study: &Study) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::run::fmt_tolerance;
 
     #[test]
     fn text_and_markdown() {
