@@ -79,7 +79,6 @@ use drive::view::SolutionView;
 
 pub mod admissibility;
 pub mod assembly;
-pub mod continuation;
 pub mod dofs;
 pub mod element;
 mod error;

@@ -11,7 +11,7 @@ use std::sync::Arc;
 use drive::contour::Contour;
 
 use crate::assembly::Assembler;
-use crate::continuation::{self, Attempt, Homotopy, StepControl, Stop};
+use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, StepControl, StepLimit, StepOptions};
 use crate::error::FemError;
 use crate::formulation::Kernel;
 use crate::kinematics::TermParams;
@@ -287,35 +287,41 @@ impl StringHanging {
         if self.gravity.is_none() && self.length == l0 {
             return Ok(z);
         }
+        // step control on the Newton iterations of the accepted step
+        // fast: ≤ 40 % of the iteration limit (8 of 20), slow: > 60 % (12); the next step
+        // 2, 1.25 or 0.6 times the step done; a rejected step × ¼
         let fast = (2 * settings.max_step_iterations) / 5;
         let slow = (3 * settings.max_step_iterations) / 5;
-        // step control on the Newton iterations of the accepted step
-        // fast: ≤ 40 % of the iteration limit (8 of 20), slow: > 60 % (12)
-        let grow = |done: f64, _step: f64, iterations: usize| {
-            if iterations <= fast {
-                2.0 * done
-            } else if iterations <= slow {
-                1.25 * done
-            } else {
-                0.6 * done
-            }
-            .clamp(settings.min_step, settings.max_step)
-        };
-        let control = StepControl { initial: settings.initial_step, min_step: settings.min_step, max_attempts: settings.max_steps, shrink: 0.25, grow: &grow };
+        let mut control = StepControl::new(StepOptions {
+            initial: settings.initial_step,
+            min: settings.min_step,
+            max: settings.max_step,
+            shrink: 0.25,
+            limit: StepLimit::Attempts(settings.max_steps),
+            growth: Growth::Bands { fast, slow, factors: [2.0, 1.25, 0.6] },
+            snap: 0.0,
+        })
+        .map_err(|e| FemError::InvalidOption { field: "initial_step/min_step/max_step/max_steps", value: settings.initial_step.to_string(), reason: e.to_string() })?;
         let mut path = StaticPath { data: self, asm, lu, l0, scales, newton_settings, tolerance: settings.update_tolerance, z, prev: None, report };
-        match continuation::natural(&mut path, &control) {
+        // the path is smooth within each phase [0, ½] (gravity on), [½, 1] (length to
+        // L), kinked at ½: a breakpoint, hit exactly
+        match continuation::natural(&mut path, 0.0, 1.0, &mut control, &[0.5]) {
             Ok(_) => Ok(path.z),
-            Err(Stop::Aborted(never)) => match never {},
-            Err(Stop::Stalled(s)) => {
-                let last = s.last.unwrap_or_default();
-                Err(FemError::HomotopyStalled {
-                    eta: s.eta,
-                    step: s.step,
-                    min_step: settings.min_step,
-                    steps: path.report.steps,
-                    last_failure: if s.attempts_exhausted { format!("step limit {} reached; {last}", settings.max_steps) } else { last },
-                })
-            }
+            Err(ContinuationError::Aborted(never)) => match never {},
+            Err(ContinuationError::Stalled { eta, step, cause, .. }) => Err(FemError::HomotopyStalled {
+                eta: eta.0,
+                step: step.0,
+                min_step: settings.min_step,
+                steps: path.report.steps,
+                last_failure: cause.unwrap_or_default(),
+            }),
+            Err(ContinuationError::StepLimit { eta, step, cause, .. }) => Err(FemError::HomotopyStalled {
+                eta: eta.0,
+                step: step.0,
+                min_step: settings.min_step,
+                steps: path.report.steps,
+                last_failure: format!("step limit {} reached; {}", settings.max_steps, cause.unwrap_or_default()),
+            }),
         }
     }
 }
@@ -353,17 +359,7 @@ impl Homotopy for StaticPath<'_> {
     type Failure = String;
     type Error = std::convert::Infallible;
 
-    fn target(&self, eta: f64, step: f64) -> f64 {
-        // hit the phase boundary η = ½ and η = 1 exactly
-        let target = (eta + step).min(1.0);
-        if eta < 0.5 && target > 0.5 {
-            0.5
-        } else {
-            target
-        }
-    }
-
-    fn solve_at(&mut self, eta: f64, target: f64) -> Result<Attempt<String>, Self::Error> {
+    fn advance(&mut self, eta: f64, target: f64) -> Result<Step<String>, Self::Error> {
         let (asm, z) = (self.asm, &self.z);
         let (params, length) = self.data.at(target, self.l0);
         let (_, length_now) = self.data.at(eta, self.l0);
@@ -396,14 +392,14 @@ impl Homotopy for StaticPath<'_> {
                 self.report.steps += 1;
                 self.report.last = r;
                 self.prev = Some((eta, std::mem::replace(&mut self.z, trial)));
-                Attempt::Accepted { iterations: r.iterations }
+                Step::Accepted { iterations: r.iterations }
             }
             Err(f) => {
                 if let NewtonFailure::Diverged { iterations, .. } = &f {
                     self.report.newton_iterations += iterations;
                 }
                 self.report.rejected += 1;
-                Attempt::Rejected(to_error(f, target, self.tolerance).to_string())
+                Step::Rejected(to_error(f, target, self.tolerance).to_string())
             }
         })
     }

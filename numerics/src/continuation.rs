@@ -180,7 +180,9 @@ impl StepControl {
     pub fn target(&self, eta: f64, to: f64, breakpoints: &[f64]) -> f64 {
         let remaining = (to - eta).abs();
         let dir = if to >= eta { 1.0 } else { -1.0 };
-        let mut target = if remaining <= self.step * (1.0 + self.opts.snap) { to } else { eta + dir * self.step };
+        let stepped = eta + dir * self.step;
+        let reaches = remaining <= self.step * (1.0 + self.opts.snap) || (stepped - to) * dir >= 0.0;
+        let mut target = if reaches { to } else { stepped };
         for &b in breakpoints {
             if (b - eta) * dir > 0.0 && (target - b) * dir > 0.0 {
                 target = b;
@@ -228,33 +230,65 @@ impl StepControl {
     }
 }
 
-/// The outcome of one failed attempt of a corrector.
+/// The outcome of one solve of a continuation that did not end it.
 #[derive(Debug, Clone, PartialEq)]
-pub enum Attempt<E> {
-    /// A smaller step may succeed (divergence, a singular Jacobian, a rejected state).
-    Retry(E),
-    /// No step can help (invalid input, a failure unrelated to the step length).
-    Fatal(E),
+pub enum Step<F> {
+    /// Converged (and accepted by the caller's own tests): the caller keeps the new
+    /// state; `iterations` are the Newton iterations the solve took.
+    Accepted { iterations: usize },
+    /// Not converged or not acceptable: the caller keeps the old state; a shorter step
+    /// may succeed.
+    Rejected(F),
 }
 
-/// Why a continuation ended without reaching its end.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum ContinuationError<E> {
-    /// The options are invalid.
-    #[error(transparent)]
-    InvalidOptions(#[from] InvalidStepOptions),
-    /// The step fell below its minimum; `cause` is the last failure.
-    #[error("continuation stalled at η = {eta} (step {step} < minimum {min_step}) after {accepted} accepted steps{}", cause_suffix(.cause))]
-    Stalled { eta: Sig, step: Sig, min_step: Sig, accepted: usize, cause: Option<E> },
-    /// The step limit was reached before the end.
-    #[error("continuation step limit reached at η = {eta} ({accepted} accepted, {rejected} rejected){}", cause_suffix(.cause))]
-    StepLimit { eta: Sig, accepted: usize, rejected: usize, cause: Option<E> },
-    /// The corrector failed in a way no smaller step can help.
-    #[error("{0}")]
-    Fatal(E),
+/// Why a continuation ended without reaching its end. `F` is the caller's failure of
+/// one solve (a rejected step), `E` its error that ends the continuation at once.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContinuationError<F, E> {
+    /// The step fell below its minimum; `cause` is the last rejected solve.
+    Stalled { eta: Sig, step: Sig, min_step: Sig, target: Sig, accepted: usize, cause: Option<F> },
+    /// The step limit was reached before the end; `cause` is the last rejected solve.
+    StepLimit { eta: Sig, step: Sig, accepted: usize, rejected: usize, cause: Option<F> },
+    /// The caller ended the continuation.
+    Aborted(E),
 }
 
-fn cause_suffix<E: std::fmt::Display>(cause: &Option<E>) -> String {
+impl<F: std::fmt::Display, E: std::fmt::Display> std::fmt::Display for ContinuationError<F, E> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ContinuationError::Stalled { eta, step, min_step, target, accepted, cause } => write!(
+                f,
+                "continuation stalled at η = {eta} (step {step} < minimum {min_step}, last target {target}) after {accepted} accepted steps{}",
+                cause_suffix(cause)
+            ),
+            ContinuationError::StepLimit { eta, step, accepted, rejected, cause } => write!(
+                f,
+                "continuation step limit reached at η = {eta} ({accepted} accepted, {rejected} rejected, step {step}){}",
+                cause_suffix(cause)
+            ),
+            ContinuationError::Aborted(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl<F, E> std::error::Error for ContinuationError<F, E>
+where
+    F: std::fmt::Display + std::fmt::Debug,
+    E: std::fmt::Display + std::fmt::Debug,
+{
+}
+
+impl<F, E> ContinuationError<F, E> {
+    /// The last accepted η.
+    pub fn eta(&self) -> Option<f64> {
+        match self {
+            ContinuationError::Stalled { eta, .. } | ContinuationError::StepLimit { eta, .. } => Some(eta.0),
+            ContinuationError::Aborted(_) => None,
+        }
+    }
+}
+
+fn cause_suffix<F: std::fmt::Display>(cause: &Option<F>) -> String {
     match cause {
         Some(c) => format!("; last failure: {c}"),
         None => String::new(),
@@ -263,17 +297,23 @@ fn cause_suffix<E: std::fmt::Display>(cause: &Option<E>) -> String {
 
 /// A path in η solved point by point by natural-parameter continuation.
 pub trait Homotopy {
-    /// The caller's failure.
+    /// Why one solve failed (a rejected step).
+    type Failure;
+    /// An error that ends the whole continuation at once (e.g. a physical limit found
+    /// on an accepted state).
     type Error;
     /// Move the accepted state from `from` to `to` (predictor and corrector). On
-    /// success the state is at `to` and the Newton iterations are returned; on failure
-    /// the state must still be the one at `from`.
-    fn advance(&mut self, from: f64, to: f64) -> Result<usize, Attempt<Self::Error>>;
+    /// [`Step::Accepted`] the state is at `to`; on [`Step::Rejected`] it must still be
+    /// the one at `from`.
+    ///
+    /// # Errors
+    /// An error that ends the continuation.
+    fn advance(&mut self, from: f64, to: f64) -> Result<Step<Self::Failure>, Self::Error>;
 }
 
-/// What a natural-parameter continuation did.
+/// What a continuation did.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct NaturalReport {
+pub struct PathReport {
     /// Accepted steps.
     pub accepted: usize,
     /// Rejected steps.
@@ -283,48 +323,55 @@ pub struct NaturalReport {
 }
 
 /// Natural-parameter continuation of `path` from η = `from` (where its state is
-/// already solved) to exactly η = `to`, through every breakpoint in between.
+/// already solved) to exactly η = `to`, through every breakpoint in between (hit
+/// exactly).
+///
+/// # Errors
+/// [`ContinuationError::Stalled`] / [`ContinuationError::StepLimit`] with the last
+/// accepted η, the step and the last rejected solve; [`ContinuationError::Aborted`]
+/// with the caller's error.
 pub fn natural<H: Homotopy>(
     path: &mut H,
     from: f64,
     to: f64,
     control: &mut StepControl,
     breakpoints: &[f64],
-) -> Result<NaturalReport, ContinuationError<H::Error>> {
-    let mut report = NaturalReport::default();
+) -> Result<PathReport, ContinuationError<H::Failure, H::Error>> {
+    let mut report = PathReport::default();
     let mut eta = from;
     let mut cause = None;
     while eta != to {
         if !control.may_try() {
             return Err(ContinuationError::StepLimit {
                 eta: Sig(eta),
+                step: Sig(control.step()),
                 accepted: control.accepted(),
                 rejected: control.rejected(),
                 cause,
             });
         }
         let target = control.target(eta, to, breakpoints);
-        match path.advance(eta, target) {
-            Ok(iterations) => {
+        match path.advance(eta, target).map_err(ContinuationError::Aborted)? {
+            Step::Accepted { iterations } => {
                 control.accept(target - eta, iterations);
                 report.accepted += 1;
                 report.iterations += iterations;
                 eta = target;
             }
-            Err(Attempt::Retry(e)) => {
+            Step::Rejected(failure) => {
                 report.rejected += 1;
                 if let Err(s) = control.reject() {
                     return Err(ContinuationError::Stalled {
                         eta: Sig(eta),
                         step: Sig(s.step),
                         min_step: Sig(s.min_step),
+                        target: Sig(target),
                         accepted: control.accepted(),
-                        cause: Some(e),
+                        cause: Some(failure),
                     });
                 }
-                cause = Some(e);
+                cause = Some(failure);
             }
-            Err(Attempt::Fatal(e)) => return Err(ContinuationError::Fatal(e)),
         }
     }
     Ok(report)
@@ -332,7 +379,9 @@ pub fn natural<H: Homotopy>(
 
 /// A solution branch w = (z, η) traced by pseudo-arclength continuation.
 pub trait Branch {
-    /// The caller's failure.
+    /// Why one solve failed (a rejected step).
+    type Failure;
+    /// An error that ends the branch at once.
     type Error;
     /// η of the accepted point.
     fn eta(&self) -> f64;
@@ -341,10 +390,12 @@ pub trait Branch {
     /// point).
     fn tangent_eta(&self) -> f64;
     /// Predictor w + Δs·t and corrector (F = 0 with the arclength condition
-    /// ⟨t, w − w₀⟩ = Δs). On success the accepted point and its oriented tangent are
-    /// the new ones and the Newton iterations are returned; on failure the state is
-    /// unchanged.
-    fn advance(&mut self, ds: f64) -> Result<usize, Attempt<Self::Error>>;
+    /// ⟨t, w − w₀⟩ = Δs). On [`Step::Accepted`] the accepted point and its oriented
+    /// tangent are the new ones; on [`Step::Rejected`] the state is unchanged.
+    ///
+    /// # Errors
+    /// An error that ends the branch.
+    fn advance(&mut self, ds: f64) -> Result<Step<Self::Failure>, Self::Error>;
 }
 
 /// Two consecutive accepted points between which dη/ds changed sign.
@@ -393,7 +444,7 @@ pub fn pseudo_arclength<B: Branch>(
     eta_max: f64,
     control: &mut StepControl,
     mut on_point: impl FnMut(usize, &B) -> bool,
-) -> Result<BranchReport, ContinuationError<B::Error>> {
+) -> Result<BranchReport, ContinuationError<B::Failure, B::Error>> {
     let mut report =
         BranchReport { accepted: 0, rejected: 0, iterations: 0, folds: vec![], end: BranchEnd::StepLimit };
     if !on_point(0, branch) {
@@ -407,8 +458,8 @@ pub fn pseudo_arclength<B: Branch>(
         }
         let (eta0, t0) = (branch.eta(), branch.tangent_eta());
         let ds = control.step();
-        match branch.advance(ds) {
-            Ok(iterations) => {
+        match branch.advance(ds).map_err(ContinuationError::Aborted)? {
+            Step::Accepted { iterations } => {
                 control.accept(ds, iterations);
                 report.accepted += 1;
                 report.iterations += iterations;
@@ -426,19 +477,19 @@ pub fn pseudo_arclength<B: Branch>(
                     return Ok(report);
                 }
             }
-            Err(Attempt::Retry(e)) => {
+            Step::Rejected(failure) => {
                 report.rejected += 1;
                 if let Err(s) = control.reject() {
                     return Err(ContinuationError::Stalled {
                         eta: Sig(eta0),
                         step: Sig(s.step),
                         min_step: Sig(s.min_step),
+                        target: Sig(eta0),
                         accepted: control.accepted(),
-                        cause: Some(e),
+                        cause: Some(failure),
                     });
                 }
             }
-            Err(Attempt::Fatal(e)) => return Err(ContinuationError::Fatal(e)),
         }
     }
 }
@@ -616,28 +667,29 @@ mod tests {
     }
 
     impl Homotopy for Scalar1 {
+        type Failure = Diverged;
         type Error = Diverged;
-        fn advance(&mut self, _from: f64, to: f64) -> Result<usize, Attempt<Diverged>> {
+        fn advance(&mut self, _from: f64, to: f64) -> Result<Step<Diverged>, Diverged> {
             let mut x = self.x;
             for k in 1..=self.max_iterations {
                 let f = x - to * x.exp();
                 let df = 1.0 - to * x.exp();
                 let dx = -f / df;
                 if !dx.is_finite() {
-                    return Err(Attempt::Retry(Diverged(to)));
+                    return Ok(Step::Rejected(Diverged(to)));
                 }
                 x += dx;
                 if dx.abs() < 1e-13 * (1.0 + x.abs()) {
                     // the lower branch only: x < 1 (beyond the fold Newton may land on
                     // the upper branch, which this path rejects)
                     if x >= 1.0 {
-                        return Err(Attempt::Retry(Diverged(to)));
+                        return Ok(Step::Rejected(Diverged(to)));
                     }
                     self.x = x;
-                    return Ok(k);
+                    return Ok(Step::Accepted { iterations: k });
                 }
             }
-            Err(Attempt::Retry(Diverged(to)))
+            Ok(Step::Rejected(Diverged(to)))
         }
     }
 
@@ -663,6 +715,67 @@ mod tests {
         let mut c = StepControl::new(StepOptions { limit: StepLimit::Attempts(2), ..opts(Growth::Always { factor: 1.0 }) })
             .unwrap();
         assert!(matches!(natural(&mut path, 0.0, 0.3, &mut c, &[]), Err(ContinuationError::StepLimit { accepted: 2, .. })));
+        // the caller's error ends the continuation at once, unchanged
+        struct Abort;
+        impl Homotopy for Abort {
+            type Failure = ();
+            type Error = &'static str;
+            fn advance(&mut self, _: f64, to: f64) -> Result<Step<()>, &'static str> {
+                if to > 0.15 {
+                    Err("limit")
+                } else {
+                    Ok(Step::Accepted { iterations: 1 })
+                }
+            }
+        }
+        let mut c = StepControl::new(opts(Growth::Always { factor: 1.0 })).unwrap();
+        assert_eq!(natural(&mut Abort, 0.0, 1.0, &mut c, &[]), Err(ContinuationError::Aborted("limit")));
+    }
+
+    /// A homotopy whose solves fail beyond a reach (a stand-in for Newton's radius of
+    /// convergence), taking more iterations for longer steps: η reaches 1 exactly
+    /// through the breakpoint ½, never stepping beyond the reach, with fem's static
+    /// rule (2 / 1.25 / 0.6 × the step done by iteration band, ¼ on rejection).
+    #[test]
+    fn bands_reach_the_end_through_a_breakpoint_within_the_reach() {
+        struct Reach {
+            reach: f64,
+            visited: Vec<f64>,
+        }
+        impl Homotopy for Reach {
+            type Failure = f64;
+            type Error = ();
+            fn advance(&mut self, eta: f64, target: f64) -> Result<Step<f64>, ()> {
+                if target - eta > self.reach {
+                    return Ok(Step::Rejected(target));
+                }
+                self.visited.push(target);
+                Ok(Step::Accepted { iterations: 2 + (20.0 * (target - eta) / self.reach) as usize })
+            }
+        }
+        let mut c = StepControl::new(StepOptions {
+            initial: 0.1,
+            min: 1e-3,
+            max: 0.5,
+            shrink: 0.25,
+            limit: StepLimit::Attempts(100),
+            growth: Growth::Bands { fast: 8, slow: 12, factors: [2.0, 1.25, 0.6] },
+            snap: 0.0,
+        })
+        .unwrap();
+        let mut h = Reach { reach: 0.3, visited: vec![] };
+        let r = natural(&mut h, 0.0, 1.0, &mut c, &[0.5]).unwrap();
+        assert_eq!(*h.visited.last().unwrap(), 1.0);
+        assert!(h.visited.contains(&0.5));
+        assert!(h.visited.windows(2).all(|w| w[1] > w[0] && w[1] - w[0] <= 0.3 + 1e-15), "{:?}", h.visited);
+        assert_eq!(r.accepted, h.visited.len());
+        // 0.1 (8 iterations: next 2 × 0.1), 0.3 (15: 0.6 × 0.2), 0.42 (10: 1.25 × 0.12),
+        // 0.5 (the breakpoint cuts 0.15 to 0.08; 7: 2 × 0.08), 0.66 (12: 1.25 × 0.16),
+        // 0.86 (15: 0.6 × 0.2), 0.98, 1.0
+        let expected = [0.1, 0.3, 0.42, 0.5, 0.66, 0.86, 0.98, 1.0];
+        assert_eq!(h.visited.len(), expected.len(), "{:?}", h.visited);
+        assert!(h.visited.iter().zip(expected).all(|(a, b)| (a - b).abs() < 1e-12), "{:?}", h.visited);
+        assert_eq!(r.rejected, 0);
     }
 
     /// The unit circle x² + η² = 1 as a branch: folds at η = ±1 (x = 0). The corrector
@@ -674,14 +787,15 @@ mod tests {
     }
 
     impl Branch for Circle {
-        type Error = Diverged;
+        type Failure = Diverged;
+        type Error = ();
         fn eta(&self) -> f64 {
             self.w[1]
         }
         fn tangent_eta(&self) -> f64 {
             self.t[1]
         }
-        fn advance(&mut self, ds: f64) -> Result<usize, Attempt<Diverged>> {
+        fn advance(&mut self, ds: f64) -> Result<Step<Diverged>, ()> {
             let w0 = self.w;
             let mut w = [w0[0] + ds * self.t[0], w0[1] + ds * self.t[1]];
             for k in 1..=20 {
@@ -697,10 +811,10 @@ mod tests {
                     }
                     self.w = w;
                     self.t = t;
-                    return Ok(k);
+                    return Ok(Step::Accepted { iterations: k });
                 }
             }
-            Err(Attempt::Retry(Diverged(w0[1])))
+            Ok(Step::Rejected(Diverged(w0[1])))
         }
     }
 

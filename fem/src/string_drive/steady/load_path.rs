@@ -1,10 +1,10 @@
 //! The load continuation of the direct steady solve (docs/fem-drive.md §12): η scales the
 //! driven load M₂, d₂ and the transport inertia ρ. η = 0 first (the static start carried
-//! into the steady unknowns), then η → 1 by [`crate::continuation::natural`], the step
+//! into the steady unknowns), then η → 1 by [`numerics::continuation::natural`], the step
 //! doubled after a solve of at most 6 Newton iterations and halved after a failure.
 
 use super::*;
-use crate::continuation::{self, Attempt, Homotopy, StepControl, Stop};
+use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, StepControl, StepLimit, StepOptions};
 
 /// Smallest step of the load continuation.
 const MIN_STEP: f64 = 1e-4;
@@ -38,7 +38,7 @@ impl Homotopy for LoadPath<'_> {
     type Failure = NewtonFailure;
     type Error = FemError;
 
-    fn solve_at(&mut self, _eta: f64, target: f64) -> Result<Attempt<NewtonFailure>, FemError> {
+    fn advance(&mut self, _eta: f64, target: f64) -> Result<Step<NewtonFailure>, FemError> {
         let prob = SteadyProblem { sp: (self.at)(target), ..self.problem };
         let mut xt = self.x.clone();
         match newton(&prob, &mut xt, self.w, self.scales, self.tolerance, self.max_iterations) {
@@ -53,12 +53,12 @@ impl Homotopy for LoadPath<'_> {
                     let c = self.x[asm.len()];
                     check_critical(&sol, target * rho * c * c)?;
                 }
-                Ok(Attempt::Accepted { iterations: n.iterations })
+                Ok(Step::Accepted { iterations: n.iterations })
             }
             Err(reason) => {
                 self.report.newton_iterations += self.max_iterations;
                 self.report.rejected += 1;
-                Ok(Attempt::Rejected(reason))
+                Ok(Step::Rejected(reason))
             }
         }
     }
@@ -71,17 +71,31 @@ impl LoadPath<'_> {
     /// [`FemError::FrictionCapacityExceeded`] (stalled within 5 % of what a pulley's
     /// contact can carry), [`FemError::HomotopyStalled`], [`FemError::SpeedAtOrAboveCritical`].
     pub(super) fn run(&mut self) -> Result<(), FemError> {
-        if let Attempt::Rejected(reason) = self.solve_at(0.0, 0.0)? {
+        if let Step::Rejected(reason) = self.advance(0.0, 0.0)? {
             return Err(self.stalled(0.0, 0.5, 0.0, &reason));
         }
-        let grow = |_done: f64, step: f64, iterations: usize| if iterations <= FAST_SOLVE { 2.0 * step } else { step };
-        let control = StepControl { initial: 1.0, min_step: MIN_STEP, max_attempts: usize::MAX, shrink: 0.5, grow: &grow };
-        match continuation::natural(self, &control) {
+        // the step doubles after a fast solve, halves after a failure; it never needs
+        // to exceed the whole path (1)
+        let mut control = StepControl::new(StepOptions {
+            initial: 1.0,
+            min: MIN_STEP,
+            max: 1.0,
+            shrink: 0.5,
+            limit: StepLimit::Attempts(usize::MAX),
+            growth: Growth::Quick { fast: FAST_SOLVE, factor: 2.0 },
+            snap: 0.0,
+        })
+        .map_err(|e| FemError::InvalidOption { field: "load continuation steps", value: MIN_STEP.to_string(), reason: e.to_string() })?;
+        match continuation::natural(self, 0.0, 1.0, &mut control, &[]) {
             Ok(_) => Ok(()),
-            Err(Stop::Aborted(e)) => Err(e),
-            Err(Stop::Stalled(s)) => {
-                let reason = s.last.map_or_else(String::new, |r| r.to_string());
-                Err(self.stalled(s.eta, s.step, s.target, &reason))
+            Err(ContinuationError::Aborted(e)) => Err(e),
+            Err(ContinuationError::Stalled { eta, step, target, cause, .. }) => {
+                let reason = cause.map_or_else(String::new, |r| r.to_string());
+                Err(self.stalled(eta.0, step.0, target.0, &reason))
+            }
+            Err(ContinuationError::StepLimit { eta, step, cause, .. }) => {
+                let reason = cause.map_or_else(String::new, |r| r.to_string());
+                Err(self.stalled(eta.0, step.0, eta.0, &reason))
             }
         }
     }
