@@ -478,6 +478,17 @@ impl Plate {
 }
 
 impl Belt {
+    /// The five plate parameters by JSON name, as given.
+    fn plate_fields(&self) -> [(&'static str, Option<f64>); 5] {
+        [
+            ("width", self.width),
+            ("thickness", self.thickness),
+            ("youngs_modulus", self.youngs_modulus),
+            ("poisson_ratio", self.poisson_ratio),
+            ("density", self.density),
+        ]
+    }
+
     /// The plate parameters of a shell belt (`None` unless all five are given).
     pub fn plate(&self) -> Option<Plate> {
         Some(Plate {
@@ -527,14 +538,7 @@ impl Serialize for Belt {
         if !shell {
             m.serialize_entry("mass_per_length", &self.mass_per_length)?;
         }
-        let plate = [
-            ("width", self.width),
-            ("thickness", self.thickness),
-            ("youngs_modulus", self.youngs_modulus),
-            ("poisson_ratio", self.poisson_ratio),
-            ("density", self.density),
-        ];
-        for (name, v) in plate {
+        for (name, v) in self.plate_fields() {
             if let Some(v) = v {
                 m.serialize_entry(name, &v)?;
             }
@@ -1058,20 +1062,14 @@ impl Scene {
     /// −1 < ν < 0.5, camber with exactly one finite field.
     fn validate_plate(&self) -> Result<(), SceneError> {
         let b = &self.belt;
-        let plate = [
-            ("belt.width", b.width),
-            ("belt.thickness", b.thickness),
-            ("belt.youngs_modulus", b.youngs_modulus),
-            ("belt.density", b.density),
-        ];
-        for (path, v) in plate {
-            let v = v.ok_or_else(|| SceneError::Required { path: path.into(), reason: "for theory `shell`".into() })?;
-            check_positive(path, v)?;
-        }
-        let nu = b.poisson_ratio.ok_or_else(|| SceneError::Required { path: "belt.poisson_ratio".into(), reason: "for theory `shell`".into() })?;
-        check_finite("belt.poisson_ratio", nu)?;
-        if !(nu > -1.0 && nu < 0.5) {
-            return Err(SceneError::OutOfRange { path: "belt.poisson_ratio".into(), value: nu, range: "−1 < ν < 0.5 (a stable isotropic material)".into() });
+        for (name, v) in b.plate_fields() {
+            let path = format!("belt.{name}");
+            let v = v.ok_or_else(|| SceneError::Required { path: path.clone(), reason: "for theory `shell`".into() })?;
+            if name != "poisson_ratio" {
+                check_positive(&path, v)?;
+            } else if !(v > -1.0 && v < 0.5) {
+                return Err(SceneError::OutOfRange { path, value: v, range: "−1 < ν < 0.5 (a stable isotropic material)".into() });
+            }
         }
         if let (Some(h), Some(w)) = (b.thickness, b.width) {
             if h >= w {
@@ -1427,40 +1425,28 @@ impl GateSettings {
     }
 }
 
-/// `value` must be finite.
-pub(crate) fn check_finite(path: &str, value: f64) -> Result<(), SceneError> {
-    if value.is_finite() {
+/// `value` must pass `holds`, else the error `variant` builds from the path and value.
+fn check_that(path: &str, value: f64, holds: bool, variant: fn(String, f64) -> SceneError) -> Result<(), SceneError> {
+    if holds {
         Ok(())
     } else {
-        Err(SceneError::NotFinite {
-            path: path.into(),
-            value,
-        })
+        Err(variant(path.into(), value))
     }
+}
+
+/// `value` must be finite.
+pub(crate) fn check_finite(path: &str, value: f64) -> Result<(), SceneError> {
+    check_that(path, value, value.is_finite(), |path, value| SceneError::NotFinite { path, value })
 }
 
 /// `value` must be finite and > 0.
 pub(crate) fn check_positive(path: &str, value: f64) -> Result<(), SceneError> {
     check_finite(path, value)?;
-    if value > 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::NotPositive {
-            path: path.into(),
-            value,
-        })
-    }
+    check_that(path, value, value > 0.0, |path, value| SceneError::NotPositive { path, value })
 }
 
 /// `value` must be finite and ≥ 0.
 pub(crate) fn check_non_negative(path: &str, value: f64) -> Result<(), SceneError> {
     check_finite(path, value)?;
-    if value >= 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::Negative {
-            path: path.into(),
-            value,
-        })
-    }
+    check_that(path, value, value >= 0.0, |path, value| SceneError::Negative { path, value })
 }

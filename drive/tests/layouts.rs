@@ -42,6 +42,13 @@ fn err(v: &Value) -> SceneError {
     read(v).expect_err("must be refused")
 }
 
+/// `v` is refused as a field not allowed at `path`, the message mentioning `hint`.
+fn not_allowed(v: &Value, path: &str, hint: &str) {
+    let e = err(v);
+    assert!(matches!(&e, SceneError::NotAllowed { path: p, .. } if p == path), "{e}");
+    assert!(e.to_string().contains(hint), "{e}");
+}
+
 #[test]
 fn one_pulley_scene_reads_writes_and_has_its_open_contour() {
     let scene = read(&one_pulley()).unwrap();
@@ -79,9 +86,7 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
 
     let mut v = one_pulley();
     v["drive"]["centre_distance"] = json!(0.45);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "drive.centre_distance"), "{e}");
-    assert!(e.to_string().contains("two-pulley"), "{e}");
+    not_allowed(&v, "drive.centre_distance", "two-pulley");
 
     let mut v = one_pulley();
     v["belt"]["length"] = json!(1.4);
@@ -126,9 +131,7 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
     // a one-pulley field in a two-pulley scene
     let mut v: Value = serde_json::from_str(include_str!("../../scenes/string-drive.json")).unwrap();
     v["drive"]["tension_in"] = json!(10.0);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "drive.tension_in"), "{e}");
-    assert!(e.to_string().contains("one-pulley"), "{e}");
+    not_allowed(&v, "drive.tension_in", "one-pulley");
     // an unknown layout suggests the nearest
     let mut v = one_pulley();
     v["drive"]["layout"] = json!("one-pully");
@@ -151,9 +154,7 @@ fn shell_scene_takes_its_plate_and_derives_the_planar_section() {
 
     let mut v = shell();
     v["belt"]["axial_stiffness"] = json!(2.1e8);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "belt.axial_stiffness"), "{e}");
-    assert!(e.to_string().contains("youngs_modulus"), "{e}");
+    not_allowed(&v, "belt.axial_stiffness", "youngs_modulus");
 
     let mut v = shell();
     v["belt"].as_object_mut().unwrap().remove("poisson_ratio");
