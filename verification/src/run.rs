@@ -280,6 +280,38 @@ pub trait Method: Send + Sync {
     fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError>;
 }
 
+/// The solve function of a [`FnMethod`].
+pub type SolveFn = dyn Fn(&Scene, Discretisation) -> Result<Solved, RunError> + Send + Sync;
+
+/// A method made of a label, a family and a solve function — for a test or an
+/// experiment that wraps, perturbs or stubs a method without a type of its own.
+pub struct FnMethod {
+    label: String,
+    family: Family,
+    solve: Box<SolveFn>,
+}
+
+impl FnMethod {
+    /// The method `label` of `family` that solves by `solve`.
+    pub fn new(label: &str, family: Family, solve: impl Fn(&Scene, Discretisation) -> Result<Solved, RunError> + Send + Sync + 'static) -> FnMethod {
+        FnMethod { label: label.to_string(), family, solve: Box::new(solve) }
+    }
+}
+
+impl Method for FnMethod {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn family(&self) -> Family {
+        self.family
+    }
+
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+        (self.solve)(scene, disc)
+    }
+}
+
 // ---------------------------------------------------------------------------
 // The built-in methods
 
