@@ -568,13 +568,67 @@ pub enum Contact {
 
 /// Stiffness coefficients of the elastic interlayer, eq. (40) of the reference:
 /// V_γ = ½∬ P γ² J dσ dζ, V_⊥ = ½∬ P_⊥ u·u J dσ dζ.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+///
+/// Given either as the two stiffnesses, or as the layer material (`thickness` d,
+/// `youngs_modulus` E_l, `poisson_ratio` ν_l; spec §4.6), from which the reader derives
+/// P = E_l(1 − ν_l)/((1 + ν_l)(1 − 2ν_l) d) (a thin layer bonded to the drum is laterally
+/// confined) and P_⊥ = E_l/(2(1 + ν_l) d) ([`ElasticLayer::with_derived_stiffness`]); the
+/// material form is written back as given.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ElasticLayer {
-    /// P, N/m³ (pressure per penetration), > 0. Required.
+    /// P, N/m³ (pressure per penetration), > 0. Required unless the material is given.
+    #[serde(default)]
     pub normal_stiffness: f64,
-    /// P_⊥, N/m³ (shear traction per tangential displacement), > 0. Required.
+    /// P_⊥, N/m³ (shear traction per tangential displacement), > 0. Required unless the
+    /// material is given.
+    #[serde(default)]
     pub tangential_stiffness: f64,
+    /// d, m, > 0: layer thickness (material form).
+    #[serde(default)]
+    pub thickness: Option<f64>,
+    /// E_l, Pa, > 0: Young's modulus of the layer (material form).
+    #[serde(default)]
+    pub youngs_modulus: Option<f64>,
+    /// ν_l, −1 < ν_l < 0.5: Poisson's ratio of the layer (material form).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+}
+
+impl ElasticLayer {
+    /// The layer material (d, E_l, ν_l) if all three are given.
+    pub fn material(&self) -> Option<(f64, f64, f64)> {
+        Some((self.thickness?, self.youngs_modulus?, self.poisson_ratio?))
+    }
+
+    /// Given the material: P and P_⊥ derived from it (type docs); else unchanged.
+    pub fn with_derived_stiffness(mut self) -> ElasticLayer {
+        if let Some((d, e, nu)) = self.material() {
+            self.normal_stiffness = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * d);
+            self.tangential_stiffness = e / (2.0 * (1.0 + nu) * d);
+        }
+        self
+    }
+}
+
+/// Writes the form the scene gave: the material, or the two stiffnesses.
+impl Serialize for ElasticLayer {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(None)?;
+        match self.material() {
+            Some((d, e, nu)) => {
+                m.serialize_entry("thickness", &d)?;
+                m.serialize_entry("youngs_modulus", &e)?;
+                m.serialize_entry("poisson_ratio", &nu)?;
+            }
+            None => {
+                m.serialize_entry("normal_stiffness", &self.normal_stiffness)?;
+                m.serialize_entry("tangential_stiffness", &self.tangential_stiffness)?;
+            }
+        }
+        m.end()
+    }
 }
 
 /// The effects a scene calls for (`effects` block); absent = not simulated.
@@ -823,6 +877,9 @@ impl Scene {
                 reason: e.to_string(),
             })?;
         scene.belt = scene.belt.with_derived_section();
+        if let Contact::ElasticLayer(layer) = &mut scene.effects.contact {
+            *layer = layer.clone().with_derived_stiffness();
+        }
         scene.validate()?;
         Ok(scene)
     }
@@ -1107,6 +1164,17 @@ impl Scene {
             Contact::Frictionless => {}
             Contact::Coulomb(mu) => check_non_negative("effects.contact.coulomb", *mu)?,
             Contact::ElasticLayer(layer) => {
+                if let Some((d, e, nu)) = layer.material() {
+                    check_positive("effects.contact.elastic_layer.thickness", d)?;
+                    check_positive("effects.contact.elastic_layer.youngs_modulus", e)?;
+                    if !(nu > -1.0 && nu < 0.5) {
+                        return Err(SceneError::OutOfRange {
+                            path: "effects.contact.elastic_layer.poisson_ratio".into(),
+                            value: nu,
+                            range: "−1 < ν < 0.5 (a stable isotropic material)".into(),
+                        });
+                    }
+                }
                 check_positive(
                     "effects.contact.elastic_layer.normal_stiffness",
                     layer.normal_stiffness,

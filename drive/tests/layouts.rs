@@ -172,6 +172,26 @@ fn shell_scene_takes_its_plate_and_derives_the_planar_section() {
     v["belt"]["camber"] = json!({"curvature": 0.1, "edge_length_difference": 0.01});
     assert!(matches!(err(&v), SceneError::Invalid { path, .. } if path == "belt.camber"));
 
+    // the interlayer by its material (spec §4.6): d = 5 mm, E_l = 10 MPa, ν_l = 0.45
+    let mut v = shell();
+    v["effects"]["contact"] = json!({"elastic_layer": {"thickness": 5e-3, "youngs_modulus": 1e7, "poisson_ratio": 0.45}});
+    let scene = read(&v).unwrap();
+    let drive::Contact::ElasticLayer(layer) = &scene.effects.contact else { panic!("elastic layer expected") };
+    let (d, el, nl) = (5e-3, 1e7, 0.45);
+    let p = el * (1.0 - nl) / ((1.0 + nl) * (1.0 - 2.0 * nl) * d);
+    assert!((layer.normal_stiffness - p).abs() < 1e-12 * p, "P = {} vs {p}", layer.normal_stiffness);
+    assert!((layer.tangential_stiffness - el / (2.0 * (1.0 + nl) * d)).abs() < 1e-3, "P_⊥ = {}", layer.tangential_stiffness);
+    let text = scene.to_json_pretty();
+    assert!(!text.contains("normal_stiffness"), "the material form is written as given:\n{text}");
+    assert_eq!(Scene::from_json_str(&text).unwrap(), scene);
+    // one form, not both; the material complete
+    v["effects"]["contact"]["elastic_layer"]["normal_stiffness"] = json!(1e9);
+    not_allowed(&v, "effects.contact.elastic_layer.normal_stiffness", "one form");
+    v["effects"]["contact"] = json!({"elastic_layer": {"thickness": 5e-3, "youngs_modulus": 1e7}});
+    assert!(matches!(err(&v), SceneError::MissingField { path, .. } if path == "effects.contact.elastic_layer.poisson_ratio"));
+    v["effects"]["contact"]["elastic_layer"]["poisson_ratio"] = json!(0.5);
+    assert!(matches!(err(&v), SceneError::OutOfRange { path, .. } if path == "effects.contact.elastic_layer.poisson_ratio"));
+
     // plate parameters belong to the shell only
     let mut v = one_pulley();
     v["belt"]["width"] = json!(0.02);
