@@ -1122,10 +1122,10 @@ impl Scene {
         for (name, v) in b.plate_fields() {
             let path = format!("belt.{name}");
             let v = v.ok_or_else(|| SceneError::Required { path: path.clone(), reason: "for theory `shell`".into() })?;
-            if name != "poisson_ratio" {
+            if name == "poisson_ratio" {
+                check_poisson_ratio(&path, v)?;
+            } else {
                 check_positive(&path, v)?;
-            } else if !(v > -1.0 && v < 0.5) {
-                return Err(SceneError::OutOfRange { path, value: v, range: "−1 < ν < 0.5 (a stable isotropic material)".into() });
             }
         }
         if let (Some(h), Some(w)) = (b.thickness, b.width) {
@@ -1167,13 +1167,7 @@ impl Scene {
                 if let Some((d, e, nu)) = layer.material() {
                     check_positive("effects.contact.elastic_layer.thickness", d)?;
                     check_positive("effects.contact.elastic_layer.youngs_modulus", e)?;
-                    if !(nu > -1.0 && nu < 0.5) {
-                        return Err(SceneError::OutOfRange {
-                            path: "effects.contact.elastic_layer.poisson_ratio".into(),
-                            value: nu,
-                            range: "−1 < ν < 0.5 (a stable isotropic material)".into(),
-                        });
-                    }
+                    check_poisson_ratio("effects.contact.elastic_layer.poisson_ratio", nu)?;
                 }
                 check_positive(
                     "effects.contact.elastic_layer.normal_stiffness",
@@ -1500,6 +1494,14 @@ fn check_that(path: &str, value: f64, holds: bool, variant: fn(String, f64) -> S
     } else {
         Err(variant(path.into(), value))
     }
+}
+
+/// A Poisson's ratio of a stable isotropic material: −1 < ν < 0.5.
+fn check_poisson_ratio(path: &str, nu: f64) -> Result<(), SceneError> {
+    if nu > -1.0 && nu < 0.5 {
+        return Ok(());
+    }
+    Err(SceneError::OutOfRange { path: path.into(), value: nu, range: "−1 < ν < 0.5 (a stable isotropic material)".into() })
 }
 
 /// `value` must be finite.
