@@ -137,27 +137,22 @@ fn rod_hanging_converges_to_the_bvp() {
     opts.method = BvpMethod::Collocation;
     opts.tolerance = 1e-9;
     let reference = bvp::scene::solve_scene(&scene, &opts).unwrap().summary;
-    // (quantity, minimum mean order, absolute bound at 256 elements)
-    const ROD: [(&str, f64, f64); 12] = [
-        ("y_upper_mid", 1.5, 3e-6),
-        ("y_lower_mid", 1.5, 1.5e-6),
-        ("tension_upper_mid", 1.5, 1.5e-4),
-        ("tension_lower_mid", 1.5, 1.5e-4),
-        ("moment_upper_mid", 1.5, 5e-8),
-        ("moment_lower_mid", 1.5, 1.2e-7),
-        ("driver.contact_start", 0.9, 6e-3),
-        ("driver.contact_end", 0.9, 6e-3),
-        ("driven.contact_start", 0.9, 6e-3),
-        ("driven.contact_end", 0.9, 6e-3),
-        ("driven.edge_force_start", 0.9, 7e-3),
-        ("driven.edge_force_end", 0.9, 7e-3),
+    // (quantities, minimum mean order, absolute bound at 256 elements)
+    const ROD: [(&[&str], f64, f64); 7] = [
+        (&["y_upper_mid"], 1.5, 3e-6),
+        (&["y_lower_mid"], 1.5, 1.5e-6),
+        (&["tension_upper_mid", "tension_lower_mid"], 1.5, 1.5e-4),
+        (&["moment_upper_mid"], 1.5, 5e-8),
+        (&["moment_lower_mid"], 1.5, 1.2e-7),
+        (&["driver.contact_start", "driver.contact_end", "driven.contact_start", "driven.contact_end"], 0.9, 6e-3),
+        (&["driven.edge_force_start", "driven.edge_force_end"], 0.9, 7e-3),
     ];
     for formulation in ["rod-simpson", "rod-gauss"] {
         let fem: Vec<Summary> = MESHES.iter().map(|&n| fem_summary(&scene, n, formulation)).collect();
         let names = |s: &Summary| s.scalars().into_iter().map(|(n, _)| n).collect::<Vec<_>>();
         assert_eq!(names(&fem[2]), names(&reference));
         println!("{formulation}\n{:<26} {:>12} {:>12} {:>12} {:>7}", "quantity", "e(64)", "e(128)", "e(256)", "order");
-        for (q, p_min, bound) in ROD {
+        for (q, p_min, bound) in ROD.iter().flat_map(|&(qs, p, b)| qs.iter().map(move |&q| (q, p, b))) {
             let r = reference.get(q).unwrap();
             let e: Vec<f64> = fem.iter().map(|s| (s.get(q).unwrap() - r).abs()).collect();
             let p = 0.5 * (e[0] / e[2]).log2();

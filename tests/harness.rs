@@ -18,7 +18,7 @@ use drive::scene::{GateSettings, Scene};
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 use verification::gate;
-use verification::run::{BvpSolver, BvpVariant, Discretisation, Family, Method, RunError, Solved};
+use verification::run::{BvpSolver, BvpVariant, Discretisation, Family, FnMethod, Method};
 use verification::study::{Study, StudyPlan};
 
 mod common;
@@ -178,16 +178,8 @@ impl SolutionView for Scaled {
 }
 
 /// Shooting with every axial force scaled by 1 + 1e-4.
-struct PerturbedShooting;
-
-impl Method for PerturbedShooting {
-    fn label(&self) -> String {
-        "perturbed shooting".into()
-    }
-    fn family(&self) -> Family {
-        Family::Bvp
-    }
-    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+fn perturbed_shooting() -> FnMethod {
+    FnMethod::new("perturbed shooting", Family::Bvp, |scene, disc| {
         let factor = 1.0 + 1e-4;
         let mut s = BvpSolver::new(BvpVariant::Shooting).solve(scene, disc)?;
         for name in ["tension_upper_mid", "tension_lower_mid"] {
@@ -196,7 +188,7 @@ impl Method for PerturbedShooting {
         }
         s.view = Box::new(Scaled { inner: s.view, factor });
         Ok(s)
-    }
+    })
 }
 
 /// The gate catches a result that drifted by 1e-4 in its axial force, names exactly the
@@ -207,7 +199,7 @@ fn gate_fails_on_a_perturbed_result() {
     let plan = gate::gate_plan(&scene, 1e-8, Some(&[]));
     let methods: Vec<(Box<dyn Method>, Vec<Discretisation>)> = vec![
         (Box::new(BvpSolver::new(BvpVariant::Shooting)), vec![Discretisation::Tolerance(1e-8)]),
-        (Box::new(PerturbedShooting), vec![Discretisation::Tolerance(1e-8)]),
+        (Box::new(perturbed_shooting()), vec![Discretisation::Tolerance(1e-8)]),
     ];
     let study = Study::run_methods(&scene, &plan, methods, false, &mut |_| {});
     // Limits 100× below the perturbation and far above the BVP error at 1e-8 (~1e-10).

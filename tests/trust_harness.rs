@@ -6,7 +6,7 @@ use std::path::Path;
 
 use drive::scene::{GateSettings, Scene};
 use verification::gate;
-use verification::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, RunError, Solved};
+use verification::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, FnMethod, Method, RunError};
 use verification::study::{Formulations, Study};
 
 fn catalogue_scene(name: &str) -> Scene {
@@ -14,18 +14,8 @@ fn catalogue_scene(name: &str) -> Scene {
 }
 
 /// An FE method with no model for any scene.
-struct NeverApplies;
-
-impl Method for NeverApplies {
-    fn label(&self) -> String {
-        "fem never-applies".into()
-    }
-    fn family(&self) -> Family {
-        Family::Fem
-    }
-    fn solve(&self, _: &Scene, _: Discretisation) -> Result<Solved, RunError> {
-        Err(RunError::NotApplicable("no model".into()))
-    }
+fn never_applies() -> FnMethod {
+    FnMethod::new("fem never-applies", Family::Fem, |_, _| Err(RunError::NotApplicable("no model".into())))
 }
 
 /// The BVP rows pass (limit 1e-3 against errors ~1e-10 at tolerance 1e-8), every FE
@@ -38,7 +28,7 @@ fn gate_with_zero_comparable_fe_runs_fails() {
     let bvp = || -> (Box<dyn Method>, Vec<Discretisation>) { (Box::new(BvpSolver::new(BvpVariant::Shooting)), vec![Discretisation::Tolerance(1e-8)]) };
 
     let plan = gate::gate_plan_with(&scene, 1e-8, Some(&[16]), Some(Formulations::Discovered));
-    let methods = vec![bvp(), (Box::new(NeverApplies) as Box<dyn Method>, vec![Discretisation::Elements(16)])];
+    let methods = vec![bvp(), (Box::new(never_applies()) as Box<dyn Method>, vec![Discretisation::Elements(16)])];
     let study = Study::run_methods(&scene, &plan, methods, false, &mut |_| {});
     let outcome = gate::evaluate(&settings, &study);
     assert!(!outcome.passed(), "{:#?}", outcome.checks);

@@ -478,6 +478,17 @@ impl Plate {
 }
 
 impl Belt {
+    /// The five plate parameters by JSON name, as given.
+    fn plate_fields(&self) -> [(&'static str, Option<f64>); 5] {
+        [
+            ("width", self.width),
+            ("thickness", self.thickness),
+            ("youngs_modulus", self.youngs_modulus),
+            ("poisson_ratio", self.poisson_ratio),
+            ("density", self.density),
+        ]
+    }
+
     /// The plate parameters of a shell belt (`None` unless all five are given).
     pub fn plate(&self) -> Option<Plate> {
         Some(Plate {
@@ -527,14 +538,7 @@ impl Serialize for Belt {
         if !shell {
             m.serialize_entry("mass_per_length", &self.mass_per_length)?;
         }
-        let plate = [
-            ("width", self.width),
-            ("thickness", self.thickness),
-            ("youngs_modulus", self.youngs_modulus),
-            ("poisson_ratio", self.poisson_ratio),
-            ("density", self.density),
-        ];
-        for (name, v) in plate {
+        for (name, v) in self.plate_fields() {
             if let Some(v) = v {
                 m.serialize_entry(name, &v)?;
             }
@@ -564,13 +568,67 @@ pub enum Contact {
 
 /// Stiffness coefficients of the elastic interlayer, eq. (40) of the reference:
 /// V_γ = ½∬ P γ² J dσ dζ, V_⊥ = ½∬ P_⊥ u·u J dσ dζ.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+///
+/// Given either as the two stiffnesses, or as the layer material (`thickness` d,
+/// `youngs_modulus` E_l, `poisson_ratio` ν_l; spec §4.6), from which the reader derives
+/// P = E_l(1 − ν_l)/((1 + ν_l)(1 − 2ν_l) d) (a thin layer bonded to the drum is laterally
+/// confined) and P_⊥ = E_l/(2(1 + ν_l) d) ([`ElasticLayer::with_derived_stiffness`]); the
+/// material form is written back as given.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ElasticLayer {
-    /// P, N/m³ (pressure per penetration), > 0. Required.
+    /// P, N/m³ (pressure per penetration), > 0. Required unless the material is given.
+    #[serde(default)]
     pub normal_stiffness: f64,
-    /// P_⊥, N/m³ (shear traction per tangential displacement), > 0. Required.
+    /// P_⊥, N/m³ (shear traction per tangential displacement), > 0. Required unless the
+    /// material is given.
+    #[serde(default)]
     pub tangential_stiffness: f64,
+    /// d, m, > 0: layer thickness (material form).
+    #[serde(default)]
+    pub thickness: Option<f64>,
+    /// E_l, Pa, > 0: Young's modulus of the layer (material form).
+    #[serde(default)]
+    pub youngs_modulus: Option<f64>,
+    /// ν_l, −1 < ν_l < 0.5: Poisson's ratio of the layer (material form).
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+}
+
+impl ElasticLayer {
+    /// The layer material (d, E_l, ν_l) if all three are given.
+    pub fn material(&self) -> Option<(f64, f64, f64)> {
+        Some((self.thickness?, self.youngs_modulus?, self.poisson_ratio?))
+    }
+
+    /// Given the material: P and P_⊥ derived from it (type docs); else unchanged.
+    pub fn with_derived_stiffness(mut self) -> ElasticLayer {
+        if let Some((d, e, nu)) = self.material() {
+            self.normal_stiffness = e * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu) * d);
+            self.tangential_stiffness = e / (2.0 * (1.0 + nu) * d);
+        }
+        self
+    }
+}
+
+/// Writes the form the scene gave: the material, or the two stiffnesses.
+impl Serialize for ElasticLayer {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(None)?;
+        match self.material() {
+            Some((d, e, nu)) => {
+                m.serialize_entry("thickness", &d)?;
+                m.serialize_entry("youngs_modulus", &e)?;
+                m.serialize_entry("poisson_ratio", &nu)?;
+            }
+            None => {
+                m.serialize_entry("normal_stiffness", &self.normal_stiffness)?;
+                m.serialize_entry("tangential_stiffness", &self.tangential_stiffness)?;
+            }
+        }
+        m.end()
+    }
 }
 
 /// The effects a scene calls for (`effects` block); absent = not simulated.
@@ -819,6 +877,9 @@ impl Scene {
                 reason: e.to_string(),
             })?;
         scene.belt = scene.belt.with_derived_section();
+        if let Contact::ElasticLayer(layer) = &mut scene.effects.contact {
+            *layer = layer.clone().with_derived_stiffness();
+        }
         scene.validate()?;
         Ok(scene)
     }
@@ -1058,20 +1119,14 @@ impl Scene {
     /// −1 < ν < 0.5, camber with exactly one finite field.
     fn validate_plate(&self) -> Result<(), SceneError> {
         let b = &self.belt;
-        let plate = [
-            ("belt.width", b.width),
-            ("belt.thickness", b.thickness),
-            ("belt.youngs_modulus", b.youngs_modulus),
-            ("belt.density", b.density),
-        ];
-        for (path, v) in plate {
-            let v = v.ok_or_else(|| SceneError::Required { path: path.into(), reason: "for theory `shell`".into() })?;
-            check_positive(path, v)?;
-        }
-        let nu = b.poisson_ratio.ok_or_else(|| SceneError::Required { path: "belt.poisson_ratio".into(), reason: "for theory `shell`".into() })?;
-        check_finite("belt.poisson_ratio", nu)?;
-        if !(nu > -1.0 && nu < 0.5) {
-            return Err(SceneError::OutOfRange { path: "belt.poisson_ratio".into(), value: nu, range: "−1 < ν < 0.5 (a stable isotropic material)".into() });
+        for (name, v) in b.plate_fields() {
+            let path = format!("belt.{name}");
+            let v = v.ok_or_else(|| SceneError::Required { path: path.clone(), reason: "for theory `shell`".into() })?;
+            if name == "poisson_ratio" {
+                check_poisson_ratio(&path, v)?;
+            } else {
+                check_positive(&path, v)?;
+            }
         }
         if let (Some(h), Some(w)) = (b.thickness, b.width) {
             if h >= w {
@@ -1109,6 +1164,11 @@ impl Scene {
             Contact::Frictionless => {}
             Contact::Coulomb(mu) => check_non_negative("effects.contact.coulomb", *mu)?,
             Contact::ElasticLayer(layer) => {
+                if let Some((d, e, nu)) = layer.material() {
+                    check_positive("effects.contact.elastic_layer.thickness", d)?;
+                    check_positive("effects.contact.elastic_layer.youngs_modulus", e)?;
+                    check_poisson_ratio("effects.contact.elastic_layer.poisson_ratio", nu)?;
+                }
                 check_positive(
                     "effects.contact.elastic_layer.normal_stiffness",
                     layer.normal_stiffness,
@@ -1427,40 +1487,36 @@ impl GateSettings {
     }
 }
 
-/// `value` must be finite.
-pub(crate) fn check_finite(path: &str, value: f64) -> Result<(), SceneError> {
-    if value.is_finite() {
+/// `value` must pass `holds`, else the error `variant` builds from the path and value.
+fn check_that(path: &str, value: f64, holds: bool, variant: fn(String, f64) -> SceneError) -> Result<(), SceneError> {
+    if holds {
         Ok(())
     } else {
-        Err(SceneError::NotFinite {
-            path: path.into(),
-            value,
-        })
+        Err(variant(path.into(), value))
     }
+}
+
+/// A Poisson's ratio of a stable isotropic material: −1 < ν < 0.5.
+fn check_poisson_ratio(path: &str, nu: f64) -> Result<(), SceneError> {
+    if nu > -1.0 && nu < 0.5 {
+        return Ok(());
+    }
+    Err(SceneError::OutOfRange { path: path.into(), value: nu, range: "−1 < ν < 0.5 (a stable isotropic material)".into() })
+}
+
+/// `value` must be finite.
+pub(crate) fn check_finite(path: &str, value: f64) -> Result<(), SceneError> {
+    check_that(path, value, value.is_finite(), |path, value| SceneError::NotFinite { path, value })
 }
 
 /// `value` must be finite and > 0.
 pub(crate) fn check_positive(path: &str, value: f64) -> Result<(), SceneError> {
     check_finite(path, value)?;
-    if value > 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::NotPositive {
-            path: path.into(),
-            value,
-        })
-    }
+    check_that(path, value, value > 0.0, |path, value| SceneError::NotPositive { path, value })
 }
 
 /// `value` must be finite and ≥ 0.
 pub(crate) fn check_non_negative(path: &str, value: f64) -> Result<(), SceneError> {
     check_finite(path, value)?;
-    if value >= 0.0 {
-        Ok(())
-    } else {
-        Err(SceneError::Negative {
-            path: path.into(),
-            value,
-        })
-    }
+    check_that(path, value, value >= 0.0, |path, value| SceneError::Negative { path, value })
 }

@@ -83,6 +83,11 @@ pub(crate) enum Cond {
     Shell,
     /// `belt.theory` is not `shell`.
     NotShell,
+    /// The elastic interlayer is given by its two stiffnesses.
+    LayerStiffness,
+    /// The elastic interlayer is given by its material (any of `thickness`,
+    /// `youngs_modulus`, `poisson_ratio` present).
+    LayerMaterial,
 }
 
 impl Cond {
@@ -92,6 +97,8 @@ impl Cond {
             Cond::OnePulley => ctx.one_pulley,
             Cond::Shell => ctx.shell,
             Cond::NotShell => !ctx.shell,
+            Cond::LayerStiffness => !ctx.layer_material,
+            Cond::LayerMaterial => ctx.layer_material,
         }
     }
 
@@ -101,6 +108,8 @@ impl Cond {
             Cond::TwoPulley => "it belongs to layout `two-pulley` (the closed loop over two pulleys); this scene's `drive.layout` is `one-pulley` (one pulley, open ends)",
             Cond::OnePulley => "it belongs to layout `one-pulley` (one pulley, open ends); this scene's layout is `two-pulley` — set `drive.layout` to \"one-pulley\" or remove the field",
             Cond::Shell => "it is a plate parameter of theory `shell`; this scene's belt is a rod or string",
+            Cond::LayerStiffness => "the interlayer is given by its material (`thickness`, `youngs_modulus`, `poisson_ratio`), from which P and P_⊥ are derived; give one form, not both",
+            Cond::LayerMaterial => "unreachable: a material field makes the material form",
             Cond::NotShell => "theory `shell` derives it from the plate parameters (EA = E b h, EI = E b h³/(12(1 − ν²)), ρ = ρ_V b h); give `width`, `thickness`, `youngs_modulus`, `poisson_ratio`, `density` instead",
         }
     }
@@ -111,6 +120,7 @@ impl Cond {
 pub(crate) struct Ctx {
     one_pulley: bool,
     shell: bool,
+    layer_material: bool,
 }
 
 impl Ctx {
@@ -118,6 +128,10 @@ impl Ctx {
         Ctx {
             one_pulley: root.pointer("/drive/layout").and_then(Value::as_str) == Some("one-pulley"),
             shell: root.pointer("/belt/theory").and_then(Value::as_str) == Some("shell"),
+            layer_material: root
+                .pointer("/effects/contact/elastic_layer")
+                .and_then(Value::as_object)
+                .is_some_and(|m| ["thickness", "youngs_modulus", "poisson_ratio"].iter().any(|k| m.contains_key(*k))),
         }
     }
 }
@@ -193,16 +207,11 @@ pub(crate) const BELT: &[Field] = &[
 ];
 
 pub(crate) const ELASTIC_LAYER: &[Field] = &[
-    req(
-        "normal_stiffness",
-        Kind::Number,
-        "interlayer normal stiffness P, N/m³",
-    ),
-    req(
-        "tangential_stiffness",
-        Kind::Number,
-        "interlayer tangential stiffness P_⊥, N/m³",
-    ),
+    req_in(Cond::LayerStiffness, "normal_stiffness", Kind::Number, "interlayer normal stiffness P, N/m³"),
+    req_in(Cond::LayerStiffness, "tangential_stiffness", Kind::Number, "interlayer tangential stiffness P_⊥, N/m³"),
+    req_in(Cond::LayerMaterial, "thickness", Kind::Number, "interlayer thickness d, m"),
+    req_in(Cond::LayerMaterial, "youngs_modulus", Kind::Number, "Young's modulus E_l of the interlayer, Pa"),
+    req_in(Cond::LayerMaterial, "poisson_ratio", Kind::Number, "Poisson's ratio ν_l of the interlayer"),
 ];
 
 pub(crate) const EFFECTS: &[Field] = &[
@@ -558,7 +567,7 @@ fn check_value(v: &mut Value, kind: Kind, path: &str, ctx: Ctx) -> Result<(), Sc
             }
             true
         }
-        Kind::Contact => return check_contact(v, path),
+        Kind::Contact => return check_contact(v, path, ctx),
     };
     if ok {
         Ok(())
@@ -571,7 +580,7 @@ fn is_count(v: &Value) -> bool {
     v.as_u64().is_some_and(|n| usize::try_from(n).is_ok())
 }
 
-fn check_contact(v: &mut Value, path: &str) -> Result<(), SceneError> {
+fn check_contact(v: &mut Value, path: &str, ctx: Ctx) -> Result<(), SceneError> {
     match v {
         Value::String(s) => match s.as_str() {
             "frictionless" => Ok(()),
@@ -599,7 +608,7 @@ fn check_contact(v: &mut Value, path: &str) -> Result<(), SceneError> {
             let p = join(path, key);
             match key.as_str() {
                 "coulomb" => check_value(inner, Kind::Number, &p, Ctx::default()),
-                "elastic_layer" => check_object(inner, ELASTIC_LAYER, &p, Ctx::default()),
+                "elastic_layer" => check_object(inner, ELASTIC_LAYER, &p, ctx),
                 "frictionless" => Err(SceneError::Invalid {
                     path: path.into(),
                     reason: r#"`frictionless` takes no value: write "contact": "frictionless""#.into(),
@@ -706,15 +715,12 @@ mod tests {
             );
             check_object(&mut v, table, name, Ctx::default()).unwrap();
         }
-        let mut contact = serde_json::to_value(Contact::ElasticLayer(ElasticLayer {
-            normal_stiffness: 1.0,
-            tangential_stiffness: 2.0,
-        }))
-        .unwrap();
-        check_contact(&mut contact, "effects.contact").unwrap();
+        let layer = ElasticLayer { normal_stiffness: 1.0, tangential_stiffness: 2.0, thickness: None, youngs_modulus: None, poisson_ratio: None };
+        let mut contact = serde_json::to_value(Contact::ElasticLayer(layer)).unwrap();
+        check_contact(&mut contact, "effects.contact", Ctx::default()).unwrap();
         let mut contact = serde_json::to_value(Contact::Coulomb(0.3)).unwrap();
-        check_contact(&mut contact, "effects.contact").unwrap();
+        check_contact(&mut contact, "effects.contact", Ctx::default()).unwrap();
         let mut contact = serde_json::to_value(Contact::Frictionless).unwrap();
-        check_contact(&mut contact, "effects.contact").unwrap();
+        check_contact(&mut contact, "effects.contact", Ctx::default()).unwrap();
     }
 }

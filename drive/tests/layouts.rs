@@ -42,6 +42,13 @@ fn err(v: &Value) -> SceneError {
     read(v).expect_err("must be refused")
 }
 
+/// `v` is refused as a field not allowed at `path`, the message mentioning `hint`.
+fn not_allowed(v: &Value, path: &str, hint: &str) {
+    let e = err(v);
+    assert!(matches!(&e, SceneError::NotAllowed { path: p, .. } if p == path), "{e}");
+    assert!(e.to_string().contains(hint), "{e}");
+}
+
 #[test]
 fn one_pulley_scene_reads_writes_and_has_its_open_contour() {
     let scene = read(&one_pulley()).unwrap();
@@ -79,9 +86,7 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
 
     let mut v = one_pulley();
     v["drive"]["centre_distance"] = json!(0.45);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "drive.centre_distance"), "{e}");
-    assert!(e.to_string().contains("two-pulley"), "{e}");
+    not_allowed(&v, "drive.centre_distance", "two-pulley");
 
     let mut v = one_pulley();
     v["belt"]["length"] = json!(1.4);
@@ -126,9 +131,7 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
     // a one-pulley field in a two-pulley scene
     let mut v: Value = serde_json::from_str(include_str!("../../scenes/string-drive.json")).unwrap();
     v["drive"]["tension_in"] = json!(10.0);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "drive.tension_in"), "{e}");
-    assert!(e.to_string().contains("one-pulley"), "{e}");
+    not_allowed(&v, "drive.tension_in", "one-pulley");
     // an unknown layout suggests the nearest
     let mut v = one_pulley();
     v["drive"]["layout"] = json!("one-pully");
@@ -151,9 +154,7 @@ fn shell_scene_takes_its_plate_and_derives_the_planar_section() {
 
     let mut v = shell();
     v["belt"]["axial_stiffness"] = json!(2.1e8);
-    let e = err(&v);
-    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "belt.axial_stiffness"), "{e}");
-    assert!(e.to_string().contains("youngs_modulus"), "{e}");
+    not_allowed(&v, "belt.axial_stiffness", "youngs_modulus");
 
     let mut v = shell();
     v["belt"].as_object_mut().unwrap().remove("poisson_ratio");
@@ -170,6 +171,26 @@ fn shell_scene_takes_its_plate_and_derives_the_planar_section() {
     let mut v = shell();
     v["belt"]["camber"] = json!({"curvature": 0.1, "edge_length_difference": 0.01});
     assert!(matches!(err(&v), SceneError::Invalid { path, .. } if path == "belt.camber"));
+
+    // the interlayer by its material (spec §4.6): d = 5 mm, E_l = 10 MPa, ν_l = 0.45
+    let mut v = shell();
+    v["effects"]["contact"] = json!({"elastic_layer": {"thickness": 5e-3, "youngs_modulus": 1e7, "poisson_ratio": 0.45}});
+    let scene = read(&v).unwrap();
+    let drive::Contact::ElasticLayer(layer) = &scene.effects.contact else { panic!("elastic layer expected") };
+    let (d, el, nl) = (5e-3, 1e7, 0.45);
+    let p = el * (1.0 - nl) / ((1.0 + nl) * (1.0 - 2.0 * nl) * d);
+    assert!((layer.normal_stiffness - p).abs() < 1e-12 * p, "P = {} vs {p}", layer.normal_stiffness);
+    assert!((layer.tangential_stiffness - el / (2.0 * (1.0 + nl) * d)).abs() < 1e-3, "P_⊥ = {}", layer.tangential_stiffness);
+    let text = scene.to_json_pretty();
+    assert!(!text.contains("normal_stiffness"), "the material form is written as given:\n{text}");
+    assert_eq!(Scene::from_json_str(&text).unwrap(), scene);
+    // one form, not both; the material complete
+    v["effects"]["contact"]["elastic_layer"]["normal_stiffness"] = json!(1e9);
+    not_allowed(&v, "effects.contact.elastic_layer.normal_stiffness", "one form");
+    v["effects"]["contact"] = json!({"elastic_layer": {"thickness": 5e-3, "youngs_modulus": 1e7}});
+    assert!(matches!(err(&v), SceneError::MissingField { path, .. } if path == "effects.contact.elastic_layer.poisson_ratio"));
+    v["effects"]["contact"]["elastic_layer"]["poisson_ratio"] = json!(0.5);
+    assert!(matches!(err(&v), SceneError::OutOfRange { path, .. } if path == "effects.contact.elastic_layer.poisson_ratio"));
 
     // plate parameters belong to the shell only
     let mut v = one_pulley();

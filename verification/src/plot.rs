@@ -751,7 +751,8 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 for (mi, (m, mlabel)) in measures.iter().enumerate() {
                     let pts = error_points(s, *m, |d| d.elements_along().map(|n| (n as f64).log2()));
                     if !pts.is_empty() {
-                        draw_measure(&mut chart, &pts, col, mi, format!("{} — {mlabel}", s.method))?;
+                        let (marker, dashed) = Marker::of_measure(mi);
+                        marked_line(&mut chart, &pts, col, marker, dashed, format!("{} — {mlabel}", s.method))?;
                     }
                 }
             }
@@ -796,7 +797,8 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 if !pts.is_empty() {
                     let short = if mi == 0 { "scalars" } else { "N L2" };
                     let _ = mlabel;
-                    draw_measure(&mut chart, &pts, col, mi, format!("{} — {short}", s.method.trim_start_matches("bvp-")))?;
+                    let (marker, dashed) = Marker::of_measure(mi);
+                    marked_line(&mut chart, &pts, col, marker, dashed, format!("{} — {short}", s.method.trim_start_matches("bvp-")))?;
                 }
             }
         }
@@ -809,6 +811,18 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
 enum Marker {
     Circle,
     Triangle,
+}
+
+impl Marker {
+    /// The style of one measure of a method: measure 0 solid with circles, measure 1
+    /// dashed with triangles — (marker, dashed).
+    fn of_measure(measure: usize) -> (Marker, bool) {
+        if measure == 0 {
+            (Marker::Circle, false)
+        } else {
+            (Marker::Triangle, true)
+        }
+    }
 }
 
 /// A curve with a marker at every point, labelled with a line and the marker:
@@ -844,22 +858,6 @@ fn marked_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
         }
     }
     Ok(())
-}
-
-/// One measure of one method: measure 0 solid with circles, measure 1 dashed with
-/// triangles.
-fn draw_measure<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
-    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
-    pts: &[(f64, f64)],
-    col: RGBColor,
-    measure: usize,
-    label: String,
-) -> Result<(), String> {
-    if measure == 0 {
-        marked_line(chart, pts, col, Marker::Circle, false, label)
-    } else {
-        marked_line(chart, pts, col, Marker::Triangle, true, label)
-    }
 }
 
 /// Error vs wall time (log–log), every studied method of the scene on one axis; one

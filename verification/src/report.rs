@@ -367,18 +367,15 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     m.push('\n');
 
     // Plots.
-    let _ = writeln!(m, "## Belt shape\n");
-    let _ = writeln!(m, "The reference belt to scale with the pulleys (radius to the belt centreline); contact zones thick, contact boundaries as dots; FE finest meshes dashed. Below: the deflection ν(σ) from the contour, magnified.\n");
-    let _ = writeln!(m, "![belt shape](shape.svg)\n");
-    let _ = writeln!(m, "## Axial force along σ\n");
-    let _ = writeln!(m, "BVP reference and the finest mesh of each FE formulation; bottom: |N − N_ref| of the finest run of every method.\n");
-    let _ = writeln!(m, "![axial force](force.svg)\n");
-    let _ = writeln!(m, "## Convergence\n");
-    let _ = writeln!(m, "Left: FE error against elements with reference slopes. Right: BVP error against the requested tolerance (the tolerance bounds a residual, not the error, so points may sit on either side of the dashed line).\n");
-    let _ = writeln!(m, "![convergence](convergence.svg)\n");
-    let _ = writeln!(m, "## Work–precision\n");
-    let _ = writeln!(m, "Error against wall time, every method of this scene on one axis (the reference run itself is not plotted).\n");
-    let _ = writeln!(m, "![work–precision](work-precision.svg)\n");
+    let plots = [
+        ("Belt shape", "The reference belt to scale with the pulleys (radius to the belt centreline); contact zones thick, contact boundaries as dots; FE finest meshes dashed. Below: the deflection ν(σ) from the contour, magnified.", "belt shape", "shape.svg"),
+        ("Axial force along σ", "The reference and the finest mesh of each FE formulation; bottom: |N − N_ref| of the finest run of every method.", "axial force", "force.svg"),
+        ("Convergence", "Left: FE error against elements with reference slopes. Right: BVP error against the requested tolerance (the tolerance bounds a residual, not the error, so points may sit on either side of the dashed line).", "convergence", "convergence.svg"),
+        ("Work–precision", "Error against wall time, every method of this scene on one axis (the reference run itself is not plotted).", "work–precision", "work-precision.svg"),
+    ];
+    for (title, caption, alt, file) in plots {
+        let _ = writeln!(m, "## {title}\n\n{caption}\n\n![{alt}]({file})\n");
+    }
 
     // Tables.
     let _ = writeln!(m, "## Convergence tables\n");

@@ -133,6 +133,13 @@ pub struct RunCost {
     pub elements: Option<usize>,
 }
 
+impl RunCost {
+    /// The counters every method has; mesh nodes and elements absent.
+    pub fn counted(wall_seconds: f64, newton_iterations: usize, unknowns: usize) -> RunCost {
+        RunCost { wall_seconds, newton_iterations, unknowns, mesh_nodes: None, elements: None }
+    }
+}
+
 /// What a method returns for one discretisation, before the harness samples it.
 pub struct Solved {
     /// The solution behind the common view.
@@ -273,6 +280,38 @@ pub trait Method: Send + Sync {
     fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError>;
 }
 
+/// The solve function of a [`FnMethod`].
+pub type SolveFn = dyn Fn(&Scene, Discretisation) -> Result<Solved, RunError> + Send + Sync;
+
+/// A method made of a label, a family and a solve function — for a test or an
+/// experiment that wraps, perturbs or stubs a method without a type of its own.
+pub struct FnMethod {
+    label: String,
+    family: Family,
+    solve: Box<SolveFn>,
+}
+
+impl FnMethod {
+    /// The method `label` of `family` that solves by `solve`.
+    pub fn new(label: &str, family: Family, solve: impl Fn(&Scene, Discretisation) -> Result<Solved, RunError> + Send + Sync + 'static) -> FnMethod {
+        FnMethod { label: label.to_string(), family, solve: Box::new(solve) }
+    }
+}
+
+impl Method for FnMethod {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn family(&self) -> Family {
+        self.family
+    }
+
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+        (self.solve)(scene, disc)
+    }
+}
+
 // ---------------------------------------------------------------------------
 // The built-in methods
 
@@ -344,16 +383,11 @@ impl Method for BvpSolver {
             SceneSolveError::NotYetSolvable(e) => RunError::NotYetSolvable(e),
             other => RunError::Bvp(other.into()),
         })?;
+        let cost = RunCost { mesh_nodes: Some(run.stats.mesh_nodes), ..RunCost::counted(run.stats.wall_seconds, run.stats.newton_iterations, run.stats.unknowns) };
         Ok(Solved {
             view: run.view,
             summary: run.summary,
-            cost: RunCost {
-                wall_seconds: run.stats.wall_seconds,
-                newton_iterations: run.stats.newton_iterations,
-                unknowns: run.stats.unknowns,
-                mesh_nodes: Some(run.stats.mesh_nodes),
-                elements: None,
-            },
+            cost,
             options: run.options,
             terms: Vec::new(),
             notes: run.notes,
@@ -418,16 +452,11 @@ impl Method for FemFormulation {
             other => RunError::Fem(other),
         })?;
         let not_steady = fem_not_steady(&run.options);
+        let cost = RunCost { elements: Some(run.stats.elements), ..RunCost::counted(run.stats.wall_seconds, run.stats.newton_iterations, run.stats.unknowns) };
         Ok(Solved {
             view: run.view,
             summary: run.summary,
-            cost: RunCost {
-                wall_seconds: run.stats.wall_seconds,
-                newton_iterations: run.stats.newton_iterations,
-                unknowns: run.stats.unknowns,
-                mesh_nodes: None,
-                elements: Some(run.stats.elements),
-            },
+            cost,
             options: run.options,
             // the FE's stated warnings (e.g. an unresolved bending layer) follow the work note
             notes: std::iter::once(format!("homotopy: {} steps", run.stats.homotopy_steps))
