@@ -131,6 +131,21 @@ pub struct Stalled {
     pub min_step: f64,
 }
 
+impl Stalled {
+    /// The error of a continuation that stalled at the accepted `eta` trying `target`
+    /// after `accepted` steps, `failure` being the last rejected solve.
+    fn at<F, E>(self, eta: f64, target: f64, accepted: usize, failure: F) -> ContinuationError<F, E> {
+        ContinuationError::Stalled {
+            eta: Sig(eta),
+            step: Sig(self.step),
+            min_step: Sig(self.min_step),
+            target: Sig(target),
+            accepted,
+            cause: Some(failure),
+        }
+    }
+}
+
 /// Step length control of one continuation (module documentation).
 #[derive(Debug, Clone)]
 pub struct StepControl {
@@ -361,14 +376,7 @@ pub fn natural<H: Homotopy>(
             Step::Rejected(failure) => {
                 report.rejected += 1;
                 if let Err(s) = control.reject() {
-                    return Err(ContinuationError::Stalled {
-                        eta: Sig(eta),
-                        step: Sig(s.step),
-                        min_step: Sig(s.min_step),
-                        target: Sig(target),
-                        accepted: control.accepted(),
-                        cause: Some(failure),
-                    });
+                    return Err(s.at(eta, target, control.accepted(), failure));
                 }
                 cause = Some(failure);
             }
@@ -480,14 +488,7 @@ pub fn pseudo_arclength<B: Branch>(
             Step::Rejected(failure) => {
                 report.rejected += 1;
                 if let Err(s) = control.reject() {
-                    return Err(ContinuationError::Stalled {
-                        eta: Sig(eta0),
-                        step: Sig(s.step),
-                        min_step: Sig(s.min_step),
-                        target: Sig(eta0),
-                        accepted: control.accepted(),
-                        cause: Some(failure),
-                    });
+                    return Err(s.at(eta0, eta0, control.accepted(), failure));
                 }
             }
         }
