@@ -45,6 +45,7 @@ use crate::newton::{self, NewtonReport, NewtonSystem, SparseLu};
 use crate::problem::Problem;
 use crate::solution::{Solution, Stats};
 use argmin::core::{CostFunction, Executor, State, TerminationReason};
+use numerics::continuation::{ContinuationError, Homotopy, Step, StepControl};
 use argmin::solver::brent::BrentRoot;
 use std::cell::RefCell;
 use std::time::Instant;
@@ -511,24 +512,64 @@ pub fn natural_checked<P: Problem>(
         return Err(BvpError::InvalidInput(format!("eta range [{eta_from}, {eta_to}] not finite")));
     }
     let mut total = Stats::default();
-    let (mut cur, sol) = first_point(problem, guess, eta_from, opts, &mut total)?;
-    let mut points = vec![BranchPoint { solution: sol, eta: eta_from, step: 0.0, tangent_eta: None }];
-    let dir = if eta_to >= eta_from { 1.0 } else { -1.0 };
-    let mut step = copts.initial_step;
-    while cur.eta != eta_to {
-        if points.len() > copts.max_steps {
-            return Err(BvpError::ContinuationStalled {
-                eta: cur.eta,
-                step,
-                min_step: copts.min_step,
-                cause: format!("max_steps = {} reached before eta = {eta_to}", copts.max_steps),
-            });
+    let (cur, sol) = first_point(problem, guess, eta_from, opts, &mut total)?;
+    let points = vec![BranchPoint { solution: sol, eta: eta_from, step: 0.0, tangent_eta: None }];
+    let mut control = step_control(copts, numerics::continuation::StepLimit::Accepted(copts.max_steps))?;
+    let mut path = NaturalPath { opts, accept: &accept, cur, points, total };
+    let stalled = |eta: f64, step: f64, cause: String| BvpError::ContinuationStalled { eta, step, min_step: copts.min_step, cause };
+    match numerics::continuation::natural(&mut path, eta_from, eta_to, &mut control, &[]) {
+        Ok(_) => {}
+        Err(ContinuationError::Aborted(e)) => return Err(e),
+        Err(ContinuationError::Stalled { eta, step, cause, .. }) => return Err(stalled(eta.0, step.0, cause.unwrap_or_default())),
+        Err(ContinuationError::StepLimit { eta, step, .. }) => {
+            return Err(stalled(eta.0, step.0, format!("max_steps = {} reached before eta = {eta_to}", copts.max_steps)))
         }
-        let remaining = (eta_to - cur.eta).abs();
-        let target = if remaining <= step * (1.0 + 1e-12) { eta_to } else { cur.eta + dir * step };
+    }
+    let NaturalPath { cur, points, mut total, .. } = path;
+    finish_stats(&mut total, &cur, &points, start);
+    Ok(Branch { points, folds: vec![], termination: Termination::Reached, stats: total })
+}
+
+/// The step control of [`ContinuationOptions`]: the step grows by `growth` after a step
+/// of at most `fast_iterations` Newton iterations (up to `max_step`), halves after a
+/// failure; the end η is taken when within 1e-12 of a step.
+fn step_control(copts: &ContinuationOptions, limit: numerics::continuation::StepLimit) -> Result<StepControl, BvpError> {
+    use numerics::continuation::{Growth, StepOptions};
+    StepControl::new(StepOptions {
+        initial: copts.initial_step,
+        min: copts.min_step,
+        max: copts.max_step,
+        shrink: 0.5,
+        limit,
+        growth: Growth::Quick { fast: copts.fast_iterations, factor: copts.growth },
+        snap: 1e-12,
+    })
+    .map_err(|e| BvpError::InvalidInput(e.to_string()))
+}
+
+/// Natural continuation on collocation meshes as a [`Homotopy`]: the accepted point
+/// (`cur`, its adapted mesh), the branch so far and the work counters.
+struct NaturalPath<'a, 'p, P: Problem, A> {
+    opts: &'a CollocationOptions,
+    accept: &'a A,
+    cur: Adapted<'p, P>,
+    points: Vec<BranchPoint>,
+    total: Stats,
+}
+
+impl<'p, P: Problem, A: Fn(&Solution) -> Result<(), String>> Homotopy for NaturalPath<'_, 'p, P, A> {
+    /// The cause of a rejected step, in words.
+    type Failure = String;
+    type Error = BvpError;
+
+    /// Predictor: secant extrapolation through the last two points (the previous
+    /// solution sampled on the current mesh; the current solution for the first step);
+    /// corrector: the adaptive collocation solve at the new η, then the acceptance test.
+    fn advance(&mut self, eta: f64, target: f64) -> Result<Step<String>, BvpError> {
+        let cur = &self.cur;
         let mut z0 = cur.z.clone();
-        if points.len() >= 2 {
-            let prev = &points[points.len() - 2].solution;
+        if self.points.len() >= 2 {
+            let prev = &self.points[self.points.len() - 2].solution;
             let zp = cur.disc.sample(prev)?;
             let ratio = (target - cur.eta) / (cur.eta - prev.eta);
             for (zi, (&zc, &zq)) in z0.iter_mut().zip(cur.z.iter().zip(&zp)) {
@@ -539,51 +580,25 @@ pub fn natural_checked<P: Problem>(
         let baseline = cur.disc.rhs_evals.get();
         let t0 = Instant::now();
         let mut st = Stats::default();
-        match adapt(disc, z0, target, &mut FixedEta::new(opts), opts, &mut st) {
+        match adapt(disc, z0, target, &mut FixedEta::new(self.opts), self.opts, &mut st) {
             Ok(a) => {
-                total.add_iterations(&st);
-                let quick = st.newton_iterations <= copts.fast_iterations;
+                self.total.add_iterations(&st);
+                let iterations = st.newton_iterations;
                 let sol = a.solution(st, t0, baseline);
-                if let Err(reason) = accept(&sol) {
-                    step /= 2.0;
-                    if step < copts.min_step {
-                        return Err(BvpError::ContinuationStalled {
-                            eta: cur.eta,
-                            step,
-                            min_step: copts.min_step,
-                            cause: format!("step to eta = {target:.6e} rejected: {reason}"),
-                        });
-                    }
-                    continue;
+                if let Err(reason) = (self.accept)(&sol) {
+                    return Ok(Step::Rejected(format!("step to eta = {target:.6e} rejected: {reason}")));
                 }
-                points.push(BranchPoint {
-                    solution: sol,
-                    eta: target,
-                    step: (target - cur.eta).abs(),
-                    tangent_eta: None,
-                });
-                cur = a;
-                if quick {
-                    step = (step * copts.growth).min(copts.max_step);
-                }
+                self.points.push(BranchPoint { solution: sol, eta: target, step: (target - eta).abs(), tangent_eta: None });
+                self.cur = a;
+                Ok(Step::Accepted { iterations })
             }
             Err(e) if retryable(&e) => {
-                total.add_iterations(&st);
-                step /= 2.0;
-                if step < copts.min_step {
-                    return Err(BvpError::ContinuationStalled {
-                        eta: cur.eta,
-                        step,
-                        min_step: copts.min_step,
-                        cause: e.to_string(),
-                    });
-                }
+                self.total.add_iterations(&st);
+                Ok(Step::Rejected(e.to_string()))
             }
-            Err(e) => return Err(e),
+            Err(e) => Err(e),
         }
     }
-    finish_stats(&mut total, &cur, &points, start);
-    Ok(Branch { points, folds: vec![], termination: Termination::Reached, stats: total })
 }
 
 /// Pseudo-arclength continuation from the solution near `guess` (at `guess.eta`),
