@@ -30,19 +30,7 @@ fn main() {
         let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None };
         let sp = SteadyParams { mu: 0.3, penalty, kappa: 1e6, radius: r, omega1: 10.0, torque: 2.0, damping: 0.0, inertia: Some(0.12) };
         let prob = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
-        let mut x: Vec<f64> = vec![0.0; asm.len()];
-        for k in 0..asm.mesh().len() {
-            let nd = asm.dofs().node(k);
-            let f = start.one_sided_fields(asm.mesh().node_sigmas()[k], false);
-            if let Some(i) = nd.s {
-                x[i] = f.s;
-            }
-            x[nd.nu] = f.nu;
-            x[nd.slopes_in.0] = f.ds;
-            x[nd.slopes_out.0] = f.ds;
-            x[nd.slopes_in.1] = f.dnu;
-            x[nd.slopes_out.1] = f.dnu;
-        }
+        let mut x = fem::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 10.0]);
         x.extend(std::iter::repeat_n(0.0, points.len()));
         let (rows, cols) = prob.pattern();

@@ -30,6 +30,12 @@ pub struct Stamp {
     pub indentation: f64,
 }
 
+impl Stamp {
+    /// The parameters of Fig. 5a of the reference (§6.3; docs/rod-stamp.md): ℓ = 1 m,
+    /// EI = 1 N·m², F = 100 N, ρ = 1 m, δ = 0.2 m.
+    pub const FIG_5A: Stamp = Stamp { half_span: 1.0, bending_stiffness: 1.0, axial_force: 100.0, stamp_radius: 1.0, indentation: 0.2 };
+}
+
 /// Why the stamp problem has no (contact-zone) solution.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum StampError {
@@ -562,13 +568,7 @@ mod tests {
     use super::*;
 
     fn data() -> Stamp {
-        Stamp {
-            half_span: 1.0,
-            bending_stiffness: 1.0,
-            axial_force: 100.0,
-            stamp_radius: 1.0,
-            indentation: 0.2,
-        }
+        Stamp::FIG_5A
     }
 
     /// The closed form satisfies its own edge conditions and end conditions, and is C²

@@ -546,7 +546,7 @@ fn keep_contact_nodes(asm: &Assembler, z: &[f64], trial: &mut [f64], params: &Te
 /// The global unknowns on `asm`'s mesh interpolated from a solution on another mesh of
 /// the same contour (one-sided slopes at region transitions) — the static homotopy's
 /// refits and the drives' start.
-pub(crate) fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
+pub fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
     let mesh = asm.mesh();
     let dofs = asm.dofs();
     let mut z = vec![0.0; asm.len()];

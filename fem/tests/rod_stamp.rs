@@ -9,13 +9,7 @@
 use fem::stamp::{closed_form, solve_fe, Stamp, StampFeOptions};
 
 fn data() -> Stamp {
-    Stamp {
-        half_span: 1.0,
-        bending_stiffness: 1.0,
-        axial_force: 100.0,
-        stamp_radius: 1.0,
-        indentation: 0.2,
-    }
+    Stamp::FIG_5A
 }
 
 fn edge_error(n: usize, penalty: f64) -> (f64, fem::stamp::StampFe) {

@@ -27,6 +27,19 @@ fn creep_scene() -> Scene {
     Scene::from_path(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The creep scene with transport inertia, M₂ = 0.5 N·m and ω₁ = 0.9 ω_c, and ω_c: the
+/// critical speed √(EA(λ₀ − 1)λ₀/ρ)/R of the tight loop (docs/string-drive.md).
+fn near_critical_scene() -> (Scene, f64) {
+    let mut scene = creep_scene();
+    scene.effects.inertia = Some(true);
+    scene.drive.driven_torque = 0.5;
+    let (r, ea, rho) = (scene.drive.pulley_radius, scene.belt.axial_stiffness, scene.belt.mass_per_length);
+    let lambda0 = (2.0 * scene.drive.centre_distance + 2.0 * std::f64::consts::PI * r) / scene.belt.length;
+    let omega_c = (ea * (lambda0 - 1.0) * lambda0 / rho).sqrt() / r;
+    scene.drive.driver_speed = 0.9 * omega_c;
+    (scene, omega_c)
+}
+
 fn run(scene: &Scene, elements: usize, penalty: Option<f64>, ds: &DriveSettings) -> Result<FemRun, FemError> {
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
@@ -442,13 +455,8 @@ fn creep_with_inertia(scene: &Scene, mu: f64) -> (f64, f64, f64, f64, f64, f64) 
 /// closed-form creep state. At 101 % of ω_c the FE returns SpeedAtOrAboveCritical.
 #[test]
 fn speed_close_to_critical() {
-    let mut scene = creep_scene();
-    scene.effects.inertia = Some(true);
-    scene.drive.driven_torque = 0.5;
-    let (r, ea, rho) = (scene.drive.pulley_radius, scene.belt.axial_stiffness, scene.belt.mass_per_length);
-    let lambda0 = (2.0 * scene.drive.centre_distance + 2.0 * std::f64::consts::PI * r) / scene.belt.length;
-    let omega_c = (ea * (lambda0 - 1.0) * lambda0 / rho).sqrt() / r;
-    scene.drive.driver_speed = 0.9 * omega_c;
+    let (mut scene, omega_c) = near_critical_scene();
+    let (ea, rho) = (scene.belt.axial_stiffness, scene.belt.mass_per_length);
     let (nt, ns, et, es, phi, w2) = creep_with_inertia(&scene, 0.3);
     let ds = DriveSettings::from_scene(&scene);
     let run_ = run(&scene, 64, None, &ds).unwrap_or_else(|e| panic!("0.9 ω_c = {}: {e}", scene.drive.driver_speed));
@@ -589,13 +597,7 @@ fn direct_steady_solve_hard_cases() {
         assert!((s.driven.as_ref().unwrap().torque.unwrap() - torque).abs() < 1e-8 * torque);
         assert!((s.driver.as_ref().unwrap().torque.unwrap() + torque).abs() < 1e-6 * torque);
     }
-    let mut scene = creep_scene();
-    scene.effects.inertia = Some(true);
-    scene.drive.driven_torque = 0.5;
-    let (r, ea, rho) = (scene.drive.pulley_radius, scene.belt.axial_stiffness, scene.belt.mass_per_length);
-    let lambda0 = (2.0 * scene.drive.centre_distance + 2.0 * std::f64::consts::PI * r) / scene.belt.length;
-    let omega_c = (ea * (lambda0 - 1.0) * lambda0 / rho).sqrt() / r;
-    scene.drive.driver_speed = 0.9 * omega_c;
+    let (mut scene, omega_c) = near_critical_scene();
     let (nt, ns, _, _, phi, w2) = creep_with_inertia(&scene, 0.3);
     let run_ = steady(&scene, 128).unwrap_or_else(|e| panic!("0.9 ω_c: {e}"));
     let s = &run_.summary;

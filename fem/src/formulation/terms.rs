@@ -19,7 +19,7 @@
 //! | [`Gravity`] | gravity potential (F9) | ρg y ∂σS |
 //! | [`PenaltyContact`] | normal penalty contact (F10) | ½ P ⟨−γ⟩² |
 //! | [`Bending`] | Kirchhoff bending (K7) | ½ EI θ_σ² / ∂σS |
-//! | [`TransportInertia`] | −T of the steady drive (D8), belt speed c an unknown | −ρc² \|∂σr\|² / (2 ∂σS) |
+//! | [`TransportInertia`] | −T of the steady drive (D8), belt speed c an unknown (integrates itself) | −ρc² \|∂σr\|² / (2 ∂σS) |
 //!
 //! A term may carry state from one converged step to the next ([`HistoryTerm`], held
 //! per integration point by [`TermHistory`]): the hook the shell's elastic interlayer
@@ -40,8 +40,7 @@ pub trait EnergyTerm<D: Scalar> {
 
     /// The term's share of the element energy at that point, J, for the rule weight `wt`
     /// and the element Jacobian `jac` = dσ/dξ: `density × (wt · jac)`. A term whose
-    /// density carries a constant factor may fold the weight into it (the transport
-    /// inertia does, to keep its arithmetic).
+    /// density carries a constant factor may fold the weight into it.
     #[inline]
     fn point_energy(&self, el: &ElementContext, p: &PointFields<D>, point: usize, wt: f64, jac: f64) -> D {
         self.density(el, p, point) * (wt * jac)
@@ -131,34 +130,31 @@ impl<D: Scalar> PointDensity<D> for Bending {
     }
 }
 
-/// Transport inertia of the direct steady state, −T of (D8) with the belt speed c an
-/// unknown: −ρc² |∂σr|² / (2 ∂σS) (docs/fem-drive.md §12).
-#[derive(Debug, Clone, Copy)]
-pub struct TransportInertia<D> {
+/// Transport inertia of the direct steady state, −T of (D8): −ρc² |∂σr|² / (2 ∂σS) per
+/// unit σ with the belt speed c (docs/fem-drive.md §12). c is an unknown of the steady
+/// problem beside the element's, not a point value, so this unit integrates itself
+/// ([`Self::element_energy`]) instead of being an [`EnergyTerm`] over point values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TransportInertia {
     /// Integration rule (the formulation's strain rule).
     pub rule: Rule,
     /// ρ, kg/m.
     pub rho: f64,
-    /// The belt speed c, m/s (an unknown of the steady problem, hence of type `D`).
-    pub speed: D,
 }
 
-impl<D: Scalar> EnergyTerm<D> for TransportInertia<D> {
-    fn rule(&self) -> Rule {
-        self.rule
-    }
-
+impl TransportInertia {
+    /// −T of one element, J, for its unknowns `q` and the belt speed `c` (generic, so
+    /// that AD differentiates it in both): −Σ_points ρc²|∂σr|²/(2∂σS) · w · dσ/dξ.
     #[inline]
-    fn density(&self, el: &ElementContext, p: &PointFields<D>, point: usize) -> D {
-        self.point_energy(el, p, point, 1.0, 1.0)
-    }
-
-    /// The constant ½ρ and the weight in one factor.
-    #[inline]
-    fn point_energy(&self, el: &ElementContext, p: &PointFields<D>, _point: usize, wt: f64, jac: f64) -> D {
-        let t = el.tangent_length(p);
-        let c = self.speed;
-        -(t * t / p.ds * c * c * (0.5 * self.rho * wt * jac))
+    pub fn element_energy<D: Scalar>(&self, el: &ElementContext, q: &[D; NDOF], c: D) -> D {
+        let jac = el.jacobian();
+        let mut total = c * 0.0;
+        for &(xi, wt) in self.rule.points() {
+            let p = el.fields(q, xi);
+            let t = el.tangent_length(&p);
+            total -= t * t / p.ds * c * c * (0.5 * self.rho * wt * jac);
+        }
+        total
     }
 }
 

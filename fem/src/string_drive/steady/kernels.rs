@@ -1,7 +1,7 @@
 //! Element kernels of the direct steady solve: the gap and stretch of an element at a point, the transport-inertia energy (AD over point values).
 
 use super::*;
-use crate::formulation::terms::{EnergySum, TermVisitor, TransportInertia};
+use crate::formulation::terms::TransportInertia;
 
 /// The gap γ at a point of an element and its gradient in the element's q; `None`
 /// where no pulley can be reached (F10).
@@ -40,9 +40,7 @@ pub(super) fn element_stretch(el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f6
 }
 
 /// −T of (D8) for one element with c an unknown: the [`TransportInertia`] term unit
-/// integrated with the strain rule, −∫ ρc²|∂σr|²/(2∂σS) dσ.
+/// with the strain rule, −∫ ρc²|∂σr|²/(2∂σS) dσ.
 pub(super) fn inertia_energy<D: Scalar>(el: &ElementContext, q: &[D; NDOF], c: D, rho: f64, rule: Rule) -> D {
-    let mut sum = EnergySum::new(el, q);
-    sum.visit(&TransportInertia { rule, rho, speed: c });
-    sum.total
+    TransportInertia { rule, rho }.element_energy(el, q, c)
 }
