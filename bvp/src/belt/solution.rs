@@ -99,7 +99,8 @@ pub fn on_branch<L: SectionLaw>(problem: &BeltProblem<L>, s: &Solution, force_sc
     }
 }
 
-/// The unscaled start of a run and what a failed stage means.
+/// What a belt run starts from: the data, the scaled problem on its topology, the scales,
+/// the pulleys, the homotopy start and what the solution keeps of it.
 pub struct Run<'a, L: SectionLaw> {
     /// The physical data.
     pub data: L::Data,
