@@ -538,18 +538,7 @@ mod tests {
         let (conditions, slope) = tight_defects(&pb, tension, stretch, 0.18);
         assert!(conditions < 1e-13 && slope < 1e-13, "string: conditions {conditions:e}, y′ − f {slope:e}");
 
-        let drive = ScaledStringDrive {
-            radius: 0.18,
-            axial_stiffness: 50.0,
-            weight: 0.7,
-            inertia: true,
-            friction: 0.6,
-            driver_speed: 0.9,
-            torque: 0.2,
-            damping: 0.05,
-            length_start: 3.0,
-            length: 3.2,
-        };
+        let drive = ScaledStringDrive::fixture(true, 0.7);
         let tension = drive.tight_tension();
         let stretch = 1.0 + tension / drive.axial_stiffness;
         let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive);
