@@ -11,6 +11,16 @@ fn fd_step(u: f64) -> f64 {
     f64::EPSILON.cbrt() * u.abs().max(1.0)
 }
 
+/// `values` as dual numbers, the entry at `seed` (if any) with derivative part 1: the
+/// input of one forward-mode AD pass for the column of that entry.
+fn seeded(values: &[f64], seed: Option<usize>) -> Vec<Dual64> {
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| if Some(i) == seed { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
+        .collect()
+}
+
 /// Value and derivatives of f_k at (x, y, p, η).
 ///
 /// Returns `(f, dfdy, dfdp, dfdeta)`: `f` has n_k entries, `dfdy` is n_k × n_k,
@@ -34,16 +44,8 @@ pub fn rhs_jacobian<P: Problem>(
     // Column j of the full derivative [∂f/∂y | ∂f/∂p | ∂f/∂η].
     let column = |j: usize, out: &mut [f64]| match mode {
         JacobianMode::Ad => {
-            let yd: Vec<Dual64> = y
-                .iter()
-                .enumerate()
-                .map(|(i, &v)| if i == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
-                .collect();
-            let pd: Vec<Dual64> = p
-                .iter()
-                .enumerate()
-                .map(|(i, &v)| if i + n == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
-                .collect();
+            let yd = seeded(y, Some(j));
+            let pd = seeded(p, j.checked_sub(n));
             let ed = if j == n + np { Dual64::from_re(eta).derivative() } else { Dual64::from_re(eta) };
             let mut fd = vec![Dual64::from_re(0.0); n];
             problem.rhs(k, x, &yd, &pd, ed, &mut fd);
@@ -52,31 +54,30 @@ pub fn rhs_jacobian<P: Problem>(
             }
         }
         JacobianMode::FiniteDifference => {
-            let mut yv = y.to_vec();
-            let mut pv = p.to_vec();
-            let mut ev = eta;
-            let slot: &mut f64 = if j < n {
-                &mut yv[j]
-            } else if j < n + np {
-                &mut pv[j - n]
-            } else {
-                &mut ev
+            // f with argument j of (y, p, η) set to `value`.
+            let f_with = |value: f64| -> Vec<f64> {
+                let (mut yv, mut pv, mut ev) = (y.to_vec(), p.to_vec(), eta);
+                let slot: &mut f64 = if j < n {
+                    &mut yv[j]
+                } else if j < n + np {
+                    &mut pv[j - n]
+                } else {
+                    &mut ev
+                };
+                *slot = value;
+                let mut fv = vec![0.0; n];
+                problem.rhs(k, x, &yv, &pv, ev, &mut fv);
+                fv
             };
-            let u0 = *slot;
+            let u0 = if j < n {
+                y[j]
+            } else if j < n + np {
+                p[j - n]
+            } else {
+                eta
+            };
             let h = fd_step(u0);
-            *slot = u0 + h;
-            let mut fp = vec![0.0; n];
-            problem.rhs(k, x, &yv, &pv, ev, &mut fp);
-            let slot: &mut f64 = if j < n {
-                &mut yv[j]
-            } else if j < n + np {
-                &mut pv[j - n]
-            } else {
-                &mut ev
-            };
-            *slot = u0 - h;
-            let mut fm = vec![0.0; n];
-            problem.rhs(k, x, &yv, &pv, ev, &mut fm);
+            let (fp, fm) = (f_with(u0 + h), f_with(u0 - h));
             for i in 0..n {
                 out[i] = (fp[i] - fm[i]) / (2.0 * h);
             }
@@ -143,11 +144,7 @@ pub fn bc_jacobian<P: Problem>(
     for j in 0..nu {
         match mode {
             JacobianMode::Ad => {
-                let ud: Vec<Dual64> = u
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &v)| if i == j { Dual64::from_re(v).derivative() } else { Dual64::from_re(v) })
-                    .collect();
+                let ud = seeded(&u, Some(j));
                 let mut gd = vec![Dual64::from_re(0.0); nbc];
                 eval_at(problem, &dims, &ud, ny, &mut gd);
                 for i in 0..nbc {

@@ -566,13 +566,7 @@ fn residual<P: Problem>(
             }
         }
     }
-    let ya: Vec<&[f64]> = (0..layout.dims.len())
-        .map(|k| &u[layout.node(k, 0)])
-        .collect();
-    let yb: Vec<&[f64]> = flows
-        .iter()
-        .map(|seg| seg[layout.m - 1].end.as_slice())
-        .collect();
+    let (ya, yb) = segment_ends(layout, u, flows);
     let p = &u[layout.p_offset..];
     problem.bc(&ya, &yb, p, eta, &mut f[layout.bc_offset..]);
     for r in &f[layout.bc_offset..] {
@@ -582,6 +576,14 @@ fn residual<P: Problem>(
         defect = f64::NAN;
     }
     (f, defect)
+}
+
+/// The segment ends (y_k(0), y_k(1)) of a sweep: the start nodes among the unknowns, the
+/// ends of the last shooting intervals' flows.
+fn segment_ends<'a>(layout: &Layout, u: &'a [f64], flows: &'a Sweep) -> (Vec<&'a [f64]>, Vec<&'a [f64]>) {
+    let ya = (0..layout.dims.len()).map(|k| &u[layout.node(k, 0)]).collect();
+    let yb = flows.iter().map(|seg| seg[layout.m - 1].end.as_slice()).collect();
+    (ya, yb)
 }
 
 /// Dense Jacobian ∂F/∂u (N × N) from a sweep with sensitivities.
@@ -617,13 +619,7 @@ fn jacobian<P: Problem>(
         }
     }
     // Boundary rows: ∂g/∂ya_k, ∂g/∂yb_k · Φ_{k,M−1}, ∂g/∂p + Σ_k ∂g/∂yb_k · Ψ_{k,M−1}.
-    let ya: Vec<&[f64]> = (0..layout.dims.len())
-        .map(|k| &u[layout.node(k, 0)])
-        .collect();
-    let yb: Vec<&[f64]> = flows
-        .iter()
-        .map(|seg| seg[layout.m - 1].end.as_slice())
-        .collect();
+    let (ya, yb) = segment_ends(layout, u, flows);
     let p = &u[layout.p_offset..];
     let (_g, dg) = bc_jacobian(problem, mode, &ya, &yb, p, eta);
     let nbc = nn - layout.bc_offset;
@@ -751,16 +747,10 @@ pub fn solve<P: Problem>(
     let rhs_count = Cell::new(0);
     let mut counters = Counters::default();
 
-    let mut flows = sweep(
-        problem,
-        &layout,
-        &u,
-        eta,
-        opts,
-        true,
-        &rhs_count,
-        &mut counters,
-    )?;
+    // One integration of every shooting interval at unknowns `u`, with the
+    // sensitivities when `sens`.
+    let sweep_at = |u: &[f64], sens: bool, counters: &mut Counters| sweep(problem, &layout, u, eta, opts, sens, &rhs_count, counters);
+    let mut flows = sweep_at(&u, true, &mut counters)?;
     let (mut f, mut defect) = residual(problem, &layout, &u, eta, &flows);
     if !defect.is_finite() {
         return Err(BvpError::NonFinite {
@@ -778,16 +768,7 @@ pub fn solve<P: Problem>(
             });
         }
         if !have_sens {
-            flows = sweep(
-                problem,
-                &layout,
-                &u,
-                eta,
-                opts,
-                true,
-                &rhs_count,
-                &mut counters,
-            )?;
+            flows = sweep_at(&u, true, &mut counters)?;
         }
         let jac = jacobian(problem, &layout, &u, eta, &flows, opts.jacobian);
         counters.jacobians += 1;
@@ -819,16 +800,7 @@ pub fn solve<P: Problem>(
         let mut last_failure: Option<BvpError>;
         let accepted = loop {
             let trial: Vec<f64> = u.iter().zip(&delta).map(|(a, d)| a + lambda * d).collect();
-            match sweep(
-                problem,
-                &layout,
-                &trial,
-                eta,
-                opts,
-                false,
-                &rhs_count,
-                &mut counters,
-            ) {
+            match sweep_at(&trial, false, &mut counters) {
                 Ok(trial_flows) => {
                     last_failure = None;
                     let (ft, dt) = residual(problem, &layout, &trial, eta, &trial_flows);

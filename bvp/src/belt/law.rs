@@ -138,13 +138,13 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         None
     }
 
-    /// 1. State component names of a span.
+    /// (1) State component names of a span.
     const SPAN_STATES: &'static [&'static str];
-    /// 1. State component names of an arc (of every kind, unless
+    /// (1) State component names of an arc (of every kind, unless
     /// [`SectionLaw::state_names`] says otherwise).
     const ARC_STATES: &'static [&'static str];
 
-    /// 1. State component names of a segment of `kind` (its dimension is their number);
+    /// (1) State component names of a segment of `kind` (its dimension is their number);
     /// a law whose stick and slip states differ (the Cosserat rod: λ is a state in slip
     /// only) overrides this.
     fn state_names(&self, kind: SegmentKind) -> &'static [&'static str] {
@@ -154,18 +154,18 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         }
     }
 
-    /// 1. Names of the law's own parameters, after the topology's (λ₁, λ₂ of the
+    /// (1) Names of the law's own parameters, after the topology's (λ₁, λ₂ of the
     /// Cosserat drive); none by default.
     fn extra_params(&self) -> &'static [&'static str] {
         &[]
     }
 
-    /// 2. Right-hand side of a span, times its span parameter `span` (the segment runs on
+    /// (2) Right-hand side of a span, times its span parameter `span` (the segment runs on
     /// ξ ∈ [0, 1]).
     #[allow(clippy::too_many_arguments)]
     fn span_rhs<D: Scalar>(&self, topology: &Topology, span: D, y: &[D], p: &[D], eta: D, f: &mut [D]);
 
-    /// 2. Right-hand side of an arc of `kind` on `pulley` at polar angle `phi`, times the
+    /// (2) Right-hand side of an arc of `kind` on `pulley` at polar angle `phi`, times the
     /// arc's angle Δφ = `dphi` (the segment runs on ξ ∈ [0, 1], φ = φ_a + Δφ ξ).
     #[allow(clippy::too_many_arguments)]
     fn arc_rhs<D: Scalar>(
@@ -181,7 +181,7 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         f: &mut [D],
     );
 
-    /// 3. The split of a span at x = 0: by default x (component 0) is 0 and every state
+    /// (3) The split of a span at x = 0: by default x (component 0) is 0 and every state
     /// is continuous.
     fn mid_span<D: Scalar>(&self, left_end: &[D], right_start: &[D], rows: &mut Rows<D>) {
         rows.push(left_end[0]);
@@ -190,7 +190,7 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         }
     }
 
-    /// 3. A span meets `pulley` at angle `phi` and continues on an arc of `kind`;
+    /// (3) A span meets `pulley` at angle `phi` and continues on an arc of `kind`;
     /// `jump` is the topology's closure jump where it applies (the driver's first contact
     /// of a frictionless loop), added to the axial force there; `p` the parameter vector
     /// (the Cosserat law's F̃ = (C2) at the stick stretch λ_i reads it).
@@ -208,7 +208,7 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         rows: &mut Rows<D>,
     );
 
-    /// 3. Two arcs on `pulley` (stick → slip), with the parameter vector `p` (a law
+    /// (3) Two arcs on `pulley` (stick → slip), with the parameter vector `p` (a law
     /// whose stick stretch λ_i is its own parameter writes λ = λ_i here): by default
     /// every state is continuous.
     fn arc_to_arc<D: Scalar>(&self, _pulley: Pulley, from_end: &[D], to_start: &[D], _p: &[D], rows: &mut Rows<D>) {
@@ -217,7 +217,7 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         }
     }
 
-    /// 3. The belt leaves `pulley` at angle `phi`; `closes_loop` where the last segment
+    /// (3) The belt leaves `pulley` at angle `phi`; `closes_loop` where the last segment
     /// closes the loop into segment 0 (material coordinate restarts, θ gains 2π).
     #[allow(clippy::too_many_arguments)]
     fn contact_end<D: Scalar>(
@@ -232,22 +232,22 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         rows: &mut Rows<D>,
     );
 
-    /// 3. The conditions of the whole loop, after the junctions: the total unstretched
+    /// (3) The conditions of the whole loop, after the junctions: the total unstretched
     /// length, and for a drive the stick-zone kinematics and the driven pulley's torque
     /// balance.
     fn loop_conditions<D: Scalar>(&self, topology: &Topology, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, rows: &mut Rows<D>);
 
-    /// 4. The point output of segment `k` at state `y` (scaled), polar angle `phi` on an
+    /// (4) The point output of segment `k` at state `y` (scaled), polar angle `phi` on an
     /// arc, parameters `p` (scaled).
     #[allow(clippy::too_many_arguments)]
     fn point(&self, data: &Self::Data, scales: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], p: &[f64]) -> BeltPoint;
 
-    /// 5. The law's first integral at a point (N), where it has one (frictionless loop).
+    /// (5) The law's first integral at a point (N), where it has one (frictionless loop).
     fn first_integral(_data: &Self::Data, _point: &BeltPoint) -> Option<f64> {
         None
     }
 
-    /// 5. The balance self-check of a converged solution ([`super::balance`]).
+    /// (5) The balance self-check of a converged solution ([`super::balance`]).
     fn check_balance(solution: &BeltSolution<Self>) -> Result<(), BeltError>;
 
     /// The topology's acceptance window: (contact-angle window, arc slack), rad, for

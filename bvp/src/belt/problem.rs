@@ -64,17 +64,17 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
         let topo = &self.topology;
         let m = topo.len();
         let mut rows = Rows::new(r);
-        for next in 0..m {
+        for (next, &start) in ya.iter().enumerate() {
             let k = (next + m - 1) % m;
             match topo.junction(k) {
-                Junction::MidSpan => self.law.mid_span(yb[k], ya[next], &mut rows),
+                Junction::MidSpan => self.law.mid_span(yb[k], start, &mut rows),
                 Junction::ContactStart { pulley, angle } => {
                     let jump = topo.closure_jump().filter(|_| pulley == Pulley::Driver).map(|i| p[i]);
-                    self.law.contact_start(self.arc_kind(next), pulley, p[angle], yb[k], ya[next], jump, p, eta, &mut rows);
+                    self.law.contact_start(self.arc_kind(next), pulley, p[angle], yb[k], start, jump, p, eta, &mut rows);
                 }
-                Junction::ArcToArc { pulley, .. } => self.law.arc_to_arc(pulley, yb[k], ya[next], p, &mut rows),
+                Junction::ArcToArc { pulley, .. } => self.law.arc_to_arc(pulley, yb[k], start, p, &mut rows),
                 Junction::ContactEnd { pulley, angle, closes_loop } => {
-                    self.law.contact_end(pulley, p[angle], yb[k], ya[next], closes_loop, p, eta, &mut rows);
+                    self.law.contact_end(pulley, p[angle], yb[k], start, closes_loop, p, eta, &mut rows);
                 }
             }
         }

@@ -99,7 +99,8 @@ pub fn on_branch<L: SectionLaw>(problem: &BeltProblem<L>, s: &Solution, force_sc
     }
 }
 
-/// The unscaled start of a run and what a failed stage means.
+/// What a belt run starts from: the data, the scaled problem on its topology, the scales,
+/// the pulleys, the homotopy start and what the solution keeps of it.
 pub struct Run<'a, L: SectionLaw> {
     /// The physical data.
     pub data: L::Data,
@@ -493,4 +494,55 @@ pub fn tight_guess<L: TightLoop>(problem: &BeltProblem<L>, tension: f64, stretch
             }
         }
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use std::f64::consts::PI;
+
+    use super::*;
+    use crate::belt::topology::ContactModel;
+    use crate::problem::Problem;
+    use crate::string_drive::ScaledStringDrive;
+    use crate::string_hanging::ScaledStringHanging;
+
+    /// The largest |condition| and |y′ − f| (at ξ = ½ of every segment) of the tight
+    /// loop of `problem` at η = 0.
+    fn tight_defects<L: TightLoop>(problem: &BeltProblem<L>, tension: f64, stretch: f64, radius: f64) -> (f64, f64) {
+        let g = tight_guess(problem, tension, stretch, radius, 5);
+        let ya: Vec<&[f64]> = g.segments.iter().map(|s| s.start()).collect();
+        let yb: Vec<&[f64]> = g.segments.iter().map(|s| s.end()).collect();
+        let mut r = vec![0.0; problem.n_bc()];
+        problem.bc(&ya, &yb, &g.params, 0.0, &mut r);
+        let conditions = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut slope_gap = 0.0f64;
+        for (k, seg) in g.segments.iter().enumerate() {
+            let mut f = vec![0.0; problem.dim(k)];
+            problem.rhs(k, 0.5, &seg.eval(0.5), &g.params, 0.0, &mut f);
+            let slope = seg.eval_derivative(0.5);
+            slope_gap = f.iter().zip(&slope).fold(slope_gap, |m, (a, b)| m.max((a - b).abs()));
+        }
+        (conditions, slope_gap)
+    }
+
+    /// The tight loop is the exact solution at η = 0 of the string (frictionless arcs)
+    /// and of the drive at rest (stick arcs, slip arcs of zero length, no torque): every
+    /// condition and the ODE residual of every segment vanish to round-off (1e-13 on
+    /// O(1) scaled values).
+    #[test]
+    fn tight_loop_solves_the_start() {
+        let string = ScaledStringHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length_start: 3.0, length: 3.2 };
+        let stretch = (2.0 + 2.0 * PI * string.radius) / string.length_start;
+        let tension = string.axial_stiffness * (stretch - 1.0);
+        let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), string);
+        let (conditions, slope) = tight_defects(&pb, tension, stretch, 0.18);
+        assert!(conditions < 1e-13 && slope < 1e-13, "string: conditions {conditions:e}, y′ − f {slope:e}");
+
+        let drive = ScaledStringDrive::fixture(true, 0.7);
+        let tension = drive.tight_tension();
+        let stretch = 1.0 + tension / drive.axial_stiffness;
+        let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive);
+        let (conditions, slope) = tight_defects(&pb, tension, stretch, 0.18);
+        assert!(conditions < 1e-13 && slope < 1e-13, "drive: conditions {conditions:e}, y′ − f {slope:e}");
+    }
 }

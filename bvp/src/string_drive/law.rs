@@ -244,6 +244,26 @@ impl TightLoop for ScaledStringDrive {
 }
 
 #[cfg(test)]
+impl ScaledStringDrive {
+    /// A scaled drive with O(1) generic data for unit tests (R/H = 0.18, EA/F = 50,
+    /// μ = 0.6, L/H = 3.2 from L₀/H = 3), with `inertia` and scaled weight `weight`.
+    pub(crate) fn fixture(inertia: bool, weight: f64) -> Self {
+        Self {
+            radius: 0.18,
+            axial_stiffness: 50.0,
+            weight,
+            inertia,
+            friction: 0.6,
+            driver_speed: 0.9,
+            torque: 0.2,
+            damping: 0.05,
+            length_start: 3.0,
+            length: 3.2,
+        }
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::belt::problem::BeltProblem;
@@ -257,19 +277,7 @@ mod tests {
     #[test]
     fn ad_jacobians_match_finite_differences() {
         for (inertia, weight) in [(false, 0.7), (true, 0.7), (true, 0.0)] {
-            let law = ScaledStringDrive {
-                radius: 0.18,
-                axial_stiffness: 50.0,
-                weight,
-                inertia,
-                friction: 0.6,
-                driver_speed: 0.9,
-                torque: 0.2,
-                damping: 0.05,
-                length_start: 3.0,
-                length: 3.2,
-            };
-            let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), law);
+            let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), ScaledStringDrive::fixture(inertia, weight));
             assert_eq!(pb.n_bc(), 44);
             let p = [0.4, 0.6, 0.5, 0.45, 1.7, 0.3, -1.4, -1.8, -3.9, -4.6, 0.3, 0.8];
             for eta in [0.2, 0.4, 0.6, 0.9] {

@@ -205,27 +205,4 @@ mod tests {
             assert!(worst <= 1e-6, "η = {eta}: AD vs central differences: {worst:e}");
         }
     }
-
-    /// The tight loop is the exact solution at η = 0: every condition and the
-    /// collocation residual of every segment vanish to round-off.
-    #[test]
-    fn tight_loop_solves_the_start() {
-        let pb = problem();
-        let stretch = (2.0 + 2.0 * std::f64::consts::PI * pb.law.radius) / pb.law.length_start;
-        let tension = pb.law.axial_stiffness * (stretch - 1.0);
-        let g = crate::belt::solution::tight_guess(&pb, tension, stretch, pb.law.radius, 5);
-        let ya: Vec<&[f64]> = g.segments.iter().map(|s| s.start()).collect();
-        let yb: Vec<&[f64]> = g.segments.iter().map(|s| s.end()).collect();
-        let mut r = vec![0.0; pb.n_bc()];
-        pb.bc(&ya, &yb, &g.params, 0.0, &mut r);
-        let worst = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        assert!(worst < 1e-13, "tight loop conditions {worst:e}");
-        for (k, seg) in g.segments.iter().enumerate() {
-            let mut f = vec![0.0; pb.dim(k)];
-            pb.rhs(k, 0.5, &seg.eval(0.5), &g.params, 0.0, &mut f);
-            let slope = seg.eval_derivative(0.5);
-            let gap = f.iter().zip(&slope).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(gap < 1e-13, "segment {k}: y' − f = {gap:e}");
-        }
-    }
 }
