@@ -13,6 +13,8 @@ use fem::kinematics::TermParams;
 use fem::linear::SparseLu;
 use fem::mesh::Mesh;
 use fem::string_drive::steady::{friction_points, newton, SteadyParams, SteadyProblem};
+use drive::scene::Theory;
+use fem::problem::{BeltSection, Geometry};
 use fem::{SolverSettings, StringHanging};
 
 fn main() {
@@ -20,7 +22,9 @@ fn main() {
     let kernel = fem::formulation::find(fem::default_formulation()).unwrap();
     let (r, ea) = (0.08, 2.0e4);
     let penalty = settings.penalty_factor * ea / (r * r);
-    let data = StringHanging { radius: r, centre_distance: 0.45, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, gravity: Some(9.81), penalty: Some(penalty), bending_stiffness: None };
+    let geometry = Geometry { radius: r, centre_distance: 0.45 };
+    let belt = BeltSection { theory: Theory::String, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, bending_stiffness: None };
+    let data = StringHanging { geometry, belt, gravity: Some(9.81), penalty: Some(penalty) };
     println!("{:>8} {:>9} {:>13} {:>14} {:>20} {:>16}", "elements", "unknowns", "assemble [ms]", "full LU [ms]", "Newton iteration [ms]", "per element [µs]");
     for n in [128, 256, 512, 1024, 2048] {
         let mesh = Mesh::new(data.contour().unwrap(), n, 1.0).unwrap();

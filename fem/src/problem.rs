@@ -158,16 +158,7 @@ impl FemProblem {
     /// The static frictionless problem of this belt at penalty `penalty` (the string's
     /// or the rod's, by the belt theory) — the static analysis and the drives' start.
     pub fn hanging(&self, penalty: f64) -> StringHanging {
-        StringHanging {
-            radius: self.geometry.radius,
-            centre_distance: self.geometry.centre_distance,
-            length: self.belt.length,
-            axial_stiffness: self.belt.axial_stiffness,
-            mass_per_length: self.belt.mass_per_length,
-            gravity: self.effects.gravity,
-            penalty: Some(penalty),
-            bending_stiffness: self.belt.bending_stiffness,
-        }
+        StringHanging { geometry: self.geometry, belt: self.belt, gravity: self.effects.gravity, penalty: Some(penalty) }
     }
 
     /// The static problem with the penalty resolved.

@@ -19,27 +19,21 @@ use crate::linear::SparseLu;
 use crate::mesh::Mesh;
 use crate::newton::{self, NewtonFailure, NewtonSettings, Scales};
 use crate::options::SolverSettings;
+use crate::problem::{BeltSection, Geometry};
 use crate::solution::FemSolution;
 
-/// Physical data of the problem (SI).
+/// The static frictionless problem of a string or Kirchhoff rod on two pulleys: the
+/// typed data of [`crate::FemProblem`] it needs (SI) with the penalty resolved.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct StringHanging {
-    /// R, m.
-    pub radius: f64,
-    /// H, m.
-    pub centre_distance: f64,
-    /// L, m.
-    pub length: f64,
-    /// EA, N.
-    pub axial_stiffness: f64,
-    /// ρ, kg/m.
-    pub mass_per_length: f64,
+    /// R and H.
+    pub geometry: Geometry,
+    /// L, EA, ρ and EI (`None`: a string; `Some`: a Kirchhoff rod, docs/fem-rod.md).
+    pub belt: BeltSection,
     /// g, m/s² (`None`: no gravity term at all).
     pub gravity: Option<f64>,
     /// P, N/m² (`None`: no contact term).
     pub penalty: Option<f64>,
-    /// EI, N·m² (`None`: a string; `Some`: a Kirchhoff rod, docs/fem-rod.md).
-    pub bending_stiffness: Option<f64>,
 }
 
 /// Work of a homotopy run.
@@ -130,13 +124,13 @@ impl StringHanging {
         settings.validate()?;
         let contour = *mesh.contour();
         let (l0, t_start) = self.start(&contour)?;
-        let f_ref = t_start.max(self.weight() * self.length);
-        let cap = settings.homotopy_penalty_factor * self.axial_stiffness / (contour.radius() * contour.radius());
+        let f_ref = t_start.max(self.weight() * self.belt.length);
+        let cap = settings.homotopy_penalty_factor * self.belt.axial_stiffness / (contour.radius() * contour.radius());
         let soft = StringHanging { penalty: self.penalty.map(|p| p.min(cap)), ..*self };
-        let (t0, delta) = tight_loop(&contour, l0, self.axial_stiffness, soft.penalty);
+        let (t0, delta) = tight_loop(&contour, l0, self.belt.axial_stiffness, soft.penalty);
         let assembler = Assembler::new(mesh, kernel);
         let scales = Scales::new(&assembler, contour.centre_distance(), f_ref);
-        let z = tight_state(&assembler, l0, t0, delta, self.axial_stiffness);
+        let z = tight_state(&assembler, l0, t0, delta, self.belt.axial_stiffness);
         let (params, length) = soft.at(eta.clamp(0.0, 1.0), l0);
         Ok(StartProblem { assembler, z, params, length, scales })
     }
@@ -146,12 +140,12 @@ impl StringHanging {
     /// # Errors
     /// [`FemError::Unsupported`] for invalid geometry (a validated scene never has it).
     pub fn contour(&self) -> Result<Contour, FemError> {
-        Contour::new(self.radius, self.centre_distance).map_err(|e| FemError::Unsupported(e.to_string()))
+        Contour::new(self.geometry.radius, self.geometry.centre_distance).map_err(|e| FemError::Unsupported(e.to_string()))
     }
 
     /// ρ g, N/m (0 without gravity).
     fn weight(&self) -> f64 {
-        self.gravity.map_or(0.0, |g| self.mass_per_length * g)
+        self.gravity.map_or(0.0, |g| self.belt.mass_per_length * g)
     }
 
     /// L₀ and the force scale F_ref (docs/fem-string.md §9).
@@ -160,27 +154,27 @@ impl StringHanging {
     /// [`FemError::IllPosed`] for a weightless loop with L ≥ L_geom.
     pub fn start(&self, contour: &Contour) -> Result<(f64, f64), FemError> {
         let lg = contour.length();
-        let ea = self.axial_stiffness;
-        let w = self.weight() * self.length;
-        let t_target = if self.length < lg { ea * (lg / self.length - 1.0) } else { 0.0 };
+        let ea = self.belt.axial_stiffness;
+        let w = self.weight() * self.belt.length;
+        let t_target = if self.belt.length < lg { ea * (lg / self.belt.length - 1.0) } else { 0.0 };
         let t0 = w.max(t_target);
         if t0.is_nan() || t0 <= 0.0 {
-            return Err(FemError::IllPosed { length: self.length, geometric_length: lg });
+            return Err(FemError::IllPosed { length: self.belt.length, geometric_length: lg });
         }
         // L₀ = L when the belt is stretched on at least as much as T₀ requires
-        let l0 = (lg / (1.0 + t0 / ea)).min(self.length);
+        let l0 = (lg / (1.0 + t0 / ea)).min(self.belt.length);
         Ok((l0, t0))
     }
 
     /// Term parameters and belt length at homotopy parameter η.
     fn at(&self, eta: f64, l0: f64) -> (TermParams, f64) {
         let g_scale = (2.0 * eta).min(1.0);
-        let l = l0 + (2.0 * eta - 1.0).max(0.0) * (self.length - l0);
+        let l = l0 + (2.0 * eta - 1.0).max(0.0) * (self.belt.length - l0);
         let params = TermParams {
-            axial_stiffness: self.axial_stiffness,
-            weight: self.gravity.map(|g| g_scale * g * self.mass_per_length),
+            axial_stiffness: self.belt.axial_stiffness,
+            weight: self.gravity.map(|g| g_scale * g * self.belt.mass_per_length),
             penalty: self.penalty,
-            bending_stiffness: self.bending_stiffness,
+            bending_stiffness: self.belt.bending_stiffness,
         };
         (params, l)
     }
@@ -200,13 +194,13 @@ impl StringHanging {
         settings.validate()?;
         let contour = *mesh.contour();
         let (l0, t_start) = self.start(&contour)?;
-        let f_ref = t_start.max(self.weight() * self.length);
+        let f_ref = t_start.max(self.weight() * self.belt.length);
         let newton_settings = NewtonSettings { tolerance: settings.update_tolerance, max_iterations: settings.max_step_iterations };
         // the homotopy runs with the penalty capped at κ_h EA/R² (Newton is cheaper with a
         // softer contact); the penalty is then raised ×10 per solve to its final value
-        let cap = settings.homotopy_penalty_factor * self.axial_stiffness / (contour.radius() * contour.radius());
+        let cap = settings.homotopy_penalty_factor * self.belt.axial_stiffness / (contour.radius() * contour.radius());
         let soft = StringHanging { penalty: self.penalty.map(|p| p.min(cap)), ..*self };
-        let (t0, delta) = tight_loop(&contour, l0, self.axial_stiffness, soft.penalty);
+        let (t0, delta) = tight_loop(&contour, l0, self.belt.axial_stiffness, soft.penalty);
         let mut report = HomotopyReport { start_length: l0, start_tension: t0, ..Default::default() };
 
         let asm = Assembler::new(mesh, kernel.clone());
@@ -215,7 +209,7 @@ impl StringHanging {
         let (rows, cols) = asm.pattern();
         lu.set_pattern(asm.len(), rows, cols)
             .map_err(|detail| FemError::SingularTangent { eta: 0.0, iteration: 0, detail })?;
-        let z0 = tight_state(&asm, l0, t0, delta, self.axial_stiffness);
+        let z0 = tight_state(&asm, l0, t0, delta, self.belt.axial_stiffness);
         let z = soft.homotopy(&asm, &mut lu, z0, l0, &scales, &newton_settings, settings, &mut report)?;
         let (params, length) = self.at(1.0, l0);
         let soft_params = TermParams { penalty: soft.penalty, ..params };
@@ -284,7 +278,7 @@ impl StringHanging {
         report.steps = 1;
         report.last = r;
 
-        if self.gravity.is_none() && self.length == l0 {
+        if self.gravity.is_none() && self.belt.length == l0 {
             return Ok(z);
         }
         // step control on the Newton iterations of the accepted step
