@@ -3,12 +3,12 @@
 //! shooting — the data of `scenes/rod-hanging.json` (EI = 1e-3 N·m², boundary layer
 //! √(EI/T) ≈ 0.027 m) and the thin steel belt of Paper A (EI = 1.75 N·m², EA = 2e7 N).
 
+mod common;
+
+use bvp::belt::BvpMethod;
 use bvp::collocation::Scheme;
-use bvp::belt::{BeltOptions, BvpMethod};
 use bvp::rod_hanging::{solve, RodHanging};
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::hint::black_box;
-use std::time::Duration;
 
 fn catalogue() -> RodHanging {
     RodHanging {
@@ -37,22 +37,14 @@ fn steel() -> RodHanging {
 }
 
 fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("rod_hanging");
-    g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
+    let mut g = common::group(c, "rod_hanging");
     let methods = [
         ("gauss6", BvpMethod::Collocation, Scheme::Gauss6),
         ("gauss8", BvpMethod::Collocation, Scheme::Gauss8),
         ("shooting", BvpMethod::Shooting, Scheme::default()),
     ];
     for (scene_name, data) in [("catalogue", catalogue()), ("steel", steel())] {
-        for (name, method, scheme) in methods {
-            for tol in [1e-6, 1e-10] {
-                let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
-                g.bench_function(format!("{scene_name}/{name}/tol={tol:.0e}"), |b| {
-                    b.iter(|| solve(black_box(&data), &opts).expect("solves"))
-                });
-            }
-        }
+        common::bench_methods(&mut g, &format!("{scene_name}/"), &data, &methods, &[1e-6, 1e-10], solve);
     }
     g.finish();
 }

@@ -3,63 +3,35 @@
 //! (scenes/string-drive-exudyn.json), by collocation (order 6) and shooting at 1e-6 and
 //! 1e-10; and the gravity-free closed form (belt-creep theory, one Brent root).
 
+mod common;
+
+use bvp::belt::BvpMethod;
 use bvp::collocation::Scheme;
-use bvp::belt::{BeltOptions, BvpMethod};
-use bvp::string_hanging::StringHanging;
+use bvp::scene::string_drive_data;
 use bvp::string_drive::{solve, StringDrive};
+use bvp::string_hanging::StringHanging;
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::f64::consts::PI;
+use drive::scene::{Contact, Scene};
 use std::hint::black_box;
-use std::time::Duration;
+use std::path::Path;
 
-fn catalogue() -> StringDrive {
-    StringDrive {
-        belt: StringHanging {
-            radius: 0.1,
-            centre_distance: 0.5,
-            length: 1.6,
-            axial_stiffness: 1.0e4,
-            mass_per_length: 0.5,
-            gravity: 9.81,
-        },
-        inertia: true,
-        friction: 0.4,
-        driver_speed: 60.0,
-        driven_torque: 10.0,
-        driven_damping: 0.05,
-    }
-}
-
-fn exudyn() -> StringDrive {
-    StringDrive {
-        belt: StringHanging {
-            radius: 0.1,
-            centre_distance: 0.1 * PI,
-            length: 0.38 * PI,
-            axial_stiffness: 7600.0,
-            mass_per_length: 0.8288 / 0.95,
-            gravity: 9.81,
-        },
-        inertia: true,
-        friction: 0.5,
-        driver_speed: 12.0,
-        driven_torque: 25.0,
-        driven_damping: 2.0,
-    }
+/// The steady string drive of `scenes/{name}.json`, read through the scene contract and
+/// mapped as a `report` run maps it ([`string_drive_data`]).
+fn from_catalogue(name: &str) -> StringDrive {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes").join(format!("{name}.json"));
+    let scene = Scene::from_path(&path).expect("catalogue scene reads");
+    let Contact::Coulomb(mu) = scene.effects.contact else { panic!("{name}: a Coulomb scene") };
+    string_drive_data(&scene, mu)
 }
 
 fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("string_drive");
-    g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
-    for (scene, data) in [("catalogue", catalogue()), ("exudyn", exudyn())] {
-        for (name, method, scheme) in [("gauss6", BvpMethod::Collocation, Scheme::Gauss6), ("shooting", BvpMethod::Shooting, Scheme::default())] {
-            for tol in [1e-6, 1e-10] {
-                let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
-                g.bench_function(format!("{scene}/{name}/tol={tol:.0e}"), |b| b.iter(|| solve(black_box(&data), &opts).expect("solves")));
-            }
-        }
+    let mut g = common::group(c, "string_drive");
+    let methods = [("gauss6", BvpMethod::Collocation, Scheme::Gauss6), ("shooting", BvpMethod::Shooting, Scheme::default())];
+    let catalogue = from_catalogue("string-drive");
+    for (scene, data) in [("catalogue", catalogue), ("exudyn", from_catalogue("string-drive-exudyn"))] {
+        common::bench_methods(&mut g, &format!("{scene}/"), &data, &methods, &[1e-6, 1e-10], solve);
     }
-    let creep = StringDrive { belt: StringHanging { gravity: 0.0, ..catalogue().belt }, ..catalogue() }.creep_data();
+    let creep = StringDrive { belt: StringHanging { gravity: 0.0, ..catalogue.belt }, ..catalogue }.creep_data();
     g.bench_function("closed_form/belt_creep", |b| b.iter(|| black_box(&creep).solve().expect("solves")));
     g.finish();
 }

@@ -2,20 +2,19 @@
 //! 1e-6 and 1e-10, by collocation (orders 6 and 8) and by shooting; order 4 only at 1e-6:
 //! at 1e-10 its residual (O(h²)) needs more than the 20 000-node cap, which it reports.
 
+mod common;
+
+use bvp::belt::BvpMethod;
 use bvp::collocation::Scheme;
-use bvp::belt::{BeltOptions, BvpMethod};
 use bvp::string_hanging::{solve, StringHanging};
 use criterion::{criterion_group, criterion_main, Criterion};
-use std::hint::black_box;
-use std::time::Duration;
 
 fn scene() -> StringHanging {
     StringHanging { radius: 0.08, centre_distance: 0.45, length: 1.41, axial_stiffness: 2.0e4, mass_per_length: 0.12, gravity: 9.81 }
 }
 
 fn bench(c: &mut Criterion) {
-    let mut g = c.benchmark_group("string_hanging");
-    g.sample_size(10).measurement_time(Duration::from_secs(4)).warm_up_time(Duration::from_millis(500));
+    let mut g = common::group(c, "string_hanging");
     let runs = [
         ("gauss4", BvpMethod::Collocation, Scheme::Gauss4, &[1e-6][..]),
         ("gauss6", BvpMethod::Collocation, Scheme::Gauss6, &[1e-6, 1e-10][..]),
@@ -23,10 +22,7 @@ fn bench(c: &mut Criterion) {
         ("shooting", BvpMethod::Shooting, Scheme::default(), &[1e-6, 1e-10][..]),
     ];
     for (name, method, scheme, tols) in runs {
-        for &tol in tols {
-            let opts = BeltOptions { method, scheme, tolerance: tol, ..Default::default() };
-            g.bench_function(format!("{name}/tol={tol:.0e}"), |b| b.iter(|| solve(black_box(&scene()), &opts).expect("solves")));
-        }
+        common::bench_methods(&mut g, "", &scene(), &[(name, method, scheme)], tols, solve);
     }
     g.finish();
 }

@@ -74,6 +74,12 @@ fn err(v: Value, path: Option<&str>, fragments: &[&str]) -> String {
     msg
 }
 
+/// `base()` with the value at `path` set to `new` is rejected at the field path `at`
+/// with every fragment in its message (see [`err`]).
+fn rejected(path: &str, new: Value, at: &str, fragments: &[&str]) -> String {
+    err(set(base(), path, new), Some(at), fragments)
+}
+
 /// The belt made a steel shell strip (DESIGN.md: a shell gives its plate, not a section).
 fn shell_belt(v: Value) -> Value {
     let mut v = set(v, "belt.theory", json!("shell"));
@@ -199,36 +205,12 @@ fn unknown_field_with_suggestion_at_every_level() {
         msg,
         "unknown field `belt.axial_stifness`; did you mean `axial_stiffness`?"
     );
-    err(
-        set(base(), "nme", json!("x")),
-        Some("nme"),
-        &["did you mean `name`?"],
-    );
-    err(
-        set(base(), "drive.pulley_radus", json!(0.1)),
-        Some("drive.pulley_radus"),
-        &["did you mean `pulley_radius`?"],
-    );
-    err(
-        set(base(), "effects.gravty", json!(9.81)),
-        Some("effects.gravty"),
-        &["did you mean `gravity`?"],
-    );
-    err(
-        set(base(), "bvp", json!({"tolerence": 1e-6})),
-        Some("bvp.tolerence"),
-        &["did you mean `tolerance`?"],
-    );
-    err(
-        set(base(), "fem", json!({"element": 64})),
-        Some("fem.element"),
-        &["did you mean `elements`?"],
-    );
-    err(
-        set(base(), "gate", json!({"min_ordre": 2.0})),
-        Some("gate.min_ordre"),
-        &["did you mean `min_order`?"],
-    );
+    rejected("nme", json!("x"), "nme", &["did you mean `name`?"]);
+    rejected("drive.pulley_radus", json!(0.1), "drive.pulley_radus", &["did you mean `pulley_radius`?"]);
+    rejected("effects.gravty", json!(9.81), "effects.gravty", &["did you mean `gravity`?"]);
+    rejected("bvp", json!({"tolerence": 1e-6}), "bvp.tolerence", &["did you mean `tolerance`?"]);
+    rejected("fem", json!({"element": 64}), "fem.element", &["did you mean `elements`?"]);
+    rejected("gate", json!({"min_ordre": 2.0}), "gate.min_ordre", &["did you mean `min_order`?"]);
     let v = set(cosserat_drive(), "analysis", json!("transient"));
     let v = shell_belt(remove(v, "belt.shear_stiffness"));
     let v = set(
@@ -245,20 +227,12 @@ fn unknown_field_with_suggestion_at_every_level() {
 
 #[test]
 fn unknown_field_in_the_wrong_block_names_the_right_one() {
-    err(
-        set(base(), "drive.gravity", json!(9.81)),
-        Some("drive.gravity"),
-        &["unknown field `drive.gravity`; did you mean `effects.gravity`?"],
-    );
+    rejected("drive.gravity", json!(9.81), "drive.gravity", &["unknown field `drive.gravity`; did you mean `effects.gravity`?"]);
 }
 
 #[test]
 fn unknown_field_without_near_name_lists_the_valid_ones() {
-    err(
-        set(base(), "belt.colour", json!("black")),
-        Some("belt.colour"),
-        &["expected one of `theory`, `length`, `axial_stiffness`, `bending_stiffness`, `shear_stiffness`, `mass_per_length`"],
-    );
+    rejected("belt.colour", json!("black"), "belt.colour", &["expected one of `theory`, `length`, `axial_stiffness`, `bending_stiffness`, `shear_stiffness`, `mass_per_length`"]);
 }
 
 #[test]
@@ -287,36 +261,12 @@ fn missing_required_fields() {
 
 #[test]
 fn wrong_types() {
-    err(
-        set(base(), "belt.length", json!("1.41")),
-        Some("belt.length"),
-        &["expected a number", "a string (\"1.41\")"],
-    );
-    err(
-        set(base(), "belt.length", Value::Null),
-        Some("belt.length"),
-        &["expected a number", "found null"],
-    );
-    err(
-        set(base(), "belt", json!([1, 2])),
-        Some("belt"),
-        &["expected an object", "an array of 2 elements"],
-    );
-    err(
-        set(base(), "effects.inertia", json!(1)),
-        Some("effects.inertia"),
-        &["expected true or false"],
-    );
-    err(
-        set(base(), "fem", json!({"elements": 64.5})),
-        Some("fem.elements"),
-        &["non-negative integer", "64.5"],
-    );
-    err(
-        set(base(), "fem", json!({"mesh_sequence": [8, -16]})),
-        Some("fem.mesh_sequence[1]"),
-        &["non-negative integer"],
-    );
+    rejected("belt.length", json!("1.41"), "belt.length", &["expected a number", "a string (\"1.41\")"]);
+    rejected("belt.length", Value::Null, "belt.length", &["expected a number", "found null"]);
+    rejected("belt", json!([1, 2]), "belt", &["expected an object", "an array of 2 elements"]);
+    rejected("effects.inertia", json!(1), "effects.inertia", &["expected true or false"]);
+    rejected("fem", json!({"elements": 64.5}), "fem.elements", &["non-negative integer", "64.5"]);
+    rejected("fem", json!({"mesh_sequence": [8, -16]}), "fem.mesh_sequence[1]", &["non-negative integer"]);
     err(
         set(
             base(),
@@ -332,11 +282,7 @@ fn wrong_types() {
 
 #[test]
 fn unknown_enumeration_values() {
-    err(
-        set(base(), "belt.theory", json!("kirchoff")),
-        Some("belt.theory"),
-        &["unknown belt theory `kirchoff`; did you mean `kirchhoff`?"],
-    );
+    rejected("belt.theory", json!("kirchoff"), "belt.theory", &["unknown belt theory `kirchoff`; did you mean `kirchhoff`?"]);
     err(
         set(base(), "analysis", json!("dynamic")),
         Some("analysis"),
@@ -345,21 +291,9 @@ fn unknown_enumeration_values() {
             "`static`, `steady`, `transient`",
         ],
     );
-    err(
-        set(base(), "effects.contact", json!("frictonless")),
-        Some("effects.contact"),
-        &["did you mean `frictionless`?"],
-    );
-    err(
-        set(base(), "effects.contact", json!({"colomb": 0.3})),
-        Some("effects.contact"),
-        &["unknown contact model `colomb`; did you mean `coulomb`?"],
-    );
-    err(
-        set(base(), "effects.contact", json!("coulomb")),
-        Some("effects.contact"),
-        &["{\"coulomb\": μ}"],
-    );
+    rejected("effects.contact", json!("frictonless"), "effects.contact", &["did you mean `frictionless`?"]);
+    rejected("effects.contact", json!({"colomb": 0.3}), "effects.contact", &["unknown contact model `colomb`; did you mean `coulomb`?"]);
+    rejected("effects.contact", json!("coulomb"), "effects.contact", &["{\"coulomb\": μ}"]);
     err(
         set(
             base(),
@@ -369,11 +303,7 @@ fn unknown_enumeration_values() {
         Some("effects.contact"),
         &["exactly one key"],
     );
-    err(
-        set(base(), "bvp", json!({"method": "collocation"})),
-        Some("bvp.method"),
-        &["did you mean `bvp-collocation`?"],
-    );
+    rejected("bvp", json!({"method": "collocation"}), "bvp.method", &["did you mean `bvp-collocation`?"]);
 }
 
 // --- values ---------------------------------------------------------------------
@@ -414,11 +344,7 @@ fn non_positive_stiffness_length_radius_mass() {
         );
         assert!(msg.starts_with(&format!("`{field}`")), "{msg}");
     }
-    err(
-        set(base(), "belt.length", json!(0)),
-        Some("belt.length"),
-        &["must be positive, got 0"],
-    );
+    rejected("belt.length", json!(0), "belt.length", &["must be positive, got 0"]);
     let v = set(cosserat_drive(), "belt.shear_stiffness", json!(0.0));
     err(v, Some("belt.shear_stiffness"), &["must be positive"]);
     let v = set(cosserat_drive(), "belt.bending_stiffness", json!(-1e-3));
@@ -431,11 +357,7 @@ fn non_positive_stiffness_length_radius_mass() {
 
 #[test]
 fn negative_gravity_friction_damping() {
-    err(
-        set(base(), "effects.gravity", json!(-9.81)),
-        Some("effects.gravity"),
-        &["must not be negative, got -9.81"],
-    );
+    rejected("effects.gravity", json!(-9.81), "effects.gravity", &["must not be negative, got -9.81"]);
     err(
         set(
             cosserat_drive(),
@@ -488,16 +410,8 @@ fn rod_theories_need_their_stiffnesses() {
 
 #[test]
 fn string_takes_no_bending_or_shear_stiffness() {
-    err(
-        set(base(), "belt.bending_stiffness", json!(0.5)),
-        Some("belt.bending_stiffness"),
-        &["theory `string` has no bending stiffness", "0.5"],
-    );
-    err(
-        set(base(), "belt.shear_stiffness", json!(1e5)),
-        Some("belt.shear_stiffness"),
-        &["theory `string` has no shear stiffness"],
-    );
+    rejected("belt.bending_stiffness", json!(0.5), "belt.bending_stiffness", &["theory `string` has no bending stiffness", "0.5"]);
+    rejected("belt.shear_stiffness", json!(1e5), "belt.shear_stiffness", &["theory `string` has no shear stiffness"]);
     let v = set(base(), "belt.theory", json!("kirchhoff"));
     let v = set(v, "belt.bending_stiffness", json!(0.5));
     let v = set(v, "belt.shear_stiffness", json!(1e5));
@@ -512,28 +426,12 @@ fn string_takes_no_bending_or_shear_stiffness() {
 
 #[test]
 fn static_analysis_takes_no_motion_effects() {
-    err(
-        set(base(), "effects.inertia", json!(true)),
-        Some("effects.inertia"),
-        &["needs analysis `steady` or `transient`"],
-    );
+    rejected("effects.inertia", json!(true), "effects.inertia", &["needs analysis `steady` or `transient`"]);
     // inertia explicitly off is fine
     parse(&set(base(), "effects.inertia", json!(false))).unwrap();
-    err(
-        set(base(), "effects.contact", json!({"coulomb": 0.3})),
-        Some("effects.contact"),
-        &["friction needs analysis `steady` or `transient`", "0.3"],
-    );
-    err(
-        set(base(), "drive.driver_speed", json!(3.0)),
-        Some("drive.driver_speed"),
-        &["static", "got 3 rad/s"],
-    );
-    err(
-        set(base(), "drive.driven_torque", json!(1.5)),
-        Some("drive.driven_torque"),
-        &["got 1.5 N·m"],
-    );
+    rejected("effects.contact", json!({"coulomb": 0.3}), "effects.contact", &["friction needs analysis `steady` or `transient`", "0.3"]);
+    rejected("drive.driver_speed", json!(3.0), "drive.driver_speed", &["static", "got 3 rad/s"]);
+    rejected("drive.driven_torque", json!(1.5), "drive.driven_torque", &["got 1.5 N·m"]);
 }
 
 #[test]
@@ -568,61 +466,17 @@ fn elastic_layer_is_for_shells_only() {
 
 #[test]
 fn settings_ranges() {
-    err(
-        set(base(), "bvp", json!({"tolerance": 2.0})),
-        Some("bvp.tolerance"),
-        &["= 2 is out of range", "0 < tolerance < 1"],
-    );
-    err(
-        set(base(), "bvp", json!({"tolerance": 0})),
-        Some("bvp.tolerance"),
-        &["must be positive"],
-    );
-    err(
-        set(base(), "bvp", json!({"max_nodes": 2})),
-        Some("bvp.max_nodes"),
-        &["at least 4"],
-    );
-    err(
-        set(base(), "bvp", json!({"scheme": ""})),
-        Some("bvp.scheme"),
-        &["empty"],
-    );
-    err(
-        set(base(), "fem", json!({"elements": 3})),
-        Some("fem.elements"),
-        &["at least 4"],
-    );
-    err(
-        set(base(), "fem", json!({"mesh_sequence": [64, 32]})),
-        Some("fem.mesh_sequence[1]"),
-        &["32 follows 64"],
-    );
-    err(
-        set(base(), "fem", json!({"formulations": ["a", "a"]})),
-        Some("fem.formulations[1]"),
-        &["twice"],
-    );
-    err(
-        set(base(), "fem", json!({"penalty": -1})),
-        Some("fem.penalty"),
-        &["must be positive"],
-    );
-    err(
-        set(base(), "gate", json!({"tolerances": {"y_uper_mid": 1e-3}})),
-        Some("gate.tolerances.y_uper_mid"),
-        &["did you mean `y_upper_mid`?"],
-    );
-    err(
-        set(base(), "gate", json!({"tolerances": {"driver.torque": 0}})),
-        Some("gate.tolerances.driver.torque"),
-        &["must be positive"],
-    );
-    err(
-        set(base(), "gate", json!({"min_order": -2})),
-        Some("gate.min_order"),
-        &["must be positive"],
-    );
+    rejected("bvp", json!({"tolerance": 2.0}), "bvp.tolerance", &["= 2 is out of range", "0 < tolerance < 1"]);
+    rejected("bvp", json!({"tolerance": 0}), "bvp.tolerance", &["must be positive"]);
+    rejected("bvp", json!({"max_nodes": 2}), "bvp.max_nodes", &["at least 4"]);
+    rejected("bvp", json!({"scheme": ""}), "bvp.scheme", &["empty"]);
+    rejected("fem", json!({"elements": 3}), "fem.elements", &["at least 4"]);
+    rejected("fem", json!({"mesh_sequence": [64, 32]}), "fem.mesh_sequence[1]", &["32 follows 64"]);
+    rejected("fem", json!({"formulations": ["a", "a"]}), "fem.formulations[1]", &["twice"]);
+    rejected("fem", json!({"penalty": -1}), "fem.penalty", &["must be positive"]);
+    rejected("gate", json!({"tolerances": {"y_uper_mid": 1e-3}}), "gate.tolerances.y_uper_mid", &["did you mean `y_upper_mid`?"]);
+    rejected("gate", json!({"tolerances": {"driver.torque": 0}}), "gate.tolerances.driver.torque", &["must be positive"]);
+    rejected("gate", json!({"min_order": -2}), "gate.min_order", &["must be positive"]);
 }
 
 #[test]
@@ -639,11 +493,7 @@ fn null_optional_settings_take_their_defaults() {
 #[test]
 fn name_is_file_name_safe() {
     err(set(base(), "name", json!("")), Some("name"), &["empty"]);
-    err(
-        set(base(), "name", json!("../etc/x")),
-        Some("name"),
-        &["'/'"],
-    );
+    rejected("name", json!("../etc/x"), "name", &["'/'"]);
 }
 
 #[test]

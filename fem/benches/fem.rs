@@ -22,7 +22,8 @@
 use std::path::Path;
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion, Throughput};
 use fem::linear::SparseLu;
 use fem::mesh::Mesh;
 use fem::{FemOptions, SolverSettings};
@@ -54,60 +55,56 @@ fn problem(case: &Case, elements: usize) -> fem::static_homotopy::StartProblem {
     data.start_problem(mesh, kernel, &settings, case.eta).unwrap()
 }
 
-fn assembly(c: &mut Criterion) {
+/// One group `{prefix}{name}` per case (10 samples, 0.3 s warm-up, `measurement`), in it
+/// `bench(group, case, N)` for every mesh size N with throughput N elements.
+fn per_case_and_size(c: &mut Criterion, name: &str, measurement: Duration, mut bench: impl FnMut(&mut BenchmarkGroup<'_, WallTime>, &Case, usize)) {
     for case in &CASES {
-        let mut group = c.benchmark_group(format!("{}assembly", case.prefix));
-        group.sample_size(10).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(1));
+        let mut group = c.benchmark_group(format!("{}{name}", case.prefix));
+        group.sample_size(10).warm_up_time(Duration::from_millis(300)).measurement_time(measurement);
         for n in SIZES {
-            let p = problem(case, n);
             group.throughput(Throughput::Elements(n as u64));
-            group.bench_with_input(BenchmarkId::from_parameter(n), &p, |b, p| {
-                b.iter(|| p.assembler.assemble(&p.z, &p.params, p.length).expect("admissible"))
-            });
+            bench(&mut group, case, n);
         }
         group.finish();
     }
 }
 
+fn assembly(c: &mut Criterion) {
+    per_case_and_size(c, "assembly", Duration::from_secs(1), |group, case, n| {
+        let p = problem(case, n);
+        group.bench_with_input(BenchmarkId::from_parameter(n), &p, |b, p| {
+            b.iter(|| p.assembler.assemble(&p.z, &p.params, p.length).expect("admissible"))
+        });
+    });
+}
+
 fn newton_step(c: &mut Criterion) {
-    for case in &CASES {
-        let mut group = c.benchmark_group(format!("{}newton_step", case.prefix));
-        group.sample_size(10).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(1));
-        for n in SIZES {
-            let p = problem(case, n);
-            let mut lu = SparseLu::new();
-            let (rows, cols) = p.assembler.pattern();
-            lu.set_pattern(p.assembler.len(), rows, cols).unwrap();
-            group.throughput(Throughput::Elements(n as u64));
-            group.bench_function(BenchmarkId::from_parameter(n), |b| {
-                b.iter(|| {
-                    let a = p.assembler.assemble(&p.z, &p.params, p.length).expect("admissible");
-                    lu.factorize(&a.values).unwrap();
-                    let mut step: Vec<f64> = a.gradient.iter().map(|g| -g).collect();
-                    lu.solve_in_place(&mut step).unwrap();
-                    step
-                })
-            });
-        }
-        group.finish();
-    }
+    per_case_and_size(c, "newton_step", Duration::from_secs(1), |group, case, n| {
+        let p = problem(case, n);
+        let mut lu = SparseLu::new();
+        let (rows, cols) = p.assembler.pattern();
+        lu.set_pattern(p.assembler.len(), rows, cols).unwrap();
+        group.bench_function(BenchmarkId::from_parameter(n), |b| {
+            b.iter(|| {
+                let a = p.assembler.assemble(&p.z, &p.params, p.length).expect("admissible");
+                lu.factorize(&a.values).unwrap();
+                let mut step: Vec<f64> = a.gradient.iter().map(|g| -g).collect();
+                lu.solve_in_place(&mut step).unwrap();
+                step
+            })
+        });
+    });
 }
 
 fn newton_solve(c: &mut Criterion) {
     let settings = SolverSettings::default();
-    for case in &CASES {
-        let mut group = c.benchmark_group(format!("{}newton_solve", case.prefix));
-        group.sample_size(10).warm_up_time(Duration::from_millis(300)).measurement_time(Duration::from_secs(3));
-        for n in SIZES {
-            let iterations = problem(case, n).newton(&settings).expect("converges").iterations;
-            eprintln!("{}newton_solve/{n}: {iterations} Newton iterations", case.prefix);
-            group.throughput(Throughput::Elements(n as u64));
-            group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
-                b.iter_batched(|| problem(case, n), |mut p| p.newton(&settings).expect("converges"), criterion::BatchSize::LargeInput)
-            });
-        }
-        group.finish();
-    }
+    per_case_and_size(c, "newton_solve", Duration::from_secs(3), |group, case, n| {
+        let iterations = problem(case, n).newton(&settings).expect("converges").iterations;
+        eprintln!("{}newton_solve/{n}: {iterations} Newton iterations", case.prefix);
+        group.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
+            b.iter_batched(|| problem(case, n), |mut p| p.newton(&settings).expect("converges"), criterion::BatchSize::LargeInput)
+        });
+    });
 }
 
 criterion_group!(benches, assembly, newton_step, newton_solve);
