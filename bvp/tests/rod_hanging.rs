@@ -372,3 +372,25 @@ fn very_slack_loop() {
     eprintln!("very slack p_min {pmin:.6e} N/m");
     assert!(pmin >= -1e-9 * s.scales.force);
 }
+
+/// A stalled homotopy names the scene quantity it was switching on and the number that
+/// made it hard: a rod of EI = 1e-3 N·m² on pulleys of R = 0.01 m (bending length
+/// √(EI/T) ≈ 0.045 m, 4.5 R) cannot even leave the string (the string's wrap on the
+/// driven pulley would turn negative), and the error says so with EI, EI₀, √(EI/T) and R.
+#[test]
+fn a_stalled_homotopy_names_the_scene_quantity() {
+    let h = 0.45;
+    let r = 0.01;
+    let d = RodHanging { radius: r, length: 1.05 * (2.0 * h + 2.0 * std::f64::consts::PI * r), ..scene(1e-3) };
+    let e = solve(&d, &opts(1e-8)).expect_err("the rod homotopy stalls");
+    let bvp::belt::BeltError::HomotopyStalled { eta, ref at, ref hard, .. } = e else { panic!("{e}") };
+    assert!((0.0..1.0).contains(&eta), "{eta}");
+    assert!(at.contains("EI =") && at.contains("EI₀") && at.contains("0.001 N·m²"), "{at}");
+    assert!(hard.contains("bending length √(EI/T)") && hard.contains("R = 0.01 m"), "{hard}");
+    // the bending length in the message is the scene's √(EI/T) with the T it prints
+    let t: f64 = hard.split("T = ").nth(1).and_then(|s| s.split(' ').next()).and_then(|s| s.parse().ok()).expect("T printed");
+    let layer: f64 = hard.split("= ").nth(1).and_then(|s| s.split(' ').next()).and_then(|s| s.parse().ok()).expect("length printed");
+    assert!((layer - (1e-3 / t).sqrt()).abs() < 1e-5 * layer, "{layer} vs √(EI/T) with T = {t}");
+    let text = e.to_string();
+    assert!(text.starts_with("the homotopy in log EI from the string stalled at η = "), "{text}");
+}

@@ -38,6 +38,11 @@ pub enum BeltError {
     /// Kirchhoff rod: the string of the same data (the homotopy start) failed.
     #[error("string of the same data: {0}")]
     StringStart(Box<BeltError>),
+    /// The homotopy from the closed-form start stalled before the scene: `at` says which
+    /// scene quantity the path was switching on and how far it got, `hard` the
+    /// dimensionless number of the scene that makes that part of the path hard.
+    #[error("{stage} stalled at η = {} — {at}; {hard} ({cause})", Sig(*eta))]
+    HomotopyStalled { stage: &'static str, eta: f64, at: String, hard: String, cause: BvpError },
     /// The solver failed (homotopy or final solve).
     #[error("{stage}: {cause}")]
     Solver { stage: &'static str, cause: BvpError },

@@ -15,6 +15,7 @@ pub mod law;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use numerics::Sig;
 use serde::Serialize;
 
 use crate::belt::run::StageError;
@@ -22,6 +23,7 @@ use crate::belt::solution::{self, Run};
 use crate::belt::topology::{ContactModel, Scaling, Side, Topology};
 use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod};
 use crate::collocation::Scheme;
+use crate::error::BvpError;
 use crate::solution::Solution;
 use crate::string_hanging::{self, StringHanging};
 pub use law::ScaledRodHanging;
@@ -148,11 +150,44 @@ pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution
     };
     let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
     let guess = rod_guess(&string.solution, &problem, 81);
+    let path = RodPath { bending_start: bending_start_scaled * fr * h * h, tension: t_mid * fr };
     let run = Run { data: *data, problem, scales, pulleys: data.string().pulleys(), guess: &guess, start: string };
     solution::solve(run, opts, clock, |e, _| match e {
-        StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy in log EI from the string", cause },
+        StageError::Homotopy(cause) => path.failure(data, cause),
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
     })
+}
+
+/// The rod's homotopy in log EI from the string: its start EI₀ (N·m²) and the string's
+/// mid-span tension T (N), to name a stall by the scene quantity it was switching on.
+struct RodPath {
+    bending_start: f64,
+    tension: f64,
+}
+
+impl RodPath {
+    /// A stalled homotopy named by the bending stiffness it had reached, EI(η) =
+    /// EI₀^(1−η) EI^η, and the scene's bending length √(EI/T) against the radius R.
+    fn failure(&self, d: &RodHanging, cause: BvpError) -> BeltError {
+        const STAGE: &str = "the homotopy in log EI from the string";
+        let BvpError::ContinuationStalled { eta, .. } = cause else {
+            return BeltError::Solver { stage: STAGE, cause };
+        };
+        let ei = self.bending_start.powf(1.0 - eta) * d.bending_stiffness.powf(eta);
+        let at = format!(
+            "stiffening the string into the rod: EI = {} N·m² on the way from EI₀ = {} N·m² to the scene's {} N·m²",
+            Sig(ei),
+            Sig(self.bending_start),
+            Sig(d.bending_stiffness)
+        );
+        let hard = format!(
+            "the bending length √(EI/T) = {} m against the pulley radius R = {} m (T = {} N, the string's mid-span tension) makes it hard",
+            Sig((d.bending_stiffness / self.tension).sqrt()),
+            Sig(d.radius),
+            Sig(self.tension)
+        );
+        BeltError::HomotopyStalled { stage: STAGE, eta, at, hard, cause }
+    }
 }
 
 impl RodHangingSolution {

@@ -15,6 +15,7 @@ pub mod law;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use numerics::Sig;
 use serde::Serialize;
 
 use crate::analytical::belt_creep::{CreepData, CreepError, CreepSolution};
@@ -178,7 +179,38 @@ fn homotopy_failure(data: &StringDrive, cause: BvpError, last_rejection: Option<
             return BeltError::FrictionCapacityExceeded { torque, path, reason: reason.to_string() };
         }
     }
-    BeltError::Solver { stage: "homotopy from the tight loop at rest", cause }
+    const STAGE: &str = "the homotopy from the tight loop at rest";
+    let BvpError::ContinuationStalled { eta, .. } = cause else {
+        return BeltError::Solver { stage: STAGE, cause };
+    };
+    // the phase in progress: the first quantity not yet at the scene's value
+    let path = ScaledStringDrive::phases(eta);
+    let phase = path.iter().position(|&f| f < 1.0).unwrap_or(3);
+    let pct = Sig(100.0 * path[phase]);
+    let (w, ea, r) = (data.mass_per_length * data.gravity, data.axial_stiffness, data.radius);
+    let torque = data.driven_torque + data.driven_damping * data.driver_speed;
+    let (at, hard) = match phase {
+        0 => (
+            format!("switching on the load: {pct} % of M₂ + d₂ω₁ = {} N·m", Sig(torque)),
+            format!("the load against the belt's pretension, (M₂ + d₂ω₁)/(R·EA) = {}, makes it hard", Sig(torque / (r * ea))),
+        ),
+        1 => (
+            format!("switching on the weight: {pct} % of ρg = {} N/m", Sig(w)),
+            format!("the weight against the axial stiffness, ρgL/EA = {}, makes it hard", Sig(w * data.length / ea)),
+        ),
+        2 => (
+            format!("lengthening the belt: {pct} % of the way to the scene's L = {} m", Sig(data.length)),
+            format!("the slack L/L_geom = {} of the scene makes it hard", Sig(data.length / data.geometric_length())),
+        ),
+        _ => (
+            format!("speeding up: {pct} % of the scene's ω₁ = {} rad/s", Sig(data.driver_speed)),
+            format!(
+                "the belt speed against the wave speed, ρ(ω₁R)²/EA = {}, makes it hard",
+                Sig(data.mass_per_length * (data.driver_speed * r).powi(2) / ea)
+            ),
+        ),
+    };
+    BeltError::HomotopyStalled { stage: STAGE, eta, at, hard, cause }
 }
 
 impl StringDriveSolution {
@@ -219,5 +251,27 @@ impl StringDriveSolution {
             }
         }
         (input, output, dissipation)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stall the drive cannot classify (no stick or slip arc vanished) is named by the
+    /// phase in progress — load, weight, length, speed — and that phase's number.
+    #[test]
+    fn stalls_name_the_phase_in_progress() {
+        let belt = StringHanging { radius: 0.1, centre_distance: 0.5, length: 1.6, axial_stiffness: 1.0e4, mass_per_length: 0.5, gravity: 9.81 };
+        let d = StringDrive { belt, inertia: true, friction: 0.4, driver_speed: 60.0, driven_torque: 10.0, driven_damping: 0.05 };
+        let stall = |eta: f64| homotopy_failure(&d, BvpError::ContinuationStalled { eta, step: 1e-9, min_step: 1e-8, cause: "diverged".into() }, None).to_string();
+        let e = stall(0.1);
+        assert!(e.contains("switching on the load: 40 % of M₂ + d₂ω₁ = 13 N·m") && e.contains("(M₂ + d₂ω₁)/(R·EA) = 0.013"), "{e}");
+        let e = stall(0.3);
+        assert!(e.contains("switching on the weight: 20 % of ρg = 4.905 N/m") && e.contains("ρgL/EA = 7.848e-4"), "{e}");
+        let e = stall(0.6);
+        assert!(e.contains("lengthening the belt: 40 % of the way to the scene's L = 1.6 m"), "{e}");
+        let e = stall(0.9);
+        assert!(e.contains("speeding up: 60 % of the scene's ω₁ = 60 rad/s") && e.contains("ρ(ω₁R)²/EA = 0.0018"), "{e}");
     }
 }

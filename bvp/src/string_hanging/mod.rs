@@ -13,9 +13,11 @@ pub mod law;
 use std::f64::consts::PI;
 use std::time::Instant;
 
+use numerics::Sig;
 use serde::Serialize;
 
 use crate::belt::run::StageError;
+use crate::error::BvpError;
 use crate::belt::solution::{self, tight_guess, Run};
 use crate::belt::topology::{ContactModel, Topology};
 use crate::belt::law::Pulleys;
@@ -127,8 +129,56 @@ pub fn solve(data: &StringHanging, opts: &BeltOptions) -> Result<StringHangingSo
     let (problem, scales) = scaled_problem(data);
     let guess = tight_start(&problem, 5);
     let run = Run { data: *data, problem, scales, pulleys: data.pulleys(), guess: &guess, start: () };
+    let length_start = run.problem.law.length_start * scales.length;
     solution::solve(run, opts, clock, |e, _| match e {
-        StageError::Homotopy(cause) => BeltError::Solver { stage: "homotopy from the tight weightless loop", cause },
+        StageError::Homotopy(cause) => homotopy_failure(data, length_start, cause),
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
     })
+}
+
+/// A stalled homotopy named by the scene quantity it was switching on: the weight
+/// (η ≤ ½, at the tight length L₀) or the length L₀ → L (η > ½, full weight).
+fn homotopy_failure(d: &StringHanging, length_start: f64, cause: BvpError) -> BeltError {
+    const STAGE: &str = "the homotopy from the tight weightless loop";
+    let BvpError::ContinuationStalled { eta, .. } = cause else {
+        return BeltError::Solver { stage: STAGE, cause };
+    };
+    let weight = d.mass_per_length * d.gravity;
+    let (at, hard) = if eta < 0.5 {
+        (
+            format!("switching on the weight: {} % of ρg = {} N/m at the tight length L₀ = {} m", Sig(200.0 * eta), Sig(weight), Sig(length_start)),
+            format!("the weight against the axial stiffness, ρgL/EA = {}, makes it hard", Sig(weight * d.length / d.axial_stiffness)),
+        )
+    } else {
+        let l = length_start + (2.0 * eta - 1.0) * (d.length - length_start);
+        (
+            format!("lengthening the belt under its weight: L = {} m on the way from L₀ = {} m to the scene's {} m", Sig(l), Sig(length_start), Sig(d.length)),
+            format!("the slack L/L_geom = {} of the scene (L_geom = 2H + 2πR = {} m) makes it hard", Sig(d.length / d.geometric_length()), Sig(d.geometric_length())),
+        )
+    };
+    BeltError::HomotopyStalled { stage: STAGE, eta, at, hard, cause }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A stall is named by the phase of the two-phase homotopy: the weight (η ≤ ½, its
+    /// fraction 2η) or the length (η > ½, L₀ + (2η − 1)(L − L₀)), with the scene's
+    /// dimensionless number; other failures stay solver errors.
+    #[test]
+    fn stalls_name_the_phase_and_its_number() {
+        let d = StringHanging { radius: 0.08, centre_distance: 0.45, length: 1.5, axial_stiffness: 2.0e4, mass_per_length: 0.12, gravity: 9.81 };
+        let stall = |eta: f64| BvpError::ContinuationStalled { eta, step: 1e-9, min_step: 1e-8, cause: "diverged".into() };
+        let e = homotopy_failure(&d, 1.4, stall(0.25)).to_string();
+        assert!(e.contains("switching on the weight: 50 % of ρg = 1.1772 N/m at the tight length L₀ = 1.4 m"), "{e}");
+        assert!(e.contains("ρgL/EA = 8.829e-5"), "{e}");
+        let e = homotopy_failure(&d, 1.4, stall(0.75)).to_string();
+        assert!(e.contains("L = 1.45 m on the way from L₀ = 1.4 m to the scene's 1.5 m"), "{e}");
+        let slack = format!("L/L_geom = {}", Sig(1.5 / d.geometric_length()));
+        assert!(e.contains(&slack), "{e}");
+        assert!(e.ends_with("(continuation stalled at eta = 7.500000000e-1: step 1.000e-9 below minimum 1.0e-8 (diverged))"), "{e}");
+        let other = homotopy_failure(&d, 1.4, BvpError::NonFinite { what: "x".into() });
+        assert!(matches!(other, BeltError::Solver { .. }), "{other}");
+    }
 }
