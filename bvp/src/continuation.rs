@@ -637,38 +637,81 @@ pub fn pseudo_arclength<P: Problem>(
         )));
     }
     let mut total = Stats::default();
-    let (mut cur, sol) = first_point(problem, guess, guess.eta, opts, &mut total)?;
+    let (cur, sol) = first_point(problem, guess, guess.eta, opts, &mut total)?;
     let n0 = cur.disc.n;
     let mut t = tangent(&cur.disc, &cur.z, cur.eta, n0)?;
     if t[n0] * direction < 0.0 {
         t.iter_mut().for_each(|v| *v = -*v);
     }
-    let mut points = vec![BranchPoint { solution: sol, eta: cur.eta, step: 0.0, tangent_eta: Some(t[n0]) }];
-    let mut folds = Vec::new();
-    let mut ds = copts.initial_step;
-    let termination = loop {
-        if points.len() > copts.max_steps {
-            break Termination::MaxSteps;
+    let points = vec![BranchPoint { solution: sol, eta: cur.eta, step: 0.0, tangent_eta: Some(t[n0]) }];
+    let mut control = step_control(copts, numerics::continuation::StepLimit::Accepted(copts.max_steps))?;
+    let mut path = ArclengthPath { copts, opts, cur, t, points, folds: Vec::new(), total };
+    let report = match numerics::continuation::pseudo_arclength(&mut path, eta_min, eta_max, &mut control, |_, _| true) {
+        Ok(report) => report,
+        Err(ContinuationError::Aborted(e)) => return Err(e),
+        Err(ContinuationError::Stalled { eta, step, cause, .. }) => {
+            return Err(BvpError::ContinuationStalled { eta: eta.0, step: step.0, min_step: copts.min_step, cause: cause.unwrap_or_default() })
         }
+        // (numerics' pseudo_arclength ends a branch at its step limit with `Ok`)
+        Err(ContinuationError::StepLimit { eta, step, .. }) => {
+            return Err(BvpError::ContinuationStalled { eta: eta.0, step: step.0, min_step: copts.min_step, cause: "step limit".into() })
+        }
+    };
+    let termination = match report.end {
+        numerics::continuation::BranchEnd::LeftWindow => Termination::LeftInterval,
+        numerics::continuation::BranchEnd::StepLimit => Termination::MaxSteps,
+    };
+    let ArclengthPath { cur, points, folds, mut total, .. } = path;
+    finish_stats(&mut total, &cur, &points, start);
+    Ok(Branch { points, folds, termination, stats: total })
+}
+
+/// Pseudo-arclength continuation on collocation meshes as a [`numerics::continuation::Branch`]:
+/// the accepted point (`cur`, its adapted mesh) with its oriented unit tangent `t`, the
+/// branch so far, the located folds and the work counters.
+struct ArclengthPath<'a, 'p, P: Problem> {
+    copts: &'a ContinuationOptions,
+    opts: &'a CollocationOptions,
+    cur: Adapted<'p, P>,
+    t: Vec<f64>,
+    points: Vec<BranchPoint>,
+    folds: Vec<Fold>,
+    total: Stats,
+}
+
+impl<P: Problem> numerics::continuation::Branch for ArclengthPath<'_, '_, P> {
+    /// The cause of a rejected step, in words.
+    type Failure = String;
+    type Error = BvpError;
+
+    fn eta(&self) -> f64 {
+        self.cur.eta
+    }
+
+    fn tangent_eta(&self) -> f64 {
+        self.t[self.cur.disc.n]
+    }
+
+    /// Predictor w + Δs t; corrector: Newton on F = 0 with the arclength condition,
+    /// then mesh adaptation; the new tangent is oriented along the secant from the
+    /// previous point, and a fold between the two (sign change of dη/ds) is located at
+    /// once on the new mesh when `locate_folds` is set.
+    fn advance(&mut self, ds: f64) -> Result<Step<String>, BvpError> {
+        let (cur, t) = (&self.cur, &self.t);
         let n = cur.disc.n;
-        let z0: Vec<f64> = cur.z.iter().zip(&t).map(|(z, ti)| z + ds * ti).collect();
+        let z0: Vec<f64> = cur.z.iter().zip(t).map(|(z, ti)| z + ds * ti).collect();
         let eta0 = cur.eta + ds * t[n];
-        let mut corrector = PalCorrector {
-            base: pack(&cur.z, cur.eta),
-            tangent: t.clone(),
-            ds,
-            lu: SparseLu::new(),
-            newton: opts.newton(),
-        };
+        let mut corrector =
+            PalCorrector { base: pack(&cur.z, cur.eta), tangent: t.clone(), ds, lu: SparseLu::new(), newton: self.opts.newton() };
         let disc = cur.disc.with_meshes(cur.disc.meshes.clone())?;
         let baseline = cur.disc.rhs_evals.get();
         let t0 = Instant::now();
         let mut st = Stats::default();
-        match adapt(disc, z0, eta0, &mut corrector, opts, &mut st) {
+        match adapt(disc, z0, eta0, &mut corrector, self.opts, &mut st) {
             Ok(a) => {
-                total.add_iterations(&st);
-                let quick = st.newton_iterations <= copts.fast_iterations;
-                let prev = &points[points.len() - 1].solution;
+                self.total.add_iterations(&st);
+                let iterations = st.newton_iterations;
+                let prev = &self.points[self.points.len() - 1].solution;
                 let zp = a.disc.sample(prev)?;
                 let mut secant: Vec<f64> = a.z.iter().zip(&zp).map(|(x, y)| x - y).collect();
                 secant.push(a.eta - prev.eta);
@@ -680,38 +723,23 @@ pub fn pseudo_arclength<P: Problem>(
                 let n_new = a.disc.n;
                 let sol = a.solution(st, t0, baseline);
                 let fold_here = t[n] * t_new[n_new] < 0.0;
-                points.push(BranchPoint { solution: sol, eta: a.eta, step: ds, tangent_eta: Some(t_new[n_new]) });
-                if fold_here && copts.locate_folds {
-                    let i = points.len() - 2;
-                    let fold = locate_fold(&points[i].solution, &a, i, copts, opts, &mut total)?;
-                    folds.push(fold);
+                self.points.push(BranchPoint { solution: sol, eta: a.eta, step: ds, tangent_eta: Some(t_new[n_new]) });
+                if fold_here && self.copts.locate_folds {
+                    let i = self.points.len() - 2;
+                    let fold = locate_fold(&self.points[i].solution, &a, i, self.copts, self.opts, &mut self.total)?;
+                    self.folds.push(fold);
                 }
-                cur = a;
-                t = t_new;
-                if quick {
-                    ds = (ds * copts.growth).min(copts.max_step);
-                }
-                if cur.eta < eta_min || cur.eta > eta_max {
-                    break Termination::LeftInterval;
-                }
+                self.cur = a;
+                self.t = t_new;
+                Ok(Step::Accepted { iterations })
             }
             Err(e) if retryable(&e) => {
-                total.add_iterations(&st);
-                ds /= 2.0;
-                if ds < copts.min_step {
-                    return Err(BvpError::ContinuationStalled {
-                        eta: cur.eta,
-                        step: ds,
-                        min_step: copts.min_step,
-                        cause: e.to_string(),
-                    });
-                }
+                self.total.add_iterations(&st);
+                Ok(Step::Rejected(e.to_string()))
             }
-            Err(e) => return Err(e),
+            Err(e) => Err(e),
         }
-    };
-    finish_stats(&mut total, &cur, &points, start);
-    Ok(Branch { points, folds, termination, stats: total })
+    }
 }
 
 /// Describe unknown `m` of `disc` in words.
