@@ -293,16 +293,6 @@ where
 {
 }
 
-impl<F, E> ContinuationError<F, E> {
-    /// The last accepted η.
-    pub fn eta(&self) -> Option<f64> {
-        match self {
-            ContinuationError::Stalled { eta, .. } | ContinuationError::StepLimit { eta, .. } => Some(eta.0),
-            ContinuationError::Aborted(_) => None,
-        }
-    }
-}
-
 fn cause_suffix<F: std::fmt::Display>(cause: &Option<F>) -> String {
     match cause {
         Some(c) => format!("; last failure: {c}"),

@@ -168,27 +168,23 @@ pub fn solve(data: &StringDrive, opts: &BeltOptions) -> Result<StringDriveSoluti
 /// when the last rejected point says so (its stick or slip arc vanished), else the
 /// solver's failure.
 fn homotopy_failure(data: &StringDrive, cause: BvpError, last_rejection: Option<&str>) -> BeltError {
-    if let BvpError::ContinuationStalled { eta, .. } = &cause {
-        let path = ScaledStringDrive::phases(*eta);
-        let torque = data.driven_torque + data.driven_damping * data.driver_speed;
-        if let Some(reason) = last_rejection.filter(|r| r.contains("slip arc")) {
-            let weight_torque = 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius;
-            return BeltError::SlipReversed { torque, weight_torque, path, reason: reason.to_string() };
-        }
-        if let Some(reason) = last_rejection.filter(|r| r.contains("stick arc")) {
-            return BeltError::FrictionCapacityExceeded { torque, path, reason: reason.to_string() };
-        }
-    }
     const STAGE: &str = "the homotopy from the tight loop at rest";
     let BvpError::ContinuationStalled { eta, .. } = cause else {
         return BeltError::Solver { stage: STAGE, cause };
     };
-    // the phase in progress: the first quantity not yet at the scene's value
     let path = ScaledStringDrive::phases(eta);
+    let torque = data.driven_torque + data.driven_damping * data.driver_speed;
+    if let Some(reason) = last_rejection.filter(|r| r.contains("slip arc")) {
+        let weight_torque = 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius;
+        return BeltError::SlipReversed { torque, weight_torque, path, reason: reason.to_string() };
+    }
+    if let Some(reason) = last_rejection.filter(|r| r.contains("stick arc")) {
+        return BeltError::FrictionCapacityExceeded { torque, path, reason: reason.to_string() };
+    }
+    // the phase in progress: the first quantity not yet at the scene's value
     let phase = path.iter().position(|&f| f < 1.0).unwrap_or(3);
     let pct = Sig(100.0 * path[phase]);
     let (w, ea, r) = (data.mass_per_length * data.gravity, data.axial_stiffness, data.radius);
-    let torque = data.driven_torque + data.driven_damping * data.driver_speed;
     let (at, hard) = match phase {
         0 => (
             format!("switching on the load: {pct} % of M₂ + d₂ω₁ = {} N·m", Sig(torque)),
