@@ -41,6 +41,15 @@ pub trait Problem: Sync {
     fn n_params(&self) -> usize;
     /// Right-hand side f_k(x, y, p, η) of segment `k` written into `f` (length n_k).
     fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]);
+    /// The parameters f_k can depend on, as indices into p in ascending order; `None`
+    /// (the default) means every parameter. Derivatives of f_k with respect to the other
+    /// parameters are then exactly zero and are not evaluated ([`crate::jacobian`]): a
+    /// belt segment reads its own span length or arc angles and few others, so this
+    /// halves the cost of its Jacobian. A problem that declares a set must not read any
+    /// parameter outside it (tested for every belt law by comparing with `None`).
+    fn rhs_params(&self, _k: usize) -> Option<&[usize]> {
+        None
+    }
     /// Boundary/interface/integral residual g written into `r` (length Σ n_k + n_p).
     /// `ya[k]` = y_k(0), `yb[k]` = y_k(1).
     fn bc<D: Scalar>(&self, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, r: &mut [D]);

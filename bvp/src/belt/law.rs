@@ -160,6 +160,15 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         &[]
     }
 
+    /// (2) The parameters the span and arc right-hand sides read besides each segment's
+    /// own span length or arc angles (indices into p; the topology's come first, then
+    /// [`SectionLaw::extra_params`]). The default, every parameter, is always right; a
+    /// law that declares fewer makes its Jacobian cheaper and must read no other (the
+    /// moving string reads the belt speed c).
+    fn rhs_reads(&self, topology: &Topology) -> Vec<usize> {
+        (0..topology.n_params() + self.extra_params().len()).collect()
+    }
+
     /// (2) Right-hand side of a span, times its span parameter `span` (the segment runs on
     /// ξ ∈ [0, 1]).
     #[allow(clippy::too_many_arguments)]

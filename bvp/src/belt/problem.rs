@@ -19,12 +19,30 @@ pub struct BeltProblem<L> {
     pub topology: Topology,
     /// The belt theory.
     pub law: L,
+    /// Per segment: the parameters its right-hand side reads, ascending (its own span
+    /// length or arc angles and the law's [`SectionLaw::rhs_reads`]).
+    rhs_params: Vec<Vec<usize>>,
 }
 
 impl<L: SectionLaw> BeltProblem<L> {
     /// The problem of `law` on `topology`.
     pub fn new(topology: Topology, law: L) -> Self {
-        Self { topology, law }
+        let reads = law.rhs_reads(&topology);
+        let rhs_params = topology
+            .segments()
+            .iter()
+            .map(|seg| {
+                let mut params = reads.clone();
+                match seg.scaling {
+                    Scaling::Span { param } => params.push(param),
+                    Scaling::Arc { start, end, .. } => params.extend([start, end]),
+                }
+                params.sort_unstable();
+                params.dedup();
+                params
+            })
+            .collect();
+        Self { topology, law, rhs_params }
     }
 
     fn arc_kind(&self, k: usize) -> crate::belt::topology::ArcKind {
@@ -46,6 +64,10 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
 
     fn n_params(&self) -> usize {
         self.topology.n_params() + self.law.extra_params().len()
+    }
+
+    fn rhs_params(&self, k: usize) -> Option<&[usize]> {
+        Some(&self.rhs_params[k])
     }
 
     fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
@@ -90,5 +112,69 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
         let mut names = self.topology.param_names().to_vec();
         names.extend(self.law.extra_params().iter().map(|s| s.to_string()));
         names
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::belt::topology::ContactModel;
+    use crate::jacobian::rhs_jacobian;
+    use crate::problem::JacobianMode;
+    use crate::rod_hanging::law::ScaledRodHanging;
+    use crate::string_drive::law::ScaledStringDrive;
+    use crate::string_hanging::law::ScaledStringHanging;
+
+    /// The same problem without its declared parameter dependence: every column of
+    /// ∂f/∂p is evaluated.
+    struct EveryParam<'a, P>(&'a P);
+
+    impl<P: Problem> Problem for EveryParam<'_, P> {
+        fn n_segments(&self) -> usize {
+            self.0.n_segments()
+        }
+        fn dim(&self, k: usize) -> usize {
+            self.0.dim(k)
+        }
+        fn n_params(&self) -> usize {
+            self.0.n_params()
+        }
+        fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
+            self.0.rhs(k, x, y, p, eta, f)
+        }
+        fn bc<D: Scalar>(&self, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, r: &mut [D]) {
+            self.0.bc(ya, yb, p, eta, r)
+        }
+    }
+
+    /// Every segment's Jacobian with the declared parameters equals the one with every
+    /// column evaluated, bit for bit, in both Jacobian modes: no law reads a parameter it
+    /// did not declare (a missed one would show as a nonzero column left out).
+    fn declared_params_are_complete<L: SectionLaw>(problem: &BeltProblem<L>, eta: f64) {
+        let np = problem.n_params();
+        let p: Vec<f64> = (0..np).map(|i| 0.3 + 0.17 * i as f64).collect();
+        for k in 0..problem.n_segments() {
+            let n = problem.dim(k);
+            let y: Vec<f64> = (0..n).map(|i| 0.8 + 0.23 * i as f64).collect();
+            let declared = problem.rhs_params(k).expect("a belt problem declares its parameters");
+            assert!(declared.len() < np, "segment {k} declares all {np} parameters");
+            for mode in [JacobianMode::Ad, JacobianMode::FiniteDifference] {
+                let cheap = rhs_jacobian(problem, mode, k, 0.4, &y, &p, eta);
+                let full = rhs_jacobian(&EveryParam(problem), mode, k, 0.4, &y, &p, eta);
+                assert_eq!(cheap, full, "segment {k}, {mode:?}: a parameter outside {declared:?} is read");
+            }
+        }
+    }
+
+    #[test]
+    fn every_law_declares_the_parameters_it_reads() {
+        let string = ScaledStringHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length_start: 3.0, length: 3.2 };
+        declared_params_are_complete(&BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), string), 0.6);
+        let rod = ScaledRodHanging { radius: 0.18, axial_stiffness: 50.0, weight: 0.7, length: 3.2, bending_start: 1e-3, bending: 2e-2 };
+        declared_params_are_complete(&BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), rod), 0.6);
+        for (inertia, weight) in [(true, 0.7), (false, 0.0)] {
+            let drive = ScaledStringDrive::fixture(inertia, weight);
+            declared_params_are_complete(&BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive), 0.6);
+        }
     }
 }

@@ -95,6 +95,11 @@ impl SectionLaw for ScaledRodHanging {
     const SPAN_STATES: &'static [&'static str] = &["x", "y", "theta", "M", "Q_x", "Q_y", "s"];
     const ARC_STATES: &'static [&'static str] = &["N", "s"];
 
+    /// The static rod reads no parameter besides its own span length or arc angles.
+    fn rhs_reads(&self, _: &Topology) -> Vec<usize> {
+        Vec::new()
+    }
+
     fn span_rhs<D: Scalar>(&self, _: &Topology, l: D, y: &[D], _: &[D], eta: D, f: &mut [D]) {
         // (R2) times the span length ℓ.
         let ei = self.bending_at(eta);

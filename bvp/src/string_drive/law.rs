@@ -117,6 +117,11 @@ impl SectionLaw for ScaledStringDrive {
     const SPAN_STATES: &'static [&'static str] = &["x", "y", "Fe_x", "Fe_y", "s"];
     const ARC_STATES: &'static [&'static str] = &["Te", "s", "m"];
 
+    /// The moving string reads the belt speed c (its stretch N/EA + 1 depends on ρc²).
+    fn rhs_reads(&self, topology: &Topology) -> Vec<usize> {
+        vec![topology.motion().expect("a drive topology has its motion").transport]
+    }
+
     fn span_rhs<D: Scalar>(&self, topology: &Topology, l: D, y: &[D], p: &[D], eta: D, f: &mut [D]) {
         // (D3) times the span length ℓ.
         let w = self.weight_at(eta);

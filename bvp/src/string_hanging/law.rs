@@ -94,6 +94,11 @@ impl SectionLaw for ScaledStringHanging {
     const SPAN_STATES: &'static [&'static str] = &["x", "y", "F_x", "F_y", "s"];
     const ARC_STATES: &'static [&'static str] = &["T", "s"];
 
+    /// The static string reads no parameter besides its own span length or arc angles.
+    fn rhs_reads(&self, _: &Topology) -> Vec<usize> {
+        Vec::new()
+    }
+
     fn span_rhs<D: Scalar>(&self, _: &Topology, l: D, y: &[D], _: &[D], eta: D, f: &mut [D]) {
         // (S2) times the span length ℓ.
         let w = self.weight_at(eta);
