@@ -47,3 +47,41 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("issue 13"), "{}", stderr(&o));
 }
+
+/// The static Cosserat rod on the two-pulley loop (issue 13's `cosserat-hanging`) is
+/// solved by the BVP from the file alone: exit 0, the summary has the edge pressures and
+/// no edge forces, its contact arcs lie between the Kirchhoff rod's and the string's;
+/// the FE, which has no Cosserat element yet, refuses it naming issue 13 and writes
+/// nothing.
+#[test]
+fn cosserat_hanging_is_solved_by_the_bvp_and_refused_by_the_fe() {
+    let mut scene: serde_json::Value = serde_json::from_str(&std::fs::read_to_string("scenes/rod-hanging.json").unwrap()).unwrap();
+    scene["name"] = json!("cosserat-hanging");
+    scene["belt"]["theory"] = json!("cosserat");
+    scene["belt"]["bending_stiffness"] = json!(0.005);
+    scene["belt"]["shear_stiffness"] = json!(1e3);
+    scene.as_object_mut().unwrap().remove("gate");
+    scene.as_object_mut().unwrap().remove("fem");
+    let path = write("cosserat-hanging.json", &scene);
+    let out = temp("cli-layouts", "cosserat-hanging-result.json");
+    let _ = std::fs::remove_file(&out);
+    let o = beltcheck(&["solve", path.to_str().unwrap(), "--method", "bvp-collocation", "--json", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let result: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let summary = &result["summary"];
+    for pulley in ["driver", "driven"] {
+        for end in ["start", "end"] {
+            let p = summary[pulley][format!("edge_pressure_{end}")].as_f64().unwrap_or_else(|| panic!("{pulley} edge pressure in {summary}"));
+            // p_edge ≈ P/ℓ_s with the Kirchhoff rod's edge force P ≈ 1.2–1.4 N and
+            // ℓ_s = √(a/b₂) = 2.24 mm (bvp/tests/cosserat_hanging.rs (d)).
+            assert!((500.0..700.0).contains(&p), "{pulley} {end}: {p} N/m");
+            assert!(summary[pulley].get(format!("edge_force_{end}")).is_none_or(|v| v.is_null()), "{summary}");
+        }
+    }
+    let fe_out = temp("cli-layouts", "cosserat-hanging-fem.json");
+    let _ = std::fs::remove_file(&fe_out);
+    let o = beltcheck(&["solve", path.to_str().unwrap(), "--method", "fem", "--json", fe_out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("issue 13") && stderr(&o).contains("theory `cosserat`"), "{}", stderr(&o));
+    assert!(!fe_out.exists());
+}

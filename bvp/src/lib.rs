@@ -34,6 +34,7 @@ pub mod sigma_map;
 pub mod string_hanging;
 pub mod string_drive;
 pub mod rod_hanging;
+pub mod cosserat_hanging;
 
 pub use error::BvpError;
 pub use problem::{JacobianMode, Problem, Scalar};

@@ -8,6 +8,7 @@ use thiserror::Error;
 
 use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
+use crate::cosserat_hanging::{self, CosseratHanging};
 use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
 use crate::string_drive::{self, StringDrive};
@@ -102,6 +103,21 @@ pub fn string_hanging_data(scene: &Scene) -> StringHanging {
     }
 }
 
+/// The physical data of a `rod-hanging` scene (a missing EI is NaN, refused by the
+/// solver's validation).
+pub fn rod_hanging_data(scene: &Scene) -> RodHanging {
+    let s = string_hanging_data(scene);
+    RodHanging {
+        radius: s.radius,
+        centre_distance: s.centre_distance,
+        length: s.length,
+        axial_stiffness: s.axial_stiffness,
+        bending_stiffness: scene.belt.bending_stiffness.unwrap_or(f64::NAN),
+        mass_per_length: s.mass_per_length,
+        gravity: s.gravity,
+    }
+}
+
 /// The physical data of a steady `string-drive` scene with Coulomb coefficient `mu`.
 pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
     StringDrive {
@@ -114,8 +130,9 @@ pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
     }
 }
 
-/// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`) or
-/// the static Kirchhoff rod (`rod-hanging`) on frictionless pulleys, or the string in
+/// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`), the
+/// static Kirchhoff rod (`rod-hanging`) or the static Cosserat rod (`cosserat-hanging`)
+/// on frictionless pulleys, or the string in
 /// steady motion with Coulomb friction (`string-drive`).
 ///
 /// # Errors
@@ -142,16 +159,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             Ok(BvpRun::of(sol, opts, options, notes))
         }
         Theory::Kirchhoff if static_frictionless => {
-            let s = string_hanging_data(scene);
-            let data = RodHanging {
-                radius: s.radius,
-                centre_distance: s.centre_distance,
-                length: s.length,
-                axial_stiffness: s.axial_stiffness,
-                bending_stiffness: scene.belt.bending_stiffness.unwrap_or(f64::NAN),
-                mass_per_length: s.mass_per_length,
-                gravity: s.gravity,
-            };
+            let data = rod_hanging_data(scene);
             let sol = rod_hanging::solve(&data, opts)?;
             let notes = vec![
                 format!(
@@ -160,6 +168,21 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
                     sol.bending_start()
                 ),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
+            ];
+            Ok(BvpRun::of(sol, opts, options, notes))
+        }
+        Theory::Cosserat if static_frictionless => {
+            let data = CosseratHanging { rod: rod_hanging_data(scene), shear_stiffness: scene.belt.shear_stiffness.unwrap_or(f64::NAN) };
+            let sol = cosserat_hanging::solve(&data, opts)?;
+            let notes = vec![
+                format!(
+                    "homotopy: the string, then {} continuation steps in log a from a₀ = {} N·m² at b₂ = {} N",
+                    sol.homotopy_steps,
+                    numerics::Sig(sol.bending_start()),
+                    numerics::Sig(data.shear_stiffness)
+                ),
+                format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
+                format!("shear layer √(a/b₂) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(data.shear_layer())),
             ];
             Ok(BvpRun::of(sol, opts, options, notes))
         }
@@ -186,7 +209,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             Ok(BvpRun::of(sol, opts, options, notes))
         }
         _ => Err(SceneSolveError::Unsupported(format!(
-            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string and the static Kirchhoff rod on frictionless pulleys, and the string in steady motion with Coulomb friction",
+            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string, Kirchhoff rod and Cosserat rod on frictionless pulleys, and the string in steady motion with Coulomb friction",
             scene.belt.theory, scene.analysis, scene.effects.contact
         ))),
     }

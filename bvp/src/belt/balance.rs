@@ -77,6 +77,12 @@ pub fn check_closure(defect: f64, weight: f64, force_scale: f64) -> Result<(), B
     Balance { name: "closure defect", value: defect, unit: "N", scale, scale_name, tolerance: CLOSURE_TOLERANCE }.check()
 }
 
+/// The closure check of a frictionless loop of unstretched length `length` (m): its
+/// closure defect against the belt's weight ρgL.
+pub fn check_loop_closure<L: super::law::SectionLaw>(sol: &super::solution::BeltSolution<L>, length: f64) -> Result<(), BeltError> {
+    check_closure(sol.closure_defect().unwrap_or(0.0), sol.pulleys.weight * length, sol.scales.force)
+}
+
 /// Check the power imbalance `imbalance` (W) against `power_scale` = P_ref (W).
 pub fn check_power(imbalance: f64, power_scale: f64) -> Result<(), BeltError> {
     let scale_name = "power scale P_ref";

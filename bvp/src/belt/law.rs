@@ -124,6 +124,16 @@ impl BeltPoint {
     }
 }
 
+/// What a section law has at a contact boundary ([`SectionLaw::CONTACT_EDGES`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactEdges {
+    /// Concentrated reactions: the jump of the transverse force (summary
+    /// `edge_force_*`; absent where the law has no transverse force, the string).
+    Forces,
+    /// A finite pressure just inside the zone (summary `edge_pressure_*`).
+    Pressures,
+}
+
 /// A belt theory as the one belt BVP asks for it (module docs). `Self` is the scaled
 /// problem along its homotopy path (η = 1 is the scene); `Data` the scene's physical data.
 pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
@@ -263,8 +273,19 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
     /// [`Topology::check`].
     fn admissible_window(&self) -> (f64, f64);
 
-    /// Name of the arc force that must stay positive (arc state component 0).
+    /// Name of the arc force that must stay positive ([`SectionLaw::arc_force`]).
     fn arc_force_name(&self) -> &'static str;
+
+    /// The arc force of an arc node state (scaled) that the homotopy's acceptance test
+    /// keeps positive and holds the closure jump against: by default arc state 0 (the
+    /// tension of the string and the rod).
+    fn arc_force(&self, arc_state: &[f64]) -> f64 {
+        arc_state[0]
+    }
+
+    /// What the law has at a contact boundary: concentrated edge forces (the unshearable
+    /// rod: jumps of the transverse force), or a finite edge pressure (the Cosserat rod).
+    const CONTACT_EDGES: ContactEdges = ContactEdges::Forces;
 
     /// The point-wise force condition of the contact check: which force must stay
     /// positive on this kind of segment (name, value in N), if any.

@@ -15,7 +15,7 @@ use drive::view::{ContactState, SolutionView};
 use crate::sigma_map::SigmaMap;
 use crate::solution::{Solution, Stats};
 
-use super::law::{BeltPoint, Pulleys, Scales, SectionLaw};
+use super::law::{BeltPoint, ContactEdges, Pulleys, Scales, SectionLaw};
 use super::problem::BeltProblem;
 use super::run::{self, StageError};
 use super::topology::{ArcKind, Pulley, Scaling, SegmentKind, Topology};
@@ -79,7 +79,7 @@ pub fn on_branch<L: SectionLaw>(problem: &BeltProblem<L>, s: &Solution, force_sc
     let name = problem.law.arc_force_name();
     let f_min = (0..topo.len())
         .filter(|&k| !topo.is_span(k))
-        .flat_map(|k| s.segments[k].nodes.iter().map(|y| y[0]))
+        .flat_map(|k| s.segments[k].nodes.iter().map(|y| problem.law.arc_force(y)))
         .fold(f64::INFINITY, f64::min);
     match topo.closure_jump() {
         Some(j) => {
@@ -211,9 +211,25 @@ impl<L: SectionLaw> BeltSolution<L> {
         L::first_integral(&self.data, point)
     }
 
+    /// The drift of the law's first integral round the loop, (max − min)/N_max over
+    /// `per_interval` dense samples per mesh interval, and N_max (N): imposed nowhere, it
+    /// measures the discretisation error. `None` where the law has no first integral.
+    pub fn invariant_drift(&self, per_interval: usize) -> Option<(f64, f64)> {
+        let pts = self.samples(per_interval);
+        let (mut lo, mut hi, mut nmax) = (f64::INFINITY, f64::NEG_INFINITY, 0.0_f64);
+        for (_, _, p) in &pts {
+            let e = self.invariant(p)?;
+            (lo, hi, nmax) = (lo.min(e), hi.max(e), nmax.max(p.tension));
+        }
+        Some(((hi - lo) / nmax, nmax))
+    }
+
     /// Concentrated edge forces (jumps of Q at the contact boundaries), where the law
     /// outputs Q.
     pub fn edge_forces(&self) -> Option<EdgeForces> {
+        if L::CONTACT_EDGES != ContactEdges::Forces {
+            return None;
+        }
         let topo = self.topology();
         let v = |k: usize, xi: f64| self.point(k, xi).shear;
         let jumps = |pulley: Pulley| -> Option<(f64, f64)> {
@@ -356,7 +372,14 @@ impl<L: SectionLaw> BeltSolution<L> {
             (Pulley::Driven, Some(e)) => (Some(e.driven_start), Some(e.driven_end)),
             (_, None) => (None, None),
         };
+        let edge_pressure = |k: usize, xi: f64| match L::CONTACT_EDGES {
+            ContactEdges::Pressures => self.point(k, xi).pressure,
+            ContactEdges::Forces => None,
+        };
+        let topo = self.topology();
         PulleySummary {
+            edge_pressure_start: edge_pressure(topo.first_arc(pulley), 0.0),
+            edge_pressure_end: edge_pressure(topo.last_arc(pulley), 1.0),
             contact_arc: Some(a - b),
             contact_start: Some(wrap_angle(a)),
             contact_end: Some(wrap_angle(b)),
@@ -365,7 +388,6 @@ impl<L: SectionLaw> BeltSolution<L> {
             torque: self.torque(pulley),
             edge_force_start: edge_start,
             edge_force_end: edge_end,
-            ..PulleySummary::default()
         }
     }
 }

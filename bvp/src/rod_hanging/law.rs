@@ -88,6 +88,20 @@ impl ScaledRodHanging {
     }
 }
 
+/// M²/(2EI) + N + N²/(2EA): the bending and axial part of the rods' first integral
+/// ((R7); the Cosserat rod's (CH5) adds Q²/(2b₂)), in N.
+pub(crate) fn section_energy(moment: f64, axial_force: f64, bending_stiffness: f64, axial_stiffness: f64) -> f64 {
+    moment * moment / (2.0 * bending_stiffness) + axial_force + axial_force * axial_force / (2.0 * axial_stiffness)
+}
+
+/// The rods' acceptance window (Kirchhoff and Cosserat). The string's window (a quarter
+/// turn) is too narrow for a rod: a stiff rod on a slack loop leaves the pulleys earlier,
+/// and its lower span can depart above the pulley's horizontal diameter (φ₂_b > 0,
+/// heading downwards); whether such a state is physical is decided by the contact checks
+/// (edge forces or pressures, p ≥ 0, no span through a pulley), not by this window.
+/// Wraps must be positive.
+pub(crate) const ROD_WINDOW: (f64, f64) = (PI, 0.0);
+
 impl SectionLaw for ScaledRodHanging {
     type Data = RodHanging;
     type Start = StringHangingSolution;
@@ -193,26 +207,15 @@ impl SectionLaw for ScaledRodHanging {
 
     fn first_integral(d: &RodHanging, pt: &BeltPoint) -> Option<f64> {
         // (R7) E = M²/(2EI) + N + N²/(2EA) − ρ g y.
-        let m = pt.moment?;
-        Some(
-            m * m / (2.0 * d.bending_stiffness) + pt.tension + pt.tension * pt.tension / (2.0 * d.axial_stiffness)
-                - d.mass_per_length * d.gravity * pt.y,
-        )
+        Some(section_energy(pt.moment?, pt.tension, d.bending_stiffness, d.axial_stiffness) - d.mass_per_length * d.gravity * pt.y)
     }
 
     fn check_balance(sol: &BeltSolution<Self>) -> Result<(), BeltError> {
-        let d = &sol.data;
-        let weight = d.mass_per_length * d.gravity * d.length;
-        balance::check_closure(sol.closure_defect().unwrap_or(0.0), weight, sol.scales.force)
+        balance::check_loop_closure(sol, sol.data.length)
     }
 
     fn admissible_window(&self) -> (f64, f64) {
-        // The string's window (a quarter turn) is too narrow for the rod: a stiff rod on
-        // a slack loop leaves the pulleys earlier, and its lower span can depart above
-        // the pulley's horizontal diameter (φ₂_b > 0, heading downwards); whether such a
-        // state is physical is decided by the contact checks (edge forces, p ≥ 0, no
-        // span through a pulley), not by this window. Wraps must be positive.
-        (PI, 0.0)
+        ROD_WINDOW
     }
 
     fn arc_force_name(&self) -> &'static str {

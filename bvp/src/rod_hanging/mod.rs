@@ -21,11 +21,11 @@ use serde::Serialize;
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, Run};
 use crate::belt::topology::{ContactModel, Scaling, Side, Topology};
-use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod};
+use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod, SectionLaw};
 use crate::collocation::Scheme;
 use crate::error::BvpError;
 use crate::solution::Solution;
-use crate::string_hanging::{self, StringHanging};
+use crate::string_hanging::{self, StringHanging, StringHangingSolution};
 pub use law::ScaledRodHanging;
 
 /// Physical data of the scene (SI units).
@@ -64,7 +64,7 @@ impl RodHanging {
 /// A solved `rod-hanging` scene; its `start` is the string solution of the same data.
 pub type RodHangingSolution = BeltSolution<ScaledRodHanging>;
 
-fn validate(d: &RodHanging, opts: &BeltOptions) -> Result<(), BeltError> {
+pub(crate) fn validate(d: &RodHanging, opts: &BeltOptions) -> Result<(), BeltError> {
     if !(d.bending_stiffness.is_finite() && d.bending_stiffness > 0.0) {
         return Err(BeltError::InvalidInput {
             name: "bending_stiffness",
@@ -122,8 +122,54 @@ pub fn rod_guess(string: &Solution, rod: &BeltProblem<ScaledRodHanging>, nodes: 
 pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution, BeltError> {
     let clock = Instant::now();
     validate(data, opts)?;
-    // The start: the string of the same data by collocation (gauss6, 1e-8), with the
-    // run's mesh cap, Jacobian mode and homotopy tolerance.
+    let (string, path) = string_start(&data.string(), data.bending_stiffness, opts)?;
+    let scales = string.scales;
+    let (h, fr) = (scales.length, scales.force);
+    let sp = &string.problem.law;
+    let law = ScaledRodHanging {
+        radius: sp.radius,
+        axial_stiffness: sp.axial_stiffness,
+        weight: sp.weight,
+        length: sp.length,
+        bending_start: path.scaled_start,
+        bending: data.bending_stiffness / (fr * h * h),
+    };
+    solve_from_string(*data, law, string, &path, |s, pb| rod_guess(s, pb, 81), opts, clock)
+}
+
+/// Solve a rod's section law `law` on the frictionless loop from the string start of
+/// [`string_start`]: its guess `guess(string, problem)`, the homotopy in log bending
+/// stiffness along `path`, the final solve and the checks (the Kirchhoff and the
+/// Cosserat rod).
+pub(crate) fn solve_from_string<L: SectionLaw<Start = StringHangingSolution>>(
+    data: L::Data,
+    law: L,
+    string: StringHangingSolution,
+    path: &RodPath,
+    guess: impl FnOnce(&Solution, &BeltProblem<L>) -> Solution,
+    opts: &BeltOptions,
+    clock: Instant,
+) -> Result<BeltSolution<L>, BeltError> {
+    let (scales, pulleys) = (string.scales, string.pulleys);
+    let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
+    let guess = guess(&string.solution, &problem);
+    let run = Run { data, problem, scales, pulleys, guess: &guess, start: string };
+    solution::solve(run, opts, clock, |e, _| match e {
+        StageError::Homotopy(cause) => path.failure(pulleys.radius, cause),
+        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
+    })
+}
+
+/// The start of a rod's homotopy (the Kirchhoff and the Cosserat rod): the string of the
+/// same data by collocation (gauss6, 1e-8, with the run's mesh cap, Jacobian mode and
+/// homotopy tolerance), and the path in log bending stiffness from EI₀, whose bending
+/// layer √(EI₀/T) is `opts.start_layer` H at the string's mid-span tension T, to the
+/// scene's `bending_stiffness` (N·m²).
+pub(crate) fn string_start(
+    string: &StringHanging,
+    bending_stiffness: f64,
+    opts: &BeltOptions,
+) -> Result<(StringHangingSolution, RodPath), BeltError> {
     let sopts = BeltOptions {
         method: BvpMethod::Collocation,
         scheme: Scheme::default(),
@@ -131,59 +177,55 @@ pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution
         shooting_intervals: BeltOptions::default().shooting_intervals,
         ..opts.clone()
     };
-    let string = string_hanging::solve(&data.string(), &sopts).map_err(|e| BeltError::StringStart(Box::new(e)))?;
-    let scales = string.scales;
-    let (h, fr) = (scales.length, scales.force);
-    let sp = &string.problem.law;
+    let string = string_hanging::solve(string, &sopts).map_err(|e| BeltError::StringStart(Box::new(e)))?;
+    let (h, fr) = (string.scales.length, string.scales.force);
     // String mid-span tension (upper span, x = 0), scaled.
     let (upper_mid, _) = string.topology().mid_spans();
     let mid = string.solution.segments[upper_mid].end();
     let t_mid = mid[2].hypot(mid[3]);
-    let bending_start_scaled = opts.start_layer * opts.start_layer * t_mid;
-    let law = ScaledRodHanging {
-        radius: sp.radius,
-        axial_stiffness: sp.axial_stiffness,
-        weight: sp.weight,
-        length: sp.length,
-        bending_start: bending_start_scaled,
-        bending: data.bending_stiffness / (fr * h * h),
+    let scaled_start = opts.start_layer * opts.start_layer * t_mid;
+    let path = RodPath {
+        scaled_start,
+        bending_start: scaled_start * fr * h * h,
+        bending: bending_stiffness,
+        tension: t_mid * fr,
     };
-    let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
-    let guess = rod_guess(&string.solution, &problem, 81);
-    let path = RodPath { bending_start: bending_start_scaled * fr * h * h, tension: t_mid * fr };
-    let run = Run { data: *data, problem, scales, pulleys: data.string().pulleys(), guess: &guess, start: string };
-    solution::solve(run, opts, clock, |e, _| match e {
-        StageError::Homotopy(cause) => path.failure(data, cause),
-        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
-    })
+    Ok((string, path))
 }
 
-/// The rod's homotopy in log EI from the string: its start EI₀ (N·m²) and the string's
-/// mid-span tension T (N), to name a stall by the scene quantity it was switching on.
-struct RodPath {
-    bending_start: f64,
-    tension: f64,
+/// A rod's homotopy in log EI from the string: its start EI₀ and end EI (N·m²) and the
+/// string's mid-span tension T (N), to name a stall by the scene quantity it was
+/// switching on.
+pub(crate) struct RodPath {
+    /// EI₀ / (F_ref H²), the scaled start.
+    pub scaled_start: f64,
+    /// EI₀ (N·m²).
+    pub bending_start: f64,
+    /// The scene's EI (N·m²).
+    pub bending: f64,
+    /// The string's mid-span tension (N).
+    pub tension: f64,
 }
 
 impl RodPath {
     /// A stalled homotopy named by the bending stiffness it had reached, EI(η) =
-    /// EI₀^(1−η) EI^η, and the scene's bending length √(EI/T) against the radius R.
-    fn failure(&self, d: &RodHanging, cause: BvpError) -> BeltError {
+    /// EI₀^(1−η) EI^η, and the scene's bending length √(EI/T) against the radius R (m).
+    pub fn failure(&self, radius: f64, cause: BvpError) -> BeltError {
         const STAGE: &str = "the homotopy in log EI from the string";
         let BvpError::ContinuationStalled { eta, .. } = cause else {
             return BeltError::Solver { stage: STAGE, cause };
         };
-        let ei = self.bending_start.powf(1.0 - eta) * d.bending_stiffness.powf(eta);
+        let ei = self.bending_start.powf(1.0 - eta) * self.bending.powf(eta);
         let at = format!(
             "stiffening the string into the rod: EI = {} N·m² on the way from EI₀ = {} N·m² to the scene's {} N·m²",
             Sig(ei),
             Sig(self.bending_start),
-            Sig(d.bending_stiffness)
+            Sig(self.bending)
         );
         let hard = format!(
             "the bending length √(EI/T) = {} m against the pulley radius R = {} m (T = {} N, the string's mid-span tension) makes it hard",
-            Sig((d.bending_stiffness / self.tension).sqrt()),
-            Sig(d.radius),
+            Sig((self.bending / self.tension).sqrt()),
+            Sig(radius),
             Sig(self.tension)
         );
         BeltError::HomotopyStalled { stage: STAGE, eta, at, hard, cause }

@@ -156,9 +156,7 @@ impl SectionLaw for ScaledStringHanging {
     }
 
     fn check_balance(sol: &BeltSolution<Self>) -> Result<(), BeltError> {
-        let d = &sol.data;
-        let weight = d.mass_per_length * d.gravity * d.length;
-        balance::check_closure(sol.closure_defect().unwrap_or(0.0), weight, sol.scales.force)
+        balance::check_loop_closure(sol, sol.data.length)
     }
 
     fn admissible_window(&self) -> (f64, f64) {
