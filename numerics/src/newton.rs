@@ -1269,16 +1269,17 @@ mod tests {
         }
         impl NewtonProblem for Energy {
             type Error = LinearError;
+            fn factorize(&mut self, z: &[f64]) -> Result<(), LinearError> {
+                (_, _, self.jac) = (self.f)(z[0]);
+                self.level = 0;
+                Ok(())
+            }
             fn size(&self) -> usize {
                 1
             }
             fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), LinearError> {
-                r[0] = (self.f)(z[0]).1;
-                Ok(())
-            }
-            fn factorize(&mut self, z: &[f64]) -> Result<(), LinearError> {
-                self.jac = (self.f)(z[0]).2;
-                self.level = 0;
+                let (_, gradient, _) = (self.f)(z[0]);
+                r[0] = gradient;
                 Ok(())
             }
             fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
