@@ -8,6 +8,8 @@
 //! ‖G‖ = max_i |G_i|/(F_ref c_i) (c_i = 1 for values, the node spacing for slopes) is
 //! reported.
 
+use numerics::newton::{Damping, Evaluation, NewtonError, NewtonOptions, NewtonProblem, Progress, TrialKind, TrialStep, Verdict};
+
 use crate::assembly::Assembler;
 use crate::dofs::DofKind;
 use crate::kinematics::TermParams;
@@ -108,6 +110,168 @@ pub struct NewtonSettings {
     pub max_iterations: usize,
 }
 
+/// The static Newton problem on [`numerics::newton`]: G = ∂Π/∂z with its tangent from
+/// one assembly pass, trials judged by the energy alone.
+///
+/// Regularisation levels (`regularise`): μ = 10⁻⁶, 10⁻⁵, … ≤ 10² refactorise
+/// K + μ diag|K|; the level after them is the last resort, which goes back to the plain
+/// Newton step (kept from level 0: its factorisation was overwritten and backtracking
+/// solves only for −G) and accepts where the scaled residual does not grow.
+struct StaticNewton<'a> {
+    asm: &'a Assembler,
+    lu: &'a mut SparseLu,
+    params: &'a TermParams,
+    length: f64,
+    scales: &'a Scales,
+    diag: &'a [usize],
+    /// 10⁻¹³ F_ref H: Armijo's round-off allowance.
+    allowance: f64,
+    /// Π, K and D = diag K (duplicates summed) of the last assembly.
+    energy: f64,
+    values: Vec<f64>,
+    d: Vec<f64>,
+    /// ‖G‖ of the last assembly.
+    rnorm: f64,
+    /// The shift μ of the current level (0: the plain K).
+    mu: f64,
+    last_resort: bool,
+    /// The plain Newton step of this iteration (level 0) and its ‖Δ‖.
+    newton_step: Vec<f64>,
+    last_update: f64,
+    /// Failed levels (= regularised factorisations, plus one for the last resort).
+    regularised: usize,
+    /// Π and ‖G‖ at the converging full step (the returned solution).
+    converged: Option<(f64, f64)>,
+}
+
+/// Why a call of [`StaticNewton`] failed.
+enum StaticError {
+    /// The assembly at an accepted iterate failed (∂σS ≤ 0 or non-finite).
+    Inadmissible,
+    /// faer's message.
+    Singular(String),
+}
+
+impl StaticNewton<'_> {
+    fn factorize_shifted(&mut self) -> Result<(), StaticError> {
+        if self.mu == 0.0 {
+            return self.lu.factorize(&self.values).map_err(StaticError::Singular);
+        }
+        let mut values = self.values.clone();
+        for (i, &pos) in self.diag.iter().enumerate() {
+            values[pos] += self.mu * self.d[i].abs().max(1e-300);
+        }
+        self.lu.factorize(&values).map_err(StaticError::Singular)
+    }
+}
+
+impl NewtonProblem for StaticNewton<'_> {
+    type Error = StaticError;
+    fn size(&self) -> usize {
+        self.asm.len()
+    }
+    fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), StaticError> {
+        // not called with both evaluation hooks (the gradient comes with the assembly,
+        // trials are judged by `trial_merit`)
+        match self.asm.gradient(z, self.params, self.length) {
+            Some((_, g)) => r.copy_from_slice(&g),
+            None => r.fill(f64::NAN),
+        }
+        Ok(())
+    }
+    fn factorize(&mut self, _z: &[f64]) -> Result<(), StaticError> {
+        unreachable!("StaticNewton factorises with its residual")
+    }
+    fn factorize_with_residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), StaticError> {
+        let a = self.asm.assemble(z, self.params, self.length).ok_or(StaticError::Inadmissible)?;
+        self.rnorm = self.scales.residual_norm(&a.gradient);
+        let (rows, cols) = self.asm.pattern();
+        self.d.fill(0.0);
+        for (k, &v) in a.values.iter().enumerate() {
+            if rows[k] == cols[k] {
+                self.d[rows[k]] += v;
+            }
+        }
+        r.copy_from_slice(&a.gradient);
+        self.energy = a.energy;
+        self.values = a.values;
+        self.mu = 0.0;
+        self.last_resort = false;
+        self.factorize_shifted()
+    }
+    fn solve(&mut self, b: &mut [f64]) -> Result<(), StaticError> {
+        if self.last_resort {
+            b.copy_from_slice(&self.newton_step);
+            return Ok(());
+        }
+        self.lu.solve_in_place(b).map_err(StaticError::Singular)?;
+        if self.mu == 0.0 {
+            self.newton_step.copy_from_slice(b);
+            self.last_update = self.scales.update_norm(b);
+        }
+        Ok(())
+    }
+    fn damping(&self) -> Damping {
+        Damping::Backtracking { take_best: false }
+    }
+    fn evaluation(&self) -> Evaluation {
+        Evaluation { residual_with_factorization: true, merit_only: true }
+    }
+    fn norm(&self, v: &[f64], _z: &[f64]) -> f64 {
+        self.scales.update_norm(v)
+    }
+    fn merit(&mut self, _z: &[f64], _r: &[f64]) -> f64 {
+        self.energy
+    }
+    fn trial_merit(&mut self, trial: &[f64], kind: TrialKind) -> Result<Option<f64>, StaticError> {
+        Ok(match kind {
+            // the converged state's residual norm and energy are reported
+            TrialKind::Converging => self.asm.gradient(trial, self.params, self.length).map(|(energy, g)| {
+                self.converged = Some((energy, self.scales.residual_norm(&g)));
+                energy
+            }),
+            // the last resort's merit is the scaled residual
+            TrialKind::Search if self.last_resort => {
+                self.asm.gradient(trial, self.params, self.length).map(|(_, g)| self.scales.residual_norm(&g))
+            }
+            TrialKind::Search => self.asm.energy(trial, self.params, self.length),
+        })
+    }
+    fn line_search(&mut self, _level: usize, slope: f64) -> bool {
+        self.last_resort || slope < 0.0
+    }
+    /// Only the converging full step ends the iteration (an accepted full step that
+    /// is not it continues).
+    fn converged(&mut self, _p: &Progress<'_>) -> bool {
+        self.converged.is_some()
+    }
+    fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
+        let accept = if self.last_resort {
+            t.trial_merit <= self.rnorm
+        } else {
+            t.trial_merit <= t.merit + ARMIJO * t.damping * t.slope + self.allowance
+        };
+        if accept {
+            Verdict::Accept
+        } else {
+            Verdict::Reject
+        }
+    }
+    fn regularise(&mut self, _z: &[f64], _level: usize) -> Result<bool, StaticError> {
+        if self.last_resort {
+            return Ok(false);
+        }
+        self.regularised += 1;
+        self.mu = if self.mu == 0.0 { 1e-6 } else { 10.0 * self.mu };
+        if self.mu <= 1e2 {
+            self.factorize_shifted()?;
+        } else {
+            self.last_resort = true;
+        }
+        Ok(true)
+    }
+}
+
 /// Solve G(z) = 0 from `z` (overwritten with the solution; on failure with the last
 /// accepted iterate). `lu` must hold the pattern of `asm`.
 ///
@@ -117,7 +281,9 @@ pub struct NewtonSettings {
 /// (K + μ D) Δ = −G with D = diag |K| and μ = 10⁻⁶, 10⁻⁵, … ≤ 10², which turns Δ
 /// towards steepest descent in the metric D (Levenberg–Marquardt). A step is accepted
 /// by Armijo's rule on Π with a round-off allowance of 10⁻¹³ F_ref H; as a last resort
-/// the plain Newton step is accepted where the scaled residual does not grow.
+/// the plain Newton step is accepted where the scaled residual does not grow. The
+/// iteration is [`numerics::newton::solve`] (backtracking, the gradient taken from the
+/// tangent's assembly, trials judged by Π alone).
 pub fn solve(
     asm: &Assembler,
     lu: &mut SparseLu,
@@ -128,129 +294,58 @@ pub fn solve(
     settings: &NewtonSettings,
 ) -> Result<NewtonReport, NewtonFailure> {
     let n = z.len();
-    let mut report = NewtonReport { min_alpha: 1.0, ..Default::default() };
-    let mut step = vec![0.0; n];
-    let mut newton_step = vec![0.0; n];
-    let mut trial = vec![0.0; n];
-    let mut last_update = f64::INFINITY;
-    let mut last_residual = f64::INFINITY;
-    let diag = asm.diagonal_positions();
-    let allowance = 1e-13 * scales.energy;
-    loop {
-        let Some(a) = asm.assemble(z, params, length) else {
-            return if report.iterations == 0 {
-                Err(NewtonFailure::Inadmissible)
-            } else {
-                Err(NewtonFailure::Diverged {
-                    iterations: report.iterations,
-                    update: last_update,
-                    residual: last_residual,
-                    line_search_failed: false,
-                })
-            };
-        };
-        let rnorm = scales.residual_norm(&a.gradient);
-        last_residual = rnorm;
-        if report.iterations >= settings.max_iterations {
-            return Err(NewtonFailure::Diverged {
-                iterations: report.iterations,
-                update: last_update,
-                residual: rnorm,
-                line_search_failed: false,
-            });
+    let mut problem = StaticNewton {
+        asm,
+        lu,
+        params,
+        length,
+        scales,
+        diag: asm.diagonal_positions(),
+        allowance: 1e-13 * scales.energy,
+        energy: 0.0,
+        values: Vec::new(),
+        d: vec![0.0; n],
+        rnorm: f64::INFINITY,
+        mu: 0.0,
+        last_resort: false,
+        newton_step: vec![0.0; n],
+        last_update: f64::INFINITY,
+        regularised: 0,
+        converged: None,
+    };
+    let opts = NewtonOptions { tolerance: settings.tolerance, max_iterations: settings.max_iterations, min_damping: MIN_ALPHA };
+    let diverged = |iterations, update, residual, line_search_failed| NewtonFailure::Diverged { iterations, update, residual, line_search_failed };
+    match numerics::newton::solve(&mut problem, z, &opts) {
+        Ok(stats) => {
+            let (energy, residual_norm) = problem.converged.unwrap_or((f64::NAN, f64::NAN));
+            Ok(NewtonReport {
+                iterations: stats.iterations,
+                update_norm: stats.last_correction,
+                residual_norm,
+                energy,
+                min_alpha: stats.min_damping_used,
+                regularised: problem.regularised,
+            })
         }
-        report.iterations += 1;
-        // D = diag |K| (duplicates summed)
-        let mut d = vec![0.0; n];
-        for (k, &v) in a.values.iter().enumerate() {
-            let (r, c) = (asm.pattern().0[k], asm.pattern().1[k]);
-            if r == c {
-                d[r] += v;
+        Err(e) => Err(match e {
+            NewtonError::MaxIterations { iterations, correction, .. } => {
+                // ‖G‖ at the last iterate, from its assembly (the last one's if it fails)
+                let residual = asm.assemble(z, params, length).map_or(problem.rnorm, |a| scales.residual_norm(&a.gradient));
+                diverged(iterations, correction, residual, false)
             }
-        }
-        let mut mu = 0.0;
-        let mut accepted = false;
-        while mu <= 1e2 {
-            let mut values = a.values.clone();
-            if mu > 0.0 {
-                for (i, &pos) in diag.iter().enumerate() {
-                    values[pos] += mu * d[i].abs().max(1e-300);
+            NewtonError::LineSearchFailed { iteration, correction, .. } => diverged(iteration, correction, problem.rnorm, true),
+            NewtonError::NonFinite { iteration, .. } | NewtonError::Problem { iteration, error: StaticError::Inadmissible, .. } => {
+                if iteration <= 1 {
+                    NewtonFailure::Inadmissible
+                } else {
+                    diverged(iteration - 1, problem.last_update, problem.rnorm, false)
                 }
             }
-            lu.factorize(&values)
-                .map_err(|detail| NewtonFailure::Singular { iteration: report.iterations, detail })?;
-            for (s, g) in step.iter_mut().zip(&a.gradient) {
-                *s = -g;
+            NewtonError::Problem { iteration, error: StaticError::Singular(detail), .. } => NewtonFailure::Singular { iteration, detail },
+            NewtonError::SingularStep { iteration, .. } => NewtonFailure::Singular { iteration, detail: "non-finite Newton step".into() },
+            NewtonError::InvalidOptions(_) | NewtonError::DimensionMismatch { .. } | NewtonError::DampingExhausted { .. } => {
+                diverged(0, f64::INFINITY, f64::INFINITY, false)
             }
-            lu.solve_in_place(&mut step)
-                .map_err(|detail| NewtonFailure::Singular { iteration: report.iterations, detail })?;
-            let unorm = scales.update_norm(&step);
-            let slope: f64 = step.iter().zip(&a.gradient).map(|(s, g)| s * g).sum();
-            if mu == 0.0 {
-                last_update = unorm;
-                newton_step.copy_from_slice(&step);
-                // converged: take the full step (it must be admissible)
-                if unorm <= settings.tolerance {
-                    for i in 0..n {
-                        trial[i] = z[i] + step[i];
-                    }
-                    if let Some((energy, g)) = asm.gradient(&trial, params, length) {
-                        z.copy_from_slice(&trial);
-                        report.update_norm = unorm;
-                        report.residual_norm = scales.residual_norm(&g);
-                        report.energy = energy;
-                        return Ok(report);
-                    }
-                }
-            }
-            if slope < 0.0 {
-                // Armijo line search on Π
-                let mut alpha = 1.0;
-                while alpha >= MIN_ALPHA {
-                    for i in 0..n {
-                        trial[i] = z[i] + alpha * step[i];
-                    }
-                    if let Some(energy) = asm.energy(&trial, params, length) {
-                        if energy <= a.energy + ARMIJO * alpha * slope + allowance {
-                            accepted = true;
-                            break;
-                        }
-                    }
-                    alpha *= 0.5;
-                }
-                if accepted {
-                    report.min_alpha = report.min_alpha.min(alpha);
-                    break;
-                }
-            }
-            mu = if mu == 0.0 { 1e-6 } else { 10.0 * mu };
-            report.regularised += 1;
-        }
-        if !accepted {
-            // last resort: the Newton step where the scaled residual does not grow
-            let mut alpha = 1.0;
-            while alpha >= MIN_ALPHA {
-                for i in 0..n {
-                    trial[i] = z[i] + alpha * newton_step[i];
-                }
-                if let Some((_, g)) = asm.gradient(&trial, params, length) {
-                    if scales.residual_norm(&g) <= rnorm {
-                        accepted = true;
-                        break;
-                    }
-                }
-                alpha *= 0.5;
-            }
-            if !accepted {
-                return Err(NewtonFailure::Diverged {
-                    iterations: report.iterations,
-                    update: last_update,
-                    residual: rnorm,
-                    line_search_failed: true,
-                });
-            }
-            report.min_alpha = report.min_alpha.min(alpha);
-        }
-        z.copy_from_slice(&trial);
+        }),
     }
 }

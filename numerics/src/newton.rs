@@ -40,14 +40,29 @@
 //!    [`NewtonProblem::accept_step`] (by default Armijo's m(z + αΔz) ≤ (1 − c α) m(z),
 //!    c = [`SUFFICIENT_DECREASE`]), which may also abandon the search at once (e.g. Δz
 //!    is not a descent direction of an energy).
-//! 3. If no α is accepted, [`NewtonProblem::regularise`] is asked for level 1, 2, …
+//! 3. If no α is accepted — or [`NewtonProblem::line_search`] declines the step (e.g.
+//!    not a descent direction), or the step is not finite (a numerically singular
+//!    Jacobian) — [`NewtonProblem::regularise`] is asked for level 1, 2, …
 //!    (e.g. Levenberg–Marquardt J + μ D): on `true` the problem has refactorised, the
 //!    step is solved again and searched again. When the levels are exhausted the best
 //!    admissible trial by merit is taken if `take_best` is set, else the solve fails
-//!    ([`NewtonError::LineSearchFailed`]).
+//!    ([`NewtonError::LineSearchFailed`], or [`NewtonError::SingularStep`] if the last
+//!    step was not finite).
 //! 4. After every accepted step [`NewtonProblem::converged`] decides (default: a full
 //!    step with ‖Δz_k‖ ≤ tol) — a semismooth Newton adds "and the active set did not
 //!    change", or a round-off floor.
+
+//! # Shared passes ([`Evaluation`], chosen by [`NewtonProblem::evaluation`])
+//! Both off by default (the scheme above, evaluation for evaluation). A problem whose
+//! Jacobian pass also yields F (an assembly of energy, gradient and Hessian) sets
+//! `residual_with_factorization`: F(z_k) is then taken from
+//! [`NewtonProblem::factorize_with_residual`] at every iteration and F(z₀) is not
+//! evaluated apart. A problem whose merit is cheaper than its residual (an energy
+//! against its gradient) sets `merit_only`: backtracking judges every trial by
+//! [`NewtonProblem::trial_merit`] and evaluates F only at the accepted trial — with
+//! both set, never outside the factorisations (a converged iterate is returned without
+//! its residual). The iterates are the same as without the hooks when the passes give
+//! the same numbers.
 //!
 //! # How fem's three Newton loops map onto this (for their migration)
 //! - `fem/src/newton.rs` (static string/rod, Armijo on the energy Π with
@@ -163,8 +178,11 @@ pub enum Damping {
 pub struct NewtonStats {
     /// Newton iterations (= unregularised Jacobian evaluations and factorisations).
     pub iterations: usize,
-    /// Residual evaluations F(z).
+    /// Residual evaluations F(z) by [`NewtonProblem::residual`] (a residual evaluated
+    /// with the Jacobian, [`Evaluation::residual_with_factorization`], is not counted).
     pub residual_evaluations: usize,
+    /// Trials judged by [`NewtonProblem::trial_merit`] alone ([`Evaluation::merit_only`]).
+    pub merit_evaluations: usize,
     /// Factorisations, regularised ones included.
     pub factorisations: usize,
     /// Linear solves with a factorised Jacobian.
@@ -197,6 +215,9 @@ pub enum NonFiniteWhat {
     InitialResidual,
     /// The residual at the converged iterate.
     ConvergedResidual,
+    /// The residual at an accepted iterate whose trial was judged by its merit alone, or
+    /// the residual a factorisation evaluated ([`Evaluation`]).
+    IterateResidual,
 }
 
 impl std::fmt::Display for NonFiniteWhat {
@@ -205,6 +226,7 @@ impl std::fmt::Display for NonFiniteWhat {
             NonFiniteWhat::InitialIterate => "Newton initial iterate",
             NonFiniteWhat::InitialResidual => "residual at the initial iterate",
             NonFiniteWhat::ConvergedResidual => "residual at the converged iterate",
+            NonFiniteWhat::IterateResidual => "residual at an accepted iterate",
         })
     }
 }
@@ -258,8 +280,9 @@ pub struct TrialStep<'a> {
     pub trial: &'a [f64],
     /// F(z).
     pub residual: &'a [f64],
-    /// F(z + αΔz) (finite).
-    pub trial_residual: &'a [f64],
+    /// F(z + αΔz) (finite); `None` when the trial was judged by its merit alone
+    /// ([`Evaluation::merit_only`]).
+    pub trial_residual: Option<&'a [f64]>,
     /// m(z).
     pub merit: f64,
     /// m(z + αΔz).
@@ -267,6 +290,10 @@ pub struct TrialStep<'a> {
     /// F(z)ᵀΔz: when F is the gradient of an energy Π, the slope dΠ(z + αΔz)/dα at
     /// α = 0 (negative for a descent direction).
     pub slope: f64,
+    /// Norm of the unregularised Newton correction of this iteration.
+    pub correction: f64,
+    /// The tolerance.
+    pub tolerance: f64,
 }
 
 /// What a backtracking test decides.
@@ -297,8 +324,43 @@ pub struct Progress<'a> {
     pub merit_after: f64,
     /// The new iterate.
     pub z: &'a [f64],
-    /// Its residual.
-    pub residual: &'a [f64],
+    /// Its residual; `None` when it was not evaluated (its trial was judged by its merit
+    /// alone and the next factorisation evaluates it, [`Evaluation`]).
+    pub residual: Option<&'a [f64]>,
+}
+
+/// Which evaluations the problem's passes share, chosen by
+/// [`NewtonProblem::evaluation`]. Both are off by default, which is the scheme of the
+/// module documentation; with both off [`solve`] never calls
+/// [`NewtonProblem::factorize_with_residual`] or [`NewtonProblem::trial_merit`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Evaluation {
+    /// "The factorisation evaluated the residual too": the Jacobian pass of the problem
+    /// yields F(z) as well (e.g. an assembly of energy, gradient and Hessian at once).
+    /// Newton then factorises by [`NewtonProblem::factorize_with_residual`] and takes
+    /// F(z_k) from it for the step, the merit m(z_k) and the failure reports, replacing
+    /// the residual it held (that of the accepted trial); F(z₀) is not evaluated
+    /// separately before the first iteration.
+    pub residual_with_factorization: bool,
+    /// "Judge a trial by its merit alone" (backtracking only; natural monotonicity
+    /// ignores it): every trial z + αΔz, the full step below the tolerance included, is
+    /// judged by [`NewtonProblem::trial_merit`] (admissibility and merit in one call,
+    /// no residual; [`TrialStep::trial_residual`] is `None`). The residual is then
+    /// evaluated only at the accepted trial, by [`NewtonProblem::residual`] — or, with
+    /// `residual_with_factorization`, not at all: the next factorisation yields it, and
+    /// a converged iterate is returned without it ([`Progress::residual`] is `None`).
+    pub merit_only: bool,
+}
+
+/// Which trial [`NewtonProblem::trial_merit`] judges.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TrialKind {
+    /// The full step of a correction below the tolerance: taken without a merit test
+    /// if admissible, and by the default [`NewtonProblem::converged`] the returned
+    /// solution (a problem that reports the solution's residual may evaluate it here).
+    Converging,
+    /// A trial of the line search, judged by [`NewtonProblem::accept_step`].
+    Search,
 }
 
 /// A square nonlinear system F(z) = 0 with a factorisable Jacobian, and the hooks of
@@ -357,6 +419,41 @@ pub trait NewtonProblem {
     fn converged(&mut self, p: &Progress<'_>) -> bool {
         p.damping == 1.0 && p.correction <= p.tolerance
     }
+    /// Backtracking: whether to search along the step of regularisation `level` whose
+    /// slope is F(z)ᵀΔz at all; `false` goes on to the next level without evaluating a
+    /// trial (an energy minimiser searches along descent directions only, slope < 0).
+    /// The full step of a correction below the tolerance is tried first regardless.
+    /// Default: always.
+    fn line_search(&mut self, level: usize, slope: f64) -> bool {
+        let _ = (level, slope);
+        true
+    }
+    /// Which evaluations share a pass ([`Evaluation`]). Default: none.
+    fn evaluation(&self) -> Evaluation {
+        Evaluation::default()
+    }
+    /// With [`Evaluation::residual_with_factorization`], used instead of
+    /// [`Self::factorize`]: evaluate and factorise the Jacobian at `z` and write F(z)
+    /// into `r` from the same pass. Default: `factorize` and `residual`, one after the
+    /// other.
+    fn factorize_with_residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), Self::Error> {
+        self.factorize(z)?;
+        self.residual(z, r)
+    }
+    /// With [`Evaluation::merit_only`], how backtracking judges a trial: `Some(m)` with
+    /// its merit m (what [`Self::merit`] gives there) if the trial is admissible,
+    /// `None` (or a non-finite m) if not. An error is reported at [`Stage::Residual`].
+    /// Default: [`Self::residual`], [`Self::admissible`] and [`Self::merit`].
+    fn trial_merit(&mut self, trial: &[f64], kind: TrialKind) -> Result<Option<f64>, Self::Error> {
+        let _ = kind;
+        let mut r = vec![0.0; self.size()];
+        self.residual(trial, &mut r)?;
+        if all_finite(&r) && self.admissible(trial, &r) {
+            Ok(Some(self.merit(trial, &r)))
+        } else {
+            Ok(None)
+        }
+    }
 }
 
 /// ‖v‖_z = max_i |v_i| / (1 + |z_i|).
@@ -377,8 +474,10 @@ struct Run<'p, P: NewtonProblem> {
     problem: &'p mut P,
     opts: NewtonOptions,
     stats: NewtonStats,
-    /// ‖F‖_∞ at the last accepted iterate.
+    /// ‖F‖_∞ at the last accepted iterate (with
+    /// [`Evaluation::residual_with_factorization`]: at the last factorised one).
     residual: f64,
+    evaluation: Evaluation,
 }
 
 impl<P: NewtonProblem> Run<'_, P> {
@@ -388,12 +487,44 @@ impl<P: NewtonProblem> Run<'_, P> {
         self.problem.residual(z, r).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Residual, error })
     }
 
-    fn factorize(&mut self, z: &[f64]) -> Result<(), NewtonError<P::Error>> {
+    /// Factorise at `z`; with [`Evaluation::residual_with_factorization`] `r` becomes
+    /// F(z) from the same pass.
+    fn factorize(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), NewtonError<P::Error>> {
         let iteration = self.stats.iterations + 1;
-        self.problem.factorize(z).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Factorize, error })?;
+        let failed = |error| NewtonError::Problem { iteration, stage: Stage::Factorize, error };
+        if self.evaluation.residual_with_factorization {
+            self.problem.factorize_with_residual(z, r).map_err(failed)?;
+            if !all_finite(r) {
+                let what = if iteration == 1 { NonFiniteWhat::InitialResidual } else { NonFiniteWhat::IterateResidual };
+                return Err(NewtonError::NonFinite { iteration, what });
+            }
+            self.residual = max_abs(r);
+        } else {
+            self.problem.factorize(z).map_err(failed)?;
+        }
         self.stats.iterations += 1;
         self.stats.factorisations += 1;
         Ok(())
+    }
+
+    /// Judge `trial`: `Some(merit)` if it is admissible — by its residual (into
+    /// `r_trial`) or, with [`Evaluation::merit_only`], by its merit alone.
+    fn judge(&mut self, trial: &[f64], r_trial: &mut [f64], kind: TrialKind) -> Result<Option<f64>, NewtonError<P::Error>> {
+        if self.evaluation.merit_only {
+            self.stats.merit_evaluations += 1;
+            let iteration = self.stats.iterations;
+            let merit = self
+                .problem
+                .trial_merit(trial, kind)
+                .map_err(|error| NewtonError::Problem { iteration, stage: Stage::Residual, error })?;
+            return Ok(merit.filter(|m| m.is_finite()));
+        }
+        self.residual(trial, r_trial)?;
+        if all_finite(r_trial) && self.problem.admissible(trial, r_trial) {
+            Ok(Some(self.problem.merit(trial, r_trial)))
+        } else {
+            Ok(None)
+        }
     }
 
     /// `out` = −J⁻¹ `r`.
@@ -432,7 +563,7 @@ impl<P: NewtonProblem> Run<'_, P> {
             if self.stats.iterations >= self.opts.max_iterations {
                 return Err(self.max_iterations(last_norm));
             }
-            self.factorize(z)?;
+            self.factorize(z, r)?;
             self.newton_step(r, &mut dz)?;
             if !all_finite(&dz) {
                 return Err(NewtonError::SingularStep { iteration: self.stats.iterations, residual: self.residual });
@@ -514,6 +645,7 @@ impl<P: NewtonProblem> Run<'_, P> {
     fn backtracking(&mut self, z: &mut [f64], r: &mut [f64], take_best: bool) -> Result<(), NewtonError<P::Error>> {
         let n = z.len();
         let tol = self.opts.tolerance;
+        let merit_only = self.evaluation.merit_only;
         let mut step = vec![0.0; n];
         let mut trial = vec![0.0; n];
         let mut r_trial = vec![0.0; n];
@@ -522,61 +654,64 @@ impl<P: NewtonProblem> Run<'_, P> {
             if self.stats.iterations >= self.opts.max_iterations {
                 return Err(self.max_iterations(last_norm));
             }
-            self.factorize(z)?;
+            self.factorize(z, r)?;
             let merit = self.problem.merit(z, r);
             let mut level = 0;
-            // (α, merit, trial, residual) of the best admissible trial
-            let mut best: Option<(f64, f64, Vec<f64>, Vec<f64>)> = None;
-            let (alpha, merit_after) = 'levels: loop {
+            // (α, merit, trial, its residual if evaluated) of the best admissible trial
+            let mut best: Option<(f64, f64, Vec<f64>, Option<Vec<f64>>)> = None;
+            // (α, merit) of the accepted trial; whether `r_trial` holds its residual
+            let (alpha, merit_after, evaluated) = 'levels: loop {
                 self.newton_step(r, &mut step)?;
-                if !all_finite(&step) {
-                    return Err(NewtonError::SingularStep { iteration: self.stats.iterations, residual: self.residual });
-                }
-                let slope: f64 = step.iter().zip(r.iter()).map(|(s, g)| s * g).sum();
-                if level == 0 {
-                    last_norm = self.problem.norm(&step, z);
-                    self.stats.last_correction = last_norm;
-                    if last_norm <= tol {
-                        for i in 0..n {
-                            trial[i] = z[i] + step[i];
-                        }
-                        self.residual(&trial, &mut r_trial)?;
-                        if all_finite(&r_trial) && self.problem.admissible(&trial, &r_trial) {
-                            break 'levels (1.0, self.problem.merit(&trial, &r_trial));
-                        }
-                    }
-                }
-                let mut alpha = 1.0;
-                while alpha >= self.opts.min_damping {
-                    for i in 0..n {
-                        trial[i] = z[i] + alpha * step[i];
-                    }
-                    self.residual(&trial, &mut r_trial)?;
-                    if all_finite(&r_trial) && self.problem.admissible(&trial, &r_trial) {
-                        let trial_merit = self.problem.merit(&trial, &r_trial);
-                        let t = TrialStep {
-                            iteration: self.stats.iterations,
-                            level,
-                            damping: alpha,
-                            z,
-                            step: &step,
-                            trial: &trial,
-                            residual: r,
-                            trial_residual: &r_trial,
-                            merit,
-                            trial_merit,
-                            slope,
-                        };
-                        match self.problem.accept_step(&t) {
-                            Verdict::Accept => break 'levels (alpha, trial_merit),
-                            Verdict::Abandon => break,
-                            Verdict::Reject => {}
-                        }
-                        if take_best && best.as_ref().is_none_or(|b| trial_merit < b.1) {
-                            best = Some((alpha, trial_merit, trial.clone(), r_trial.clone()));
+                // a non-finite step (numerically singular Jacobian) fails its level
+                let finite = all_finite(&step);
+                if finite {
+                    let slope: f64 = step.iter().zip(r.iter()).map(|(s, g)| s * g).sum();
+                    if level == 0 {
+                        last_norm = self.problem.norm(&step, z);
+                        self.stats.last_correction = last_norm;
+                        if last_norm <= tol {
+                            for i in 0..n {
+                                trial[i] = z[i] + step[i];
+                            }
+                            if let Some(m) = self.judge(&trial, &mut r_trial, TrialKind::Converging)? {
+                                break 'levels (1.0, m, !merit_only);
+                            }
                         }
                     }
-                    alpha *= 0.5;
+                    if self.problem.line_search(level, slope) {
+                        let mut alpha = 1.0;
+                        while alpha >= self.opts.min_damping {
+                            for i in 0..n {
+                                trial[i] = z[i] + alpha * step[i];
+                            }
+                            if let Some(trial_merit) = self.judge(&trial, &mut r_trial, TrialKind::Search)? {
+                                let t = TrialStep {
+                                    iteration: self.stats.iterations,
+                                    level,
+                                    damping: alpha,
+                                    z,
+                                    step: &step,
+                                    trial: &trial,
+                                    residual: r,
+                                    trial_residual: (!merit_only).then_some(&r_trial[..]),
+                                    merit,
+                                    trial_merit,
+                                    slope,
+                                    correction: last_norm,
+                                    tolerance: tol,
+                                };
+                                match self.problem.accept_step(&t) {
+                                    Verdict::Accept => break 'levels (alpha, trial_merit, !merit_only),
+                                    Verdict::Abandon => break,
+                                    Verdict::Reject => {}
+                                }
+                                if take_best && best.as_ref().is_none_or(|b| trial_merit < b.1) {
+                                    best = Some((alpha, trial_merit, trial.clone(), (!merit_only).then(|| r_trial.clone())));
+                                }
+                            }
+                            alpha *= 0.5;
+                        }
+                    }
                 }
                 level += 1;
                 let iteration = self.stats.iterations;
@@ -592,9 +727,13 @@ impl<P: NewtonProblem> Run<'_, P> {
                 match best.take() {
                     Some((a, m, t, rt)) => {
                         trial = t;
-                        r_trial = rt;
-                        break 'levels (a, m);
+                        let evaluated = rt.is_some();
+                        if let Some(rt) = rt {
+                            r_trial = rt;
+                        }
+                        break 'levels (a, m, evaluated);
                     }
+                    None if !finite => return Err(NewtonError::SingularStep { iteration, residual: self.residual }),
                     None => {
                         return Err(NewtonError::LineSearchFailed {
                             iteration,
@@ -608,8 +747,21 @@ impl<P: NewtonProblem> Run<'_, P> {
             };
             self.stats.min_damping_used = self.stats.min_damping_used.min(alpha);
             z.copy_from_slice(&trial);
-            r.copy_from_slice(&r_trial);
-            self.residual = max_abs(r);
+            let known = if evaluated {
+                r.copy_from_slice(&r_trial);
+                true
+            } else if !self.evaluation.residual_with_factorization {
+                self.residual(z, r)?;
+                if !all_finite(r) {
+                    return Err(NewtonError::NonFinite { iteration: self.stats.iterations, what: NonFiniteWhat::IterateResidual });
+                }
+                true
+            } else {
+                false
+            };
+            if known {
+                self.residual = max_abs(r);
+            }
             let progress = Progress {
                 iteration: self.stats.iterations,
                 damping: alpha,
@@ -618,7 +770,7 @@ impl<P: NewtonProblem> Run<'_, P> {
                 merit_before: merit,
                 merit_after,
                 z,
-                residual: r,
+                residual: known.then_some(&r[..]),
             };
             if self.problem.converged(&progress) {
                 return Ok(());
@@ -647,18 +799,23 @@ pub fn solve<P: NewtonProblem>(
         return Err(NewtonError::NonFinite { iteration: 0, what: NonFiniteWhat::InitialIterate });
     }
     let damping = problem.damping();
+    let evaluation = problem.evaluation();
     let mut run = Run {
         problem,
         opts: *opts,
         stats: NewtonStats { min_damping_used: 1.0, ..Default::default() },
         residual: f64::INFINITY,
+        evaluation,
     };
     let mut r = vec![0.0; n];
-    run.residual(z, &mut r)?;
-    if !all_finite(&r) {
-        return Err(NewtonError::NonFinite { iteration: 0, what: NonFiniteWhat::InitialResidual });
+    // with the residual from the factorisation, F(z₀) comes with the first one
+    if !evaluation.residual_with_factorization {
+        run.residual(z, &mut r)?;
+        if !all_finite(&r) {
+            return Err(NewtonError::NonFinite { iteration: 0, what: NonFiniteWhat::InitialResidual });
+        }
+        run.residual = max_abs(&r);
     }
-    run.residual = max_abs(&r);
     match damping {
         Damping::NaturalMonotonicity => run.natural_monotonicity(z, &mut r)?,
         Damping::Backtracking { take_best } => run.backtracking(z, &mut r, take_best)?,
@@ -965,5 +1122,220 @@ mod tests {
         // x² − 4 = 0 from 0.1: ~10 iterations (damped, then quadratic), one more for the
         // second small step
         assert!(stats.iterations <= 14, "{stats:?}");
+    }
+
+    /// Π(z) = Σ (cosh z_i − b_i z_i), minimised by Newton on F = ∇Π = sinh z − b with
+    /// Armijo on Π; every pass counts its calls. The assembly pass `factorize_with_residual`
+    /// returns Π, F and J = diag cosh z at once.
+    struct Catenary {
+        b: Vec<f64>,
+        evaluation: Evaluation,
+        jac: Vec<f64>,
+        energy_at_z: f64,
+        residual_calls: usize,
+        energy_calls: usize,
+        assemblies: usize,
+    }
+
+    impl Catenary {
+        fn new(evaluation: Evaluation) -> Self {
+            Catenary { b: vec![6.0, -2.0, 0.5], evaluation, jac: vec![], energy_at_z: 0.0, residual_calls: 0, energy_calls: 0, assemblies: 0 }
+        }
+        fn energy(&self, z: &[f64]) -> f64 {
+            z.iter().zip(&self.b).map(|(x, b)| x.cosh() - b * x).sum()
+        }
+    }
+
+    impl NewtonProblem for Catenary {
+        type Error = LinearError;
+        fn size(&self) -> usize {
+            self.b.len()
+        }
+        fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), LinearError> {
+            self.residual_calls += 1;
+            for ((ri, x), b) in r.iter_mut().zip(z).zip(&self.b) {
+                *ri = x.sinh() - b;
+            }
+            Ok(())
+        }
+        fn factorize(&mut self, z: &[f64]) -> Result<(), LinearError> {
+            self.jac = z.iter().map(|x| x.cosh()).collect();
+            self.energy_at_z = self.energy(z);
+            Ok(())
+        }
+        fn factorize_with_residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), LinearError> {
+            self.assemblies += 1;
+            self.factorize(z)?;
+            for ((ri, x), b) in r.iter_mut().zip(z).zip(&self.b) {
+                *ri = x.sinh() - b;
+            }
+            Ok(())
+        }
+        fn solve(&mut self, v: &mut [f64]) -> Result<(), LinearError> {
+            for (vi, j) in v.iter_mut().zip(&self.jac) {
+                *vi /= j;
+            }
+            Ok(())
+        }
+        fn damping(&self) -> Damping {
+            Damping::Backtracking { take_best: false }
+        }
+        fn evaluation(&self) -> Evaluation {
+            self.evaluation
+        }
+        fn merit(&mut self, z: &[f64], _r: &[f64]) -> f64 {
+            // Π at the factorised point is known from the assembly pass
+            if z.iter().zip(&self.jac).all(|(x, j)| x.cosh() == *j) {
+                self.energy_at_z
+            } else {
+                self.energy_calls += 1;
+                self.energy(z)
+            }
+        }
+        fn trial_merit(&mut self, trial: &[f64], _kind: TrialKind) -> Result<Option<f64>, LinearError> {
+            self.energy_calls += 1;
+            Ok(Some(self.energy(trial)))
+        }
+        fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
+            if t.trial_merit <= t.merit + SUFFICIENT_DECREASE * t.damping * t.slope {
+                Verdict::Accept
+            } else {
+                Verdict::Reject
+            }
+        }
+    }
+
+    /// The two evaluation hooks change which passes run, not the iterates: from z = 0
+    /// (b = (6, −2, ½): the first full step to z₁ = 6 overshoots asinh 6 ≈ 2.5 and
+    /// raises Π from 0 to ≈ 162, so it is damped) every variant
+    /// takes the same steps bit for bit. Without hooks every trial costs a residual
+    /// (plus the initial one); with the factorisation's residual the initial one goes;
+    /// with merit-only trials each trial costs an energy and only accepted ones a
+    /// residual; with both, no residual is evaluated apart from the assemblies.
+    #[test]
+    fn evaluation_hooks_share_passes_and_keep_the_iterates() {
+        let run = |evaluation| {
+            let mut p = Catenary::new(evaluation);
+            let mut z = vec![0.0, 0.0, 0.0];
+            let stats = solve(&mut p, &mut z, &NewtonOptions::default()).unwrap();
+            (z, stats, p)
+        };
+        let (z0, s0, p0) = run(Evaluation::default());
+        for (zi, b) in z0.iter().zip([6.0_f64, -2.0, 0.5]) {
+            assert!((zi - b.asinh()).abs() < 1e-14, "{z0:?}");
+        }
+        assert!(s0.min_damping_used < 1.0 && s0.iterations >= 4, "{s0:?}");
+        // trials: one residual each, plus F(z₀)
+        let trials = s0.residual_evaluations - 1;
+        assert_eq!(p0.residual_calls, s0.residual_evaluations);
+        assert!(trials > s0.iterations, "damped: more trials than iterations, {s0:?}");
+        assert_eq!((p0.assemblies, s0.merit_evaluations), (0, 0));
+
+        let (z1, s1, p1) = run(Evaluation { residual_with_factorization: true, merit_only: false });
+        assert_eq!(z1, z0);
+        assert_eq!((s1.iterations, s1.factorisations), (s0.iterations, s0.factorisations));
+        assert_eq!(p1.residual_calls, trials, "the initial residual comes with the first assembly");
+        assert_eq!(p1.assemblies, s1.iterations);
+
+        let (z2, s2, p2) = run(Evaluation { residual_with_factorization: false, merit_only: true });
+        assert_eq!(z2, z0);
+        assert_eq!(s2.iterations, s0.iterations);
+        assert_eq!(s2.merit_evaluations, trials);
+        // F(z₀) and one per accepted trial (= per iteration)
+        assert_eq!(p2.residual_calls, 1 + s2.iterations);
+        assert_eq!(s2.residual_evaluations, p2.residual_calls);
+
+        let (z3, s3, p3) = run(Evaluation { residual_with_factorization: true, merit_only: true });
+        assert_eq!(z3, z0);
+        assert_eq!(s3.iterations, s0.iterations);
+        assert_eq!((p3.residual_calls, s3.residual_evaluations), (0, 0));
+        assert_eq!(p3.energy_calls, trials);
+        assert_eq!(p3.assemblies, s3.iterations);
+    }
+
+    /// Π(x) = x⁴/4 − x (F = x³ − 1, J = 3x²) from x = 0, where J = 0: the step is not
+    /// finite, which fails level 0 and goes to the regularisation J + 1 (level 1) instead
+    /// of stopping. From x = −1 the Newton step of Π (J = 3 > 0, F = −2) is a descent
+    /// direction; from x = 0.3 with the concave Π(x) = −cos x + x²/20 (F = sin x + x/10,
+    /// J = cos x + 1/10 < 0 beyond x ≈ 1.67) `line_search` skips the ascending plain
+    /// step, which saves exactly its α = 1 trial compared with abandoning it there.
+    #[test]
+    fn singular_and_ascending_steps_go_to_regularisation() {
+        struct Energy {
+            f: fn(f64) -> (f64, f64, f64),
+            jac: f64,
+            level: usize,
+            skip_ascent: bool,
+        }
+        impl NewtonProblem for Energy {
+            type Error = LinearError;
+            fn factorize(&mut self, z: &[f64]) -> Result<(), LinearError> {
+                (_, _, self.jac) = (self.f)(z[0]);
+                self.level = 0;
+                Ok(())
+            }
+            fn size(&self) -> usize {
+                1
+            }
+            fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), LinearError> {
+                let (_, gradient, _) = (self.f)(z[0]);
+                r[0] = gradient;
+                Ok(())
+            }
+            fn solve(&mut self, b: &mut [f64]) -> Result<(), LinearError> {
+                b[0] /= if self.level == 0 { self.jac } else { self.jac.abs() + 1.0 };
+                Ok(())
+            }
+            fn damping(&self) -> Damping {
+                Damping::Backtracking { take_best: false }
+            }
+            fn evaluation(&self) -> Evaluation {
+                Evaluation { residual_with_factorization: false, merit_only: true }
+            }
+            fn merit(&mut self, z: &[f64], _r: &[f64]) -> f64 {
+                (self.f)(z[0]).0
+            }
+            fn trial_merit(&mut self, trial: &[f64], _kind: TrialKind) -> Result<Option<f64>, LinearError> {
+                Ok(Some((self.f)(trial[0]).0))
+            }
+            fn line_search(&mut self, _level: usize, slope: f64) -> bool {
+                !self.skip_ascent || slope < 0.0
+            }
+            fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
+                if t.slope >= 0.0 {
+                    Verdict::Abandon
+                } else if t.trial_merit <= t.merit + SUFFICIENT_DECREASE * t.damping * t.slope {
+                    Verdict::Accept
+                } else {
+                    Verdict::Reject
+                }
+            }
+            fn regularise(&mut self, _z: &[f64], level: usize) -> Result<bool, LinearError> {
+                self.level = level;
+                Ok(level == 1)
+            }
+        }
+        let quartic = |x: f64| (0.25 * x.powi(4) - x, x.powi(3) - 1.0, 3.0 * x * x);
+        let mut p = Energy { f: quartic, jac: 0.0, level: 0, skip_ascent: true };
+        let mut z = [0.0];
+        let stats = solve(&mut p, &mut z, &NewtonOptions::default()).unwrap();
+        assert!((z[0] - 1.0).abs() < 1e-12, "{z:?}");
+        assert!(stats.regularisations >= 1, "{stats:?}");
+
+        let concave = |x: f64| (-x.cos() + x * x / 20.0, x.sin() + x / 10.0, x.cos() + 0.1);
+        let mut counts = vec![];
+        for skip_ascent in [false, true] {
+            let mut p = Energy { f: concave, jac: 0.0, level: 0, skip_ascent };
+            let mut z = [2.5];
+            let stats = solve(&mut p, &mut z, &NewtonOptions::default()).unwrap();
+            // the minimum of −cos x + x²/20 is x = 0
+            assert!(z[0].abs() < 1e-12, "{z:?}");
+            assert!(stats.regularisations >= 1, "{stats:?}");
+            counts.push((stats.merit_evaluations, stats.regularisations, z[0]));
+        }
+        // same path, one trial less per ascending plain step
+        assert_eq!(counts[0].1, counts[1].1);
+        assert_eq!(counts[0].2, counts[1].2);
+        assert_eq!(counts[0].0, counts[1].0 + counts[1].1);
     }
 }
