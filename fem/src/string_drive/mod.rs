@@ -87,10 +87,12 @@ pub struct DriveSettings {
     pub tangential_penalty_factor: f64,
     /// Newton iteration limit per solve. Default 40; ≥ 5.
     pub max_newton_iterations: usize,
-    /// Largest number of contact-fitting passes of the direct steady solve
-    /// (docs/fem-drive.md §12; the moves per pass are limited to 0.3 h, so it needs more
-    /// passes than the static fit's [`SolverSettings::max_fits`]). Default 30; ≥ 1. The
-    /// only control of those passes (the static fit's `max_fits` does not apply).
+    /// Largest number of contact-fitting passes of the direct steady solve — refit
+    /// attempts, a rejected (retried) one included; `FitRules::max_passes` of
+    /// [`crate::fitting`] (docs/fem-drive.md §12; the moves per pass are limited to
+    /// 0.3 h, so it needs more passes than the static fit's [`SolverSettings::max_fits`]).
+    /// Default 30; ≥ 1. The only control of those passes (the static fit's `max_fits`
+    /// does not apply).
     pub max_fits: usize,
 }
 
