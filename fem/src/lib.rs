@@ -82,6 +82,7 @@ pub mod assembly;
 pub mod dofs;
 pub mod element;
 mod error;
+pub mod fitting;
 pub mod formulation;
 pub mod hermite;
 pub mod kinematics;

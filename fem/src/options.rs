@@ -103,12 +103,14 @@ pub struct SolverSettings {
     /// Fit the mesh to the contact boundaries after the homotopy (§5): move a node to
     /// each located boundary and re-solve, until they agree. Default true.
     pub contact_fitting: bool,
-    /// Largest number of fitting passes of the static fit (per penalty level). Default
-    /// 10; ≥ 1. The direct steady drive solve has its own limit,
-    /// `string_drive::DriveSettings::max_fits`.
+    /// Largest number of fitting passes (refits) of the static fit, per penalty level:
+    /// `FitRules::max_passes` of [`crate::fitting`]. Default 10; ≥ 1. The direct steady
+    /// drive solve has its own limit, `string_drive::DriveSettings::max_fits`.
     pub max_fits: usize,
-    /// Fitting has converged when every recovered boundary lies within this times L_c
-    /// of its node. Default 1e-9 (1.4e-9 m in `string-hanging`); (0, 1e-3].
+    /// Fitting has converged when every recovered point lies within this times L_c of
+    /// its node — for the static fit, of the position its node was fitted to; for the
+    /// direct steady solve, of the nearest node ([`crate::fitting::Measure`]). Default
+    /// 1e-9 (1.4e-9 m in `string-hanging`); (0, 1e-3].
     pub fit_tolerance: f64,
 }
 

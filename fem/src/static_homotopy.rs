@@ -13,6 +13,7 @@ use drive::contour::Contour;
 use crate::assembly::Assembler;
 use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, StepControl, StepLimit, StepOptions};
 use crate::error::FemError;
+use crate::fitting::{self, Beyond, FitEnd, FitRules, Fallback, Fitted, Measure, MoveLimit, Secant};
 use crate::formulation::Kernel;
 use crate::kinematics::TermParams;
 use crate::linear::SparseLu;
@@ -399,13 +400,17 @@ impl Homotopy for StaticPath<'_> {
     }
 }
 
-/// Contact fitting (docs/fem-string.md §5): move a node onto every recovered contact
-/// boundary of `sol` and re-solve, until the boundaries move less than the tolerance or
-/// `max_fits` passes are done. A pass whose Newton solve fails ends the fitting with the
-/// last converged solution (recorded in `report.fit_failure`).
+/// Contact fitting (docs/fem-string.md §5) on the shared driver [`fitting::fit`]: move
+/// a node onto every recovered contact boundary of `sol` and re-solve, until the
+/// boundaries move less than the tolerance or `max_fits` passes are done — a secant per
+/// boundary on the positions fitted to, limited to 50 |F| and h_min/4. A pass whose
+/// Newton solve fails ends the fitting (recorded in `report.fit_failure`); a fitting
+/// that does not converge returns the best fitted solution (smallest largest |F|: the
+/// passes stagnate at the noise level of the recovery, ≈ 1e-6 m at 64 elements, 5e-8 m
+/// at 256).
 #[allow(clippy::too_many_arguments)]
 fn fit(
-    mut sol: FemSolution,
+    sol: FemSolution,
     params: &TermParams,
     length: f64,
     kernel: &Arc<dyn Kernel>,
@@ -417,104 +422,85 @@ fn fit(
 ) -> FemSolution {
     let contour = *sol.mesh().contour();
     let elements = sol.mesh().len();
-    // fitted: every recovered boundary within fit_tolerance·L_c of its node
     let h_min = Mesh::new(contour, elements, settings.arc_weight).map_or(0.0, |m| m.elements().iter().fold(f64::INFINITY, |a, e| a.min(e.h)));
-    let tol = settings.fit_tolerance * contour.length();
-    let period = contour.length();
-    // per boundary: node position x and residual F = g(x) − x of the previous pass
-    let mut x: Vec<f64> = Vec::new();
-    let mut previous: Vec<(f64, f64)> = Vec::new();
-    report.fit_converged = false;
-    // the best fitted solution so far (smallest largest |F|): kept when the passes
-    // stagnate at the noise level of the recovery (≈ 1e-6 m at 64 elements, 5e-8 m at 256)
-    let mut best: Option<(f64, FemSolution)> = None;
-    let mut passes = 0;
-    loop {
-        let located = sol.contact_boundaries();
-        let same = located.len() == x.len();
-        let residual: Vec<f64> = if same {
-            located.iter().zip(&x).map(|(g, xi)| periodic_diff(*g, *xi, period)).collect()
-        } else {
-            Vec::new()
-        };
-        let moved = if same { residual.iter().fold(0.0f64, |m, f| m.max(f.abs())) } else { f64::INFINITY };
-        report.fit_last_move = moved.is_finite().then_some(moved);
-        if same && best.as_ref().is_none_or(|(m, _)| moved < *m) {
-            best = Some((moved, sol.clone()));
-        }
-        if moved <= tol {
-            report.fit_converged = true;
-            break;
-        }
-        if passes >= settings.max_fits {
-            break;
-        }
-        passes += 1;
-        // next node positions: x ← g(x) on the first pass; then the secant step on
-        // F(x) = 0 per boundary (converges also where g' ≈ −1, a period-2 oscillation of
-        // plain substitution, or g' ≈ 1), limited to 50 |F| and h_min/4
-        let next: Vec<f64> = if !same {
-            located.clone()
-        } else {
-            (0..x.len())
-                .map(|i| {
-                    let f1 = residual[i];
-                    let mut step = f1;
-                    if let Some(&(x0, f0)) = previous.get(i) {
-                        let dx = periodic_diff(x[i], x0, period);
-                        let df = f1 - f0;
-                        if dx != 0.0 && df != 0.0 {
-                            let s = -f1 * dx / df;
-                            if s.is_finite() {
-                                step = s.clamp(-50.0 * f1.abs(), 50.0 * f1.abs());
-                            }
-                        }
-                    }
-                    let step = step.clamp(-0.25 * h_min, 0.25 * h_min);
-                    (x[i] + step).rem_euclid(period)
-                })
-                .collect()
-        };
-        previous = if same { x.iter().copied().zip(residual.iter().copied()).collect() } else { Vec::new() };
-        x = next;
-        let Ok((mesh, _)) = Mesh::fitted(contour, elements, settings.arc_weight, &x) else {
-            break;
-        };
-        let asm = Assembler::new(mesh, kernel.clone());
-        let mut z = transfer(&sol, &asm);
+    let rules = FitRules {
+        elements,
+        arc_weight: settings.arc_weight,
+        // fitted: every recovered boundary within fit_tolerance·L_c of its node
+        tolerance: settings.fit_tolerance * contour.length(),
+        max_passes: settings.max_fits,
+        measure: Measure::FittedTo,
+        secant: Secant { bound: 50.0, beyond: Beyond::Clamp, degenerate: 0.0, fallback: Fallback::Step },
+        limit: MoveLimit::Step(0.25 * h_min),
+        stall: None,
+        keep_best: true,
+    };
+    let mut problem = StaticFit { sol, params, length, kernel, lu, scales, newton_settings, tolerance: settings.update_tolerance, report };
+    let out = fitting::fit(&mut problem, &rules);
+    let report = problem.report;
+    report.fits += out.passes;
+    report.fit_converged = out.converged();
+    report.fit_last_move = out.last_move;
+    match out.end {
+        FitEnd::Refit(e) => report.fit_failure = Some(e.to_string()),
+        FitEnd::Mesh(e) => report.fit_failure = Some(format!("the fitted mesh could not be built: {e}")),
+        FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
+    }
+    problem.sol
+}
+
+/// The static solution as a [`Fitted`]: a refit transfers it to the fitted mesh and
+/// solves by Newton at the final homotopy parameters.
+struct StaticFit<'a> {
+    sol: FemSolution,
+    params: &'a TermParams,
+    length: f64,
+    kernel: &'a Arc<dyn Kernel>,
+    lu: &'a mut SparseLu,
+    scales: &'a Scales,
+    newton_settings: &'a NewtonSettings,
+    tolerance: f64,
+    report: &'a mut HomotopyReport,
+}
+
+impl Fitted for StaticFit<'_> {
+    type Failure = FemError;
+    type Snapshot = FemSolution;
+
+    fn mesh(&self) -> &Mesh {
+        self.sol.mesh()
+    }
+
+    fn locate(&mut self) -> Vec<f64> {
+        self.sol.contact_boundaries()
+    }
+
+    fn refit(&mut self, mesh: Mesh, _points: &[f64]) -> Result<(), FemError> {
+        let asm = Assembler::new(mesh, self.kernel.clone());
+        let mut z = transfer(&self.sol, &asm);
         // same topology, so the same sparsity pattern: the symbolic LU is reused
-        match newton::solve(&asm, lu, &mut z, params, length, scales, newton_settings) {
+        match newton::solve(&asm, self.lu, &mut z, self.params, self.length, self.scales, self.newton_settings) {
             Ok(r) => {
-                report.newton_iterations += r.iterations;
-                report.fits += 1;
-                report.last = r;
-                sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, *params, length, kernel.clone());
+                self.report.newton_iterations += r.iterations;
+                self.report.last = r;
+                self.sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, *self.params, self.length, self.kernel.clone());
+                Ok(())
             }
             Err(f) => {
                 if let NewtonFailure::Diverged { iterations, .. } = &f {
-                    report.newton_iterations += iterations;
+                    self.report.newton_iterations += iterations;
                 }
-                report.fit_failure = Some(to_error(f, 1.0, settings.update_tolerance).to_string());
-                break;
+                Err(to_error(f, 1.0, self.tolerance))
             }
         }
     }
-    match best {
-        Some((m, b)) if !report.fit_converged => {
-            report.fit_last_move = Some(m);
-            b
-        }
-        _ => sol,
-    }
-}
 
-/// a − b on the periodic contour, in (−L_c/2, L_c/2].
-fn periodic_diff(a: f64, b: f64, period: f64) -> f64 {
-    let d = (a - b).rem_euclid(period);
-    if d > 0.5 * period {
-        d - period
-    } else {
-        d
+    fn snapshot(&self) -> FemSolution {
+        self.sol.clone()
+    }
+
+    fn restore(&mut self, snapshot: FemSolution) {
+        self.sol = snapshot;
     }
 }
 

@@ -23,7 +23,11 @@
 //!
 //! A term may carry state from one converged step to the next ([`HistoryTerm`], held
 //! per integration point by [`TermHistory`]): the hook the shell's elastic interlayer
-//! needs for its advected deformation (spec eqs. 40, 41).
+//! needs for its advected deformation (spec eqs. 40, 41). A load with a return mapping
+//! — Coulomb friction, the augmented-Lagrangian contact — is a [`MappedTerm`]: its
+//! energy also depends on global unknowns of the step and on a per-point state frozen
+//! during a solve and committed from the mapping after it
+//! (`string_drive::contact::{AugmentedContact, CoulombFriction}`).
 
 use std::fmt::Debug;
 
@@ -313,6 +317,29 @@ impl<T: HistoryTerm> TermHistory<T> {
             }
         }
     }
+}
+
+/// A term that is a load with a return mapping rather than a potential of the element
+/// unknowns alone — Coulomb friction, the augmented-Lagrangian contact
+/// (docs/fem-drive.md §5, §6): its energy at a point depends on the point values, on `G`
+/// global unknowns of the step (the drive's material advance a and driven rotation φ,
+/// §4) and on a per-point state frozen during a solve (multipliers, slip bound, upstream
+/// references). It is evaluated at the trial state; after a converged solve its return
+/// mapping evaluates each point, from which the state is committed (as
+/// [`HistoryTerm::advance`] does for a history term). A model picks these units by the
+/// scene's effects (the string drive: `string_drive::contact::DriveTerms`).
+pub trait MappedTerm<const G: usize> {
+    /// The per-point state (its weights included).
+    type State;
+    /// The return mapping's result at a point.
+    type Mapped;
+
+    /// The term's weighted energy at a point, J (the point's weight is part of the
+    /// state); `None` where the term is inactive at the point.
+    fn point_energy<D: Scalar>(&self, el: &ElementContext, p: &PointFields<D>, globals: &[D; G], state: &Self::State) -> Option<D>;
+
+    /// The return mapping at the converged point values.
+    fn map(&self, el: &ElementContext, p: &PointFields<f64>, globals: &[f64; G], state: &Self::State) -> Self::Mapped;
 }
 
 #[cfg(test)]

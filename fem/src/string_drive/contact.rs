@@ -1,7 +1,9 @@
-//! Coulomb contact of the moving string: per-integration-point state, the augmented
-//! Lagrangian return mapping of Table 1 (§6.1) and the element energy of the drive's
-//! extra terms — normal contact (D6), friction (D7), transport inertia (D8) — with
-//! exact derivatives by AD (docs/fem-drive.md §2, §5, §6).
+//! Coulomb contact of the moving string: per-integration-point state, the term units
+//! of the normal contact (D6, [`AugmentedContact`]) and Coulomb friction (D7,
+//! [`CoulombFriction`]) — each a [`MappedTerm`]: an energy at the trial state and the
+//! augmented-Lagrangian return mapping of Table 1 (§6.1), committed after a converged
+//! solve ([`commit`]) — and the element energy of the drive's extra terms with the
+//! transport inertia (D8), with exact derivatives by AD (docs/fem-drive.md §2, §5, §6).
 //!
 //! The extra terms of an element depend on its 8 string unknowns q and on the two
 //! global step unknowns a (material advance at σ = 0, D1) and φ (driven rotation
@@ -11,6 +13,7 @@ use drive::contour::{Contour, Pulley, Region};
 use nalgebra::SVector;
 use num_dual::{gradient, hessian};
 
+use crate::formulation::terms::MappedTerm;
 use crate::kinematics::{ElementContext, PointFields, Scalar, NDOF};
 use crate::quadrature::Rule;
 
@@ -105,19 +108,110 @@ pub fn reachable_pulley(contour: &Contour, region: Region, sigma: f64) -> Option
     }
 }
 
-/// Tangential relative displacement over the step (D2): the particle at σ at t_{n+1},
-/// s = S̃_{n+1}(σ) − a in the gauge of step n, sat at σ' = S̃_n⁻¹(s) at t_n; with the
-/// inverse linearised about the upstream reference point σ − d_ref,
-/// σ − σ' = d_ref − (S̃_{n+1}(σ) − a − S̃_n(σ − d_ref)) / ∂σS̃_n(σ − d_ref), and
-/// u = |∂σr|_n (σ − σ') − R Δθ_k, R Δθ₁ = `driver_advance`, Δθ₂ = φ. Linear in
-/// (S̃_{n+1}(σ), a, φ): the friction force acts on the material only, upwind.
-#[inline]
-pub fn slip_displacement<D: Scalar>(_el: &ElementContext, p: &PointFields<D>, a: D, phi: D, pt: &PointState, sp: &StepParams) -> D {
-    let travel = ((p.s - a - pt.s_ref) * (-1.0 / pt.slope_ref) + pt.travel_ref) * pt.metric;
-    match pt.pulley {
-        Some(Pulley::Driver) => travel - sp.driver_advance,
-        Some(Pulley::Driven) => travel - phi * sp.radius,
-        None => travel * 0.0,
+/// The augmented-Lagrangian normal contact (D6) as a term unit: per point the
+/// multiplier λ_γ and the weight w_γ of its [`PointState`]; energy
+/// w_γ ⟨λ_γ − P_γ γ⟩²/(2P_γ) on the gap's domain, return mapping τ_γ = ⟨λ_γ − P_γ γ⟩
+/// (Table 1; with λ_γ kept 0, the plain penalty).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AugmentedContact {
+    /// P_γ, N/m².
+    pub penalty: f64,
+}
+
+impl MappedTerm<2> for AugmentedContact {
+    type State = PointState;
+    /// τ_γ, N/m.
+    type Mapped = f64;
+
+    #[inline]
+    fn point_energy<D: Scalar>(&self, el: &ElementContext, p: &PointFields<D>, _globals: &[D; 2], pt: &PointState) -> Option<D> {
+        if pt.weight > 0.0 {
+            if let Some(gap) = el.gap(p) {
+                let t = gap * (-self.penalty) + pt.lambda_n;
+                if t.re() > 0.0 {
+                    return Some(t * t * (0.5 / self.penalty * pt.weight));
+                }
+            }
+        }
+        None
+    }
+
+    fn map(&self, el: &ElementContext, p: &PointFields<f64>, _globals: &[f64; 2], pt: &PointState) -> f64 {
+        match (pt.pulley, el.gap(p)) {
+            (Some(_), Some(gap)) => (pt.lambda_n - self.penalty * gap).max(0.0),
+            _ => 0.0,
+        }
+    }
+}
+
+/// Coulomb friction (D7) as a term unit: per point the multiplier λ_⊥, the slip bound
+/// b = μ τ̂_γ frozen during a solve, the upstream references of the slip displacement
+/// u (D2) and the weight w_⊥ of its [`PointState`]; energy w_⊥ F_b(λ_⊥ + P_⊥ u), whose
+/// derivative in u is the return mapping τ_⊥ = clip(λ_⊥ + P_⊥ u, −b, b) (Table 1). The
+/// globals are the step's (a, φ).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoulombFriction {
+    /// P_⊥, N/m².
+    pub tangential_penalty: f64,
+    /// Drum surface advance of the driver over the step, R ω₁ Δt, m.
+    pub driver_advance: f64,
+    /// R, m.
+    pub radius: f64,
+}
+
+/// The friction return mapping at a point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Slip {
+    /// u (D2), m.
+    pub displacement: f64,
+    /// τ* = λ_⊥ + P_⊥ u, N/m.
+    pub trial: f64,
+    /// τ_⊥ = clip(τ*, −b, b), N/m.
+    pub tangential: f64,
+    /// Φ ≥ 0 (sliding) with the frozen bound.
+    pub slip: bool,
+}
+
+impl CoulombFriction {
+    /// Tangential relative displacement over the step (D2): the particle at σ at
+    /// t_{n+1}, s = S̃_{n+1}(σ) − a in the gauge of step n, sat at σ' = S̃_n⁻¹(s) at t_n;
+    /// with the inverse linearised about the upstream reference point σ − d_ref,
+    /// σ − σ' = d_ref − (S̃_{n+1}(σ) − a − S̃_n(σ − d_ref)) / ∂σS̃_n(σ − d_ref), and
+    /// u = |∂σr|_n (σ − σ') − R Δθ_k, R Δθ₁ = `driver_advance`, Δθ₂ = φ. Linear in
+    /// (S̃_{n+1}(σ), a, φ): the friction force acts on the material only, upwind.
+    #[inline]
+    pub fn slip_displacement<D: Scalar>(&self, p: &PointFields<D>, &[a, phi]: &[D; 2], pt: &PointState) -> D {
+        let travel = ((p.s - a - pt.s_ref) * (-1.0 / pt.slope_ref) + pt.travel_ref) * pt.metric;
+        match pt.pulley {
+            Some(Pulley::Driver) => travel - self.driver_advance,
+            Some(Pulley::Driven) => travel - phi * self.radius,
+            None => travel * 0.0,
+        }
+    }
+}
+
+impl MappedTerm<2> for CoulombFriction {
+    type State = PointState;
+    type Mapped = Slip;
+
+    #[inline]
+    fn point_energy<D: Scalar>(&self, _el: &ElementContext, p: &PointFields<D>, globals: &[D; 2], pt: &PointState) -> Option<D> {
+        (pt.bound > 0.0 && pt.friction_weight > 0.0).then(|| {
+            let u = self.slip_displacement(p, globals, pt);
+            let tau = u * self.tangential_penalty + pt.lambda_t;
+            friction_envelope(tau, pt.bound, self.tangential_penalty) * pt.friction_weight
+        })
+    }
+
+    fn map(&self, _el: &ElementContext, p: &PointFields<f64>, globals: &[f64; 2], pt: &PointState) -> Slip {
+        if pt.pulley.is_none() || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
+            return Slip { displacement: 0.0, trial: 0.0, tangential: 0.0, slip: false };
+        }
+        let u = self.slip_displacement(p, globals, pt);
+        let trial = pt.lambda_t + self.tangential_penalty * u;
+        let slip = trial.abs() >= pt.bound;
+        let tangential = if slip { pt.bound * trial.signum() } else { trial };
+        Slip { displacement: u, trial, tangential, slip }
     }
 }
 
@@ -131,28 +225,52 @@ fn friction_envelope<D: Scalar>(tau: D, bound: f64, stiffness: f64) -> D {
     }
 }
 
-/// The contact terms at one point, weighted (J): w_γ ψ_γ (D6) on the gap's domain,
-/// w_⊥ ψ_⊥ (D7) where the point carries a slip bound.
-#[inline]
-pub fn point_energy<D: Scalar>(el: &ElementContext, p: &PointFields<D>, a: D, phi: D, pt: &PointState, sp: &StepParams) -> D {
-    let mut f = p.nu * 0.0;
-    if pt.pulley.is_none() {
-        return f;
-    }
-    if pt.weight > 0.0 {
-        if let Some(gap) = el.gap(p) {
-            let t = gap * (-sp.penalty) + pt.lambda_n;
-            if t.re() > 0.0 {
-                f += t * t * (0.5 / sp.penalty * pt.weight);
-            }
+/// The drive's contact units of a step, picked from its parameters: the normal contact
+/// at every point within reach of a pulley, friction where a point carries a slip bound
+/// (μ τ̂_γ > 0) — the transport inertia (D8, ρc² if the scene asks for it) is
+/// integrated beside them by [`element_energy`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriveTerms {
+    /// Normal contact (D6).
+    pub contact: AugmentedContact,
+    /// Friction (D7).
+    pub friction: CoulombFriction,
+}
+
+impl DriveTerms {
+    /// The units of a step.
+    pub fn new(sp: &StepParams) -> DriveTerms {
+        DriveTerms {
+            contact: AugmentedContact { penalty: sp.penalty },
+            friction: CoulombFriction { tangential_penalty: sp.tangential_penalty, driver_advance: sp.driver_advance, radius: sp.radius },
         }
     }
-    if pt.bound > 0.0 && pt.friction_weight > 0.0 {
-        let u = slip_displacement(el, p, a, phi, pt, sp);
-        let tau = u * sp.tangential_penalty + pt.lambda_t;
-        f += friction_envelope(tau, pt.bound, sp.tangential_penalty) * pt.friction_weight;
+
+    /// The contact terms at one point, weighted (J): w_γ ψ_γ (D6) on the gap's domain,
+    /// w_⊥ ψ_⊥ (D7) where the point carries a slip bound.
+    #[inline]
+    pub fn point_energy<D: Scalar>(&self, el: &ElementContext, p: &PointFields<D>, globals: &[D; 2], pt: &PointState) -> D {
+        let mut f = p.nu * 0.0;
+        if pt.pulley.is_none() {
+            return f;
+        }
+        if let Some(e) = self.contact.point_energy(el, p, globals, pt) {
+            f += e;
+        }
+        if let Some(e) = self.friction.point_energy(el, p, globals, pt) {
+            f += e;
+        }
+        f
     }
-    f
+
+    /// Table 1, detection and evaluation at a point (f64), with the frozen multipliers
+    /// and bound of `pt`: both units' return mappings.
+    pub fn evaluate(&self, el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, pt: &PointState) -> Evaluation {
+        let p = el.fields(q, pt.xi);
+        let normal = self.contact.map(el, &p, &[a, phi], pt);
+        let Slip { displacement, trial, tangential, slip } = self.friction.map(el, &p, &[a, phi], pt);
+        Evaluation { normal, displacement, tangential, slip, trial }
+    }
 }
 
 /// True if the element has a term to evaluate (a contact-capable point or inertia).
@@ -171,13 +289,15 @@ pub fn element_energy<D: Scalar>(
     sp: &StepParams,
     strain_rule: Rule,
 ) -> D {
+    let terms = DriveTerms::new(sp);
+    let globals = [a, phi];
     let mut total = a * 0.0;
     for pt in points {
         if pt.pulley.is_none() {
             continue;
         }
         let p = el.fields(q, pt.xi);
-        total += point_energy(el, &p, a, phi, pt, sp);
+        total += terms.point_energy(el, &p, &globals, pt);
     }
     if let Some(rc2) = sp.inertia {
         let jac = el.jacobian();
@@ -222,22 +342,31 @@ pub struct Evaluation {
     pub trial: f64,
 }
 
-/// Table 1, detection and evaluation at a point (f64), with the frozen multipliers and
-/// bound of `pt`.
-pub fn evaluate(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, pt: &PointState, sp: &StepParams) -> Evaluation {
-    let p = el.fields(q, pt.xi);
-    let normal = match (pt.pulley, el.gap(&p)) {
-        (Some(_), Some(gap)) => (pt.lambda_n - sp.penalty * gap).max(0.0),
-        _ => 0.0,
+/// Table 1's update of a point after a converged solve from its evaluation `ev`: the
+/// multipliers λ_γ ← τ_γ (augmented Lagrangian; kept 0 for the penalty method) and
+/// λ_⊥ ← τ_⊥ under the new bound (0 where the point carries no friction), the bound
+/// b ← μ τ_γ, and the point's output (tractions, u, slip). Returns the largest change
+/// of λ_γ, λ_⊥ and b (N/m) and whether the point switched between stick and slip.
+pub fn commit(pt: &mut PointState, ev: &Evaluation, mu: f64, augmented: bool) -> (f64, bool) {
+    let new_n = if augmented { ev.normal } else { 0.0 };
+    let new_t = if !augmented || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
+        0.0
+    } else if ev.slip {
+        mu * ev.normal * ev.trial.signum()
+    } else {
+        ev.trial
     };
-    if pt.pulley.is_none() || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
-        return Evaluation { normal, displacement: 0.0, tangential: 0.0, slip: false, trial: 0.0 };
-    }
-    let u = slip_displacement(el, &p, a, phi, pt, sp);
-    let trial = pt.lambda_t + sp.tangential_penalty * u;
-    let slip = trial.abs() >= pt.bound;
-    let tangential = if slip { pt.bound * trial.signum() } else { trial };
-    Evaluation { normal, displacement: u, tangential, slip, trial }
+    let new_b = mu * ev.normal;
+    let change = (new_n - pt.lambda_n).abs().max((new_t - pt.lambda_t).abs()).max((new_b - pt.bound).abs());
+    let switched = ev.slip != pt.slip && pt.bound > 0.0;
+    pt.normal = ev.normal;
+    pt.tangential = ev.tangential;
+    pt.displacement = ev.displacement;
+    pt.slip = ev.slip && pt.bound > 0.0;
+    pt.lambda_n = new_n;
+    pt.lambda_t = new_t;
+    pt.bound = new_b;
+    (change, switched)
 }
 
 #[cfg(test)]
@@ -250,6 +379,41 @@ mod tests {
     use crate::mesh::ElementGeometry;
 
     use crate::test_rng::Rng;
+
+    /// An element of `region` starting at σ = `sa`, of length `h`.
+    fn context(contour: Contour, region: Region, sa: f64, h: f64) -> ElementContext {
+        ElementContext {
+            geometry: ElementGeometry { sigma_a: sa, h, region },
+            contour,
+            params: TermParams { axial_stiffness: 2.0e4, weight: None, penalty: None, bending_stiffness: None },
+            augmented: [false; 2],
+        }
+    }
+
+    /// A contact point at ξ of `el` (rule weights w, w_f) with references and multipliers
+    /// drawn around the state `q`, and a slip bound that makes it slip (1e-3 N/m) or
+    /// stick (1e6 N/m).
+    fn random_point(el: &ElementContext, q: &[f64; NDOF], (xi, w, wf): (f64, f64, f64), pulley: Option<Pulley>, rng: &mut Rng, slipping: bool) -> PointState {
+        let p = el.fields(q, xi);
+        PointState {
+            xi,
+            weight: w * el.jacobian(),
+            friction_weight: wf * el.jacobian(),
+            sigma: el.sigma(xi),
+            pulley,
+            travel_ref: 1.0e-3 * (1.0 + 0.1 * rng.next()),
+            s_ref: p.s - 1.0e-3 * (1.0 + 0.1 * rng.next()),
+            slope_ref: p.ds * (1.0 + 1e-3 * rng.next()),
+            metric: el.tangent_length(&p),
+            lambda_n: 50.0 * rng.next(),
+            lambda_t: 20.0 * (rng.next() - 0.5),
+            bound: if slipping { 1e-3 } else { 1e6 },
+            slip: false,
+            normal: 0.0,
+            tangential: 0.0,
+            displacement: 0.0,
+        }
+    }
 
     #[test]
     fn ad_matches_finite_differences() {
@@ -264,12 +428,7 @@ mod tests {
             (Region::DriverArc, 1.20, 0.03),
             (Region::UpperSpan, 0.0, 0.03),
         ] {
-            let el = ElementContext {
-                geometry: ElementGeometry { sigma_a: sa, h, region },
-                contour,
-                params: TermParams { axial_stiffness: 2.0e4, weight: None, penalty: None, bending_stiffness: None },
-                augmented: [false; 2],
-            };
+            let el = context(contour, region, sa, h);
             for trial in 0..30 {
                 let q = [
                     sa + 0.001 * rng.next(),
@@ -287,26 +446,9 @@ mod tests {
                     .iter()
                     .map(|&(xi, w)| {
                         let sigma = el.sigma(xi);
-                        let p = el.fields(&q, xi);
                         // half the points with a bound that makes them slip, half stick
-                        PointState {
-                            xi,
-                            weight: w * el.jacobian(),
-                            friction_weight: if xi.abs() == 1.0 { el.jacobian() } else { 0.0 },
-                            sigma,
-                            pulley: reachable_pulley(&contour, region, sigma),
-                            travel_ref: 1.0e-3 * (1.0 + 0.1 * rng.next()),
-                            s_ref: p.s - 1.0e-3 * (1.0 + 0.1 * rng.next()),
-                            slope_ref: p.ds * (1.0 + 1e-3 * rng.next()),
-                            metric: el.tangent_length(&p),
-                            lambda_n: 50.0 * rng.next(),
-                            lambda_t: 20.0 * (rng.next() - 0.5),
-                            bound: if trial % 2 == 0 { 1e-3 } else { 1e6 },
-                            slip: false,
-                            normal: 0.0,
-                            tangential: 0.0,
-                            displacement: 0.0,
-                        }
+                        let wf = if xi.abs() == 1.0 { 1.0 } else { 0.0 };
+                        random_point(&el, &q, (xi, w, wf), reachable_pulley(&contour, region, sigma), &mut rng, trial % 2 == 0)
                     })
                     .collect();
                 let (_, g, hm) = element_derivatives(&el, &q, a, phi, &points, &sp, Rule::Simpson);
@@ -342,6 +484,60 @@ mod tests {
             }
         }
         assert!(worst < 1e-5);
+    }
+
+    /// Each unit's energy is the potential of its return mapping: at points of every
+    /// region, ∂/∂a of the friction energy is w_⊥ τ_⊥ ∂u/∂a = w_⊥ τ_⊥ |∂σr|/∂σS̃_ref
+    /// (stick and slip), and ∂/∂ν of the normal energy is −w_γ τ_γ ∂γ/∂ν (central
+    /// differences, step 1e-9 of the variable: truncation and round-off ≤ 1e-6 of the
+    /// traction); [`commit`] takes the mapped tractions into the multipliers.
+    #[test]
+    fn units_are_potentials_of_their_return_mappings() {
+        let contour = Contour::new(0.08, 0.45).unwrap();
+        let sp = StepParams { penalty: 3.0e6, tangential_penalty: 2.0e6, driver_advance: 1.0e-3, radius: 0.08, inertia: None };
+        let terms = DriveTerms::new(&sp);
+        let mut rng = Rng(0x0bad_cafe_1234_5678);
+        let (mut stick, mut slip) = (0, 0);
+        for (region, sa, h) in [(Region::DrivenArc, 0.50, 0.02), (Region::DriverArc, 1.20, 0.03)] {
+            let el = context(contour, region, sa, h);
+            for trial in 0..20 {
+                let q = [sa, 1.0, -1e-4 * rng.next(), 0.0, sa + h, 1.0, -1e-4 * rng.next(), 0.0];
+                let xi = 1.0;
+                let p = el.fields(&q, xi);
+                let pt = random_point(&el, &q, (xi, 1.0, 1.0), region.pulley(), &mut rng, trial % 2 == 0);
+                let (a, phi) = (1.0e-3 * rng.next(), 0.0125);
+                let ev = terms.evaluate(&el, &q, a, phi, &pt);
+                // friction: d/da
+                let d = 1e-9;
+                let ef = |a: f64| terms.friction.point_energy(&el, &p, &[a, phi], &pt).unwrap();
+                let fd = (ef(a + d) - ef(a - d)) / (2.0 * d);
+                let expect = pt.friction_weight * ev.tangential * pt.metric / pt.slope_ref;
+                assert!((fd - expect).abs() <= 1e-6 * pt.bound.min(ev.tangential.abs().max(1.0)) * pt.friction_weight, "friction: FD {fd}, mapped {expect}");
+                if ev.slip {
+                    slip += 1;
+                } else {
+                    stick += 1;
+                }
+                // normal: d/dν at the end node
+                let shifted = |dn: f64| {
+                    let mut qq = q;
+                    qq[6] += dn;
+                    el.fields(&qq, xi)
+                };
+                let en = |dn: f64| terms.contact.point_energy(&el, &shifted(dn), &[a, phi], &pt).unwrap_or(0.0);
+                let gap = |dn: f64| el.gap(&shifted(dn)).unwrap();
+                let fd = (en(d) - en(-d)) / (2.0 * d);
+                let expect = -pt.weight * ev.normal * (gap(d) - gap(-d)) / (2.0 * d);
+                assert!(ev.normal > 0.0, "the point is pressed into the drum");
+                assert!((fd - expect).abs() <= 1e-6 * ev.normal * pt.weight, "normal: FD {fd}, mapped {expect}");
+                // commit: the augmented multipliers take the mapped tractions
+                let mut committed = pt;
+                let (change, _) = commit(&mut committed, &ev, 0.4, true);
+                assert_eq!((committed.lambda_n, committed.bound, committed.normal), (ev.normal, 0.4 * ev.normal, ev.normal));
+                assert!(change >= (ev.normal - pt.lambda_n).abs());
+            }
+        }
+        assert!(stick > 0 && slip > 0, "stick {stick}, slip {slip}");
     }
 
     /// (D7) is the potential of the return mapping: its derivative in u is τ_⊥ of

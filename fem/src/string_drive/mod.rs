@@ -87,10 +87,12 @@ pub struct DriveSettings {
     pub tangential_penalty_factor: f64,
     /// Newton iteration limit per solve. Default 40; ≥ 5.
     pub max_newton_iterations: usize,
-    /// Largest number of contact-fitting passes of the direct steady solve
-    /// (docs/fem-drive.md §12; the moves per pass are limited to 0.3 h, so it needs more
-    /// passes than the static fit's [`SolverSettings::max_fits`]). Default 30; ≥ 1. The
-    /// only control of those passes (the static fit's `max_fits` does not apply).
+    /// Largest number of contact-fitting passes of the direct steady solve — refit
+    /// attempts, a rejected (retried) one included; `FitRules::max_passes` of
+    /// [`crate::fitting`] (docs/fem-drive.md §12; the moves per pass are limited to
+    /// 0.3 h, so it needs more passes than the static fit's [`SolverSettings::max_fits`]).
+    /// Default 30; ≥ 1. The only control of those passes (the static fit's `max_fits`
+    /// does not apply).
     pub max_fits: usize,
 }
 
@@ -349,6 +351,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
             let (a, phi) = (x[nz], x[nz + 1]);
             let mut change: f64 = 0.0;
             let mut switches = 0usize;
+            let terms = contact::DriveTerms::new(&step_params);
             for (e, pts) in points.iter_mut().enumerate() {
                 let el = asm.context(e, &params);
                 let q = asm.dofs().gather(e, &x[..nz], length);
@@ -356,28 +359,10 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
                     if pt.pulley.is_none() {
                         continue;
                     }
-                    let ev = contact::evaluate(&el, &q, a, phi, pt, &step_params);
-                    let new_n = if al { ev.normal } else { 0.0 };
-                    let new_t = if !al || pt.bound <= 0.0 || pt.friction_weight <= 0.0 {
-                        0.0
-                    } else if ev.slip {
-                        mu * ev.normal * ev.trial.signum()
-                    } else {
-                        ev.trial
-                    };
-                    let new_b = mu * ev.normal;
-                    let c3 = [(new_n - pt.lambda_n).abs(), (new_t - pt.lambda_t).abs(), (new_b - pt.bound).abs()];
-                    change = change.max(c3[0]).max(c3[1]).max(c3[2]);
-                    if ev.slip != pt.slip && pt.bound > 0.0 {
-                        switches += 1;
-                    }
-                    pt.normal = ev.normal;
-                    pt.tangential = ev.tangential;
-                    pt.displacement = ev.displacement;
-                    pt.slip = ev.slip && pt.bound > 0.0;
-                    pt.lambda_n = new_n;
-                    pt.lambda_t = new_t;
-                    pt.bound = new_b;
+                    let ev = terms.evaluate(&el, &q, a, phi, pt);
+                    let (c, switched) = contact::commit(pt, &ev, mu, al);
+                    change = change.max(c);
+                    switches += usize::from(switched);
                 }
             }
             if change <= drive_settings.al_tolerance * f_ref / r && switches == 0 {

@@ -1,6 +1,10 @@
-//! Mesh fitting of the direct steady solve: the stick→slip transitions located from the point results, σ unwrapping, and the traction transfer to a new mesh.
+//! Mesh fitting of the direct steady solve on the shared driver [`crate::fitting`]: the
+//! breakpoints (contact boundaries and the stick→slip transitions located from the point
+//! results), σ unwrapping, and the refit — traction transfer to the new mesh and a
+//! semismooth Newton solve with a penalty ladder on failure.
 
 use super::*;
+use crate::fitting::Fitted;
 
 /// Unwrapped σ of a pulley's zone (the driver's straddles σ = 0).
 pub(super) fn unwrapped(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
@@ -76,16 +80,6 @@ pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) ->
     Some(contour.wrap(sigma))
 }
 
-/// Signed periodic difference a − b on a contour of length l, in (−l/2, l/2].
-pub(super) fn wrapped_diff(a: f64, b: f64, l: f64) -> f64 {
-    let d = (a - b).rem_euclid(l);
-    if d > 0.5 * l {
-        d - l
-    } else {
-        d
-    }
-}
-
 /// τ at a new friction point from the old solution: linear in σ between the two old
 /// points of the same pulley that enclose it (the nearer one at a zone end).
 pub(super) fn interpolate_traction(old: &[PointResult], contour: &Contour, p: &FrictionPoint) -> f64 {
@@ -107,5 +101,123 @@ pub(super) fn interpolate_traction(old: &[PointResult], contour: &Contour, p: &F
         a.1 + (b.1 - a.1) * (s - a.0) / (b.0 - a.0)
     } else {
         a.1
+    }
+}
+
+/// What a steady refit needs besides the state.
+pub(super) struct SteadyFitData<'a> {
+    pub params: TermParams,
+    pub length: f64,
+    /// The final normal penalty P, N/m².
+    pub penalty: f64,
+    pub kernel: &'a Arc<dyn Kernel>,
+    /// The η-scaled parameters (the refits solve at η = 1).
+    pub sp_at: &'a dyn Fn(f64) -> SteadyParams,
+    pub strain_rule: Rule,
+    /// H, R, ω₁ and F_ref of the variable weights and row scales.
+    pub h: f64,
+    pub r: f64,
+    pub omega1: f64,
+    pub f_ref: f64,
+    /// Newton tolerance and iteration limit.
+    pub tolerance: f64,
+    pub max_iterations: usize,
+}
+
+/// The steady state as a [`Fitted`]: the breakpoints are the contact boundaries and the
+/// stick→slip transitions (docs/fem-drive.md §12); a refit splits the node at each
+/// fitted transition into its stick and slip halves.
+pub(super) struct SteadyFit<'a> {
+    state: State,
+    /// The accepted state's string solution (boundaries, transfer).
+    sol: FemSolution,
+    /// How many of the located breakpoints are contact boundaries (the rest are
+    /// transitions).
+    boundaries: usize,
+    data: SteadyFitData<'a>,
+    report: &'a mut SteadyReport,
+}
+
+impl<'a> SteadyFit<'a> {
+    pub(super) fn new(state: State, data: SteadyFitData<'a>, report: &'a mut SteadyReport) -> SteadyFit<'a> {
+        let sol = solution(&state, &data);
+        SteadyFit { state, sol, boundaries: 0, data, report }
+    }
+
+    pub(super) fn into_state(self) -> State {
+        self.state
+    }
+}
+
+/// The string solution of a steady state (with its transport inertia ρc²).
+fn solution(state: &State, d: &SteadyFitData) -> FemSolution {
+    FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], d.params, d.length, d.kernel.clone()).with_transport_inertia(rho_c2(state))
+}
+
+impl Fitted for SteadyFit<'_> {
+    type Failure = NewtonFailure;
+    type Snapshot = (Mesh, Vec<f64>, Vec<PointResult>);
+
+    fn mesh(&self) -> &Mesh {
+        self.state.asm.mesh()
+    }
+
+    fn locate(&mut self) -> Vec<f64> {
+        let contour = *self.state.asm.mesh().contour();
+        let mut breaks = self.sol.contact_boundaries();
+        self.boundaries = breaks.len();
+        breaks.extend([Pulley::Driver, Pulley::Driven].iter().filter_map(|&p| transition(&self.state.results, &contour, p)));
+        breaks
+    }
+
+    fn refit(&mut self, mesh: Mesh, breaks: &[f64]) -> Result<(), NewtonFailure> {
+        let d = &self.data;
+        let contour = *mesh.contour();
+        let asm = Assembler::new(mesh, d.kernel.clone());
+        // the node at each fitted transition is split into its stick and slip halves
+        let points = friction_points(&asm, &breaks[self.boundaries..]);
+        let mut x = crate::static_homotopy::transfer(&self.sol, &asm);
+        let nz_old = self.state.asm.len();
+        x.extend([self.state.x[nz_old], self.state.x[nz_old + 1]]);
+        x.extend(points.iter().map(|p| interpolate_traction(&self.state.results, &contour, p)));
+        let prob = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
+        let w = variable_weights(&asm, d.h, d.r, d.omega1, d.f_ref, points.len());
+        let scales = row_scales(&asm, d.f_ref, points.len());
+        // the transferred state is far from equilibrium in the stiff normal penalty
+        // where a kink moved between elements: on failure, a penalty ladder
+        // P/10⁵ → P from the transferred state
+        let x0 = x.clone();
+        let mut solved = newton(&prob, &mut x, &w, &scales, d.tolerance, d.max_iterations);
+        if solved.is_err() {
+            x.copy_from_slice(&x0);
+            let mut iterations = 0;
+            for f in [1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0] {
+                let soft = TermParams { penalty: Some(f * d.penalty), ..d.params };
+                let sp = SteadyParams { penalty: f * d.penalty, ..(d.sp_at)(1.0) };
+                let p = SteadyProblem { asm: &asm, params: soft, length: d.length, points: &points, sp, strain_rule: d.strain_rule };
+                solved = newton(&p, &mut x, &w, &scales, d.tolerance, d.max_iterations).map(|n| {
+                    iterations += n.iterations;
+                    SteadyNewton { iterations, ..n }
+                });
+                if solved.is_err() {
+                    break;
+                }
+            }
+        }
+        let n = solved?;
+        self.report.newton_iterations += n.iterations;
+        let results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
+        self.state = State { asm, x, results, rho: self.state.rho };
+        self.sol = solution(&self.state, &self.data);
+        Ok(())
+    }
+
+    fn snapshot(&self) -> Self::Snapshot {
+        (self.state.asm.mesh().clone(), self.state.x.clone(), self.state.results.clone())
+    }
+
+    fn restore(&mut self, (mesh, x, results): Self::Snapshot) {
+        self.state = State { asm: Assembler::new(mesh, self.data.kernel.clone()), x, results, rho: self.state.rho };
+        self.sol = solution(&self.state, &self.data);
     }
 }

@@ -17,6 +17,7 @@ use rayon::prelude::*;
 
 use crate::assembly::Assembler;
 use crate::error::{FemError, NewtonFailure};
+use crate::fitting::{Beyond, FitEnd, FitRules, Fallback, Measure, MoveLimit, Secant, Stall};
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
 use crate::linear::BorderedLu;
@@ -156,134 +157,40 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     // fitting: a node at every contact boundary and stick→slip transition (§12)
     let element = PI * r / arc_elements as f64;
     if settings.contact_fitting {
-        let tol_fit = settings.fit_tolerance * contour.length();
         let lc = contour.length();
-        // the breakpoints the current mesh was fitted to, and (x, F = g(x) − x) of the
-        // pass before: a secant per breakpoint on F(x) = 0 (as fem-string.md §5; the
-        // plain iteration x ← g(x) oscillates for the drive's transitions)
-        let mut fitted_to: Option<Vec<f64>> = None;
-        let mut move_limit: f64 = 0.3;
-        let (mut best_move, mut best_pass, mut passes) = (f64::INFINITY, 0usize, 0usize);
-        let mut previous: Option<(Vec<f64>, Vec<f64>)> = None;
-        for _ in 0..drive_settings.max_fits {
-            let sol = FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], params, length, kernel.clone())
-                .with_transport_inertia(rho_c2(&state));
-            let mut breaks = sol.contact_boundaries();
-            let boundaries = breaks.len();
-            breaks.extend([Pulley::Driver, Pulley::Driven].iter().filter_map(|&p| transition(&state.results, &contour, p)));
-            let nodes = state.asm.mesh().node_sigmas();
-            let moved = breaks.iter().map(|&s| nodes.iter().map(|&n| wrapped_diff(n, s, lc).abs()).fold(f64::INFINITY, f64::min)).fold(0.0f64, f64::max);
-            report.fit_last_move = Some(moved);
-            if moved <= tol_fit {
-                report.fit_converged = true;
-                break;
-            }
-            // stalled below 5 % of an element: no 10 % gain over the best pass in 4
-            // passes (a point the mesh cannot take, e.g. within 2 % of an element of a
-            // region transition, where `Mesh::fitted` keeps the transition node)
-            if moved < 0.9 * best_move {
-                best_move = moved;
-                best_pass = passes;
-            } else if passes >= best_pass + 4 && moved < 0.05 * element {
-                break;
-            }
-            passes += 1;
-            let residual: Option<Vec<f64>> = fitted_to.as_ref().filter(|x| x.len() == breaks.len()).map(|x| breaks.iter().zip(x).map(|(g, x)| wrapped_diff(*g, *x, lc)).collect());
-            let next: Vec<f64> = match (&fitted_to, &residual, &previous) {
-                (Some(x), Some(f), Some((xp, fp))) if xp.len() == x.len() => (0..x.len())
-                    .map(|i| {
-                        let dx = wrapped_diff(x[i], xp[i], lc);
-                        let df = f[i] - fp[i];
-                        if df.abs() > 1e-12 * lc && dx != 0.0 {
-                            let step = -f[i] * dx / df;
-                            // a secant step beyond twice the plain one is not trusted
-                            contour.wrap(x[i] + if step.abs() <= 2.0 * f[i].abs() { step } else { f[i] })
-                        } else {
-                            breaks[i]
-                        }
-                    })
-                    .collect(),
-                _ => breaks.clone(),
-            };
+        let rules = FitRules {
+            elements: opts.elements,
+            arc_weight: settings.arc_weight,
+            tolerance: settings.fit_tolerance * lc,
+            max_passes: drive_settings.max_fits,
+            // the distance of each breakpoint from its nearest node
+            measure: Measure::NearestNode,
+            // a secant per breakpoint on F(x) = g(x) − x (as fem-string.md §5; the plain
+            // iteration x ← g(x) oscillates for the drive's transitions); a secant step
+            // beyond twice the plain one is not trusted
+            secant: Secant { bound: 2.0, beyond: Beyond::Plain, degenerate: 1e-12 * lc, fallback: Fallback::Located },
             // at most 0.3 of the local element length per pass (÷4 after a failed pass,
             // down to 0.02): a refit is then a small perturbation of the transferred
             // state (a kink moved across an element leaves the stiff normal penalty far
             // from equilibrium)
-            let nodes_now = state.asm.mesh().node_sigmas().to_vec();
-            let next: Vec<f64> = next
-                .iter()
-                .zip(&breaks)
-                .map(|(&target, &g)| {
-                    let near = nodes_now.iter().copied().min_by(|a, b| wrapped_diff(*a, g, lc).abs().total_cmp(&wrapped_diff(*b, g, lc).abs())).unwrap_or(g);
-                    let (e, _) = state.asm.mesh().locate(g);
-                    let limit = move_limit * state.asm.mesh().elements()[e].h;
-                    let d = wrapped_diff(target, near, lc);
-                    if d.abs() > limit {
-                        contour.wrap(near + limit * d.signum())
-                    } else {
-                        target
-                    }
-                })
-                .collect();
-            previous = match (fitted_to.take(), residual) {
-                (Some(x), Some(f)) => Some((x, f)),
-                _ => None,
-            };
-            let breaks = next;
-            let Ok((mesh, _)) = Mesh::fitted(contour, opts.elements, settings.arc_weight, &breaks) else {
-                report.fit_failure = Some("the fitted mesh could not be built".into());
-                break;
-            };
-            let asm = Assembler::new(mesh, kernel.clone());
-            // the node at each fitted transition is split into its stick and slip halves
-            let points = friction_points(&asm, &breaks[boundaries..]);
-            let mut x = crate::static_homotopy::transfer(&sol, &asm);
-            let nz_old = state.asm.len();
-            x.extend([state.x[nz_old], state.x[nz_old + 1]]);
-            x.extend(points.iter().map(|p| interpolate_traction(&state.results, &contour, p)));
-            let prob = SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(1.0), strain_rule };
-            let w = variable_weights(&asm, h, r, omega1, f_ref, points.len());
-            let scales = row_scales(&asm, f_ref, points.len());
-            // the transferred state is far from equilibrium in the stiff normal penalty
-            // where a kink moved between elements: on failure, a penalty ladder
-            // P/10⁵ → P from the transferred state
-            let x0 = x.clone();
-            let mut solved = newton(&prob, &mut x, &w, &scales, tol, max_it);
-            if solved.is_err() {
-                x.copy_from_slice(&x0);
-                let mut iterations = 0;
-                for f in [1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0] {
-                    let soft = TermParams { penalty: Some(f * penalty), ..params };
-                    let sp = SteadyParams { penalty: f * penalty, ..sp_at(1.0) };
-                    let p = SteadyProblem { asm: &asm, params: soft, length, points: &points, sp, strain_rule };
-                    solved = newton(&p, &mut x, &w, &scales, tol, max_it).map(|n| {
-                        iterations += n.iterations;
-                        SteadyNewton { iterations, ..n }
-                    });
-                    if solved.is_err() {
-                        break;
-                    }
-                }
-            }
-            match solved {
-                Ok(n) => {
-                    report.newton_iterations += n.iterations;
-                    report.fits += 1;
-                    let results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
-                    state = State { asm, x, results, rho: state.rho };
-                    fitted_to = Some(breaks);
-                    move_limit = (2.0 * move_limit).min(0.3);
-                }
-                Err(reason) => {
-                    if move_limit > 0.02 {
-                        move_limit *= 0.25;
-                        report.rejected_fits += 1;
-                        continue;
-                    }
-                    report.fit_failure = Some(reason.to_string());
-                    break;
-                }
-            }
+            limit: MoveLimit::Element { max: 0.3, grow: 2.0, shrink: 0.25, min: 0.02 },
+            // stalled below 5 % of an element: no 10 % gain over the best pass in 4
+            // passes (a point the mesh cannot take, e.g. within 2 % of an element of a
+            // region transition, where `Mesh::fitted` keeps the transition node)
+            stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
+            keep_best: false,
+        };
+        let mut fit = SteadyFit::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, tolerance: tol, max_iterations: max_it }, &mut report);
+        let out = crate::fitting::fit(&mut fit, &rules);
+        state = fit.into_state();
+        report.fits = out.passes;
+        report.rejected_fits = out.rejected;
+        report.fit_converged = out.converged();
+        report.fit_last_move = out.last_move;
+        match out.end {
+            FitEnd::Mesh(_) => report.fit_failure = Some("the fitted mesh could not be built".into()),
+            FitEnd::Refit(reason) => report.fit_failure = Some(reason.to_string()),
+            FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
         }
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;

@@ -89,7 +89,7 @@ pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
         let Some(pulley) = pulley else { continue };
         let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole };
-        if splits.iter().any(|&t| wrapped_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
+        if splits.iter().any(|&t| crate::fitting::periodic_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
             out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
             out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
         } else {
