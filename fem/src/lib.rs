@@ -78,6 +78,7 @@ use drive::summary::Summary;
 use drive::view::SolutionView;
 
 pub mod admissibility;
+pub mod analysis;
 pub mod assembly;
 pub mod dofs;
 pub mod element;
@@ -95,6 +96,7 @@ pub mod solution;
 pub mod stamp;
 pub mod string_drive;
 pub mod static_homotopy;
+pub mod surface;
 #[cfg(test)]
 mod test_rng;
 
