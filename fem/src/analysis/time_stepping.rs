@@ -82,10 +82,10 @@ impl Inertia {
         mass: &SurfaceAssembler<M, Q>,
     ) -> Result<Inertia, SurfaceError> {
         if stiffness.mesh() != mass.mesh() || stiffness.dofs() != mass.dofs() {
-            return Err(SurfaceError::MassMismatch { detail: format!("{} vs {} unknowns on meshes equal: {}", stiffness.len(), mass.len(), stiffness.mesh() == mass.mesh()) });
+            return Err(SurfaceError::MassMismatch { detail: format!("{} vs {} unknowns on meshes equal: {}", stiffness.unknowns(), mass.unknowns(), stiffness.mesh() == mass.mesh()) });
         }
         let ev = Evaluation { time: 0.0, dt: 0.0, history: None };
-        let m = mass.assemble(&vec![0.0; mass.len()], &ev).ok_or(SurfaceError::Inadmissible { what: "mass matrix" })?;
+        let m = mass.assemble(&vec![0.0; mass.unknowns()], &ev).ok_or(SurfaceError::Inadmissible { what: "mass matrix" })?;
         Ok(Inertia { scheme, mass: m.values })
     }
 }
@@ -170,7 +170,7 @@ impl<K: SurfaceKernel<P>, const P: usize> NewtonProblem for StepProblem<'_, K, P
     type Error = SurfaceError;
 
     fn size(&self) -> usize {
-        self.asm.len()
+        self.asm.unknowns()
     }
 
     /// ∇Π(z) + κM(z − ẑ); NaN where z is inadmissible (Newton rejects such a trial).
@@ -282,13 +282,13 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
     /// [`TimeSteppingError::InitialState`] (length, finiteness), [`TimeSteppingError::Surface`]
     /// (history points, the symbolic factorisation).
     pub fn new(asm: SurfaceAssembler<K, P>, z: Vec<f64>, time: f64, newton: NewtonOptions) -> Result<Self, TimeSteppingError> {
-        if z.len() != asm.len() || !z.iter().all(|v| v.is_finite()) || !time.is_finite() {
-            return Err(TimeSteppingError::InitialState { what: "unknowns", reason: format!("{} values (need {} finite) at t = {time}", z.len(), asm.len()) });
+        if z.len() != asm.unknowns() || !z.iter().all(|v| v.is_finite()) || !time.is_finite() {
+            return Err(TimeSteppingError::InitialState { what: "unknowns", reason: format!("{} values (need {} finite) at t = {time}", z.len(), asm.unknowns()) });
         }
         let history = SurfaceHistory::new(&asm, time)?;
         let mut lu = SparseLu::new();
         let (rows, cols) = asm.pattern();
-        lu.set_pattern(asm.len(), rows, cols)?;
+        lu.set_pattern(asm.unknowns(), rows, cols)?;
         Ok(TimeStepping { asm, history, lu, z, time, step: 0, motion: None, newton })
     }
 
@@ -426,7 +426,7 @@ mod tests {
     use crate::element::{ElementLayout, SHELL};
     use crate::quadrature::Rule;
     use crate::surface::assembly::{PointVariable, SurfacePoint, SurfaceTerm};
-    use crate::surface::dofs::{EdgeConstraint, Nodal, ZetaEdge};
+    use crate::surface::dofs::{EdgeConstraint, ZetaEdge};
     use crate::surface::mesh::SurfaceMesh;
     use crate::test_rng::Rng;
     use crate::Scalar;
@@ -497,13 +497,13 @@ mod tests {
         let plate = || Plate { d: 2.0, p0: 3.0, alpha: TAU / length, beta: PI / width };
         let fixed: Vec<EdgeConstraint> = [ZetaEdge::Lower, ZetaEdge::Upper]
             .into_iter()
-            .flat_map(|edge| [Nodal::Value, Nodal::DSigma].map(|nodal| EdgeConstraint { edge, field: Field::Nu, nodal }))
+            .flat_map(|edge| [PointDerivative::Value, PointDerivative::DSigma].map(|nodal| EdgeConstraint { edge, field: Field::Nu, nodal }))
             .collect();
         let mut mesh = SurfaceMesh::mapped(length, 8, |u| u + 0.3 * (TAU * u).sin() / TAU, [-0.5 * width, 0.5 * width], 2).unwrap();
         let (mut l2, mut h2) = (Vec::new(), Vec::new());
         for _ in 0..3 {
             let asm = SurfaceAssembler::new(mesh.clone(), plate(), &fixed).unwrap();
-            let n = asm.len();
+            let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             let report = stepper.step(1.0).unwrap();
             assert!(report.newton.iterations <= 3, "a quadratic energy: {:?}", report.newton);
@@ -610,7 +610,7 @@ mod tests {
         let (dt, steps) = (0.25, 16);
         let mesh = SurfaceMesh::mapped(1.0, 6, |u| u + 0.2 * (TAU * u).sin() / TAU, [-0.1, 0.1], 2).unwrap();
         let asm = SurfaceAssembler::new(mesh, Foundation { ..f }, &[]).unwrap();
-        let n = asm.len();
+        let n = asm.unknowns();
         let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
         let recording = Recording {
             channels: &|s: &TimeStepping<Foundation, 2>| vec![("amplitude", s.assembler().field_at(s.unknowns(), Field::Nu, 0.3, 0.0).unwrap()[0])],
@@ -661,10 +661,11 @@ mod tests {
         assert!((elastic - w[steps]).abs() > 0.1 * scale, "{elastic} vs {}", w[steps]);
     }
 
-    /// A history field that is only carried: energy ½w² (so w = 0), a second term without
-    /// energy whose state starts at s₀(σ, ζ) = exp(sin(2πσ/L))(1 + ζ) and is transported
-    /// unchanged (the default `advance`) at belt speed c.
+    /// A spring ½k w² (Gauss 4 × 4) and a history field that is only carried: a second
+    /// term without energy whose state starts at s₀(σ, ζ) = exp(sin(2πσ/L))(1 + ζ) and is
+    /// transported unchanged (the default `advance`) at belt speed c.
     struct Carried {
+        stiffness: f64,
         speed: f64,
         length: f64,
     }
@@ -683,10 +684,10 @@ mod tests {
             [nu(PointDerivative::Value)]
         }
         fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(2), Rule::Gauss(2)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(2)], history: 1 }]
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(2)], history: 1 }]
         }
         fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
-            v[0] * v[0] * if term == 0 { 0.5 } else { 0.0 }
+            v[0] * v[0] * if term == 0 { 0.5 * self.stiffness } else { 0.0 }
         }
         fn initial(&self, _term: usize, at: &SurfacePoint, state: &mut [f64]) {
             state[0] = self.initial_state(at.sigma, at.zeta);
@@ -705,7 +706,7 @@ mod tests {
     /// 2.82, 2.94 (8 → 32 elements, 13 → 52 steps); band [2.7, 3.3].
     #[test]
     fn advected_history_returns_after_one_loop_within_the_interpolation_error() {
-        let kernel = Carried { speed: 0.8, length: 1.0 };
+        let kernel = Carried { stiffness: 1.0, speed: 0.8, length: 1.0 };
         // M₄ = max |∂⁴σ s₀| on ζ ∈ [0, 0.1], by the 5-point difference on a fine grid
         let m4 = (0..2000)
             .map(|k| {
@@ -720,7 +721,7 @@ mod tests {
             let steps = 13 << level;
             let dt = kernel.length / (kernel.speed * steps as f64);
             let asm = SurfaceAssembler::new(mesh.clone(), Carried { ..kernel }, &[]).unwrap();
-            let n = asm.len();
+            let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             let states = stepper.history().term(1).unwrap();
             let mut sigma = states.column_sigma().to_vec();
@@ -749,7 +750,7 @@ mod tests {
         assert!(o.iter().all(|o| (2.7..=3.3).contains(o)), "orders {o:?} ({errors:?})");
     }
 
-    /// ½k w² with the mass ½ρw² (both by Gauss 4 × 4, so K = ω²M exactly and every mode
+    /// ½k w² with the mass ½ρw² ([`Carried`] at rest; both by Gauss 4 × 4, so K = ω²M exactly and every mode
     /// has ω = √(k/ρ)), released from a random z₀ at rest, ωΔt = 0.5. Newmark: the
     /// trapezoidal rule rotates (z, v/ω) by θ = 2 atan(ωΔt/2) per step, so
     /// z_n = cos(nθ) z₀ and v_n = −ω sin(nθ) z₀. Backward Euler:
@@ -758,30 +759,15 @@ mod tests {
     /// differs from θ by 0.01 rad per step, so a wrong scheme fails.
     #[test]
     fn inertia_schemes_have_their_amplification_factors() {
-        struct Spring(f64);
-        impl SurfaceKernel<1> for Spring {
-            fn layout(&self) -> ElementLayout {
-                SHELL
-            }
-            fn variables(&self) -> [PointVariable; 1] {
-                [nu(PointDerivative::Value)]
-            }
-            fn terms(&self) -> Vec<SurfaceTerm> {
-                vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }]
-            }
-            fn density<D: Scalar>(&self, _term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
-                v[0] * v[0] * (0.5 * self.0)
-            }
-        }
         let (k, rho, dt, steps): (f64, f64, f64, usize) = (9.0, 4.0, 0.5 / 1.5, 40);
         let omega = (k / rho).sqrt();
         let mesh = SurfaceMesh::mapped(2.0, 4, |u| u, [0.0, 0.3], 1).unwrap();
         for scheme in [Scheme::Newmark, Scheme::BackwardEuler] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Spring(k), &[]).unwrap();
-            let mass = SurfaceAssembler::new(mesh.clone(), Spring(rho), &[]).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: k, speed: 0.0, length: 2.0 }, &[]).unwrap();
+            let mass = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: rho, speed: 0.0, length: 2.0 }, &[]).unwrap();
             let inertia = Inertia::new(scheme, &asm, &mass).unwrap();
             let mut rng = Rng(17);
-            let z0: Vec<f64> = (0..asm.len()).map(|_| rng.next() - 0.5).collect();
+            let z0: Vec<f64> = (0..asm.unknowns()).map(|_| rng.next() - 0.5).collect();
             let n = z0.len();
             let mut stepper = TimeStepping::new(asm, z0.clone(), 0.0, newton()).unwrap().with_inertia(inertia, vec![0.0; n]).unwrap();
             let scale = z0.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -814,16 +800,16 @@ mod tests {
     /// Failures are typed with the step and times; the state stays where it was.
     #[test]
     fn a_failed_step_names_its_step_and_time() {
-        let kernel = Carried { speed: 0.0, length: 1.0 };
+        let kernel = Carried { stiffness: 1.0, speed: 0.0, length: 1.0 };
         let mesh = SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap();
         let asm = SurfaceAssembler::new(mesh, kernel, &[]).unwrap();
-        let n = asm.len();
+        let n = asm.unknowns();
         let mut stepper = TimeStepping::new(asm, vec![0.0; n], 2.0, newton()).unwrap();
         stepper.step(0.5).unwrap();
         let err = stepper.step(-1.0).unwrap_err();
         assert_eq!(err, TimeSteppingError::InvalidStep { step: 2, time: 2.5, dt: -1.0 });
         let strict = NewtonOptions { max_iterations: 1, tolerance: 1e-12, ..Default::default() };
-        let asm = SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { speed: 0.0, length: 1.0 }, &[]).unwrap();
+        let asm = SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0 }, &[]).unwrap();
         let mut z = vec![0.0; n];
         z[3] = 1.0;
         let mut stepper = TimeStepping::new(asm, z.clone(), 0.0, strict).unwrap();
@@ -833,6 +819,6 @@ mod tests {
             other => panic!("unexpected {other}"),
         }
         assert_eq!((stepper.steps(), stepper.time(), stepper.unknowns()), (0, 0.0, z.as_slice()));
-        assert!(matches!(TimeStepping::new(SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { speed: 0.0, length: 1.0 }, &[]).unwrap(), vec![0.0; 3], 0.0, newton()), Err(TimeSteppingError::InitialState { .. })));
+        assert!(matches!(TimeStepping::new(SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0 }, &[]).unwrap(), vec![0.0; 3], 0.0, newton()), Err(TimeSteppingError::InitialState { .. })));
     }
 }

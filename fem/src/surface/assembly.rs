@@ -25,28 +25,11 @@ use crate::element::{BfsRectangle, ElementLayout, Field, SurfaceElement};
 use crate::quadrature::Rule;
 use crate::Scalar;
 
+pub use super::dofs::PointDerivative;
 use super::dofs::{EdgeConstraint, SurfaceDofMap, PER_FIELD};
 use super::history::SurfaceHistory;
 use super::mesh::SurfaceMesh;
 use super::SurfaceError;
-
-/// A derivative of a surface field at a point (the rows of
-/// [`BfsRectangle::derivative_weights`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PointDerivative {
-    /// f.
-    Value = 0,
-    /// ∂σf.
-    DSigma = 1,
-    /// ∂ζf.
-    DZeta = 2,
-    /// ∂²σf.
-    DSigmaSigma = 3,
-    /// ∂σ∂ζf.
-    DSigmaZeta = 4,
-    /// ∂²ζf.
-    DZetaZeta = 5,
-}
 
 /// One value a kernel's density reads at a point: a derivative of a field.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,6 +124,12 @@ pub(crate) struct QuadraturePoint {
     pub(crate) scale: f64,
 }
 
+/// Element energy, local gradient and local Hessian (row-major).
+type ElementHessian = (f64, Vec<f64>, Vec<f64>);
+
+/// A field given with its nodal derivatives: (σ, ζ) ↦ [f, ∂σf, ∂ζf, ∂σ∂ζf].
+pub type NodalFunction<'a> = &'a dyn Fn(f64, f64) -> [f64; 4];
+
 /// The discrete surface problem: mesh, numbering, kernel.
 pub struct SurfaceAssembler<K, const P: usize> {
     mesh: SurfaceMesh,
@@ -200,14 +189,9 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         &self.terms
     }
 
-    /// Global unknowns.
-    pub fn len(&self) -> usize {
+    /// Number of global unknowns (of [`SurfaceDofMap`]).
+    pub fn unknowns(&self) -> usize {
         self.dofs.len()
-    }
-
-    /// Never true for a valid problem; for clippy.
-    pub fn is_empty(&self) -> bool {
-        self.dofs.is_empty()
     }
 
     /// (rows, cols) of the Hessian triplets, fixed by the numbering.
@@ -288,7 +272,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     }
 
     /// Element e's energy, local gradient and local Hessian (row-major).
-    fn element_hessian(&self, e: usize, z: &[f64], ev: &Evaluation) -> Option<(f64, Vec<f64>, Vec<f64>)> {
+    fn element_hessian(&self, e: usize, z: &[f64], ev: &Evaluation) -> Option<ElementHessian> {
         let q = self.dofs.gather(e, z);
         let (n, nf) = (q.len(), self.dofs.fields().len());
         let mut g = vec![0.0; n];
@@ -340,7 +324,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// Π and ∂Π/∂z; `None` if a point is inadmissible or a value is not finite.
     pub fn gradient(&self, z: &[f64], ev: &Evaluation) -> Option<(f64, Vec<f64>)> {
         let per: Option<Vec<(f64, Vec<f64>)>> = (0..self.mesh.len()).into_par_iter().map(|e| self.element_gradient(e, z, ev)).collect();
-        let mut g = vec![0.0; self.len()];
+        let mut g = vec![0.0; self.unknowns()];
         let mut total = 0.0;
         for (e, (en, ge)) in per?.iter().enumerate() {
             total += en;
@@ -356,8 +340,8 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// Π, ∂Π/∂z and the Hessian values in the order of [`Self::pattern`]; `None` if a
     /// point is inadmissible or a value is not finite.
     pub fn assemble(&self, z: &[f64], ev: &Evaluation) -> Option<Assembled> {
-        let per: Option<Vec<(f64, Vec<f64>, Vec<f64>)>> = (0..self.mesh.len()).into_par_iter().map(|e| self.element_hessian(e, z, ev)).collect();
-        let mut g = vec![0.0; self.len()];
+        let per: Option<Vec<ElementHessian>> = (0..self.mesh.len()).into_par_iter().map(|e| self.element_hessian(e, z, ev)).collect();
+        let mut g = vec![0.0; self.unknowns()];
         let mut values = Vec::with_capacity(self.rows.len());
         let mut energy = 0.0;
         for (e, (en, ge, he)) in per?.iter().enumerate() {
@@ -387,15 +371,15 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// The nodal unknowns that interpolate a field given with its derivatives
     /// `f(σ, ζ) = [f, ∂σf, ∂ζf, ∂σ∂ζf]` (fields not listed and fixed unknowns left 0):
     /// the BFS interpolant, exact for bicubics.
-    pub fn interpolate(&self, fields: &[(Field, &dyn Fn(f64, f64) -> [f64; 4])]) -> Vec<f64> {
-        let mut z = vec![0.0; self.len()];
+    pub fn interpolate(&self, fields: &[(Field, NodalFunction)]) -> Vec<f64> {
+        let mut z = vec![0.0; self.unknowns()];
         let (sigma, zeta) = (self.mesh.sigma_nodes(), self.mesh.zeta_nodes());
         for (i, &s) in sigma.iter().enumerate() {
             for (j, &zz) in zeta.iter().enumerate() {
                 for (field, f) in fields {
                     let Some(slot) = self.dofs.slot(*field) else { continue };
                     let values = f(s, zz);
-                    for (d, nodal) in [super::dofs::Nodal::Value, super::dofs::Nodal::DSigma, super::dofs::Nodal::DZeta, super::dofs::Nodal::DSigmaZeta].into_iter().enumerate() {
+                    for (d, nodal) in PointDerivative::NODAL.into_iter().enumerate() {
                         if let Some(g) = self.dofs.node_unknown(self.mesh.node(i, j), slot, nodal) {
                             z[g] = values[d];
                         }
@@ -414,7 +398,7 @@ mod tests {
     //! non-uniform periodic mesh with an edge constraint.
     use super::*;
     use crate::element::SHELL;
-    use crate::surface::dofs::{Nodal, ZetaEdge};
+    use crate::surface::dofs::ZetaEdge;
     use crate::test_rng::Rng;
 
     const NU: [PointDerivative; 6] = [
@@ -462,16 +446,16 @@ mod tests {
     #[test]
     fn gradient_and_hessian_match_central_differences() {
         let mesh = SurfaceMesh::new(1.3, vec![0.0, 0.2, 0.45, 0.6, 0.95], vec![-0.1, 0.02, 0.1]).unwrap();
-        let fixed = [EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: Nodal::Value }];
+        let fixed = [EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: PointDerivative::Value }];
         let asm = SurfaceAssembler::new(mesh, Nonlinear, &fixed).unwrap();
         let history = SurfaceHistory::new(&asm, 0.0).unwrap();
         let ev = Evaluation { time: 0.0, dt: 0.1, history: Some(&history) };
         let mut rng = Rng(5);
-        let z: Vec<f64> = (0..asm.len()).map(|_| 0.3 * (2.0 * rng.next() - 1.0)).collect();
+        let z: Vec<f64> = (0..asm.unknowns()).map(|_| 0.3 * (2.0 * rng.next() - 1.0)).collect();
         let a = asm.assemble(&z, &ev).unwrap();
         let (e, g) = asm.gradient(&z, &ev).unwrap();
         assert!((a.energy - e).abs() <= 1e-13 * e.abs() && (asm.energy(&z, &ev).unwrap() - e).abs() <= 1e-13 * e.abs());
-        let n = asm.len();
+        let n = asm.unknowns();
         let mut jac = vec![0.0; n * n];
         let (rows, cols) = asm.pattern();
         for ((&r, &c), &v) in rows.iter().zip(cols).zip(&a.values) {
@@ -496,5 +480,29 @@ mod tests {
         // the history state enters: another state gives another energy
         let other = history.advected(0.3);
         assert!((asm.energy(&z, &Evaluation { history: Some(&other), ..ev }).unwrap() - e).abs() > 1e-6 * e.abs());
+    }
+
+    /// The interpolant of a bicubic (nodal data f, ∂σf, ∂ζf, ∂σ∂ζf) reproduces it and
+    /// its second derivatives on every element that does not close the loop (the last
+    /// σ-column joins σ = L to the data at σ = 0, where a non-periodic bicubic jumps);
+    /// round-off of 16-term sums with weights up to 4/h² ≈ 10³: 1e-10.
+    #[test]
+    fn interpolation_reproduces_a_bicubic_away_from_the_closure() {
+        let mesh = SurfaceMesh::new(1.3, vec![0.0, 0.2, 0.45, 0.6, 0.95], vec![-0.1, 0.02, 0.1]).unwrap();
+        let asm = SurfaceAssembler::new(mesh, Nonlinear, &[]).unwrap();
+        let p = |s: f64, z: f64| [1.0 + s * s * s - 2.0 * s * z * z + 3.0 * z * z * z * s * s, 3.0 * s * s - 2.0 * z * z + 6.0 * z * z * z * s, -4.0 * s * z + 9.0 * z * z * s * s, -4.0 * z + 18.0 * z * z * s];
+        let q = |s: f64, z: f64| [z - s, -1.0, 1.0, 0.0];
+        let z = asm.interpolate(&[(Field::Nu, &p), (Field::Z, &q)]);
+        for (s, zeta) in [(0.1, -0.05), (0.5, 0.0), (0.9, 0.07)] {
+            let nu = asm.field_at(&z, Field::Nu, s, zeta).unwrap();
+            let [f, fs, fz, fsz] = p(s, zeta);
+            let want = [f, fs, fz, 6.0 * s + 6.0 * zeta.powi(3), fsz, -4.0 * s + 18.0 * zeta * s * s];
+            for (k, &w) in want.iter().enumerate() {
+                assert!((nu[k] - w).abs() <= 1e-10, "({s}, {zeta}) derivative {k}: {} vs {w}", nu[k]);
+            }
+            let zf = asm.field_at(&z, Field::Z, s, zeta).unwrap();
+            assert!((zf[0] - (zeta - s)).abs() <= 1e-12 && (zf[1] + 1.0).abs() <= 1e-12 && (zf[2] - 1.0).abs() <= 1e-12);
+        }
+        assert!(asm.field_at(&z, Field::S, 0.1, 0.0).is_none());
     }
 }

@@ -18,17 +18,34 @@ use super::SurfaceError;
 /// Unknowns of one field on one element (4 nodes × 4 nodal derivatives).
 pub const PER_FIELD: usize = 16;
 
-/// A nodal unknown of a BFS field, in the element's derivative order.
+/// A derivative of a surface field: the rows of
+/// [`crate::element::BfsRectangle::derivative_weights`] (what a kernel reads at a point,
+/// `as usize`); the first three and ∂σ∂ζf are also the BFS nodal unknowns
+/// ([`PointDerivative::nodal`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Nodal {
+pub enum PointDerivative {
     /// f.
     Value = 0,
     /// ∂σf.
     DSigma = 1,
     /// ∂ζf.
     DZeta = 2,
+    /// ∂²σf.
+    DSigmaSigma = 3,
     /// ∂σ∂ζf.
-    DSigmaZeta = 3,
+    DSigmaZeta = 4,
+    /// ∂²ζf.
+    DZetaZeta = 5,
+}
+
+impl PointDerivative {
+    /// The nodal unknowns of a BFS field, in element order (f, ∂σf, ∂ζf, ∂σ∂ζf).
+    pub const NODAL: [PointDerivative; 4] = [PointDerivative::Value, PointDerivative::DSigma, PointDerivative::DZeta, PointDerivative::DSigmaZeta];
+
+    /// Position among the nodal unknowns; None for ∂²σf and ∂²ζf (no unknowns of their own).
+    pub fn nodal(self) -> Option<usize> {
+        PointDerivative::NODAL.iter().position(|&d| d == self)
+    }
 }
 
 /// One of the two edges of the width.
@@ -47,8 +64,8 @@ pub struct EdgeConstraint {
     pub edge: ZetaEdge,
     /// The field.
     pub field: Field,
-    /// The unknown.
-    pub nodal: Nodal,
+    /// The unknown (one of [`PointDerivative::NODAL`]).
+    pub nodal: PointDerivative,
 }
 
 /// The numbering of the used fields' unknowns on a surface mesh.
@@ -78,8 +95,8 @@ impl SurfaceDofMap {
         if let Some(f) = fields.iter().find(|f| layout.position(**f).is_none()) {
             return Err(bad(format!("no field {f:?}")));
         }
-        if let Some(c) = fixed.iter().find(|c| !fields.contains(&c.field)) {
-            return Err(bad(format!("constraint on {:?}, which is not numbered", c.field)));
+        if let Some(c) = fixed.iter().find(|c| !fields.contains(&c.field) || c.nodal.nodal().is_none()) {
+            return Err(bad(format!("constraint on {:?} {:?}, which is not a numbered nodal unknown", c.field, c.nodal)));
         }
         let used: Vec<Field> = layout.fields.iter().copied().filter(|f| fields.contains(f)).collect();
         if used.is_empty() {
@@ -92,7 +109,7 @@ impl SurfaceDofMap {
         for i in 0..mesh.sigma_elements() {
             for j in 0..=top {
                 for (slot, field) in used.iter().enumerate() {
-                    for d in [Nodal::Value, Nodal::DSigma, Nodal::DZeta, Nodal::DSigmaZeta] {
+                    for (k, d) in PointDerivative::NODAL.into_iter().enumerate() {
                         let held = fixed.iter().any(|c| {
                             let on = match c.edge {
                                 ZetaEdge::Lower => j == 0,
@@ -101,7 +118,7 @@ impl SurfaceDofMap {
                             on && c.field == *field && c.nodal == d
                         });
                         if !held {
-                            nodes[(mesh.node(i, j) * nf + slot) * 4 + d as usize] = Some(len);
+                            nodes[(mesh.node(i, j) * nf + slot) * 4 + k] = Some(len);
                             len += 1;
                         }
                     }
@@ -156,9 +173,10 @@ impl SurfaceDofMap {
         &self.elements[e * n..(e + 1) * n]
     }
 
-    /// The number of a node's unknown of the field in `slot` (None: fixed).
-    pub fn node_unknown(&self, node: usize, slot: usize, nodal: Nodal) -> Option<usize> {
-        self.nodes[(node * self.fields.len() + slot) * 4 + nodal as usize]
+    /// The number of a node's unknown of the field in `slot` (None: fixed, or not a
+    /// nodal unknown).
+    pub fn node_unknown(&self, node: usize, slot: usize, nodal: PointDerivative) -> Option<usize> {
+        self.nodes[(node * self.fields.len() + slot) * 4 + nodal.nodal()?]
     }
 
     /// Element e's local unknowns from the global vector z (0 where fixed).
@@ -178,8 +196,8 @@ mod tests {
     fn numbering_is_periodic_in_sigma_and_honours_edge_constraints() {
         let mesh = SurfaceMesh::mapped(1.0, 5, |u| u, [0.0, 0.2], 2).unwrap();
         let fixed = [
-            EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: Nodal::Value },
-            EdgeConstraint { edge: ZetaEdge::Upper, field: Field::Nu, nodal: Nodal::DSigma },
+            EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: PointDerivative::Value },
+            EdgeConstraint { edge: ZetaEdge::Upper, field: Field::Nu, nodal: PointDerivative::DSigma },
         ];
         let map = SurfaceDofMap::new(&mesh, SHELL, &[Field::Z, Field::Nu], &fixed).unwrap();
         assert_eq!(map.fields(), &[Field::Nu, Field::Z]);
@@ -203,11 +221,13 @@ mod tests {
             }
         }
         // ν at ζ₀ has no value unknown, ν at ζ₁ no ∂σ; z keeps all
-        assert_eq!(map.node_unknown(mesh.node(3, 0), 0, Nodal::Value), None);
-        assert!(map.node_unknown(mesh.node(3, 0), 0, Nodal::DSigma).is_some());
-        assert_eq!(map.node_unknown(mesh.node(3, 2), 0, Nodal::DSigma), None);
-        assert!(map.node_unknown(mesh.node(3, 0), 1, Nodal::Value).is_some());
+        assert_eq!(map.node_unknown(mesh.node(3, 0), 0, PointDerivative::Value), None);
+        assert!(map.node_unknown(mesh.node(3, 0), 0, PointDerivative::DSigma).is_some());
+        assert_eq!(map.node_unknown(mesh.node(3, 2), 0, PointDerivative::DSigma), None);
+        assert!(map.node_unknown(mesh.node(3, 0), 1, PointDerivative::Value).is_some());
         assert!(matches!(SurfaceDofMap::new(&mesh, SHELL, &[Field::Theta], &[]), Err(SurfaceError::BadKernel { .. })));
+        let second = EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: PointDerivative::DZetaZeta };
+        assert!(matches!(SurfaceDofMap::new(&mesh, SHELL, &[Field::Nu], &[second]), Err(SurfaceError::BadKernel { .. })));
         assert!(matches!(SurfaceDofMap::new(&mesh, crate::element::STRING, &[Field::Nu], &[]), Err(SurfaceError::BadKernel { .. })));
     }
 }

@@ -63,7 +63,7 @@ impl SurfaceMesh {
     /// # Errors
     /// As [`SurfaceMesh::new`] (a map that is not increasing gives [`SurfaceError::BadNode`]).
     pub fn mapped(length: f64, n_sigma: usize, map: impl Fn(f64) -> f64, width: [f64; 2], n_zeta: usize) -> Result<SurfaceMesh, SurfaceError> {
-        if !(width[1] - width[0] > 0.0) {
+        if width[1] - width[0] <= 0.0 || (width[1] - width[0]).is_nan() {
             return Err(SurfaceError::BadLength { what: "width ζ₁ − ζ₀", value: width[1] - width[0] });
         }
         let sigma = (0..n_sigma).map(|i| if i == 0 { 0.0 } else { length * map(i as f64 / n_sigma as f64) }).collect();
