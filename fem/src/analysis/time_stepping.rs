@@ -668,11 +668,24 @@ mod tests {
         stiffness: f64,
         speed: f64,
         length: f64,
+        /// σ-rule of the history term.
+        history_rule: Rule,
     }
 
     impl Carried {
         fn initial_state(&self, s: f64, z: f64) -> f64 {
             (TAU * s / self.length).sin().exp() * (1.0 + z)
+        }
+        /// M₄ = max |∂⁴σ s₀| over the loop and ζ ∈ [0, 0.1] (at ζ = 0.1), by the 5-point
+        /// difference on a grid of 2000 points (step 2·10⁻³ L: a few per cent accurate).
+        fn fourth_derivative_bound(&self) -> f64 {
+            (0..2000)
+                .map(|k| {
+                    let (x, h) = (k as f64 * self.length / 2000.0, 2e-3 * self.length);
+                    let f = |t: f64| self.initial_state(t, 0.1);
+                    ((f(x + 2.0 * h) - 4.0 * f(x + h) + 6.0 * f(x) - 4.0 * f(x - h) + f(x - 2.0 * h)) / h.powi(4)).abs()
+                })
+                .fold(0.0f64, f64::max)
         }
     }
 
@@ -684,7 +697,7 @@ mod tests {
             [nu(PointDerivative::Value)]
         }
         fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(2)], history: 1 }]
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [self.history_rule, Rule::Gauss(2)], history: 1 }]
         }
         fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
             v[0] * v[0] * if term == 0 { 0.5 * self.stiffness } else { 0.0 }
@@ -706,15 +719,8 @@ mod tests {
     /// 2.82, 2.94 (8 → 32 elements, 13 → 52 steps); band [2.7, 3.3].
     #[test]
     fn advected_history_returns_after_one_loop_within_the_interpolation_error() {
-        let kernel = Carried { stiffness: 1.0, speed: 0.8, length: 1.0 };
-        // M₄ = max |∂⁴σ s₀| on ζ ∈ [0, 0.1], by the 5-point difference on a fine grid
-        let m4 = (0..2000)
-            .map(|k| {
-                let (x, h) = (k as f64 / 2000.0, 2e-3);
-                let f = |t: f64| kernel.initial_state(t, 0.1);
-                ((f(x + 2.0 * h) - 4.0 * f(x + h) + 6.0 * f(x) - 4.0 * f(x - h) + f(x - 2.0 * h)) / h.powi(4)).abs()
-            })
-            .fold(0.0f64, f64::max);
+        let kernel = Carried { stiffness: 1.0, speed: 0.8, length: 1.0, history_rule: Rule::Gauss(3) };
+        let m4 = kernel.fourth_derivative_bound();
         let mut mesh = SurfaceMesh::mapped(1.0, 8, |u| u + 0.25 * (TAU * u).sin() / TAU, [0.0, 0.1], 1).unwrap();
         let mut errors = Vec::new();
         for level in 0..3 {
@@ -763,8 +769,8 @@ mod tests {
         let omega = (k / rho).sqrt();
         let mesh = SurfaceMesh::mapped(2.0, 4, |u| u, [0.0, 0.3], 1).unwrap();
         for scheme in [Scheme::Newmark, Scheme::BackwardEuler] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: k, speed: 0.0, length: 2.0 }, &[]).unwrap();
-            let mass = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: rho, speed: 0.0, length: 2.0 }, &[]).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: k, speed: 0.0, length: 2.0, history_rule: Rule::Gauss(3) }, &[]).unwrap();
+            let mass = SurfaceAssembler::new(mesh.clone(), Carried { stiffness: rho, speed: 0.0, length: 2.0, history_rule: Rule::Gauss(3) }, &[]).unwrap();
             let inertia = Inertia::new(scheme, &asm, &mass).unwrap();
             let mut rng = Rng(17);
             let z0: Vec<f64> = (0..asm.unknowns()).map(|_| rng.next() - 0.5).collect();
@@ -800,7 +806,7 @@ mod tests {
     /// Failures are typed with the step and times; the state stays where it was.
     #[test]
     fn a_failed_step_names_its_step_and_time() {
-        let kernel = Carried { stiffness: 1.0, speed: 0.0, length: 1.0 };
+        let kernel = Carried { stiffness: 1.0, speed: 0.0, length: 1.0, history_rule: Rule::Gauss(3) };
         let mesh = SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap();
         let asm = SurfaceAssembler::new(mesh, kernel, &[]).unwrap();
         let n = asm.unknowns();
@@ -809,7 +815,7 @@ mod tests {
         let err = stepper.step(-1.0).unwrap_err();
         assert_eq!(err, TimeSteppingError::InvalidStep { step: 2, time: 2.5, dt: -1.0 });
         let strict = NewtonOptions { max_iterations: 1, tolerance: 1e-12, ..Default::default() };
-        let asm = SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0 }, &[]).unwrap();
+        let asm = SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0, history_rule: Rule::Gauss(3) }, &[]).unwrap();
         let mut z = vec![0.0; n];
         z[3] = 1.0;
         let mut stepper = TimeStepping::new(asm, z.clone(), 0.0, strict).unwrap();
@@ -819,6 +825,43 @@ mod tests {
             other => panic!("unexpected {other}"),
         }
         assert_eq!((stepper.steps(), stepper.time(), stepper.unknowns()), (0, 0.0, z.as_slice()));
-        assert!(matches!(TimeStepping::new(SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0 }, &[]).unwrap(), vec![0.0; 3], 0.0, newton()), Err(TimeSteppingError::InitialState { .. })));
+        assert!(matches!(TimeStepping::new(SurfaceAssembler::new(SurfaceMesh::mapped(1.0, 4, |u| u, [0.0, 0.1], 1).unwrap(), Carried { stiffness: 1.0, speed: 0.0, length: 1.0, history_rule: Rule::Gauss(3) }, &[]).unwrap(), vec![0.0; 3], 0.0, newton()), Err(TimeSteppingError::InitialState { .. })));
+    }
+
+    /// History rules with points on the element edges (trapezoidal, Simpson: two
+    /// points per σ, one per element): a shift by one element of a uniform mesh maps the
+    /// distinct points onto each other, so the advection is exact (to round-off); a shift
+    /// of 0.3 element stays within the cubic interpolation bound of the advection test,
+    /// and the two points at one σ carry the same value.
+    #[test]
+    fn history_points_on_element_edges_are_advected_once() {
+        let mesh = SurfaceMesh::mapped(1.0, 8, |u| u, [0.0, 0.1], 1).unwrap();
+        for rule in [Rule::Trapezoidal, Rule::Simpson] {
+            let kernel = Carried { stiffness: 1.0, speed: 0.0, length: 1.0, history_rule: rule };
+            let asm = SurfaceAssembler::new(mesh.clone(), Carried { ..kernel }, &[]).unwrap();
+            let history = SurfaceHistory::new(&asm, 0.0).unwrap();
+            let h: f64 = 1.0 / if rule == Rule::Simpson { 16.0 } else { 8.0 };
+            for (shift, tol) in [(0.125, 1e-13), (0.3 * 0.125, 9.0 / 16.0 * h.powi(4) * kernel.fourth_derivative_bound() / 24.0)] {
+                let moved = history.advected(shift);
+                let mut at_sigma: Vec<(f64, f64)> = Vec::new();
+                for e in 0..mesh.len() {
+                    for point in asm.points(e, 1, 0.0, 0.0) {
+                        let got = moved.state(1, e, point.a, point.b)[0];
+                        let want = kernel.initial_state(point.at.sigma - shift, point.at.zeta);
+                        assert!((got - want).abs() <= tol, "{rule:?} shift {shift}: {got} vs {want}");
+                        if point.b == 0 {
+                            at_sigma.push((point.at.sigma.rem_euclid(1.0), got));
+                        }
+                    }
+                }
+                for (s, v) in &at_sigma {
+                    for (t, w) in &at_sigma {
+                        if (s - t).abs() < 1e-12 || (s - t).abs() > 1.0 - 1e-12 {
+                            assert!((v - w).abs() <= 1e-14, "{rule:?}: two values at σ = {s}");
+                        }
+                    }
+                }
+            }
+        }
     }
 }
