@@ -163,22 +163,40 @@ impl SurfaceElement for BfsRectangle {
     }
 
     fn shape(&self, xi: f64, eta: f64) -> SurfaceShape {
-        // 1-D weights in (u_a, u′_a, u_b, u′_b) order: entry 2·end + derivative
-        let (sv, sd) = hermite::weights(xi, self.size[0]);
-        let (zv, zd) = hermite::weights(eta, self.size[1]);
-        let mut shape = SurfaceShape { value: vec![0.0; 16], d_sigma: vec![0.0; 16], d_zeta: vec![0.0; 16] };
+        let [value, d_sigma, d_zeta, ..] = self.derivative_weights(xi, eta);
+        SurfaceShape { value: value.to_vec(), d_sigma: d_sigma.to_vec(), d_zeta: d_zeta.to_vec() }
+    }
+}
+
+/// The derivatives of a surface field that [`BfsRectangle::derivative_weights`] weighs,
+/// in its row order: f, ∂σf, ∂ζf, ∂²σf, ∂σ∂ζf, ∂²ζf (a plate's curvatures need the last
+/// three).
+pub const SURFACE_DERIVATIVES: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2, 0), (1, 1), (0, 2)];
+
+impl BfsRectangle {
+    /// Per-field weights at (ξ, η) of the six derivatives of [`SURFACE_DERIVATIVES`]
+    /// (σ order, ζ order) over one field's 16 unknowns ([`ElementLayout::field_indices`]
+    /// order: node-major, then f, ∂σf, ∂ζf, ∂σζf): ∂σ^a∂ζ^b f = Σ_k w[row][k] q_k.
+    pub fn derivative_weights(&self, xi: f64, eta: f64) -> [[f64; 16]; 6] {
+        // 1-D weights in (u_a, u′_a, u_b, u′_b) order: entry 2·end + derivative; per
+        // direction the value, first and second derivative rows
+        let along = |t: f64, h: f64| {
+            let (v, d) = hermite::weights(t, h);
+            [v, d, hermite::second_weights(t, h)]
+        };
+        let (s, z) = (along(xi, self.size[0]), along(eta, self.size[1]));
+        let mut w = [[0.0; 16]; 6];
         for node in 0..4 {
             let (a, b) = (node % 2, node / 2);
             for derivative in 0..4 {
                 let (ds, dz) = (derivative % 2, derivative / 2);
                 let (i, j) = (2 * a + ds, 2 * b + dz);
-                let k = 4 * node + derivative;
-                shape.value[k] = sv[i] * zv[j];
-                shape.d_sigma[k] = sd[i] * zv[j];
-                shape.d_zeta[k] = sv[i] * zd[j];
+                for (row, &(p, q)) in SURFACE_DERIVATIVES.iter().enumerate() {
+                    w[row][4 * node + derivative] = s[p][i] * z[q][j];
+                }
             }
         }
-        shape
+        w
     }
 }
 
@@ -258,6 +276,18 @@ mod tests {
                 // round-off of a sum of 16 products of O(1) terms, the derivatives ×2/h
                 for (g, w) in got.iter().zip(want) {
                     assert!((g - w).abs() <= 1e-12 * (1.0 + w.abs()) * 100.0, "{field:?}: {g} vs {w}");
+                }
+            }
+            // second derivatives from the weights, against the bicubic's (×4/h² at most)
+            let f_index = SHELL.field_indices(SHELL.position(field).unwrap());
+            for _ in 0..5 {
+                let (xi, eta) = (rng.next(), rng.next());
+                let [s, z] = el.point(xi, eta);
+                let w = el.derivative_weights(xi, eta);
+                for (row, &(i, j)) in SURFACE_DERIVATIVES.iter().enumerate() {
+                    let got: f64 = f_index.iter().enumerate().map(|(k, &g)| w[row][k] * q[g]).sum();
+                    let want = f(s, z, i, j);
+                    assert!((got - want).abs() <= 1e-9 * (1.0 + want.abs()), "{field:?} ∂σ^{i}∂ζ^{j}: {got} vs {want}");
                 }
             }
             // the other fields see nothing of this one

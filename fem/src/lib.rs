@@ -36,6 +36,10 @@
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
 //!   against its closed form — how a penalty FE carries concentrated edge forces;
+//! - [`surface`], [`analysis`]: the 2-D discretisation over (σ, ζ) (periodic BFS mesh,
+//!   numbering, assembly over a surface kernel, per-point history advected along σ) and
+//!   the time stepping with history and optional inertia the shell runs on
+//!   (docs/fem-time-stepping.md);
 //! - [`string_drive`]: the friction drive (analyses `steady`, `transient` with Coulomb
 //!   contact) — quasistatic transient from the static solution, augmented Lagrangian
 //!   Coulomb contact of Table 1, driven rotation with its torque balance, transport
@@ -78,6 +82,7 @@ use drive::summary::Summary;
 use drive::view::SolutionView;
 
 pub mod admissibility;
+pub mod analysis;
 pub mod assembly;
 pub mod dofs;
 pub mod element;
@@ -96,6 +101,7 @@ pub mod solution;
 pub mod stamp;
 pub mod string_drive;
 pub mod static_homotopy;
+pub mod surface;
 #[cfg(test)]
 mod test_rng;
 

@@ -1,0 +1,222 @@
+//! History variables of a surface kernel: per term that keeps history
+//! ([`SurfaceTerm::history`] values per integration point), one state vector per
+//! integration point of every element — the 2-D counterpart of
+//! [`crate::formulation::terms::TermHistory`] with states as plain numbers, so that
+//! they can be interpolated.
+//!
+//! A term's points form rows at fixed ζ (n_ζ × points of its ζ-rule) of columns around
+//! the loop (n_σ × points of its σ-rule, in σ order). During a step the densities read
+//! the states ([`SurfaceHistory::state`]); after it converged the kernel's
+//! [`SurfaceKernel::advance`] gives the new states from the converged point values
+//! ([`SurfaceHistory::advance`]).
+//!
+//! **Advection** (the belt carries the history along σ, spec §4.6 eq. 41): before a
+//! step of length Δt the committed state at σ is replaced by the state at the foot
+//! σ − cΔt (semi-Lagrangian; c = the kernel's belt speed at mid-step), interpolated along
+//! its row by the cubic Lagrange polynomial through the four distinct points around the
+//! foot (two on each side, periodic). Interpolation error O(h⁴ ∂⁴u) per step, h the
+//! point spacing; over a loop of L/(cΔt) steps O(h⁴/(cΔt)) — third order at a fixed
+//! Courant number cΔt/h. A shift by a whole number of points on a uniform arrangement is
+//! exact; points at the same σ (element edges of a Simpson or trapezoidal rule) count once,
+//! with their mean, in the interpolation.
+
+use super::assembly::{Evaluation, SurfaceAssembler, SurfaceKernel};
+use super::SurfaceError;
+
+/// The states of one history term.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TermStates {
+    /// Values per point.
+    width: usize,
+    /// Points of the σ- and ζ-rule per element.
+    per_sigma: usize,
+    per_zeta: usize,
+    /// Columns (n_σ · per_sigma) and rows (n_ζ · per_zeta).
+    columns: usize,
+    rows: usize,
+    /// σ of each column, mod L.
+    sigma: Vec<f64>,
+    /// Distinct σ (increasing) and the columns at each.
+    unique: Vec<f64>,
+    groups: Vec<Vec<usize>>,
+    /// (row · columns + column) · width + k.
+    values: Vec<f64>,
+}
+
+impl TermStates {
+    /// Values per point.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// (rows, columns) of points.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.rows, self.columns)
+    }
+
+    /// σ of each column (mod L), m.
+    pub fn column_sigma(&self) -> &[f64] {
+        &self.sigma
+    }
+
+    /// The state at (row, column).
+    pub fn get(&self, row: usize, column: usize) -> &[f64] {
+        let k = (row * self.columns + column) * self.width;
+        &self.values[k..k + self.width]
+    }
+
+    /// Row and column of point (a, b) of element (i, j).
+    fn place(&self, i: usize, j: usize, a: usize, b: usize) -> (usize, usize) {
+        (j * self.per_zeta + b, i * self.per_sigma + a)
+    }
+
+    /// The states advected by `shift` = cΔt along σ (module documentation).
+    fn advected(&self, shift: f64, length: f64) -> TermStates {
+        let mut out = self.clone();
+        if shift == 0.0 {
+            return out;
+        }
+        let n = self.unique.len();
+        // the mean state at distinct point k (periodic index) of `row`
+        let mean = |row: usize, k: usize, c: usize| -> f64 {
+            let g = &self.groups[k % n];
+            g.iter().map(|&col| self.get(row, col)[c]).sum::<f64>() / g.len() as f64
+        };
+        // abscissa of periodic index k (k may run past n by the stencil)
+        let x = |k: isize| -> f64 {
+            let wraps = k.div_euclid(n as isize);
+            self.unique[k.rem_euclid(n as isize) as usize] + wraps as f64 * length
+        };
+        for column in 0..self.columns {
+            let mut foot = (self.sigma[column] - shift).rem_euclid(length);
+            let k = match self.unique.partition_point(|&u| u <= foot).checked_sub(1) {
+                Some(k) => k as isize,
+                None => {
+                    foot += length;
+                    n as isize - 1
+                }
+            };
+            let stencil = [k - 1, k, k + 1, k + 2];
+            let xs = stencil.map(x);
+            let weights: [f64; 4] = std::array::from_fn(|r| (0..4).filter(|&s| s != r).map(|s| (foot - xs[s]) / (xs[r] - xs[s])).product());
+            let ks = stencil.map(|k| k.rem_euclid(n as isize) as usize);
+            for row in 0..self.rows {
+                for c in 0..self.width {
+                    let v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
+                    out.values[(row * self.columns + column) * self.width + c] = v;
+                }
+            }
+        }
+        out
+    }
+}
+
+/// The history states of every term of a kernel (None for a term without history).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceHistory {
+    terms: Vec<Option<TermStates>>,
+    length: f64,
+}
+
+impl SurfaceHistory {
+    /// The initial states ([`SurfaceKernel::initial`]) at time `time`.
+    ///
+    /// # Errors
+    /// [`SurfaceError::TooFewHistoryPoints`]: fewer than four distinct σ points per row.
+    pub fn new<K: SurfaceKernel<P>, const P: usize>(asm: &SurfaceAssembler<K, P>, time: f64) -> Result<SurfaceHistory, SurfaceError> {
+        let mesh = asm.mesh();
+        let length = mesh.length();
+        let mut terms = Vec::new();
+        for (t, term) in asm.terms().iter().enumerate() {
+            if term.history == 0 {
+                terms.push(None);
+                continue;
+            }
+            let [rs, rz] = term.rule;
+            let (per_sigma, per_zeta) = (rs.points().len(), rz.points().len());
+            let (columns, rows) = (mesh.sigma_elements() * per_sigma, mesh.zeta_elements() * per_zeta);
+            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history] };
+            for e in 0..mesh.len() {
+                let (i, j) = mesh.element_position(e);
+                for point in asm.points(e, t, time, 0.0) {
+                    let (row, column) = states.place(i, j, point.a, point.b);
+                    states.sigma[column] = point.at.sigma.rem_euclid(length);
+                    let k = (row * columns + column) * term.history;
+                    asm.kernel().initial(t, &point.at, &mut states.values[k..k + term.history]);
+                }
+            }
+            let mut order: Vec<usize> = (0..columns).collect();
+            order.sort_by(|&a, &b| states.sigma[a].total_cmp(&states.sigma[b]));
+            for c in order {
+                let s = states.sigma[c];
+                match states.unique.last() {
+                    Some(&u) if (s - u).abs() <= 1e-12 * length => states.groups.last_mut().expect("a group per distinct σ").push(c),
+                    _ => {
+                        states.unique.push(s);
+                        states.groups.push(vec![c]);
+                    }
+                }
+            }
+            // σ = L wrapped to 0 and the point at 0 are one
+            if states.unique.len() > 1 && (states.unique[states.unique.len() - 1] - length).abs() <= 1e-12 * length {
+                let last = states.groups.pop().expect("non-empty");
+                states.unique.pop();
+                states.groups[0].extend(last);
+            }
+            if states.unique.len() < 4 {
+                return Err(SurfaceError::TooFewHistoryPoints { term: t, points: states.unique.len() });
+            }
+            terms.push(Some(states));
+        }
+        Ok(SurfaceHistory { terms, length })
+    }
+
+    /// The states of term t (None if it keeps no history).
+    pub fn term(&self, t: usize) -> Option<&TermStates> {
+        self.terms.get(t).and_then(Option::as_ref)
+    }
+
+    /// True if no term keeps history.
+    pub fn is_empty(&self) -> bool {
+        self.terms.iter().all(Option::is_none)
+    }
+
+    /// The state of term t at point (a, b) of its rule on element e.
+    ///
+    /// # Panics
+    /// If term t keeps no history (a kernel/assembler mismatch).
+    pub fn state(&self, t: usize, e: usize, a: usize, b: usize) -> &[f64] {
+        let states = self.terms[t].as_ref().expect("a term with history has states");
+        let n_zeta = states.rows / states.per_zeta;
+        let (row, column) = states.place(e / n_zeta, e % n_zeta, a, b);
+        states.get(row, column)
+    }
+
+    /// Every state carried by `shift` = cΔt along σ (module documentation).
+    pub fn advected(&self, shift: f64) -> SurfaceHistory {
+        SurfaceHistory { terms: self.terms.iter().map(|t| t.as_ref().map(|s| s.advected(shift, self.length))).collect(), length: self.length }
+    }
+
+    /// The states after a converged step: [`SurfaceKernel::advance`] at every point from
+    /// the converged unknowns `z` and these (advected) states.
+    pub fn advance<K: SurfaceKernel<P>, const P: usize>(&self, asm: &SurfaceAssembler<K, P>, z: &[f64], ev: &Evaluation) -> SurfaceHistory {
+        let mut next = self.clone();
+        let mesh = asm.mesh();
+        for (t, slot) in next.terms.iter_mut().enumerate() {
+            let Some(states) = slot else { continue };
+            let previous = self.terms[t].as_ref().expect("same terms");
+            let width = states.width;
+            for e in 0..mesh.len() {
+                let (i, j) = mesh.element_position(e);
+                let q = asm.dofs().gather(e, z);
+                for point in asm.points(e, t, ev.time, ev.dt) {
+                    let (row, column) = states.place(i, j, point.a, point.b);
+                    let v = asm.values(&point.weights, &q);
+                    let k = (row * states.columns + column) * width;
+                    asm.kernel().advance(t, &point.at, &v, previous.get(row, column), &mut states.values[k..k + width]);
+                }
+            }
+        }
+        next
+    }
+}
