@@ -32,6 +32,7 @@ use std::f64::consts::FRAC_PI_2;
 use drive::scene::{Contact, Scene};
 
 pub use crate::sigma_map::Side;
+pub use drive::contour::Direction;
 
 /// A pulley of the two-pulley drive.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -80,32 +81,6 @@ impl Pulley {
             _ => -1.0,
         };
         direction.sign() * puts_power_in
-    }
-}
-
-/// The running direction of the belt relative to σ (σ runs clockwise).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Direction {
-    /// The belt runs along σ: the driver turns clockwise (ω₁ ≥ 0), the upper span moves
-    /// in +x.
-    Clockwise,
-    /// The belt runs against σ: the driver turns counter-clockwise (ω₁ < 0).
-    CounterClockwise,
-}
-
-impl Direction {
-    /// The direction of a driver turning at ω₁ (rad/s, clockwise positive); at rest,
-    /// clockwise.
-    pub fn of_speed(omega1: f64) -> Self {
-        if omega1 < 0.0 { Direction::CounterClockwise } else { Direction::Clockwise }
-    }
-
-    /// +1 along σ, −1 against it.
-    pub fn sign(self) -> f64 {
-        match self {
-            Direction::Clockwise => 1.0,
-            Direction::CounterClockwise => -1.0,
-        }
     }
 }
 

@@ -12,16 +12,20 @@ pub(super) fn unwrapped(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
 /// element, placed at the element's midpoint — extrapolated by the quadratic through the
 /// 2nd–4th distinct samples (the line through the first two on a short run), clamped
 /// between the stick point before the last one and the second slip sample; `None` if the
-/// pulley has no stick point or no slip point.
+/// pulley has no stick point or no slip point. All in the coordinate u = ±σ (unwrapped)
+/// that runs with the belt, so that the stick run comes first in either direction.
 pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) -> Option<f64> {
     let mut pts: Vec<&PointResult> = results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
-    pts.sort_by(|a, b| unwrapped(contour, pulley, a.point.sigma).total_cmp(&unwrapped(contour, pulley, b.point.sigma)));
+    let sign = pts.first()?.point.direction.sign();
+    // the halves of a split node in the order of travel too
+    let key = |p: &PointResult| (sign * unwrapped(contour, pulley, p.point.sigma), sign * p.point.part.offset());
+    pts.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal));
     let last_stick = pts.iter().rposition(|p| !p.slip)?;
     if last_stick + 1 >= pts.len() {
         return None;
     }
-    let s = |p: &PointResult| unwrapped(contour, pulley, p.point.sigma);
-    let mid = |p: &PointResult| unwrapped(contour, pulley, p.point.velocity_sigma());
+    let s = |p: &PointResult| sign * unwrapped(contour, pulley, p.point.sigma);
+    let mid = |p: &PointResult| sign * unwrapped(contour, pulley, p.point.velocity_sigma());
     let a = pts[last_stick];
     // the distinct velocity samples of the slip run (the slip half of a split node and
     // the next node share their element), up to four
@@ -73,7 +77,7 @@ pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) ->
     if let Some(root) = root.filter(|r| r.is_finite()) {
         sigma = root.clamp(lo, hi);
     }
-    Some(contour.wrap(sigma))
+    Some(contour.wrap(sign * sigma))
 }
 
 /// Signed periodic difference a − b on a contour of length l, in (−l/2, l/2].
