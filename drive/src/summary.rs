@@ -180,13 +180,13 @@ impl Global {
             Global::MomentUpperMid => "bending moment at x = 0 on the upper span",
             Global::MomentLowerMid => "bending moment at x = 0 on the lower span",
             Global::TensionTight => {
-                "axial force in the driver's stick zone in steady motion (the tight side for a positive load)"
+                "axial force in the driver's stick zone in steady motion: the tight side while the driver drives (either sense of rotation), the slack side when the load drives"
             }
             Global::TensionSlack => {
-                "axial force in the driven pulley's stick zone in steady motion (the slack side for a positive load)"
+                "axial force in the driven pulley's stick zone in steady motion: the slack side while the driver drives, the tight side when the load drives"
             }
             Global::DrivenSpeed => "angular speed ω₂ of the driven pulley, clockwise positive",
-            Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time)",
+            Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time), positive along σ (clockwise), negative for a counter-clockwise driver",
             Global::PulleySpeed => "angular speed ω of the single pulley of a one-pulley scene, clockwise positive",
             Global::TensionIn => "axial force at the inflow end of a one-pulley scene",
             Global::TensionOut => "axial force at the outflow end of a one-pulley scene",
