@@ -64,7 +64,10 @@ enum Command {
     ///
     /// `beltcheck quantities` says what each summary name means: e.g. `tension_tight` /
     /// `tension_slack` are the axial forces in the driver's / the driven pulley's stick
-    /// zones, by both methods.
+    /// zones, by both methods — the tight / slack sides while the driver drives (either
+    /// sense of rotation: a negative `driver_speed` turns it counter-clockwise and makes
+    /// the upper span the tight one), swapped when the load drives (a `driven_torque`
+    /// of the sign opposite to `driver_speed`, larger than the damping's d₂|ω₁|).
     Solve(SolveArgs),
     /// Convergence study of one scene: BVP tolerance sweeps and FE mesh sequences held
     /// against the tightest BVP run, with observed orders, Richardson extrapolation and

@@ -405,9 +405,10 @@ pub mod belt_creep {
         pub inertia: bool,
         /// Coulomb coefficient μ ≥ 0.
         pub friction: f64,
-        /// Driver speed ω₁ ≥ 0 (rad/s, clockwise).
+        /// Driver speed ω₁ (rad/s, clockwise positive).
         pub driver_speed: f64,
-        /// Resisting torque M₂ ≥ 0 of the driven pulley (N·m).
+        /// Load torque M₂ of the driven pulley (N·m, the clockwise torque the belt must
+        /// exert on it; resisting a clockwise drive when positive).
         pub driven_torque: f64,
         /// Viscous damping d₂ ≥ 0 of the driven pulley (N·m·s): resisting torque M₂ + d₂ω₂.
         pub driven_damping: f64,
@@ -436,35 +437,43 @@ pub mod belt_creep {
     /// The exact steady state of belt-creep theory.
     #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
     pub struct CreepSolution {
-        /// Effective tension T̃ of the tight (lower) span, N.
+        /// Effective tension T̃ in the driver's stick zone (of the span running onto the
+        /// driver: the tight span when the driver puts power in, the slack one when the
+        /// driven pulley does), N.
         pub effective_tight: f64,
-        /// Effective tension T̃ of the slack (upper) span, N.
+        /// Effective tension T̃ in the driven pulley's stick zone, N.
         pub effective_slack: f64,
-        /// Axial force of the tight span, N.
+        /// Axial force in the driver's stick zone (the summary's `tension_tight`), N.
         pub tension_tight: f64,
-        /// Axial force of the slack span, N.
+        /// Axial force in the driven pulley's stick zone (`tension_slack`), N.
         pub tension_slack: f64,
         /// Transport rate c (m/s of unstretched length).
         pub transport_rate: f64,
         /// Driven speed ω₂ = ω₁ λ_s/λ_t (rad/s).
         pub driven_speed: f64,
-        /// Slip arc on each pulley, ln(T̃_t/T̃_s)/μ (rad); the stick arc is π − this.
+        /// Slip arc on each pulley, ln(T̃_t/T̃_s)/μ (rad, T̃_t ≥ T̃_s the larger and the
+        /// smaller span tension); the stick arc is π − this.
         pub slip_arc: f64,
-        /// Torque of the belt on the driven pulley, R(T̃_t − T̃_s) = M₂ + d₂ω₂ (N·m).
+        /// Torque of the belt on the driven pulley, R(T̃_lower − T̃_upper) = M₂ + d₂ω₂
+        /// (N·m, clockwise positive).
         pub driven_torque: f64,
-        /// Torque of the belt on the driver, −R(T̃_t − T̃_s) (N·m, clockwise positive).
+        /// Torque of the belt on the driver, −R(T̃_lower − T̃_upper) (N·m, clockwise
+        /// positive).
         pub driver_torque: f64,
-        /// Stretch of the tight span.
+        /// Stretch in the driver's stick zone: c λ = ω₁R.
         pub stretch_tight: f64,
-        /// Stretch of the slack span.
+        /// Stretch in the driven pulley's stick zone: c λ = ω₂R.
         pub stretch_slack: f64,
     }
 
-    /// The state for a given slack effective tension (everything but the length).
+    /// The state for a given slack effective tension (everything but the length): T̃_s ≤
+    /// T̃_t the span tensions; the driver's stick zone carries T̃_t when the driver puts
+    /// power in, T̃_s when the driven pulley does (`reversed`).
     #[derive(Debug, Clone, Copy)]
     struct State {
         ts: f64,
         tt: f64,
+        reversed: bool,
         c: f64,
         k: f64,
         phi: f64,
@@ -489,15 +498,15 @@ pub mod belt_creep {
                     return Err(CreepError::InvalidInput { name, value, reason: "must be finite and > 0" });
                 }
             }
-            let non_negative = [
-                ("coulomb", self.friction),
-                ("driver_speed", self.driver_speed),
-                ("driven_torque", self.driven_torque),
-                ("driven_damping", self.driven_damping),
-            ];
+            let non_negative = [("coulomb", self.friction), ("driven_damping", self.driven_damping)];
             for (name, value) in non_negative {
                 if !(value.is_finite() && value >= 0.0) {
                     return Err(CreepError::InvalidInput { name, value, reason: "must be finite and ≥ 0" });
+                }
+            }
+            for (name, value) in [("driver_speed", self.driver_speed), ("driven_torque", self.driven_torque)] {
+                if !value.is_finite() {
+                    return Err(CreepError::InvalidInput { name, value, reason: "must be finite" });
                 }
             }
             Ok(())
@@ -521,20 +530,41 @@ pub mod belt_creep {
             }
         }
 
-        /// The state at slack effective tension `ts` > 0 (torque balance and kinematics).
+        /// The state at slack effective tension `ts` > 0 (torque balance and kinematics),
+        /// ω₁ ≥ 0.
         fn state(&self, ts: f64) -> State {
             let (ea, r) = (self.axial_stiffness, self.radius);
             let a = ea + ts;
-            // R D² + (RA − M₂) D − A (M₂ + d₂ω₁) = 0, positive root (stable form).
             let m = self.driven_torque;
-            let q = a * (m + self.driven_damping * self.driver_speed);
-            let b = r * a - m;
-            let d = if q == 0.0 { 0.0 } else { 2.0 * q / (b + (b * b + 4.0 * r * q).sqrt()) };
+            let net = m + self.driven_damping * self.driver_speed;
+            let reversed = net < 0.0;
+            let d = if reversed {
+                // the driven pulley drives: the upper span is tight, ω₂ = ω₁ (A + D)/A,
+                // −R D = M₂ + d₂ω₂, linear in D: D = −A (M₂ + d₂ω₁)/(RA + d₂ω₁)
+                -a * net / (r * a + self.driven_damping * self.driver_speed)
+            } else {
+                // R D² + (RA − M₂) D − A (M₂ + d₂ω₁) = 0, positive root (stable form).
+                let q = a * net;
+                let b = r * a - m;
+                if q == 0.0 { 0.0 } else { 2.0 * q / (b + (b * b + 4.0 * r * q).sqrt()) }
+            };
             let tt = ts + d;
-            let c = self.rate(tt);
+            let c = self.rate(if reversed { ts } else { tt });
             let k = ea - self.inertia_force(c);
             let phi = if d == 0.0 { 0.0 } else { (tt / ts).ln() / self.friction };
-            State { ts, tt, c, k, phi }
+            State { ts, tt, reversed, c, k, phi }
+        }
+
+        /// (driver's, driven pulley's) stick-zone effective tensions of a state.
+        fn stick_tensions(s: &State) -> (f64, f64) {
+            if s.reversed { (s.ts, s.tt) } else { (s.tt, s.ts) }
+        }
+
+        /// ω₂ = ω₁ λ_driven/λ_driver of a state (D5).
+        fn driven_speed_of(&self, s: &State) -> f64 {
+            let ea = self.axial_stiffness;
+            let (t1, t2) = Self::stick_tensions(s);
+            self.driver_speed * (ea + t2) / (ea + t1)
         }
 
         /// The exact unstretched length ∫ ds of the state (docs: spans, stick zones with
@@ -560,10 +590,25 @@ pub mod belt_creep {
             Some(c * lg / (self.length * self.radius))
         }
 
-        /// Solve the steady creep state (docs/string-drive.md). Errors: the variants of
+        /// Solve the steady creep state (docs/string-drive.md, all four quadrants of
+        /// "Both rotation senses and both power flows"). Errors: the variants of
         /// [`CreepError`], raised before any iteration where the data decide them.
         pub fn solve(&self) -> Result<CreepSolution, CreepError> {
             self.validate()?;
+            if self.driver_speed < 0.0 {
+                // without gravity the counter-clockwise drive is the mirror image y → −y of
+                // the clockwise one with the load torque negated
+                let mirrored = CreepData { driver_speed: -self.driver_speed, driven_torque: -self.driven_torque, ..*self };
+                return mirrored.solve().map(CreepSolution::mirrored).map_err(|e| match e {
+                    CreepError::SpeedAtOrAboveCritical { driver_speed, critical_speed } => {
+                        CreepError::SpeedAtOrAboveCritical { driver_speed: -driver_speed, critical_speed }
+                    }
+                    CreepError::FrictionCapacityExceeded { torque, capacity } => {
+                        CreepError::FrictionCapacityExceeded { torque: -torque, capacity }
+                    }
+                    other => other,
+                });
+            }
             let lg = self.geometric_length();
             if self.length >= lg {
                 return Err(CreepError::WeightlessSlack { length: self.length, geometric_length: lg });
@@ -574,7 +619,7 @@ pub mod belt_creep {
                 }
             }
             let root = |e: crate::error::BvpError| CreepError::Root(e.to_string());
-            let loaded = self.driven_torque > 0.0 || (self.driven_damping > 0.0 && self.driver_speed > 0.0);
+            let loaded = self.driven_torque + self.driven_damping * self.driver_speed != 0.0;
             let ea = self.axial_stiffness;
             // Smallest admissible T̃_s: zero unloaded; φ_slip = π loaded.
             let ts_min = if !loaded {
@@ -602,11 +647,12 @@ pub mod belt_creep {
                 // The belt is too long for the torque: the slack side would need T̃ below
                 // the φ_slip = π limit. Capacity = R(T̃_t − T̃_s) with φ = π at this length.
                 let e = self.friction * PI;
+                let reversed = self.driven_torque + self.driven_damping * self.driver_speed < 0.0;
                 let len_pi = |ts: f64| {
                     let tt = ts * e.exp();
-                    let c = self.rate(tt);
+                    let c = self.rate(if reversed { ts } else { tt });
                     let k = ea - self.inertia_force(c);
-                    let s = State { ts, tt, c, k, phi: PI };
+                    let s = State { ts, tt, reversed, c, k, phi: PI };
                     self.length_of(&s) - self.length
                 };
                 let mut hi = 1e-9 * ea;
@@ -616,7 +662,7 @@ pub mod belt_creep {
                 let ts = brent_root(|x| Ok(len_pi(x)), 0.0, hi, 1e-15 * hi).map_err(root)?;
                 let capacity = self.radius * ts * (e.exp() - 1.0);
                 let st = self.state(ts_min.max(1e-300));
-                let omega2 = self.driver_speed * (ea + st.ts) / (ea + st.tt);
+                let omega2 = self.driven_speed_of(&st);
                 return Err(CreepError::FrictionCapacityExceeded {
                     torque: self.driven_torque + self.driven_damping * omega2,
                     capacity,
@@ -630,13 +676,16 @@ pub mod belt_creep {
             let s = self.state(ts);
             let rc2 = self.inertia_force(s.c);
             let tension = |t: f64| ea * (t + rc2) / (ea - rc2);
-            let (lt, ls) = ((ea + s.tt) / s.k, (ea + s.ts) / s.k);
-            let torque = self.radius * (s.tt - s.ts);
+            // the driver's and the driven pulley's stick zones
+            let (t1, t2) = Self::stick_tensions(&s);
+            let (lt, ls) = ((ea + t1) / s.k, (ea + t2) / s.k);
+            // R (T̃_lower − T̃_upper): the lower span runs onto the driver
+            let torque = self.radius * (t1 - t2);
             Ok(CreepSolution {
-                effective_tight: s.tt,
-                effective_slack: s.ts,
-                tension_tight: tension(s.tt),
-                tension_slack: tension(s.ts),
+                effective_tight: t1,
+                effective_slack: t2,
+                tension_tight: tension(t1),
+                tension_slack: tension(t2),
                 transport_rate: s.c,
                 driven_speed: self.driver_speed * ls / lt,
                 slip_arc: s.phi,
@@ -645,6 +694,20 @@ pub mod belt_creep {
                 stretch_tight: lt,
                 stretch_slack: ls,
             })
+        }
+    }
+
+    impl CreepSolution {
+        /// The mirror image y → −y (without gravity): the same tensions, arcs and
+        /// stretches; the speeds, the transport rate and the torques change sign.
+        pub fn mirrored(self) -> Self {
+            Self {
+                transport_rate: -self.transport_rate,
+                driven_speed: -self.driven_speed,
+                driven_torque: -self.driven_torque,
+                driver_torque: -self.driver_torque,
+                ..self
+            }
         }
     }
 
@@ -667,16 +730,27 @@ pub mod belt_creep {
             }
         }
 
-        /// The closed form satisfies its own defining equations: torque balance with
+        /// The closed form satisfies its own defining equations in all four quadrants
+        /// (ω₁ ≷ 0, power from the driver or from the driven pulley): torque balance with
         /// damping, the Euler–Eytelwein ratio, (D5) and the exact length, each to
         /// rounding (1e-12 relative: a few operations on O(1) ratios).
         #[test]
         fn defining_equations_hold() {
-            let d = data();
-            let s = d.solve().unwrap();
+            for (omega1, torque, reversed) in [(20.0, 10.0, false), (20.0, -10.0, true), (-20.0, -10.0, false), (-20.0, 10.0, true)] {
+                let d = CreepData { driver_speed: omega1, driven_torque: torque, ..data() };
+                let s = d.solve().unwrap();
+                defining_equations_hold_for(&d, &s);
+                // the driver's stick zone is the tight span's when it puts power in
+                assert_eq!(s.tension_tight < s.tension_slack, reversed, "ω₁ {omega1}, M₂ {torque}");
+                assert_eq!(s.driven_speed.abs() > omega1.abs(), reversed);
+                assert_eq!(s.transport_rate.signum(), omega1.signum());
+            }
+        }
+
+        fn defining_equations_hold_for(d: &CreepData, s: &CreepSolution) {
             let m = d.driven_torque + d.driven_damping * s.driven_speed;
-            assert!((s.driven_torque - m).abs() < 1e-12 * m, "{} vs {m}", s.driven_torque);
-            assert!(((s.effective_tight / s.effective_slack).ln() - d.friction * s.slip_arc).abs() < 1e-12);
+            assert!((s.driven_torque - m).abs() < 1e-12 * m.abs(), "{} vs {m}", s.driven_torque);
+            assert!(((s.effective_tight / s.effective_slack).ln().abs() - d.friction * s.slip_arc).abs() < 1e-12);
             assert!((s.transport_rate * s.stretch_tight - d.driver_speed * d.radius).abs() < 1e-12);
             assert!((s.transport_rate * s.stretch_slack - s.driven_speed * d.radius).abs() < 1e-12);
             let rc2 = d.mass_per_length * s.transport_rate.powi(2);
@@ -686,7 +760,8 @@ pub mod belt_creep {
             // panels: error ~1e-14 relative for this smooth integrand).
             let n = 2000;
             let h = s.slip_arc / n as f64;
-            let inv = |psi: f64| 1.0 / ((d.axial_stiffness + s.effective_slack * (d.friction * psi).exp()) / (d.axial_stiffness - rc2));
+            let smaller = s.effective_slack.min(s.effective_tight);
+            let inv = |psi: f64| 1.0 / ((d.axial_stiffness + smaller * (d.friction * psi).exp()) / (d.axial_stiffness - rc2));
             let mut slip = inv(0.0) + inv(s.slip_arc);
             for i in 1..n {
                 slip += if i % 2 == 1 { 4.0 } else { 2.0 } * inv(i as f64 * h);
@@ -696,6 +771,17 @@ pub mod belt_creep {
             let spans = d.centre_distance * (1.0 / s.stretch_tight + 1.0 / s.stretch_slack);
             let total = spans + stick + 2.0 * slip;
             assert!((total - d.length).abs() < 1e-12 * d.length, "length {total} vs {}", d.length);
+        }
+
+        /// Without gravity the counter-clockwise drive is the mirror image of the
+        /// clockwise one with the load negated: bit for bit (the solve mirrors).
+        #[test]
+        fn counter_clockwise_is_the_mirror_image() {
+            for torque in [10.0, -10.0] {
+                let cw = CreepData { driven_torque: torque, ..data() }.solve().unwrap();
+                let ccw = CreepData { driver_speed: -20.0, driven_torque: -torque, ..data() }.solve().unwrap();
+                assert_eq!(ccw, cw.mirrored());
+            }
         }
 
         /// The named no-solution cases, decided before any iteration.

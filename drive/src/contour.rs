@@ -32,6 +32,32 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::SceneError;
 
+/// The running direction of the belt relative to σ (σ runs clockwise).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Direction {
+    /// The belt runs along σ: the driver turns clockwise (ω₁ ≥ 0), the upper span moves
+    /// in +x.
+    Clockwise,
+    /// The belt runs against σ: the driver turns counter-clockwise (ω₁ < 0).
+    CounterClockwise,
+}
+
+impl Direction {
+    /// The direction of a driver turning at ω₁ (rad/s, clockwise positive); at rest,
+    /// clockwise.
+    pub fn of_speed(omega1: f64) -> Self {
+        if omega1 < 0.0 { Direction::CounterClockwise } else { Direction::Clockwise }
+    }
+
+    /// +1 along σ, −1 against it.
+    pub fn sign(self) -> f64 {
+        match self {
+            Direction::Clockwise => 1.0,
+            Direction::CounterClockwise => -1.0,
+        }
+    }
+}
+
 /// One of the two pulleys.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

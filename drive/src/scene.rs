@@ -200,12 +200,19 @@ pub struct DriveGeometry {
     /// `two-pulley`; 0 (not allowed in the JSON) for `one-pulley`.
     #[serde(default)]
     pub centre_distance: f64,
-    /// ω₁, rad/s, finite, clockwise positive (the upper span moves in +x); must be 0
-    /// in a static analysis. Required for `two-pulley`; 0 for `one-pulley`.
+    /// ω₁, rad/s, finite, clockwise positive (the upper span moves in +x); negative:
+    /// the driver turns counter-clockwise, the belt runs onto the driver from the upper
+    /// span, which is then the tight one when the driver drives (steady analysis only;
+    /// ≥ 0 in a transient one); must be 0 in a static analysis. Required for
+    /// `two-pulley`; 0 for `one-pulley`.
     #[serde(default)]
     pub driver_speed: f64,
-    /// M₂, N·m, finite: torque resisting the motion of the driven pulley; must be 0
-    /// in a static analysis. Required for `two-pulley`; 0 for `one-pulley`.
+    /// M₂, N·m, finite: the load torque on the driven pulley, the clockwise torque the
+    /// belt must exert on it (with d₂ω₂: M₂ + d₂ω₂). It resists the motion when it has
+    /// the sign of ω₁ (positive for a clockwise drive); with the opposite sign and
+    /// |M₂| > d₂|ω₁| the load drives and the driver brakes (power flows from the driven
+    /// pulley; its slip zones swap sides of the power flow); must be 0 in a static
+    /// analysis. Required for `two-pulley`; 0 for `one-pulley`.
     #[serde(default)]
     pub driven_torque: f64,
     /// d₂, N·m·s, ≥ 0: viscous resistance of the driven pulley, resisting torque
@@ -1193,25 +1200,17 @@ impl Scene {
 
     fn validate_analysis(&self) -> Result<(), SceneError> {
         let e = &self.effects;
-        if self.analysis != Analysis::Static {
-            // One rule for both methods (issue 12, "four quadrants"): the BVP refused these
-            // and the FE either refused them with a misleading message (speed) or solved
-            // them (torque). Neither sense is modelled by both yet, so both refuse here.
-            let d = &self.drive;
-            for (field, value, unit, what) in [
-                ("drive.driver_speed", d.driver_speed, "rad/s", "a driver turning counter-clockwise (the upper span becomes the tight one; with gravity not the mirror image of the clockwise drive)"),
-                ("drive.driven_torque", d.driven_torque, "N·m", "a load that drives (the slip zones swap pulleys)"),
-            ] {
-                if value < 0.0 {
-                    return Err(SceneError::NotAllowed {
-                        path: field.into(),
-                        reason: format!(
-                            "must be ≥ 0 (got {} {unit}): {what} is not modelled yet by either method; without gravity, mirror the scene",
-                            crate::error::num(&value)
-                        ),
-                    });
-                }
-            }
+        // Both rotation senses and both power flows are solved by both methods in steady
+        // motion (docs/string-drive.md, docs/fem-drive.md; issue 12, "four quadrants"); the
+        // FE transient's windowed slip is written for a belt running along σ only.
+        if self.analysis == Analysis::Transient && self.drive.driver_speed < 0.0 {
+            return Err(SceneError::NotAllowed {
+                path: "drive.driver_speed".into(),
+                reason: format!(
+                    "must be ≥ 0 in a transient analysis (got {} rad/s): the FE transient runs the driver clockwise only; analysis `steady` solves a counter-clockwise driver by both methods",
+                    crate::error::num(&self.drive.driver_speed)
+                ),
+            });
         }
         match self.analysis {
             Analysis::Static => {

@@ -180,13 +180,13 @@ impl Global {
             Global::MomentUpperMid => "bending moment at x = 0 on the upper span",
             Global::MomentLowerMid => "bending moment at x = 0 on the lower span",
             Global::TensionTight => {
-                "axial force in the driver's stick zone in steady motion (the tight side for a positive load)"
+                "axial force in the driver's stick zone in steady motion: the tight side while the driver drives (either sense of rotation), the slack side when the load drives"
             }
             Global::TensionSlack => {
-                "axial force in the driven pulley's stick zone in steady motion (the slack side for a positive load)"
+                "axial force in the driven pulley's stick zone in steady motion: the slack side while the driver drives, the tight side when the load drives"
             }
             Global::DrivenSpeed => "angular speed ω₂ of the driven pulley, clockwise positive",
-            Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time)",
+            Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time), positive along σ (clockwise), negative for a counter-clockwise driver",
             Global::PulleySpeed => "angular speed ω of the single pulley of a one-pulley scene, clockwise positive",
             Global::TensionIn => "axial force at the inflow end of a one-pulley scene",
             Global::TensionOut => "axial force at the outflow end of a one-pulley scene",
@@ -592,6 +592,49 @@ impl Summary {
         Ok(s)
     }
 
+    /// The summary of the mirror image y → −y of a two-pulley scene (docs/string-drive.md,
+    /// "Both rotation senses and both power flows"): without gravity the drive with
+    /// (−ω₁, −M₂, d₂) is the mirror image of the one with (ω₁, M₂, d₂). σ still runs
+    /// clockwise in the image, so the upper and lower spans swap (y negated, axial
+    /// forces and bending moments kept), speeds, transport rate and torques change sign,
+    /// the stick-zone forces, arcs and edge values keep theirs, and each contact zone's
+    /// start and end swap with their polar angles negated (wrapped into (−π, π]).
+    /// One-pulley fields are copied unchanged.
+    pub fn mirror_y(&self) -> Summary {
+        let neg = |v: Option<f64>| v.map(|x| -x);
+        let angle = |v: Option<f64>| {
+            v.map(|a| {
+                let m = -a;
+                if m <= -std::f64::consts::PI { m + 2.0 * std::f64::consts::PI } else { m }
+            })
+        };
+        let pulley = |p: &Option<PulleySummary>| {
+            p.as_ref().map(|p| PulleySummary {
+                contact_start: angle(p.contact_end),
+                contact_end: angle(p.contact_start),
+                torque: neg(p.torque),
+                edge_force_start: p.edge_force_end,
+                edge_force_end: p.edge_force_start,
+                edge_pressure_start: p.edge_pressure_end,
+                edge_pressure_end: p.edge_pressure_start,
+                ..p.clone()
+            })
+        };
+        Summary {
+            y_upper_mid: neg(self.y_lower_mid),
+            y_lower_mid: neg(self.y_upper_mid),
+            tension_upper_mid: self.tension_lower_mid,
+            tension_lower_mid: self.tension_upper_mid,
+            moment_upper_mid: self.moment_lower_mid,
+            moment_lower_mid: self.moment_upper_mid,
+            driven_speed: neg(self.driven_speed),
+            transport_rate: neg(self.transport_rate),
+            driver: pulley(&self.driver),
+            driven: pulley(&self.driven),
+            ..self.clone()
+        }
+    }
+
     /// Checks that every present scalar is finite (serde_json would write NaN as
     /// `null`, which readers take for absent).
     ///
@@ -608,6 +651,28 @@ impl Summary {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The mirror image swaps the spans and each zone's ends, negates the speeds and
+    /// torques, and is its own inverse.
+    #[test]
+    fn mirror_y_swaps_spans_and_zone_ends() {
+        let mut s = Summary::default();
+        for (i, name) in SCALAR_NAMES.iter().enumerate() {
+            s.set(name, Some(0.1 + 0.01 * i as f64)).unwrap();
+        }
+        s.set("driver.contact_start", Some(std::f64::consts::PI)).unwrap();
+        let m = s.mirror_y();
+        assert_eq!(m.get("y_upper_mid"), s.get("y_lower_mid").map(|v| -v));
+        assert_eq!(m.get("tension_lower_mid"), s.get("tension_upper_mid"));
+        assert_eq!(m.get("tension_tight"), s.get("tension_tight"));
+        assert_eq!(m.get("transport_rate"), s.get("transport_rate").map(|v| -v));
+        assert_eq!(m.get("driven.torque"), s.get("driven.torque").map(|v| -v));
+        assert_eq!(m.get("driven.contact_start"), s.get("driven.contact_end").map(|v| -v));
+        assert_eq!(m.get("driver.contact_end"), Some(std::f64::consts::PI));
+        assert_eq!(m.get("driver.edge_force_start"), s.get("driver.edge_force_end"));
+        assert_eq!(m.get("driven.slip_arc"), s.get("driven.slip_arc"));
+        assert_eq!(m.mirror_y(), s);
+    }
 
     #[test]
     fn names_round_trip_through_set_and_get() {

@@ -20,7 +20,7 @@ use crate::problem::Scalar;
 
 use super::error::BeltError;
 use super::solution::BeltSolution;
-use super::topology::{ArcKind, Pulley, SegmentKind, Topology};
+use super::topology::{ArcKind, PowerFlow, Pulley, SegmentKind, Topology};
 
 /// Scales of a belt problem's nondimensionalisation.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -146,6 +146,13 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
     /// Coulomb coefficient μ of the arcs with friction; `None` when frictionless.
     fn friction(_data: &Self::Data) -> Option<f64> {
         None
+    }
+
+    /// Which pulley puts power into the belt (the slip signs of the arcs with friction,
+    /// [`Pulley::slip_sign`](super::topology::Pulley::slip_sign)); from the driver for a
+    /// law without friction.
+    fn power_flow(&self) -> PowerFlow {
+        PowerFlow::FromDriver
     }
 
     /// (1) State component names of a span.

@@ -274,7 +274,10 @@ impl<L: SectionLaw> BeltSolution<L> {
         let inside = radius * (1.0 - 1e-6);
         let mu = L::friction(&self.data);
         let stick_tension = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
-        let (t_tight, t_slack) = (stick_tension(Pulley::Driver), stick_tension(Pulley::Driven));
+        // the pulley that puts power in drags the belt along its travel: the tension falls
+        // from the stick zone through the slip zone; on the other it rises
+        let flow = self.problem.law.power_flow();
+        let puts_power_in = |pulley: Pulley| pulley.slip_sign(topo.direction(), flow) * topo.direction().sign() > 0.0;
         for (k, xi, pt) in self.samples(4) {
             let optional = [pt.theta, pt.effective_tension, pt.shear, pt.moment, pt.pressure, pt.friction];
             let finite = [pt.x, pt.y, pt.tension, pt.material].iter().chain(optional.iter().flatten()).all(|v| v.is_finite());
@@ -321,16 +324,16 @@ impl<L: SectionLaw> BeltSolution<L> {
             }
             let tol = 1e-9 * fr;
             if kind == SegmentKind::Arc(ArcKind::Slip) {
-                match (pulley, t_tight, t_slack) {
-                    (Pulley::Driver, Some(t), _) if pt.tension > t + tol => {
+                match (puts_power_in(pulley), stick_tension(pulley)) {
+                    (true, Some(t)) if pt.tension > t + tol => {
                         return Err(v(format!(
-                            "slip direction: tension {:.6e} N above the stick tension {t:.6e} N in the driver's slip zone",
+                            "slip direction: tension {:.6e} N above the stick tension {t:.6e} N in the {name} pulley's slip zone (it puts power in)",
                             pt.tension
                         )));
                     }
-                    (Pulley::Driven, _, Some(t)) if pt.tension < t - tol => {
+                    (false, Some(t)) if pt.tension < t - tol => {
                         return Err(v(format!(
-                            "slip direction: tension {:.6e} N below the stick tension {t:.6e} N in the driven slip zone",
+                            "slip direction: tension {:.6e} N below the stick tension {t:.6e} N in the {name} pulley's slip zone (it takes power out)",
                             pt.tension
                         )));
                     }
@@ -366,7 +369,13 @@ impl<L: SectionLaw> BeltSolution<L> {
     fn pulley_summary(&self, pulley: Pulley, edges: Option<EdgeForces>) -> PulleySummary {
         let angles = self.contact_angles(pulley);
         let (a, b) = (angles[0], angles[angles.len() - 1]);
-        let stick_slip = (angles.len() == 3).then(|| (a - angles[1], angles[1] - b));
+        // (first, second) arc along σ: stick then slip clockwise, slip then stick
+        // counter-clockwise (the stick arc is where the belt runs on)
+        let stick_slip = (angles.len() == 3).then(|| {
+            let (first, second) = (a - angles[1], angles[1] - b);
+            let stick_first = self.topology().arc(pulley, ArcKind::Stick) == Some(self.topology().first_arc(pulley));
+            if stick_first { (first, second) } else { (second, first) }
+        });
         let (edge_start, edge_end) = match (pulley, edges) {
             (Pulley::Driver, Some(e)) => (Some(e.driver_start), Some(e.driver_end)),
             (Pulley::Driven, Some(e)) => (Some(e.driven_start), Some(e.driven_end)),

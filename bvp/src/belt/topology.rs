@@ -32,6 +32,7 @@ use std::f64::consts::FRAC_PI_2;
 use drive::scene::{Contact, Scene};
 
 pub use crate::sigma_map::Side;
+pub use drive::contour::Direction;
 
 /// A pulley of the two-pulley drive.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -68,13 +69,38 @@ impl Pulley {
         }
     }
 
-    /// Slip sign κ of the Coulomb law on this pulley: +1 on the driver (the belt is
-    /// slower than the pulley), −1 on the driven pulley.
-    pub fn slip_sign(self) -> f64 {
-        match self {
-            Pulley::Driver => 1.0,
-            Pulley::Driven => -1.0,
-        }
+    /// Slip sign κ of the Coulomb law on this pulley (docs/string-drive.md, "Both
+    /// rotation senses and both power flows"): the friction on the belt in the slip zone
+    /// is τ = κμp along σ. The pulley that puts power into the belt drags it in its
+    /// direction of travel (τ along the travel), the other brakes it: κ = ±1 with the sign
+    /// of (travel along σ) × (this pulley puts power in). Clockwise with the driver
+    /// driving: +1 on the driver (the belt is slower than the pulley), −1 on the driven.
+    pub fn slip_sign(self, direction: Direction, flow: PowerFlow) -> f64 {
+        let puts_power_in = match (self, flow) {
+            (Pulley::Driver, PowerFlow::FromDriver) | (Pulley::Driven, PowerFlow::FromDriven) => 1.0,
+            _ => -1.0,
+        };
+        direction.sign() * puts_power_in
+    }
+}
+
+/// Which pulley puts power into the belt (docs/string-drive.md, "Both rotation senses
+/// and both power flows").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PowerFlow {
+    /// The driver drives, the driven pulley's net load M₂ + d₂ω₂ resists its motion.
+    FromDriver,
+    /// The load drives the driven pulley (M₂ + d₂ω₂ of the sense of ω₂ opposite to a
+    /// resisting load), the driver brakes.
+    FromDriven,
+}
+
+impl PowerFlow {
+    /// The power flow of a net driven load `load` = M₂ + d₂ω₁ (N·m, the clockwise torque
+    /// the belt must exert on the driven pulley) in `direction`: from the driver when
+    /// the load resists the motion or vanishes.
+    pub fn of_load(load: f64, direction: Direction) -> Self {
+        if load * direction.sign() < 0.0 { PowerFlow::FromDriven } else { PowerFlow::FromDriver }
     }
 }
 
@@ -176,15 +202,28 @@ pub struct Topology {
     param_names: Vec<String>,
     closure_jump: Option<usize>,
     motion: Option<Motion>,
+    direction: Direction,
 }
 
 impl Topology {
-    /// The closed two-pulley loop with `contact` on both pulleys (module docs).
+    /// The closed two-pulley loop with `contact` on both pulleys (module docs), the belt
+    /// running clockwise.
     pub fn two_pulley(contact: ContactModel) -> Self {
+        Self::two_pulley_running(contact, Direction::Clockwise)
+    }
+
+    /// The closed two-pulley loop with `contact` on both pulleys, the belt running in
+    /// `direction`. The segments always follow σ; with friction the stick arc is where
+    /// the belt runs onto a pulley, so along σ each pulley has stick → slip running
+    /// clockwise and slip → stick running counter-clockwise (docs/string-drive.md, "Both
+    /// rotation senses and both power flows"). The angle between the two arcs is φ_t,
+    /// the last contact φ_b, whatever the arcs' kinds.
+    pub fn two_pulley_running(contact: ContactModel, direction: Direction) -> Self {
         use Side::{Arc, LowerSpan, UpperSpan};
-        let arcs: &[ArcKind] = match contact {
-            ContactModel::Frictionless => &[ArcKind::Frictionless],
-            ContactModel::Coulomb => &[ArcKind::Stick, ArcKind::Slip],
+        let arcs: &[ArcKind] = match (contact, direction) {
+            (ContactModel::Frictionless, _) => &[ArcKind::Frictionless],
+            (ContactModel::Coulomb, Direction::Clockwise) => &[ArcKind::Stick, ArcKind::Slip],
+            (ContactModel::Coulomb, Direction::CounterClockwise) => &[ArcKind::Slip, ArcKind::Stick],
         };
         // (kind, side, pulley) in loop order.
         let mut order: Vec<(SegmentKind, Side, Option<Pulley>)> = vec![(SegmentKind::Span, UpperSpan, None); 2];
@@ -202,7 +241,7 @@ impl Topology {
         }
         let mut last_angle: Option<(Pulley, usize)> = None;
         for (k, &(kind, _, pulley)) in order.iter().enumerate() {
-            let (SegmentKind::Arc(arc), Some(pulley)) = (kind, pulley) else { continue };
+            let (SegmentKind::Arc(_), Some(pulley)) = (kind, pulley) else { continue };
             let number = if pulley == Pulley::Driver { 1 } else { 2 };
             let start = match last_angle {
                 Some((p, i)) if p == pulley => i,
@@ -211,7 +250,8 @@ impl Topology {
                     names.len() - 1
                 }
             };
-            let end_name = if arc == ArcKind::Stick { "t" } else { "b" };
+            let last_on_pulley = order.get(k + 1).is_none_or(|next| next.2 != Some(pulley));
+            let end_name = if last_on_pulley { "b" } else { "t" };
             names.push(format!("phi{number}{end_name}"));
             let end = names.len() - 1;
             scalings[k] = Some(Scaling::Arc { pulley, start, end });
@@ -233,16 +273,23 @@ impl Topology {
             .zip(scalings)
             .map(|(&(kind, side, _), scaling)| Segment { kind, side, scaling: scaling.expect("every segment is scaled") })
             .collect();
-        Self { segments, param_names: names, closure_jump, motion }
+        Self { segments, param_names: names, closure_jump, motion, direction }
     }
 
-    /// The topology of a scene: its layout (the two-pulley loop) and its contact effect.
+    /// The topology of a scene: its layout (the two-pulley loop), its contact effect and
+    /// the running direction of its driver.
     pub fn from_scene(scene: &Scene) -> Result<Self, TopologyError> {
+        let direction = Direction::of_speed(scene.drive.driver_speed);
         match scene.effects.contact {
             Contact::Frictionless => Ok(Self::two_pulley(ContactModel::Frictionless)),
-            Contact::Coulomb(_) => Ok(Self::two_pulley(ContactModel::Coulomb)),
+            Contact::Coulomb(_) => Ok(Self::two_pulley_running(ContactModel::Coulomb, direction)),
             ref other => Err(TopologyError::UnsupportedContact(format!("{other:?}"))),
         }
+    }
+
+    /// The running direction of the belt.
+    pub fn direction(&self) -> Direction {
+        self.direction
     }
 
     /// The segments in loop order.
@@ -369,7 +416,8 @@ impl Topology {
     /// Whether parameters `p` describe this topology (the acceptance test of every
     /// homotopy point and of the final solution): each first/last contact angle within
     /// `window` (rad) of its tight-contour value, each arc of length ≥ −`slack` (rad),
-    /// every span parameter > 0 and a transport rate c ≥ −1e-12. The discrete equations
+    /// every span parameter > 0 and a transport rate in the running direction
+    /// (c ≥ −1e-12 clockwise, c ≤ 1e-12 counter-clockwise). The discrete equations
     /// have unphysical solutions (a belt wound once more round a pulley, at an enormous
     /// tension); this test keeps the homotopy and the final solve off them.
     // The negated comparisons are deliberate: a NaN parameter must fail these checks.
@@ -418,8 +466,12 @@ impl Topology {
             }
         }
         if let Some(m) = self.motion {
-            if !(p[m.transport] >= -1e-12) {
-                return Err(format!("negative transport rate {:.3e}", p[m.transport]));
+            if !(self.direction.sign() * p[m.transport] >= -1e-12) {
+                let sense = match self.direction {
+                    Direction::Clockwise => "negative",
+                    Direction::CounterClockwise => "positive",
+                };
+                return Err(format!("{sense} transport rate {:.3e} against the running direction", p[m.transport]));
             }
         }
         Ok(())
@@ -437,12 +489,15 @@ impl Topology {
         }
         for pulley in [Pulley::Driven, Pulley::Driver] {
             let (a, b) = pulley.tight_angles();
-            for (i, k) in self.arcs_on(pulley).into_iter().enumerate() {
+            let arcs = self.arcs_on(pulley);
+            for (i, &k) in arcs.iter().enumerate() {
                 let Scaling::Arc { start, end, .. } = self.segments[k].scaling else { unreachable!("an arc") };
                 if i == 0 {
                     p[start] = a;
                 }
-                p[end] = b;
+                // a slip arc before the stick arc (counter-clockwise) has zero length too
+                let zero_slip_before = i + 1 < arcs.len() && self.segments[k].kind == SegmentKind::Arc(ArcKind::Slip);
+                p[end] = if zero_slip_before { a } else { b };
             }
         }
         p
@@ -507,6 +562,47 @@ mod tests {
         assert_eq!(t.contact_angles(Pulley::Driver, &p), [-FRAC_PI_2, -1.5 * PI, -1.5 * PI]);
         assert_eq!(&p[..4], [0.4; 4]);
         assert_eq!(&p[10..], [0.0; 2]);
+    }
+
+    /// Counter-clockwise the belt runs onto each pulley at its last contact along σ: slip
+    /// then stick, the same angles and parameters; the transport rate must be ≤ 0 and the
+    /// slip signs follow the direction and the power flow.
+    #[test]
+    fn counter_clockwise_loop_has_slip_then_stick() {
+        let cw = Topology::two_pulley(ContactModel::Coulomb);
+        let t = Topology::two_pulley_running(ContactModel::Coulomb, Direction::CounterClockwise);
+        assert_eq!(t.direction(), Direction::CounterClockwise);
+        assert_eq!(t.param_names(), cw.param_names());
+        assert_eq!(t.segment(2).kind, SegmentKind::Arc(ArcKind::Slip));
+        assert_eq!(t.segment(3).kind, SegmentKind::Arc(ArcKind::Stick));
+        assert_eq!(t.segment(6).kind, SegmentKind::Arc(ArcKind::Slip));
+        assert_eq!(t.segment(7).kind, SegmentKind::Arc(ArcKind::Stick));
+        assert_eq!(t.segment(2).scaling, Scaling::Arc { pulley: Pulley::Driven, start: 4, end: 5 });
+        assert_eq!(t.segment(3).scaling, Scaling::Arc { pulley: Pulley::Driven, start: 5, end: 6 });
+        assert_eq!(t.arc(Pulley::Driver, ArcKind::Stick), Some(7));
+        let mut p = t.tight_params(0.4);
+        assert_eq!(t.contact_angles(Pulley::Driven, &p), [FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2]);
+        assert_eq!(t.check(&p, FRAC_PI_2, 1e-9), Ok(()));
+        p[10] = -0.3;
+        assert_eq!(t.check(&p, FRAC_PI_2, 1e-9), Ok(()));
+        assert!(cw.check(&p, FRAC_PI_2, 1e-9).unwrap_err().contains("negative transport rate"));
+        p[10] = 1e-6;
+        assert!(t.check(&p, FRAC_PI_2, 1e-9).unwrap_err().contains("positive transport rate"));
+        let (cw, ccw) = (Direction::Clockwise, Direction::CounterClockwise);
+        for (dir, flow, driver) in [
+            (cw, PowerFlow::FromDriver, 1.0),
+            (cw, PowerFlow::FromDriven, -1.0),
+            (ccw, PowerFlow::FromDriver, -1.0),
+            (ccw, PowerFlow::FromDriven, 1.0),
+        ] {
+            assert_eq!(Pulley::Driver.slip_sign(dir, flow), driver);
+            assert_eq!(Pulley::Driven.slip_sign(dir, flow), -driver);
+        }
+        assert_eq!(PowerFlow::of_load(2.0, cw), PowerFlow::FromDriver);
+        assert_eq!(PowerFlow::of_load(-2.0, cw), PowerFlow::FromDriven);
+        assert_eq!(PowerFlow::of_load(-2.0, ccw), PowerFlow::FromDriver);
+        assert_eq!(PowerFlow::of_load(2.0, ccw), PowerFlow::FromDriven);
+        assert_eq!(PowerFlow::of_load(0.0, ccw), PowerFlow::FromDriver);
     }
 
     /// The scene decides the topology by its contact effect.

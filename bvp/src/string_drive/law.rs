@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 use crate::belt::balance;
 use crate::belt::law::{BeltPoint, Rows, Scales, SectionLaw};
 use crate::belt::solution::{BeltSolution, TightLoop};
-use crate::belt::topology::{ArcKind, Pulley, SegmentKind, Topology};
+use crate::belt::topology::{ArcKind, PowerFlow, Pulley, SegmentKind, Topology};
 use crate::belt::BeltError;
 use crate::problem::Scalar;
 use crate::string_hanging::law::{norm, string_contact_end, string_contact_start};
@@ -43,6 +43,14 @@ pub struct ScaledStringDrive {
     pub length_start: f64,
     /// L / H.
     pub length: f64,
+    /// Which pulley puts power into the belt (the slip signs), from the scene's net load
+    /// M₂ + d₂ω₁ and running direction.
+    pub flow: PowerFlow,
+    /// d₂ω₁/(F_ref H) when the net load M₂ + d₂ω₁ and M₂ alone would drive the belt the
+    /// opposite ways, else 0: the path then holds the load at the scene's net value while
+    /// the driver is at rest, (M₂ + d₂(ω₁ − ω₁(η)) + d₂ω₂)·f(η), so the power flow — the
+    /// slip signs of the topology — never changes along the path.
+    pub preload: f64,
 }
 
 fn ramp(eta: f64, from: f64) -> f64 {
@@ -150,7 +158,7 @@ impl SectionLaw for ScaledStringDrive {
             if gravity {
                 pressure += w * phi.sin();
             }
-            let mut dt = pressure * (pulley.slip_sign() * self.friction);
+            let mut dt = pressure * (pulley.slip_sign(topology.direction(), self.flow) * self.friction);
             if gravity {
                 dt += w * phi.cos();
             }
@@ -185,7 +193,11 @@ impl SectionLaw for ScaledStringDrive {
         rows.push(omega2 * rad - c * self.stretch(ya[stick(Pulley::Driven)][0], c));
         // (D8): torque balance of the driven pulley.
         let m_end = yb[topology.last_arc(Pulley::Driven)][2];
-        rows.push(m_end - (omega2 * self.damping + self.torque) * self.torque_factor(eta));
+        let mut load = omega2 * self.damping + self.torque;
+        if self.preload != 0.0 {
+            load += (-(self.speed_at(eta) / self.driver_speed) + 1.0) * self.preload;
+        }
+        rows.push(m_end - load * self.torque_factor(eta));
     }
 
     fn point(&self, d: &StringDrive, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], p: &[f64]) -> BeltPoint {
@@ -205,13 +217,17 @@ impl SectionLaw for ScaledStringDrive {
                 let pressure = te * fr * pt.stretch / d.radius + w * phi.sin();
                 let slip = seg.kind == SegmentKind::Arc(ArcKind::Slip);
                 pt.pressure = Some(pressure);
-                pt.friction = Some(if slip { pulley.slip_sign() * d.friction * pressure } else { -w * phi.cos() });
+                pt.friction = Some(if slip { pulley.slip_sign(topology.direction(), self.flow) * d.friction * pressure } else { -w * phi.cos() });
                 pt.angle = Some(phi);
                 pt.torque = Some(y[2] * fr * lh);
                 pt
             }
             _ => moving(y[0] * lh, y[1] * lh, y[3].atan2(y[2]), y[2].hypot(y[3]), y[4] * lh),
         }
+    }
+
+    fn power_flow(&self) -> PowerFlow {
+        self.flow
     }
 
     fn check_balance(sol: &BeltSolution<Self>) -> Result<(), BeltError> {
@@ -264,6 +280,8 @@ impl ScaledStringDrive {
             damping: 0.05,
             length_start: 3.0,
             length: 3.2,
+            flow: PowerFlow::FromDriver,
+            preload: 0.0,
         }
     }
 }
@@ -278,13 +296,23 @@ mod tests {
 
     /// AD Jacobians of (D3), (D6), (D7) and the 44 conditions agree with central
     /// differences at an arbitrary state, in each homotopy phase, with and without
-    /// inertia and gravity; 1e-6 relative is the accuracy of h ~ ε^{1/3} differences.
+    /// inertia and gravity, clockwise and counter-clockwise with the power from the
+    /// driven pulley and a preload; 1e-6 relative is the accuracy of h ~ ε^{1/3} differences.
     #[test]
     fn ad_jacobians_match_finite_differences() {
-        for (inertia, weight) in [(false, 0.7), (true, 0.7), (true, 0.0)] {
-            let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), ScaledStringDrive::fixture(inertia, weight));
+        use crate::belt::topology::Direction;
+        let ccw = |law: ScaledStringDrive| ScaledStringDrive { driver_speed: -law.driver_speed, flow: PowerFlow::FromDriven, preload: 0.03, ..law };
+        for (inertia, weight, direction) in [
+            (false, 0.7, Direction::Clockwise),
+            (true, 0.7, Direction::Clockwise),
+            (true, 0.0, Direction::Clockwise),
+            (true, 0.7, Direction::CounterClockwise),
+        ] {
+            let law = ScaledStringDrive::fixture(inertia, weight);
+            let law = if direction == Direction::Clockwise { law } else { ccw(law) };
+            let pb = BeltProblem::new(Topology::two_pulley_running(ContactModel::Coulomb, direction), law);
             assert_eq!(pb.n_bc(), 44);
-            let p = [0.4, 0.6, 0.5, 0.45, 1.7, 0.3, -1.4, -1.8, -3.9, -4.6, 0.3, 0.8];
+            let p = [0.4, 0.6, 0.5, 0.45, 1.7, 0.3, -1.4, -1.8, -3.9, -4.6, 0.3 * direction.sign(), 0.8];
             for eta in [0.2, 0.4, 0.6, 0.9] {
                 let worst = ad_fd_mismatch_sampled(&pb, &p, eta);
                 assert!(worst <= 1e-6, "inertia {inertia}, eta {eta}: AD vs central differences {worst:e}");

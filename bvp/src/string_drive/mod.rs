@@ -21,7 +21,7 @@ use serde::Serialize;
 use crate::analytical::belt_creep::{CreepData, CreepError, CreepSolution};
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, tight_guess, Run};
-use crate::belt::topology::{ArcKind, ContactModel, Pulley, Scaling, Topology};
+use crate::belt::topology::{ArcKind, ContactModel, Direction, PowerFlow, Pulley, Scaling, Topology};
 use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, Scales};
 use crate::error::BvpError;
 use crate::solution::Solution;
@@ -39,9 +39,11 @@ pub struct StringDrive {
     pub inertia: bool,
     /// Coulomb coefficient μ > 0.
     pub friction: f64,
-    /// Driver speed ω₁ ≥ 0 (rad/s, clockwise).
+    /// Driver speed ω₁ (rad/s, clockwise positive; negative: the belt runs
+    /// counter-clockwise).
     pub driver_speed: f64,
-    /// Resisting torque M₂ ≥ 0 (N·m).
+    /// Load torque M₂ (N·m, clockwise torque the belt must exert on the driven pulley:
+    /// positive resists a clockwise drive; with the sign of −ω₁ the load drives).
     pub driven_torque: f64,
     /// Viscous damping d₂ ≥ 0 of the driven pulley (N·m·s).
     pub driven_damping: f64,
@@ -76,6 +78,23 @@ impl StringDrive {
     pub fn creep(&self) -> Result<CreepSolution, CreepError> {
         self.creep_data().solve()
     }
+
+    /// The net driven load at the driver's speed, M₂ + d₂ω₁ (N·m): its sign relative to
+    /// the running direction decides the power flow (docs/string-drive.md, "Both
+    /// rotation senses and both power flows").
+    pub fn net_load(&self) -> f64 {
+        self.driven_torque + self.driven_damping * self.driver_speed
+    }
+
+    /// The running direction of the belt (the driver's sense of rotation).
+    pub fn direction(&self) -> Direction {
+        Direction::of_speed(self.driver_speed)
+    }
+
+    /// Which pulley puts power into the belt.
+    pub fn power_flow(&self) -> PowerFlow {
+        PowerFlow::of_load(self.net_load(), self.direction())
+    }
 }
 
 /// A solved steady drive.
@@ -83,20 +102,15 @@ pub type StringDriveSolution = BeltSolution<ScaledStringDrive>;
 
 fn validate(d: &StringDrive) -> Result<(), BeltError> {
     d.belt.check_loop()?;
-    let non_negative = [
-        ("driver_speed", d.driver_speed),
-        ("driven_torque", d.driven_torque),
-        ("driven_damping", d.driven_damping),
-    ];
-    for (name, value) in non_negative {
-        if !(value.is_finite() && value >= 0.0) {
-            let reason = match name {
-                "driver_speed" => "must be finite and ≥ 0 (a drive running backwards is the mirror image: mirror the scene)",
-                "driven_torque" => "must be finite and ≥ 0 (a driven pulley that drives swaps the roles of the pulleys)",
-                _ => "must be finite and ≥ 0",
-            };
-            return Err(BeltError::InvalidInput { name, value, reason });
+    // both senses of rotation and both power flows are solved (docs/string-drive.md,
+    // "Both rotation senses and both power flows")
+    for (name, value) in [("driver_speed", d.driver_speed), ("driven_torque", d.driven_torque)] {
+        if !value.is_finite() {
+            return Err(BeltError::InvalidInput { name, value, reason: "must be finite" });
         }
+    }
+    if !(d.driven_damping.is_finite() && d.driven_damping >= 0.0) {
+        return Err(BeltError::InvalidInput { name: "driven_damping", value: d.driven_damping, reason: "must be finite and ≥ 0" });
     }
     if !(d.friction.is_finite() && d.friction > 0.0) {
         return Err(BeltError::InvalidInput {
@@ -106,8 +120,8 @@ fn validate(d: &StringDrive) -> Result<(), BeltError> {
         });
     }
     let wave_speed = (d.axial_stiffness / d.mass_per_length).sqrt();
-    if d.inertia && d.driver_speed * d.radius >= wave_speed {
-        return Err(BeltError::WaveSpeedReached { belt_speed: d.driver_speed * d.radius, wave_speed });
+    if d.inertia && d.driver_speed.abs() * d.radius >= wave_speed {
+        return Err(BeltError::WaveSpeedReached { belt_speed: d.driver_speed.abs() * d.radius, wave_speed });
     }
     Ok(())
 }
@@ -117,7 +131,7 @@ pub fn scaled_problem(d: &StringDrive) -> (BeltProblem<ScaledStringDrive>, Scale
     let h = d.centre_distance;
     let weight_total = d.mass_per_length * d.gravity * d.length;
     let target = d.axial_stiffness * (d.geometric_length() / d.length - 1.0);
-    let torque = d.driven_torque + d.driven_damping * d.driver_speed;
+    let torque = d.net_load().abs();
     let force = weight_total.max(target).max(torque / d.radius);
     let speed = (force / d.mass_per_length).sqrt();
     let capacity_tension = 2.0 * torque / (d.radius * (1.0 - (-d.friction * PI).exp()));
@@ -134,8 +148,14 @@ pub fn scaled_problem(d: &StringDrive) -> (BeltProblem<ScaledStringDrive>, Scale
         damping: d.driven_damping * speed / (force * h * h),
         length_start: length_start / h,
         length: d.length / h,
+        flow: d.power_flow(),
+        preload: 0.0,
     };
-    (BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), law), Scales { length: h, force, speed })
+    // M₂ alone would drive the belt the other way round than the net load: hold the
+    // net load while the driver is at rest (law docs)
+    let law = if d.driven_torque * d.net_load() < 0.0 { ScaledStringDrive { preload: law.damping * law.driver_speed, ..law } } else { law };
+    let topology = Topology::two_pulley_running(ContactModel::Coulomb, d.direction());
+    (BeltProblem::new(topology, law), Scales { length: h, force, speed })
 }
 
 /// The exact solution at η = 0: the tight weightless loop at rest with length L₀ —
@@ -173,7 +193,7 @@ fn homotopy_failure(data: &StringDrive, cause: BvpError, last_rejection: Option<
         return BeltError::Solver { stage: STAGE, cause };
     };
     let path = ScaledStringDrive::phases(eta);
-    let torque = data.driven_torque + data.driven_damping * data.driver_speed;
+    let torque = data.net_load();
     if let Some(reason) = last_rejection.filter(|r| r.contains("slip arc")) {
         let weight_torque = 2.0 * data.mass_per_length * data.gravity * data.radius * data.radius;
         return BeltError::SlipReversed { torque, weight_torque, path, reason: reason.to_string() };
@@ -211,11 +231,12 @@ fn homotopy_failure(data: &StringDrive, cause: BvpError, last_rejection: Option<
 
 impl StringDriveSolution {
     /// The power scale P_ref of the balance check (W, [`crate::belt::balance`]): the
-    /// scene's resisting power (M₂ + d₂ω₁) ω₁, or F_ref ω₁R for a drive without load.
+    /// scene's transmitted power |(M₂ + d₂ω₁) ω₁|, or F_ref |ω₁|R for a drive without
+    /// load.
     pub fn power_scale(&self) -> f64 {
         let d = &self.data;
-        let resisting = (d.driven_torque + d.driven_damping * d.driver_speed) * d.driver_speed;
-        if resisting > 0.0 { resisting } else { self.scales.force * d.driver_speed * d.radius }
+        let resisting = (d.net_load() * d.driver_speed).abs();
+        if resisting > 0.0 { resisting } else { self.scales.force * d.driver_speed.abs() * d.radius }
     }
 
     /// Power balance (W): (input M_in ω₁, output (M₂ + d₂ω₂) ω₂, slip dissipation

@@ -20,7 +20,7 @@ use std::f64::consts::PI;
 use std::sync::Arc;
 use std::time::Instant;
 
-use drive::contour::{Contour, Pulley, Region};
+use drive::contour::{Contour, Direction, Pulley, Region};
 use drive::result::History;
 use drive::scene::{Analysis, Scene};
 use drive::summary::PulleySummary;
@@ -191,11 +191,20 @@ struct PulleyOut {
 /// Solve a friction-drive scene (see [`applies`]).
 ///
 /// # Errors
-/// [`FemError::Unsupported`] (ω₁ ≤ 0), [`FemError::InvalidOption`], the static start's
+/// [`FemError::Unsupported`] (ω₁ ≤ 0: the transient runs clockwise only),
+/// [`FemError::InvalidOption`], the static start's
 /// errors, [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
 pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
+    // the transient's windowed slip and drum advance are written for a belt running
+    // along σ; the steady solve (`steady::solve`) runs both ways
+    let omega1 = problem.drive.driver_speed;
+    if omega1 < 0.0 {
+        return Err(FemError::Unsupported(format!(
+            "driver_speed ω₁ = {omega1} rad/s: the FE transient runs the driver clockwise only (ω₁ > 0); the steady analysis solves a counter-clockwise driver"
+        )));
+    }
     let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
     let b = &problem.belt;
     let r = problem.geometry.radius;
@@ -434,8 +443,8 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
     let c = a_prev / dt;
     let mut summary = base.summary();
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
-    summary.tension_tight = Some(stick_zone_force(&base, Pulley::Driver, outs[0].slip_start).unwrap_or(tu.max(tl)));
-    summary.tension_slack = Some(stick_zone_force(&base, Pulley::Driven, outs[1].slip_start).unwrap_or(tu.min(tl)));
+    summary.tension_tight = Some(stick_zone_force(&base, Pulley::Driver, outs[0].slip_start, Direction::Clockwise).unwrap_or(tu.max(tl)));
+    summary.tension_slack = Some(stick_zone_force(&base, Pulley::Driven, outs[1].slip_start, Direction::Clockwise).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
     summary.transport_rate = Some(c);
     for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
@@ -517,16 +526,16 @@ struct DriveStart {
 ///
 /// # Errors
 /// [`FemError::InvalidOption`] (drive settings), [`FemError::Unsupported`] (no Coulomb
-/// contact, ω₁ ≤ 0), the static start's errors.
+/// contact, ω₁ = 0), the static start's errors.
 fn drive_start(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<DriveStart, FemError> {
     drive_settings.validate()?;
     let ContactLaw::Coulomb { mu } = problem.effects.contact else {
         return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
     };
     let omega1 = problem.drive.driver_speed;
-    if omega1.is_nan() || omega1 <= 0.0 {
+    if !omega1.is_finite() || omega1 == 0.0 {
         return Err(FemError::Unsupported(format!(
-            "driver_speed ω₁ = {omega1} rad/s: the FE drive needs the driver turning clockwise (ω₁ > 0)"
+            "driver_speed ω₁ = {omega1} rad/s: the FE drive needs a turning driver (ω₁ ≠ 0; its steady-state norms scale with ω₁R)"
         )));
     }
     let b = &problem.belt;
@@ -548,10 +557,15 @@ fn drive_start(problem: &FemProblem, opts: &FemOptions, settings: &SolverSetting
 /// them (docs/string-drive.md) — midway between the contact entry and the stick→slip
 /// transition `transition` (σ; the whole zone without one); `None` without a recovered
 /// zone or with the transition outside it.
-fn stick_zone_force(base: &FemSolution, pulley: Pulley, transition: Option<f64>) -> Option<f64> {
+fn stick_zone_force(base: &FemSolution, pulley: Pulley, transition: Option<f64>, direction: Direction) -> Option<f64> {
     let contour = base.mesh().contour();
     let zone = base.zone(pulley)?;
     let span = zone.sigma_end - zone.sigma_start;
+    if direction == Direction::CounterClockwise {
+        // the belt runs on at the zone's end along σ: stick from the transition to there
+        let stick = transition.map_or(span, |t| (zone.sigma_end - t).rem_euclid(contour.length()));
+        return (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_end - 0.5 * stick)));
+    }
     let stick = transition.map_or(span, |t| (t - zone.sigma_start).rem_euclid(contour.length()));
     (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_start + 0.5 * stick)))
 }

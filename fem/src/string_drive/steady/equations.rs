@@ -93,7 +93,7 @@ impl SteadyProblem<'_> {
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
-        let partner = (pt.part == Part::Right && i > 0 && self.points[i - 1].part == Part::Left).then(|| self.it(i - 1));
+        let partner = self.stick_partner(i).map(|j| self.it(j));
         std::array::from_fn(|k| match k {
             k if k < NDOF => il[k],
             k if k < 2 * NDOF => ir[k - NDOF],
@@ -102,6 +102,18 @@ impl SteadyProblem<'_> {
             k if k == 2 * NDOF + 2 => Some(self.it(i)),
             _ => partner,
         })
+    }
+
+    /// The stick half of a split node whose slip half is point i (docs/fem-drive.md
+    /// §12): the slip half is the one downstream in the belt's travel — [`Part::Right`]
+    /// clockwise, [`Part::Left`] counter-clockwise; `None` for any other point.
+    pub(super) fn stick_partner(&self, i: usize) -> Option<usize> {
+        let pt = &self.points[i];
+        match (pt.part, pt.direction) {
+            (Part::Right, Direction::Clockwise) => (i > 0 && self.points[i - 1].part == Part::Left).then(|| i - 1),
+            (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right).then_some(i + 1),
+            _ => None,
+        }
     }
 
     /// Per element, the friction points whose tractions hold at its edges ξ = −1, +1
@@ -313,11 +325,12 @@ impl SteadyProblem<'_> {
         // both halves of a split node sticking would be two multipliers on one node
         // (proportional columns): the slip half then carries the stick half's traction,
         // w_R (τ_R − τ_L) = 0 — the whole node's behaviour (§12)
-        for i in 1..per.len() {
-            if self.points[i].part == Part::Right && self.points[i - 1].part == Part::Left && !per[i].2.slip && !per[i - 1].2.slip {
+        for i in 0..per.len() {
+            let Some(j) = self.stick_partner(i) else { continue };
+            if !per[i].2.slip && !per[j].2.slip {
                 let w = self.points[i].weight;
                 let it = 2 * NDOF + 2;
-                per[i].0[it] = w * (x[self.it(i)] - x[self.it(i - 1)]);
+                per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
                 per[i].1[it] = [0.0; NPV];
                 per[i].1[it][it] = w;
                 per[i].1[it][NPV - 1] = -w;
@@ -369,7 +382,7 @@ impl SteadyProblem<'_> {
             let q = self.asm.dofs().gather(e, z, self.length);
             let (l, dl) = element_stretch(&el, &q);
             let mut d = [0.0; 2 * NDOF];
-            let off = if pt.part == Part::Right { NDOF } else { 0 };
+            let off = if pt.velocity_from_right() { NDOF } else { 0 };
             d[off..off + NDOF].copy_from_slice(&dl);
             (l, d)
         };

@@ -16,16 +16,20 @@ pub(super) fn unwrapped(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
 /// element, placed at the element's midpoint — extrapolated by the quadratic through the
 /// 2nd–4th distinct samples (the line through the first two on a short run), clamped
 /// between the stick point before the last one and the second slip sample; `None` if the
-/// pulley has no stick point or no slip point.
+/// pulley has no stick point or no slip point. All in the coordinate u = ±σ (unwrapped)
+/// that runs with the belt, so that the stick run comes first in either direction.
 pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) -> Option<f64> {
     let mut pts: Vec<&PointResult> = results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
-    pts.sort_by(|a, b| unwrapped(contour, pulley, a.point.sigma).total_cmp(&unwrapped(contour, pulley, b.point.sigma)));
+    let sign = pts.first()?.point.direction.sign();
+    // the halves of a split node in the order of travel too
+    let key = |p: &PointResult| (sign * unwrapped(contour, pulley, p.point.sigma), sign * p.point.part.offset());
+    pts.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap_or(std::cmp::Ordering::Equal));
     let last_stick = pts.iter().rposition(|p| !p.slip)?;
     if last_stick + 1 >= pts.len() {
         return None;
     }
-    let s = |p: &PointResult| unwrapped(contour, pulley, p.point.sigma);
-    let mid = |p: &PointResult| unwrapped(contour, pulley, p.point.velocity_sigma());
+    let s = |p: &PointResult| sign * unwrapped(contour, pulley, p.point.sigma);
+    let mid = |p: &PointResult| sign * unwrapped(contour, pulley, p.point.velocity_sigma());
     let a = pts[last_stick];
     // the distinct velocity samples of the slip run (the slip half of a split node and
     // the next node share their element), up to four
@@ -77,7 +81,7 @@ pub fn transition(results: &[PointResult], contour: &Contour, pulley: Pulley) ->
     if let Some(root) = root.filter(|r| r.is_finite()) {
         sigma = root.clamp(lo, hi);
     }
-    Some(contour.wrap(sigma))
+    Some(contour.wrap(sign * sigma))
 }
 
 /// τ at a new friction point from the old solution: linear in σ between the two old
@@ -119,6 +123,8 @@ pub(super) struct SteadyFitData<'a> {
     pub r: f64,
     pub omega1: f64,
     pub f_ref: f64,
+    /// The belt's running direction (the upwind element of each friction point).
+    pub direction: Direction,
     /// Newton tolerance and iteration limit.
     pub tolerance: f64,
     pub max_iterations: usize,
@@ -175,13 +181,13 @@ impl Fitted for SteadyFit<'_> {
         let contour = *mesh.contour();
         let asm = Assembler::new(mesh, d.kernel.clone());
         // the node at each fitted transition is split into its stick and slip halves
-        let points = friction_points(&asm, &breaks[self.boundaries..]);
+        let points = friction_points(&asm, &breaks[self.boundaries..], d.direction);
         let mut x = crate::static_homotopy::transfer(&self.sol, &asm);
         let nz_old = self.state.asm.len();
         x.extend([self.state.x[nz_old], self.state.x[nz_old + 1]]);
         x.extend(points.iter().map(|p| interpolate_traction(&self.state.results, &contour, p)));
         let prob = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
-        let w = variable_weights(&asm, d.h, d.r, d.omega1, d.f_ref, points.len());
+        let w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
         let scales = row_scales(&asm, d.f_ref, points.len());
         // the transferred state is far from equilibrium in the stiff normal penalty
         // where a kink moved between elements: on failure, a penalty ladder

@@ -9,7 +9,7 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use drive::contour::{Contour, Pulley, Region};
+use drive::contour::{Contour, Direction, Pulley, Region};
 use nalgebra::SVector;
 use num_dual::{gradient, hessian};
 use drive::view::SolutionView;
@@ -108,7 +108,10 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     let asm = Assembler::new(start.mesh().clone(), kernel.clone());
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
     // κ = P_⊥ Δt₀: the transient's tangential penalty times its default step (§5, §7)
-    let kappa = drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r) * (PI * r / arc_elements as f64) / (r * omega1);
+    let kappa = drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r) * (PI * r / arc_elements as f64) / (r * omega1.abs());
+    // the belt runs against σ for a driver turning counter-clockwise: the upwind element
+    // of each friction point and the order stick → slip along σ follow it
+    let direction = Direction::of_speed(omega1);
     let sp_at = |eta: f64| SteadyParams {
         mu,
         penalty,
@@ -125,7 +128,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
         let c0 = r * omega1 / lambda0;
         check_critical(&start, b.mass_per_length * c0 * c0)?;
     }
-    let points = friction_points(&asm, &[]);
+    let points = friction_points(&asm, &[], direction);
     let mut x = crate::static_homotopy::transfer(&start, &asm);
     x.extend([r * omega1 / lambda0, omega1]);
     x.extend(std::iter::repeat_n(0.0, points.len()));
@@ -134,7 +137,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     let max_it = drive_settings.max_newton_iterations;
 
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
-    let w = variable_weights(&asm, h, r, omega1, f_ref, points.len());
+    let w = variable_weights(&asm, h, r, omega1.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
     let mut path = LoadPath {
         problem: SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule },
@@ -180,7 +183,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, tolerance: tol, max_iterations: max_it }, &mut report);
+        let mut fit = SteadyFit::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fits = out.passes;
@@ -249,7 +252,7 @@ mod tests {
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(&scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
-        let points = friction_points(&asm, &[]);
+        let points = friction_points(&asm, &[], Direction::Clockwise);
         let b = &scene.belt;
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(penalty), bending_stiffness: None };
         // a soft penalty keeps the FD of the normal term well conditioned

@@ -35,7 +35,8 @@ pub(super) fn finish(
     // pinned), taken midway between the contact entry and the transition; the larger /
     // smaller mid-span force where a pulley has no stick zone or no recovered zone
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
-    let stick_force = |pulley: Pulley| super::super::stick_zone_force(&base, pulley, transition(&state.results, &contour, pulley));
+    let direction = Direction::of_speed(omega1);
+    let stick_force = |pulley: Pulley| super::super::stick_zone_force(&base, pulley, transition(&state.results, &contour, pulley), direction);
     summary.tension_tight = Some(stick_force(Pulley::Driver).unwrap_or(tu.max(tl)));
     summary.tension_slack = Some(stick_force(Pulley::Driven).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
@@ -47,22 +48,33 @@ pub(super) fn finish(
         torques[k] = r * pts.iter().map(|p| p.point.weight * p.traction).sum::<f64>();
         pts.retain(|p| p.normal > 0.0);
         pts.sort_by(|a, b| unwrapped(&contour, pulley, a.point.sigma).total_cmp(&unwrapped(&contour, pulley, b.point.sigma)));
-        if let Some(i) = pts.iter().position(|p| !p.slip) {
-            entry_slip_force = entry_slip_force.max(pts[..i].iter().map(|p| p.point.weight * p.traction).sum::<f64>().abs());
+        // in the order of travel: the belt runs onto the pulley at its first point
+        let mut travel = pts.clone();
+        if direction == Direction::CounterClockwise {
+            travel.reverse();
+        }
+        if let Some(i) = travel.iter().position(|p| !p.slip) {
+            entry_slip_force = entry_slip_force.max(travel[..i].iter().map(|p| p.point.weight * p.traction).sum::<f64>().abs());
         }
         let angle = |sigma: f64| contour.polar_angle(pulley, base.position(contour.wrap(sigma)));
         let zone = base.zone(pulley);
-        let (arc, end_angle) = match (zone, pts.first(), pts.last()) {
-            (Some(z), _, _) => ((z.angle_start - z.angle_end).rem_euclid(2.0 * PI), z.angle_end),
-            (None, Some(a), Some(b)) => ((angle(a.point.sigma) - angle(b.point.sigma)).rem_euclid(2.0 * PI), angle(b.point.sigma)),
-            _ => (0.0, 0.0),
+        let (arc, start_angle, end_angle) = match (zone, pts.first(), pts.last()) {
+            (Some(z), _, _) => ((z.angle_start - z.angle_end).rem_euclid(2.0 * PI), z.angle_start, z.angle_end),
+            (None, Some(a), Some(b)) => ((angle(a.point.sigma) - angle(b.point.sigma)).rem_euclid(2.0 * PI), angle(a.point.sigma), angle(b.point.sigma)),
+            _ => (0.0, 0.0, 0.0),
+        };
+        // the slip zone runs from the transition to where the belt leaves: the zone's
+        // end along σ clockwise, its start counter-clockwise
+        let slip_from = |s: f64| match direction {
+            Direction::Clockwise => (angle(s) - end_angle).rem_euclid(2.0 * PI),
+            Direction::CounterClockwise => (start_angle - angle(s)).rem_euclid(2.0 * PI),
         };
         let slip = if pts.is_empty() || pts.iter().all(|p| !p.slip) {
             0.0
         } else if pts.iter().all(|p| p.slip) {
             arc
         } else {
-            transition(&state.results, &contour, pulley).map_or(0.0, |s| (angle(s) - end_angle).rem_euclid(2.0 * PI).min(arc))
+            transition(&state.results, &contour, pulley).map_or(0.0, |s| slip_from(s).min(arc))
         };
         let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };
         let ps = block.get_or_insert_with(drive::summary::PulleySummary::default);

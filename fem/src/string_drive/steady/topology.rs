@@ -22,25 +22,49 @@ pub struct FrictionPoint {
     pub right: (usize, f64),
     /// The whole node, or one half of a node split at a fitted stick→slip transition.
     pub part: Part,
+    /// The running direction of the belt: the upwind element of a whole node is the one
+    /// ending at it clockwise, the one starting at it counter-clockwise.
+    pub direction: Direction,
 }
 
 /// Which share of a node a friction point carries (docs/fem-drive.md §12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Part {
-    /// Both edges, weight (h_l + h_r)/2, v upwind (the element ending at the node).
+    /// Both edges, weight (h_l + h_r)/2, v upwind (the element ending at the node
+    /// clockwise, the one starting there counter-clockwise).
     Whole,
-    /// The upstream half of a transition node: weight h_l/2, v of the element ending
-    /// there (the stick side).
+    /// The half of a transition node before it along σ: weight h_l/2, v of the element
+    /// ending there (the stick side clockwise, the slip side counter-clockwise).
     Left,
-    /// The downstream half: weight h_r/2, v of the element starting there (the slip
-    /// side) — so the traction jump at the transition sits exactly at the node.
+    /// The half after it along σ: weight h_r/2, v of the element starting there — so
+    /// the traction jump at the transition sits exactly at the node.
     Right,
 }
 
+impl Part {
+    /// The half's side of its node along σ: −1 [`Part::Left`], 0 whole, +1 [`Part::Right`].
+    pub fn offset(self) -> f64 {
+        match self {
+            Part::Left => -1.0,
+            Part::Whole => 0.0,
+            Part::Right => 1.0,
+        }
+    }
+}
+
 impl FrictionPoint {
+    /// True when the point's velocity is sampled in the element starting at the node.
+    pub fn velocity_from_right(&self) -> bool {
+        match self.part {
+            Part::Right => true,
+            Part::Left => false,
+            Part::Whole => self.direction == Direction::CounterClockwise,
+        }
+    }
+
     /// The element whose stretch λ̄ gives the point's velocity (DS0).
     pub fn velocity_element(&self) -> usize {
-        if self.part == Part::Right {
+        if self.velocity_from_right() {
             self.right.0
         } else {
             self.left.0
@@ -49,7 +73,7 @@ impl FrictionPoint {
 
     /// σ where the point's velocity is sampled: the midpoint of its element.
     pub fn velocity_sigma(&self) -> f64 {
-        if self.part == Part::Right {
+        if self.velocity_from_right() {
             self.sigma + self.right.1
         } else {
             self.sigma - self.left.1
@@ -72,10 +96,11 @@ pub struct PointResult {
     pub slip: bool,
 }
 
-/// The friction points of a mesh (docs/fem-drive.md §12): one per node within reach of
-/// a pulley, two (the halves [`Part::Left`], [`Part::Right`]) at a node within 10⁻⁶ of
-/// its element lengths of one of the stick→slip transitions `splits` (σ).
-pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
+/// The friction points of a mesh (docs/fem-drive.md §12) for a belt running in
+/// `direction`: one per node within reach of a pulley, two (the halves [`Part::Left`],
+/// [`Part::Right`]) at a node within 10⁻⁶ of its element lengths of one of the
+/// stick→slip transitions `splits` (σ).
+pub fn friction_points(asm: &Assembler, splits: &[f64], direction: Direction) -> Vec<FrictionPoint> {
     let mesh = asm.mesh();
     let contour = mesh.contour();
     let lc = contour.length();
@@ -88,7 +113,7 @@ pub fn friction_points(asm: &Assembler, splits: &[f64]) -> Vec<FrictionPoint> {
         let reach = |region: Region| reachable_pulley(contour, region, sigma);
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
         let Some(pulley) = pulley else { continue };
-        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole };
+        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction };
         if splits.iter().any(|&t| crate::fitting::periodic_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
             out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
             out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
