@@ -176,7 +176,7 @@ pub const SURFACE_DERIVATIVES: [(usize, usize); 6] = [(0, 0), (1, 0), (0, 1), (2
 impl BfsRectangle {
     /// Per-field weights at (ξ, η) of the six derivatives of [`SURFACE_DERIVATIVES`]
     /// (σ order, ζ order) over one field's 16 unknowns ([`ElementLayout::field_indices`]
-    /// order: node-major, then f, ∂σf, ∂ζf, ∂σζf): ∂σ^a∂ζ^b f = Σ_k w[row][k] q_k.
+    /// order: node-major, then f, ∂σf, ∂ζf, ∂σζf): ∂σ^a∂ζ^b f = Σ_k w\[row\]\[k\] q_k.
     pub fn derivative_weights(&self, xi: f64, eta: f64) -> [[f64; 16]; 6] {
         // 1-D weights in (u_a, u′_a, u_b, u′_b) order: entry 2·end + derivative; per
         // direction the value, first and second derivative rows

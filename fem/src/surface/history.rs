@@ -1,5 +1,5 @@
 //! History variables of a surface kernel: per term that keeps history
-//! ([`SurfaceTerm::history`] values per integration point), one state vector per
+//! ([`SurfaceTerm::history`](super::assembly::SurfaceTerm::history) values per integration point), one state vector per
 //! integration point of every element — the 2-D counterpart of
 //! [`crate::formulation::terms::TermHistory`] with states as plain numbers, so that
 //! they can be interpolated.
