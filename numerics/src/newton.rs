@@ -478,6 +478,10 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
+/// (α, merit, trial, its residual if evaluated) of the best admissible trial of a
+/// backtracking search.
+type BestTrial = (f64, f64, Vec<f64>, Option<Vec<f64>>);
+
 /// The state shared by both damping strategies.
 struct Run<'p, P: NewtonProblem> {
     problem: &'p mut P,
@@ -666,8 +670,7 @@ impl<P: NewtonProblem> Run<'_, P> {
             self.factorize(z, r)?;
             let merit = self.problem.merit(z, r);
             let mut level = 0;
-            // (α, merit, trial, its residual if evaluated) of the best admissible trial
-            let mut best: Option<(f64, f64, Vec<f64>, Option<Vec<f64>>)> = None;
+            let mut best: Option<BestTrial> = None;
             // (α, merit) of the accepted trial; whether `r_trial` holds its residual
             let mut best_trial = false;
             let (alpha, merit_after, evaluated) = 'levels: loop {
