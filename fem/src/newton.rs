@@ -18,7 +18,7 @@ use crate::linear::SparseLu;
 /// Armijo constant of the energy test.
 const ARMIJO: f64 = 1e-4;
 /// Smallest line-search factor α_min = 2⁻²⁰.
-const MIN_ALPHA: f64 = 9.5367431640625e-7;
+pub(crate) const MIN_ALPHA: f64 = 9.5367431640625e-7;
 
 /// Norm weights of the unknowns (docs/fem-string.md §8).
 #[derive(Debug, Clone)]
@@ -110,33 +110,134 @@ pub struct NewtonSettings {
     pub max_iterations: usize,
 }
 
+/// The levels of backtracking on an energy Π shared by the static problem and the
+/// transient step (`string_drive::system`): level 0 the plain tangent K; then
+/// Levenberg–Marquardt shifts μ = 10⁻⁶, 10⁻⁵, … ≤ 10² ([`shifted`]); then the last
+/// resort, which goes back to the plain step of level 0 (its factorisation was
+/// overwritten, and backtracking solves only for −G) and accepts a trial whose residual
+/// norm does not grow. Trials of the other levels are searched along descent directions
+/// only and accepted by Armijo's rule on Π with a round-off allowance.
+pub(crate) struct EnergyLevels {
+    /// Armijo's round-off allowance (10⁻¹³ F_ref H).
+    allowance: f64,
+    /// μ of the current level (0: the plain tangent).
+    pub(crate) mu: f64,
+    /// The current level is the last resort.
+    pub(crate) last_resort: bool,
+    /// The last plain Newton step solved.
+    plain_step: Vec<f64>,
+}
+
+/// What [`EnergyLevels::next`] moved to.
+pub(crate) enum NextLevel {
+    /// The shift `mu`: refactorise.
+    Shift,
+    /// The last resort (nothing to factorise).
+    LastResort,
+    /// No level is left.
+    Exhausted,
+}
+
+impl EnergyLevels {
+    /// n unknowns, Armijo's round-off allowance.
+    pub(crate) fn new(n: usize, allowance: f64) -> Self {
+        EnergyLevels { allowance, mu: 0.0, last_resort: false, plain_step: vec![0.0; n] }
+    }
+
+    /// A new iterate: level 0.
+    pub(crate) fn restart(&mut self) {
+        self.mu = 0.0;
+        self.last_resort = false;
+    }
+
+    /// At the last resort, `b` becomes the plain step (`true`); otherwise `false`: the
+    /// caller solves.
+    pub(crate) fn reuse_plain_step(&self, b: &mut [f64]) -> bool {
+        if self.last_resort {
+            b.copy_from_slice(&self.plain_step);
+        }
+        self.last_resort
+    }
+
+    /// After a solve of level 0: keep its step.
+    pub(crate) fn solved(&mut self, step: &[f64]) {
+        if self.mu == 0.0 {
+            self.plain_step.copy_from_slice(step);
+        }
+    }
+
+    /// [`NewtonProblem::line_search`]: the last resort, or a descent direction.
+    pub(crate) fn line_search(&self, slope: f64) -> bool {
+        self.last_resort || slope < 0.0
+    }
+
+    /// [`NewtonProblem::accept_step`]: at the last resort the trial's merit is its
+    /// residual norm, accepted up to `residual_bound` (the iterate's); otherwise Armijo.
+    pub(crate) fn verdict(&self, t: &TrialStep<'_>, residual_bound: f64) -> Verdict {
+        let accept = if self.last_resort {
+            t.trial_merit <= residual_bound
+        } else {
+            t.trial_merit <= t.merit + ARMIJO * t.damping * t.slope + self.allowance
+        };
+        if accept {
+            Verdict::Accept
+        } else {
+            Verdict::Reject
+        }
+    }
+
+    /// Go to the next level.
+    pub(crate) fn next(&mut self) -> NextLevel {
+        if self.last_resort {
+            return NextLevel::Exhausted;
+        }
+        self.mu = if self.mu == 0.0 { 1e-6 } else { 10.0 * self.mu };
+        if self.mu <= 1e2 {
+            NextLevel::Shift
+        } else {
+            self.last_resort = true;
+            NextLevel::LastResort
+        }
+    }
+}
+
+/// D = diag K of the matrix `values` with pattern (`rows`, `cols`), duplicates summed,
+/// into `d`.
+pub(crate) fn diagonal_sums(values: &[f64], rows: &[usize], cols: &[usize], d: &mut [f64]) {
+    d.fill(0.0);
+    for (k, &v) in values.iter().enumerate() {
+        if rows[k] == cols[k] {
+            d[rows[k]] += v;
+        }
+    }
+}
+
+/// K + μ max(|D_i|, `floor`) on the diagonal entries `diagonal` (one position per
+/// unknown).
+pub(crate) fn shifted(values: &[f64], diagonal: &[usize], d: &[f64], mu: f64, floor: f64) -> Vec<f64> {
+    let mut shifted = values.to_vec();
+    for (i, &pos) in diagonal.iter().enumerate() {
+        shifted[pos] += mu * d[i].abs().max(floor).max(1e-300);
+    }
+    shifted
+}
+
 /// The static Newton problem on [`numerics::newton`]: G = ∂Π/∂z with its tangent from
-/// one assembly pass, trials judged by the energy alone.
-///
-/// Regularisation levels (`regularise`): μ = 10⁻⁶, 10⁻⁵, … ≤ 10² refactorise
-/// K + μ diag|K|; the level after them is the last resort, which goes back to the plain
-/// Newton step (kept from level 0: its factorisation was overwritten and backtracking
-/// solves only for −G) and accepts where the scaled residual does not grow.
+/// one assembly pass, trials judged by the energy alone, the levels of
+/// [`EnergyLevels`] (the last resort on the scaled residual ‖G‖).
 struct StaticNewton<'a> {
     asm: &'a Assembler,
     lu: &'a mut SparseLu,
     params: &'a TermParams,
     length: f64,
     scales: &'a Scales,
-    diag: &'a [usize],
-    /// 10⁻¹³ F_ref H: Armijo's round-off allowance.
-    allowance: f64,
-    /// Π, K and D = diag K (duplicates summed) of the last assembly.
+    levels: EnergyLevels,
+    /// Π, K and D = diag K of the last assembly, and its ‖G‖.
     energy: f64,
     values: Vec<f64>,
     d: Vec<f64>,
-    /// ‖G‖ of the last assembly.
     rnorm: f64,
-    /// The shift μ of the current level (0: the plain K).
-    mu: f64,
-    last_resort: bool,
-    /// The plain Newton step of this iteration (level 0) and its ‖Δ‖.
-    newton_step: Vec<f64>,
+    /// ‖Δ‖ of the last plain step.
     last_update: f64,
     /// Failed levels (= regularised factorisations, plus one for the last resort).
     regularised: usize,
@@ -153,14 +254,12 @@ enum StaticError {
 }
 
 impl StaticNewton<'_> {
-    fn factorize_shifted(&mut self) -> Result<(), StaticError> {
-        if self.mu == 0.0 {
+    fn factorize_level(&mut self) -> Result<(), StaticError> {
+        let mu = self.levels.mu;
+        if mu == 0.0 {
             return self.lu.factorize(&self.values).map_err(StaticError::Singular);
         }
-        let mut values = self.values.clone();
-        for (i, &pos) in self.diag.iter().enumerate() {
-            values[pos] += self.mu * self.d[i].abs().max(1e-300);
-        }
+        let values = shifted(&self.values, self.asm.diagonal_positions(), &self.d, mu, 0.0);
         self.lu.factorize(&values).map_err(StaticError::Singular)
     }
 }
@@ -179,36 +278,30 @@ impl NewtonProblem for StaticNewton<'_> {
         }
         Ok(())
     }
-    fn factorize(&mut self, _z: &[f64]) -> Result<(), StaticError> {
-        unreachable!("StaticNewton factorises with its residual")
+    fn factorize(&mut self, z: &[f64]) -> Result<(), StaticError> {
+        let mut r = vec![0.0; self.size()];
+        self.factorize_with_residual(z, &mut r)
     }
     fn factorize_with_residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), StaticError> {
         let a = self.asm.assemble(z, self.params, self.length).ok_or(StaticError::Inadmissible)?;
         self.rnorm = self.scales.residual_norm(&a.gradient);
         let (rows, cols) = self.asm.pattern();
-        self.d.fill(0.0);
-        for (k, &v) in a.values.iter().enumerate() {
-            if rows[k] == cols[k] {
-                self.d[rows[k]] += v;
-            }
-        }
+        diagonal_sums(&a.values, rows, cols, &mut self.d);
         r.copy_from_slice(&a.gradient);
         self.energy = a.energy;
         self.values = a.values;
-        self.mu = 0.0;
-        self.last_resort = false;
-        self.factorize_shifted()
+        self.levels.restart();
+        self.factorize_level()
     }
     fn solve(&mut self, b: &mut [f64]) -> Result<(), StaticError> {
-        if self.last_resort {
-            b.copy_from_slice(&self.newton_step);
+        if self.levels.reuse_plain_step(b) {
             return Ok(());
         }
         self.lu.solve_in_place(b).map_err(StaticError::Singular)?;
-        if self.mu == 0.0 {
-            self.newton_step.copy_from_slice(b);
+        if self.levels.mu == 0.0 {
             self.last_update = self.scales.update_norm(b);
         }
+        self.levels.solved(b);
         Ok(())
     }
     fn damping(&self) -> Damping {
@@ -224,21 +317,20 @@ impl NewtonProblem for StaticNewton<'_> {
         self.energy
     }
     fn trial_merit(&mut self, trial: &[f64], kind: TrialKind) -> Result<Option<f64>, StaticError> {
+        let (asm, p, l) = (self.asm, self.params, self.length);
         Ok(match kind {
             // the converged state's residual norm and energy are reported
-            TrialKind::Converging => self.asm.gradient(trial, self.params, self.length).map(|(energy, g)| {
+            TrialKind::Converging => asm.gradient(trial, p, l).map(|(energy, g)| {
                 self.converged = Some((energy, self.scales.residual_norm(&g)));
                 energy
             }),
             // the last resort's merit is the scaled residual
-            TrialKind::Search if self.last_resort => {
-                self.asm.gradient(trial, self.params, self.length).map(|(_, g)| self.scales.residual_norm(&g))
-            }
-            TrialKind::Search => self.asm.energy(trial, self.params, self.length),
+            TrialKind::Search if self.levels.last_resort => asm.gradient(trial, p, l).map(|(_, g)| self.scales.residual_norm(&g)),
+            TrialKind::Search => asm.energy(trial, p, l),
         })
     }
     fn line_search(&mut self, _level: usize, slope: f64) -> bool {
-        self.last_resort || slope < 0.0
+        self.levels.line_search(slope)
     }
     /// Only the converging full step ends the iteration (an accepted full step that
     /// is not it continues).
@@ -246,28 +338,15 @@ impl NewtonProblem for StaticNewton<'_> {
         self.converged.is_some()
     }
     fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
-        let accept = if self.last_resort {
-            t.trial_merit <= self.rnorm
-        } else {
-            t.trial_merit <= t.merit + ARMIJO * t.damping * t.slope + self.allowance
-        };
-        if accept {
-            Verdict::Accept
-        } else {
-            Verdict::Reject
-        }
+        self.levels.verdict(t, self.rnorm)
     }
     fn regularise(&mut self, _z: &[f64], _level: usize) -> Result<bool, StaticError> {
-        if self.last_resort {
-            return Ok(false);
+        match self.levels.next() {
+            NextLevel::Exhausted => return Ok(false),
+            NextLevel::Shift => self.factorize_level()?,
+            NextLevel::LastResort => {}
         }
         self.regularised += 1;
-        self.mu = if self.mu == 0.0 { 1e-6 } else { 10.0 * self.mu };
-        if self.mu <= 1e2 {
-            self.factorize_shifted()?;
-        } else {
-            self.last_resort = true;
-        }
         Ok(true)
     }
 }
@@ -300,15 +379,11 @@ pub fn solve(
         params,
         length,
         scales,
-        diag: asm.diagonal_positions(),
-        allowance: 1e-13 * scales.energy,
+        levels: EnergyLevels::new(n, 1e-13 * scales.energy),
         energy: 0.0,
         values: Vec::new(),
         d: vec![0.0; n],
         rnorm: f64::INFINITY,
-        mu: 0.0,
-        last_resort: false,
-        newton_step: vec![0.0; n],
         last_update: f64::INFINITY,
         regularised: 0,
         converged: None,

@@ -64,33 +64,40 @@
 //! its residual). The iterates are the same as without the hooks when the passes give
 //! the same numbers.
 //!
-//! # How fem's three Newton loops map onto this (for their migration)
-//! - `fem/src/newton.rs` (static string/rod, Armijo on the energy Π with
-//!   Levenberg–Marquardt): `Backtracking { take_best: false }`; `norm` = max |Δ_i|/d_i
-//!   (d_i = H for values, 1 for slopes); `merit` = Π(z); `accept_step` = Armijo on Π with
-//!   the slope GᵀΔ = `TrialStep::slope` and the 10⁻¹³ F_ref H allowance, abandoning at
-//!   α = 1 when the slope is not negative; `admissible` = ∂σS > 0; `regularise(level)` =
-//!   refactorise K + μ diag|K| with μ = 10⁻⁶·10^(level−1) up to 10², and one last level
-//!   that refactorises the plain K and makes `accept_step` take the step where the
-//!   scaled residual does not grow (the loop's last resort).
-//! - `fem/src/string_drive/steady.rs` (semismooth Newton on the active stick/slip set
-//!   with a round-off floor): `Backtracking { take_best: true }` (the best trial is taken
-//!   when none decreases ½‖F‖² enough — the active set may change along the step);
-//!   `merit` = ½ Σ (F_i/s_i)²; `accept_step` = the default with c = 10⁻⁴ and α ≥ 2⁻¹⁰
-//!   (`min_damping`); `factorize` = the generalised Jacobian of the current active set by
-//!   [`crate::linear::BorderedLu`], retrying a singular one with diagonal shifts
-//!   10⁻¹², …, 10⁻⁴ of |D| inside `factorize`; `converged` = the full small step kept
-//!   the active set (or two small steps in a row), or the round-off floor (three steps
-//!   within 10³ tol that reduce the merit by less than 10 % on the same set); the
-//!   problem keeps the active set of the last evaluation to decide this. The final check
-//!   that a point taken as stick obeys Coulomb's bound is made by the caller on the
-//!   returned solution. One difference to today's loop: a small step whose full trial is
-//!   inadmissible is line-searched with the merit test instead of taken at the first
-//!   admissible α.
-//! - `fem/src/string_drive/system.rs` (the transient step, bordered by (a, φ), energy
-//!   Armijo with regularisation): as `newton.rs`, with `factorize`/`solve` on a
-//!   [`crate::linear::BorderedLu`] (the shift passed to its `solve`) and the singular
-//!   tangent of a fully sliding pulley treated as regularisation level 1.
+//! # How fem's three Newton loops are mapped onto this
+//! All three use backtracking with [`Evaluation::residual_with_factorization`]: their
+//! Jacobian pass (the assembly of Π, G and K, or the steady equations with their
+//! Jacobian) yields the residual, and the step is taken from that pass's residual.
+//! - `fem/src/newton.rs` (static string/rod, `StaticNewton`): `Backtracking { take_best:
+//!   false }`, α ≥ 2⁻²⁰, [`Evaluation::merit_only`] with `merit` = Π (trials by the
+//!   energy pass alone; the converging full step by the gradient pass, whose ‖G‖ and Π
+//!   are reported); `norm` = max |Δ_i|/d_i (d_i = H for values, 1 for slopes);
+//!   `line_search` only along descent directions (GᵀΔ < 0); `accept_step` = Armijo on Π
+//!   with the 10⁻¹³ F_ref H allowance; `regularise` refactorises K + μ diag|K|,
+//!   μ = 10⁻⁶, …, 10², then one last level (the last resort) that reuses the plain step
+//!   of level 0 and accepts where the scaled residual ‖G‖ does not grow (these levels
+//!   are `fem::newton::EnergyLevels`, shared with the transient step); `converged` only
+//!   at the converging full step.
+//! - `fem/src/string_drive/system.rs` (the transient step, `StepProblem`): as the
+//!   static one on [`crate::linear::BorderedLu`] (values stored by the factorisation,
+//!   factorised in `solve`), D floored at 10⁻⁸ max|D|; a singular tangent (a fully
+//!   sliding pulley) makes a non-finite step, which fails its level like an indefinite
+//!   one (an error at μ = 10²); the converging full step is judged by Π, the last resort
+//!   by max |G|.
+//! - `fem/src/string_drive/steady/semismooth.rs` (the steady semismooth Newton,
+//!   `Semismooth`): `Backtracking { take_best: true }` (the active set may change along
+//!   the step), α ≥ 2⁻¹⁰, trials judged by their residual (no `merit_only`: the active
+//!   set of the trial is needed); `merit` = ½ Σ (F_i/s_i)²; `accept_step` = Armijo with
+//!   c = 10⁻⁴, or any admissible trial of a correction below the tolerance; `solve`
+//!   retries a singular generalised Jacobian with diagonal shifts 10⁻¹², …, 10⁻⁴ of |D|;
+//!   `converged` = a whole small step that kept the active set (or two in a row), or the
+//!   round-off floor (three steps within 10³ tol on the same set that reduce the merit by
+//!   less than 10 %). The caller checks Coulomb's bound of the points taken as stick on
+//!   the accepted trial's results.
+//!
+//! With the same passes the migrated loops give bit-identical iterates, iteration
+//! counts and failure numbers; an error at the iteration limit re-evaluates the last
+//! iterate (as the loops did, which evaluated it before the limit check).
 //!
 //! [`crate::linear::BorderedLu`] factorises inside its `solve`; a problem on it stores
 //! the Jacobian values in `factorize` and calls `BorderedLu::solve` in `solve`. Backtracking
@@ -326,7 +333,9 @@ pub struct Progress<'a> {
     pub z: &'a [f64],
     /// Its residual; `None` when it was not evaluated (its trial was judged by its merit
     /// alone and the next factorisation evaluates it, [`Evaluation`]).
-    pub residual: Option<&'a [f64]>,
+    pub residual: Option<&'a [f64]>,    /// The step is the best trial taken after a failed line search (`take_best`), not
+    /// an accepted one.
+    pub best_trial: bool,
 }
 
 /// Which evaluations the problem's passes share, chosen by
@@ -468,6 +477,10 @@ fn all_finite(v: &[f64]) -> bool {
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
+
+/// (α, merit, trial, its residual if evaluated) of the best admissible trial of a
+/// backtracking search.
+type BestTrial = (f64, f64, Vec<f64>, Option<Vec<f64>>);
 
 /// The state shared by both damping strategies.
 struct Run<'p, P: NewtonProblem> {
@@ -657,9 +670,9 @@ impl<P: NewtonProblem> Run<'_, P> {
             self.factorize(z, r)?;
             let merit = self.problem.merit(z, r);
             let mut level = 0;
-            // (α, merit, trial, its residual if evaluated) of the best admissible trial
-            let mut best: Option<(f64, f64, Vec<f64>, Option<Vec<f64>>)> = None;
+            let mut best: Option<BestTrial> = None;
             // (α, merit) of the accepted trial; whether `r_trial` holds its residual
+            let mut best_trial = false;
             let (alpha, merit_after, evaluated) = 'levels: loop {
                 self.newton_step(r, &mut step)?;
                 // a non-finite step (numerically singular Jacobian) fails its level
@@ -726,6 +739,7 @@ impl<P: NewtonProblem> Run<'_, P> {
                 }
                 match best.take() {
                     Some((a, m, t, rt)) => {
+                        best_trial = true;
                         trial = t;
                         let evaluated = rt.is_some();
                         if let Some(rt) = rt {
@@ -771,6 +785,7 @@ impl<P: NewtonProblem> Run<'_, P> {
                 merit_after,
                 z,
                 residual: known.then_some(&r[..]),
+                best_trial,
             };
             if self.problem.converged(&progress) {
                 return Ok(());

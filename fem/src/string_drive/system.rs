@@ -5,6 +5,7 @@
 //! sparse LU of the banded block with the symbolic factorisation reused and the 2 × 2
 //! Schur complement of (a, φ): `linear::BorderedLu`).
 
+use numerics::newton::{Damping, Evaluation, NewtonError, NewtonOptions, NewtonProblem, Progress, TrialKind, TrialStep, Verdict};
 use rayon::prelude::*;
 
 use crate::assembly::Assembler;
@@ -12,12 +13,10 @@ use crate::dofs::DofKind;
 use crate::error::NewtonFailure;
 use crate::kinematics::{TermParams, NDOF};
 use crate::linear::BorderedLu;
+use crate::newton::{diagonal_sums, shifted, EnergyLevels, NextLevel, MIN_ALPHA};
 use crate::quadrature::Rule;
 
 use super::contact::{self, PointState, StepParams, NEXT};
-
-const ARMIJO: f64 = 1e-4;
-const MIN_ALPHA: f64 = 9.5367431640625e-7;
 
 /// Energy, gradient and Hessian of an element's extra terms in (q, a, φ).
 type ExtraDerivatives = (f64, [f64; NEXT], [[f64; NEXT]; NEXT]);
@@ -248,116 +247,184 @@ pub struct StepNewton {
     pub update_norm: f64,
 }
 
-/// Newton on the step system from `x` (overwritten). `lu` holds `pattern` with (a, φ)
-/// as its border (their rows are dense: the bordered solve keeps the cost linear).
+/// The step system as a [`NewtonProblem`]: G = ∂Π/∂x with its tangent from one
+/// assembly pass, trials judged by Π alone, the levels of [`EnergyLevels`] (D floored
+/// at 10⁻⁸ max|D|: a direction without stiffness — φ or a when every friction point of
+/// a pulley slides, d₂ = 0 — is regularised too; the last resort on max |G|),
+/// factorised by the bordered LU inside its solve. A singular tangent (a pulley whose
+/// points all slide) fails its level like an indefinite one (its step is not finite);
+/// at the last μ it is an error. The plain step of the last resort is the last one
+/// solved: of an earlier iteration if this one's plain tangent was singular.
+struct StepProblem<'s, 'a> {
+    sys: &'s StepSystem<'a>,
+    pattern: &'s Pattern,
+    lu: &'s mut BorderedLu,
+    w: &'s [f64],
+    levels: EnergyLevels,
+    /// Π, the Hessian values and D = diag K of the last assembly; max |G| there.
+    energy: f64,
+    values: Vec<f64>,
+    d: Vec<f64>,
+    g0: f64,
+    /// The values of the current shifted level.
+    shifted: Vec<f64>,
+    /// The LU's message if the last solve failed.
+    singular: Option<String>,
+    converged: bool,
+}
+
+/// Why a call of [`StepProblem`] failed.
+enum StepError {
+    /// The assembly at an accepted iterate failed (∂σS ≤ 0 or non-finite).
+    Inadmissible,
+    /// The tangent shifted by the last μ is singular; the LU's message.
+    Singular(String),
+}
+
+/// max |v_i|.
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |m, x| m.max(x.abs()))
+}
+
+impl NewtonProblem for StepProblem<'_, '_> {
+    type Error = StepError;
+    fn size(&self) -> usize {
+        self.sys.len()
+    }
+    fn evaluation(&self) -> Evaluation {
+        Evaluation { residual_with_factorization: true, merit_only: true }
+    }
+    fn damping(&self) -> Damping {
+        Damping::Backtracking { take_best: false }
+    }
+    /// G(x), NaN where inadmissible (not called with both evaluation hooks: G comes
+    /// with the assembly, trials are judged by `trial_merit`).
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<(), StepError> {
+        let g = self.sys.gradient(x).map(|(_, g)| g);
+        r.copy_from_slice(g.as_deref().unwrap_or(&vec![f64::NAN; r.len()]));
+        Ok(())
+    }
+    fn factorize(&mut self, x: &[f64]) -> Result<(), StepError> {
+        let mut r = vec![0.0; self.size()];
+        self.factorize_with_residual(x, &mut r)
+    }
+    fn factorize_with_residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<(), StepError> {
+        // the bordered LU factorises inside its solve
+        let (energy, grad, values) = self.sys.assemble(x).ok_or(StepError::Inadmissible)?;
+        diagonal_sums(&values, &self.pattern.rows, &self.pattern.cols, &mut self.d);
+        self.g0 = max_abs(&grad);
+        r.copy_from_slice(&grad);
+        self.energy = energy;
+        self.values = values;
+        self.levels.restart();
+        Ok(())
+    }
+    fn solve(&mut self, b: &mut [f64]) -> Result<(), StepError> {
+        if self.levels.reuse_plain_step(b) {
+            return Ok(());
+        }
+        let values = if self.levels.mu == 0.0 { &self.values } else { &self.shifted };
+        match self.lu.solve(values, &[], b) {
+            Ok(()) => {
+                self.singular = None;
+                self.levels.solved(b);
+            }
+            Err(e) => {
+                self.singular = Some(e);
+                b.fill(f64::NAN);
+            }
+        }
+        Ok(())
+    }
+    fn norm(&self, v: &[f64], _x: &[f64]) -> f64 {
+        scaled_norm(v, self.w)
+    }
+    fn merit(&mut self, _x: &[f64], _r: &[f64]) -> f64 {
+        self.energy
+    }
+    fn trial_merit(&mut self, trial: &[f64], kind: TrialKind) -> Result<Option<f64>, StepError> {
+        if kind == TrialKind::Converging {
+            let energy = self.sys.energy(trial);
+            self.converged = energy.is_some();
+            return Ok(energy);
+        }
+        if self.levels.last_resort {
+            return Ok(self.sys.gradient(trial).map(|(_, g)| max_abs(&g)));
+        }
+        Ok(self.sys.energy(trial))
+    }
+    fn line_search(&mut self, _level: usize, slope: f64) -> bool {
+        self.levels.line_search(slope)
+    }
+    fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
+        self.levels.verdict(t, self.g0)
+    }
+    /// Only the converging full step ends the iteration.
+    fn converged(&mut self, _p: &Progress<'_>) -> bool {
+        self.converged
+    }
+    fn regularise(&mut self, _x: &[f64], _level: usize) -> Result<bool, StepError> {
+        if let Some(e) = self.singular.take() {
+            if self.levels.mu >= 1e2 {
+                return Err(StepError::Singular(e));
+            }
+        }
+        match self.levels.next() {
+            NextLevel::Exhausted => return Ok(false),
+            NextLevel::Shift => {
+                let floor = 1e-8 * max_abs(&self.d);
+                self.shifted = shifted(&self.values, &self.pattern.diagonal, &self.d, self.levels.mu, floor);
+            }
+            NextLevel::LastResort => {}
+        }
+        Ok(true)
+    }
+}
+
+/// Newton on the step system from `x` (overwritten): [`numerics::newton::solve`] with
+/// backtracking (Armijo on Π, Levenberg–Marquardt levels, a last resort on the
+/// gradient; [`StepProblem`]). `lu` holds `pattern` with (a, φ) as its border (their
+/// rows are dense: the bordered solve keeps the cost linear).
 ///
 /// # Errors
 /// [`NewtonFailure`] with the iteration count and the last update norm.
 #[allow(clippy::too_many_arguments)]
 pub fn newton(sys: &StepSystem, pattern: &Pattern, lu: &mut BorderedLu, x: &mut [f64], w: &[f64], tolerance: f64, max_iterations: usize, energy_scale: f64) -> Result<StepNewton, NewtonFailure> {
     let n = x.len();
-    let mut step = vec![0.0; n];
-    let mut newton_step = vec![0.0; n];
-    let mut trial = vec![0.0; n];
-    let mut report = StepNewton::default();
-    let mut last_update = f64::INFINITY;
-    let allowance = 1e-13 * energy_scale;
-    loop {
-        let Some((energy, grad, values)) = sys.assemble(x) else {
-            return Err(NewtonFailure::Inadmissible { iteration: report.iterations });
-        };
-        if report.iterations >= max_iterations {
-            return Err(NewtonFailure::NotConverged { iterations: report.iterations, update: last_update, tolerance });
-        }
-        report.iterations += 1;
-        let mut d = vec![0.0; n];
-        for (k, &v) in values.iter().enumerate() {
-            if pattern.rows[k] == pattern.cols[k] {
-                d[pattern.rows[k]] += v;
+    let mut problem = StepProblem {
+        sys,
+        pattern,
+        lu,
+        w,
+        levels: EnergyLevels::new(n, 1e-13 * energy_scale),
+        energy: 0.0,
+        values: Vec::new(),
+        d: vec![0.0; n],
+        g0: 0.0,
+        shifted: Vec::new(),
+        singular: None,
+        converged: false,
+    };
+    let opts = NewtonOptions { tolerance, max_iterations, min_damping: MIN_ALPHA };
+    match numerics::newton::solve(&mut problem, x, &opts) {
+        Ok(stats) => Ok(StepNewton { iterations: stats.iterations, update_norm: stats.last_correction }),
+        Err(e) => Err(match e {
+            // the state of the last iterate is checked before the iteration limit
+            NewtonError::MaxIterations { iterations, .. } if sys.assemble(x).is_none() => NewtonFailure::Inadmissible { iteration: iterations },
+            NewtonError::MaxIterations { iterations, correction, .. } => NewtonFailure::NotConverged { iterations, update: correction, tolerance },
+            NewtonError::LineSearchFailed { iteration, correction, .. } => {
+                NewtonFailure::LineSearch { what: "line search failed", iteration, update: correction }
             }
-        }
-        // D = diag |K|, floored at 1e-8 of its largest entry: a direction without
-        // stiffness (φ or a when every friction point of a pulley slides, d₂ = 0) is
-        // regularised too
-        let floor = 1e-8 * d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut mu = 0.0;
-        let mut accepted = false;
-        while mu <= 1e2 {
-            let mut vals = values.clone();
-            if mu > 0.0 {
-                for (i, &pos) in pattern.diagonal.iter().enumerate() {
-                    vals[pos] += mu * d[i].abs().max(floor).max(1e-300);
-                }
+            NewtonError::NonFinite { iteration, .. } | NewtonError::Problem { iteration, error: StepError::Inadmissible, .. } => {
+                NewtonFailure::Inadmissible { iteration: iteration.saturating_sub(1) }
             }
-            // a singular tangent (e.g. a pulley whose points all slide, d₂ = 0) is
-            // regularised like an indefinite one
-            for (s, g) in step.iter_mut().zip(&grad) {
-                *s = -g;
+            NewtonError::Problem { iteration, error: StepError::Singular(detail), .. } => NewtonFailure::Singular { matrix: "tangent", iteration, detail },
+            NewtonError::SingularStep { iteration, .. } => {
+                NewtonFailure::Singular { matrix: "tangent", iteration, detail: "non-finite Newton step".into() }
             }
-            let solved = lu.solve(&vals, &[], &mut step);
-            if let Err(e) = solved {
-                if mu >= 1e2 {
-                    return Err(NewtonFailure::Singular { matrix: "tangent", iteration: report.iterations, detail: e });
-                }
-                mu = if mu == 0.0 { 1e-6 } else { 10.0 * mu };
-                continue;
+            NewtonError::InvalidOptions(_) | NewtonError::DimensionMismatch { .. } | NewtonError::DampingExhausted { .. } => {
+                NewtonFailure::NotConverged { iterations: 0, update: f64::INFINITY, tolerance }
             }
-            let unorm = scaled_norm(&step, w);
-            let slope: f64 = step.iter().zip(&grad).map(|(s, g)| s * g).sum();
-            if mu == 0.0 {
-                last_update = unorm;
-                newton_step.copy_from_slice(&step);
-                if unorm <= tolerance {
-                    for i in 0..n {
-                        trial[i] = x[i] + step[i];
-                    }
-                    if sys.energy(&trial).is_some() {
-                        x.copy_from_slice(&trial);
-                        report.update_norm = unorm;
-                        return Ok(report);
-                    }
-                }
-            }
-            if slope < 0.0 {
-                let mut alpha = 1.0;
-                while alpha >= MIN_ALPHA {
-                    for i in 0..n {
-                        trial[i] = x[i] + alpha * step[i];
-                    }
-                    if let Some(e) = sys.energy(&trial) {
-                        if e <= energy + ARMIJO * alpha * slope + allowance {
-                            accepted = true;
-                            break;
-                        }
-                    }
-                    alpha *= 0.5;
-                }
-                if accepted {
-                    break;
-                }
-            }
-            mu = if mu == 0.0 { 1e-6 } else { 10.0 * mu };
-        }
-        if !accepted {
-            // last resort: the Newton step where the gradient does not grow
-            let g0 = grad.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let mut alpha = 1.0;
-            while alpha >= MIN_ALPHA {
-                for i in 0..n {
-                    trial[i] = x[i] + alpha * newton_step[i];
-                }
-                if let Some((_, g)) = sys.gradient(&trial) {
-                    if g.iter().fold(0.0f64, |m, v| m.max(v.abs())) <= g0 {
-                        accepted = true;
-                        break;
-                    }
-                }
-                alpha *= 0.5;
-            }
-            if !accepted {
-                return Err(NewtonFailure::LineSearch { what: "line search failed", iteration: report.iterations, update: last_update });
-            }
-        }
-        x.copy_from_slice(&trial);
+        }),
     }
 }

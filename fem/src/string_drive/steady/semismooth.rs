@@ -1,5 +1,7 @@
 //! The solve loop of the direct steady solve: semismooth Newton with an active set and a backtracking line search on the scaled merit, with its variable weights and row scales.
 
+use numerics::newton::{Damping, Evaluation, NewtonError, NewtonOptions, NewtonProblem, Progress, TrialStep, Verdict};
+
 use super::*;
 
 /// Norm weights of X (docs/fem-drive.md §12): z as the step system (H for values, 1 for
@@ -63,106 +65,167 @@ pub struct SteadyNewton {
     pub update_norm: f64,
 }
 
-/// Semismooth Newton on F(X) = 0 from `x` (overwritten on success): the generalised
-/// Jacobian of the current active set, a backtracking line search on the merit
-/// ½‖F‖² (the best trial is taken if none decreases it enough — the active set may
-/// change along the step), converged when the full step's scaled norm is ≤ `tolerance`
-/// and the active set did not change.
+/// The steady equations as a [`NewtonProblem`] for the semismooth Newton: the
+/// generalised Jacobian of the active set of the Jacobian pass (which yields F as
+/// well), trials judged by their residual (the active set may change along the step).
+struct Semismooth<'s, 'p, 'a> {
+    problem: &'s Patterned<'p, 'a>,
+    lu: BorderedLu,
+    w: &'s [f64],
+    scales: &'s [f64],
+    /// The Jacobian pass at the iterate: ∂F/∂X, F and the point results.
+    values: Vec<f64>,
+    residual: Vec<f64>,
+    results: Vec<PointResult>,
+    /// The point results of the last trial evaluated (`None`: inadmissible).
+    trial_results: Option<Vec<PointResult>>,
+    /// The last step was a best trial, not an accepted one.
+    took_best: bool,
+    /// The last step was whole and below the tolerance.
+    small_before: bool,
+    /// Steps in a row at the round-off floor.
+    floor_count: usize,
+}
+
+/// Why a call of [`Semismooth`] failed.
+enum SemismoothError {
+    /// The Jacobian pass at an accepted iterate failed.
+    Inadmissible,
+    /// The generalised Jacobian is singular even shifted; the LU's first message.
+    Singular(String),
+}
+
+impl NewtonProblem for Semismooth<'_, '_, '_> {
+    type Error = SemismoothError;
+    fn size(&self) -> usize {
+        self.problem.len()
+    }
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<(), SemismoothError> {
+        match self.problem.evaluate(x, false) {
+            Some(et) => {
+                r.copy_from_slice(&et.residual);
+                self.trial_results = Some(et.results);
+            }
+            None => {
+                r.fill(f64::NAN);
+                self.trial_results = None;
+            }
+        }
+        Ok(())
+    }
+    fn factorize(&mut self, _x: &[f64]) -> Result<(), SemismoothError> {
+        unreachable!("Semismooth factorises with its residual")
+    }
+    fn factorize_with_residual(&mut self, x: &[f64], r: &mut [f64]) -> Result<(), SemismoothError> {
+        // the bordered LU factorises inside its solve
+        let ev = self.problem.evaluate(x, true).ok_or(SemismoothError::Inadmissible)?;
+        r.copy_from_slice(&ev.residual);
+        (self.values, self.residual, self.results) = (ev.values, ev.residual, ev.results);
+        Ok(())
+    }
+    fn solve(&mut self, b: &mut [f64]) -> Result<(), SemismoothError> {
+        let Err(e) = self.lu.solve(&self.values, &[], b) else { return Ok(()) };
+        // a singular generalised Jacobian (an active set without a unique solution) is
+        // regularised on its diagonal, Levenberg–Marquardt style, 1e-12 → 1e-4 of D
+        let mut d = vec![0.0; b.len()];
+        crate::newton::diagonal_sums(&self.values, &self.problem.rows, &self.problem.cols, &mut d);
+        let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for f in [1e-12, 1e-10, 1e-8, 1e-6, 1e-4] {
+            let shift: Vec<f64> = d.iter().map(|v| f * v.abs().max(1e-6 * dmax).max(1e-300)).collect();
+            b.iter_mut().zip(&self.residual).for_each(|(s, r)| *s = -r);
+            if self.lu.solve(&self.values, &shift, b).is_ok() {
+                return Ok(());
+            }
+        }
+        Err(SemismoothError::Singular(e))
+    }
+    fn damping(&self) -> Damping {
+        // the best trial is taken if none decreases the merit enough
+        Damping::Backtracking { take_best: true }
+    }
+    fn evaluation(&self) -> Evaluation {
+        Evaluation { residual_with_factorization: true, merit_only: false }
+    }
+    fn norm(&self, v: &[f64], _x: &[f64]) -> f64 {
+        super::super::system::scaled_norm(v, self.w)
+    }
+    fn merit(&mut self, _x: &[f64], r: &[f64]) -> f64 {
+        merit(r, self.scales)
+    }
+    /// Armijo on ½‖F‖²; a step below the tolerance is taken at its first admissible
+    /// trial (the merit is at round-off).
+    fn accept_step(&mut self, t: &TrialStep<'_>) -> Verdict {
+        if t.correction <= t.tolerance || t.trial_merit <= (1.0 - 1e-4 * t.damping) * t.merit {
+            Verdict::Accept
+        } else {
+            Verdict::Reject
+        }
+    }
+    fn converged(&mut self, p: &Progress<'_>) -> bool {
+        self.took_best = p.best_trial;
+        let small = p.correction <= p.tolerance;
+        let same_set = !p.best_trial
+            && self.trial_results.as_ref().is_some_and(|t| t.iter().zip(&self.results).all(|(a, b)| a.slip == b.slip));
+        // the round-off floor: steps within 10³ of the tolerance that no longer reduce
+        // the merit by 10 % for 3 iterations on the same active set (fine meshes of a
+        // stiff normal penalty)
+        self.floor_count = if p.correction <= 1e3 * p.tolerance && same_set && p.merit_after > 0.9 * p.merit_before { self.floor_count + 1 } else { 0 };
+        // converged: a whole step below the tolerance that kept the active set, or two
+        // in a row (a point exactly at its slip bound may flip at round-off)
+        if (p.damping == 1.0 && small && (same_set || self.small_before)) || self.floor_count >= 3 {
+            return true;
+        }
+        self.small_before = p.damping == 1.0 && small;
+        false
+    }
+}
+
+/// Semismooth Newton on F(X) = 0 from `x` (overwritten on success):
+/// [`numerics::newton::solve`] with the generalised Jacobian of the current active set,
+/// a backtracking line search on the merit ½‖F‖² (the best trial is taken if none
+/// decreases it enough — the active set may change along the step), converged when
+/// the full step's scaled norm is ≤ `tolerance` and the active set did not change (or
+/// two such steps in a row, or the round-off floor).
 ///
 /// # Errors
 /// [`NewtonFailure`] with the iteration count and the last update norm.
 pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, NewtonFailure> {
     let n = x.len();
     let problem = &Patterned::new(problem);
-    let mut lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()]).map_err(NewtonFailure::Pattern)?;
-    let mut report = SteadyNewton::default();
-    let mut last_update = f64::INFINITY;
-    let mut trial = vec![0.0; n];
-    let mut small_before = false;
-    let mut floor_count = 0usize;
-    loop {
-        let Some(ev) = problem.evaluate(x, true) else {
-            return Err(NewtonFailure::Inadmissible { iteration: report.iterations });
-        };
-        if report.iterations >= max_iterations {
-            return Err(NewtonFailure::NotConverged { iterations: report.iterations, update: last_update, tolerance });
+    let lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()]).map_err(NewtonFailure::Pattern)?;
+    let mut semismooth = Semismooth {
+        problem,
+        lu,
+        w,
+        scales,
+        values: Vec::new(),
+        residual: Vec::new(),
+        results: Vec::new(),
+        trial_results: None,
+        took_best: false,
+        small_before: false,
+        floor_count: 0,
+    };
+    let opts = NewtonOptions { tolerance, max_iterations, min_damping: 1.0 / 1024.0 };
+    let stats = numerics::newton::solve(&mut semismooth, x, &opts).map_err(|e| match e {
+        // the state of the last iterate is checked before the iteration limit
+        NewtonError::MaxIterations { iterations, .. } if problem.evaluate(x, true).is_none() => NewtonFailure::Inadmissible { iteration: iterations },
+        NewtonError::MaxIterations { iterations, correction, .. } => NewtonFailure::NotConverged { iterations, update: correction, tolerance },
+        NewtonError::LineSearchFailed { iteration, correction, .. } => NewtonFailure::LineSearch { what: "no admissible step", iteration, update: correction },
+        NewtonError::NonFinite { iteration, .. } | NewtonError::Problem { iteration, error: SemismoothError::Inadmissible, .. } => {
+            NewtonFailure::Inadmissible { iteration: iteration.saturating_sub(1) }
         }
-        report.iterations += 1;
-        let m0 = merit(&ev.residual, scales);
-        // a singular generalised Jacobian (an active set without a unique solution) is
-        // regularised on its diagonal, Levenberg–Marquardt style, 1e-12 → 1e-4 of D
-        let mut step: Vec<f64> = ev.residual.iter().map(|r| -r).collect();
-        let solved = lu.solve(&ev.values, &[], &mut step);
-        if let Err(e) = solved {
-            let mut d = vec![0.0; n];
-            for (k, &v) in ev.values.iter().enumerate() {
-                if problem.rows[k] == problem.cols[k] {
-                    d[problem.rows[k]] += v;
-                }
-            }
-            let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            let mut ok = false;
-            for f in [1e-12, 1e-10, 1e-8, 1e-6, 1e-4] {
-                let shift: Vec<f64> = d.iter().map(|v| f * v.abs().max(1e-6 * dmax).max(1e-300)).collect();
-                step.iter_mut().zip(&ev.residual).for_each(|(s, r)| *s = -r);
-                if lu.solve(&ev.values, &shift, &mut step).is_ok() {
-                    ok = true;
-                    break;
-                }
-            }
-            if !ok {
-                return Err(NewtonFailure::Singular { matrix: "Jacobian", iteration: report.iterations, detail: e });
-            }
+        NewtonError::Problem { iteration, error: SemismoothError::Singular(detail), .. } => NewtonFailure::Singular { matrix: "Jacobian", iteration, detail },
+        NewtonError::SingularStep { iteration, .. } => NewtonFailure::Singular { matrix: "Jacobian", iteration, detail: "non-finite Newton step".into() },
+        NewtonError::InvalidOptions(_) | NewtonError::DimensionMismatch { .. } | NewtonError::DampingExhausted { .. } => {
+            NewtonFailure::NotConverged { iterations: 0, update: f64::INFINITY, tolerance }
         }
-        let unorm = super::super::system::scaled_norm(&step, w);
-        last_update = unorm;
-        // a step below the tolerance is taken whole (the merit is at round-off)
-        let small = unorm <= tolerance;
-        let mut best: Option<(f64, f64)> = None;
-        let mut alpha = 1.0;
-        let mut accepted = None;
-        while alpha >= 1.0 / 1024.0 {
-            for i in 0..n {
-                trial[i] = x[i] + alpha * step[i];
-            }
-            if let Some(et) = problem.evaluate(&trial, false) {
-                let mt = merit(&et.residual, scales);
-                if small || mt <= (1.0 - 1e-4 * alpha) * m0 {
-                    accepted = Some((alpha, et, mt));
-                    break;
-                }
-                if best.is_none_or(|(_, m)| mt < m) {
-                    best = Some((alpha, mt));
-                }
-            }
-            alpha *= 0.5;
-        }
-        // the accepted trial's evaluation and merit are those of the new x
-        let (alpha, same_set, merit_after, after) = match accepted {
-            Some((a, et, mt)) => (a, et.results.iter().zip(&ev.results).all(|(p, q)| p.slip == q.slip), mt, Some(et)),
-            None => match best {
-                Some((a, mt)) => (a, false, mt, None),
-                None => return Err(NewtonFailure::LineSearch { what: "no admissible step", iteration: report.iterations, update: unorm }),
-            },
-        };
-        for i in 0..n {
-            x[i] += alpha * step[i];
-        }
-        // the round-off floor: steps within 10³ of the tolerance that no longer reduce
-        // the merit by 10 % for 3 iterations on the same active set (fine meshes of a
-        // stiff normal penalty)
-        floor_count = if unorm <= 1e3 * tolerance && same_set && merit_after > 0.9 * m0 { floor_count + 1 } else { 0 };
-        // converged: a whole step below the tolerance that kept the active set, or two
-        // in a row (a point exactly at its slip bound may flip at round-off)
-        if (alpha == 1.0 && small && (same_set || small_before)) || floor_count >= 3 {
-            // a point taken as stick only to give its pulley an equation (see
-            // `evaluate`) must obey Coulomb's bound by itself at the solution
-            if let Some(p) = after.and_then(|e| e.results.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
-                return Err(NewtonFailure::NoCoulombState { traction: p.traction.abs(), bound: problem.sp.mu * p.normal, sigma: p.point.sigma });
-            }
-            report.update_norm = unorm;
-            return Ok(report);
-        }
-        small_before = alpha == 1.0 && small;
+    })?;
+    // a point taken as stick only to give its pulley an equation (see `evaluate`) must
+    // obey Coulomb's bound by itself at the solution (the accepted trial's results)
+    let after = if semismooth.took_best { None } else { semismooth.trial_results };
+    if let Some(p) = after.and_then(|r| r.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
+        return Err(NewtonFailure::NoCoulombState { traction: p.traction.abs(), bound: problem.sp.mu * p.normal, sigma: p.point.sigma });
     }
+    Ok(SteadyNewton { iterations: stats.iterations, update_norm: stats.last_correction })
 }
