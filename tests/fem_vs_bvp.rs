@@ -48,6 +48,20 @@ fn bvp_reference(scene: &Scene) -> Summary {
     bvp::scene::solve_scene(scene, &opts).unwrap().summary
 }
 
+/// |FE − BVP| / |BVP| of quantity `q`.
+fn relative_error(fe: &Summary, reference: &Summary, q: &str) -> f64 {
+    let r = reference.get(q).unwrap();
+    (fe.get(q).unwrap() - r).abs() / r.abs()
+}
+
+/// Every quantity of `bounds` within its relative bound of the BVP reference.
+fn assert_within(fe: &Summary, reference: &Summary, bounds: &[(&str, f64)]) {
+    for &(q, bound) in bounds {
+        let e = relative_error(fe, reference, q);
+        assert!(e < bound, "{q}: FE {} vs BVP {}: {e:e} (bound {bound:e})", fe.get(q).unwrap(), reference.get(q).unwrap());
+    }
+}
+
 fn fem_summary(scene: &Scene, elements: usize, formulation: &str) -> Summary {
     let opts = fem::FemOptions { elements, ..fem::FemOptions::from_scene(scene, formulation) };
     fem::solve_scene(scene, &opts).unwrap_or_else(|e| panic!("{elements} elements: {e}")).summary
@@ -182,30 +196,28 @@ fn rod_hanging_converges_to_the_bvp() {
 fn string_drive_converges_to_the_bvp() {
     let sc = scene("string-drive");
     let reference = bvp_reference(&sc);
-    let rel = |s: &Summary, q: &str| {
-        let r = reference.get(q).unwrap();
-        (s.get(q).unwrap() - r).abs() / r.abs()
-    };
     let runs: Vec<Summary> = [32, 64, 128].iter().map(|&n| fem_summary(&sc, n, "string-simpson")).collect();
-    let (e32, e128) = (rel(&runs[0], "tension_tight"), rel(&runs[2], "tension_tight"));
+    let (e32, e128) = (relative_error(&runs[0], &reference, "tension_tight"), relative_error(&runs[2], &reference, "tension_tight"));
     assert!(e128 < 1e-5 && e128 < 0.1 * e32, "tight tension errors {e32:e} (32) → {e128:e} (128)");
     let fine = &runs[2];
-    for (q, bound) in [
-        ("tension_tight", 1e-5),
-        ("tension_slack", 1e-4),
-        ("tension_upper_mid", 3e-5),
-        ("tension_lower_mid", 3e-5),
-        ("driven_speed", 5e-7),
-        ("transport_rate", 5e-7),
-        ("driver.contact_arc", 5e-7),
-        ("driven.contact_arc", 5e-7),
-        ("driver.stick_arc", 2e-3),
-        ("driven.stick_arc", 5e-3),
-        ("driver.torque", 2e-7),
-        ("driven.torque", 2e-7),
-    ] {
-        assert!(rel(fine, q) < bound, "{q}: {:e} (bound {bound:e})", rel(fine, q));
-    }
+    assert_within(
+        fine,
+        &reference,
+        &[
+            ("tension_tight", 1e-5),
+            ("tension_slack", 1e-4),
+            ("tension_upper_mid", 3e-5),
+            ("tension_lower_mid", 3e-5),
+            ("driven_speed", 5e-7),
+            ("transport_rate", 5e-7),
+            ("driver.contact_arc", 5e-7),
+            ("driven.contact_arc", 5e-7),
+            ("driver.stick_arc", 2e-3),
+            ("driven.stick_arc", 5e-3),
+            ("driver.torque", 2e-7),
+            ("driven.torque", 2e-7),
+        ],
+    );
     // Same conventions on both sides: the belt's moment on each pulley, clockwise positive.
     for q in ["driver.torque", "driven.torque"] {
         assert_eq!(fine.get(q).unwrap().signum(), reference.get(q).unwrap().signum(), "{q} sign");
@@ -231,26 +243,24 @@ fn counter_clockwise_string_drive_matches_the_bvp() {
     assert!(reference.tension_upper_mid.unwrap() > reference.tension_lower_mid.unwrap(), "upper span tight");
     let fine = fem_summary(&sc, 128, "string-simpson");
     assert!(fine.tension_upper_mid.unwrap() > fine.tension_lower_mid.unwrap(), "upper span tight (FE)");
-    let rel = |q: &str| {
-        let r = reference.get(q).unwrap();
-        (fine.get(q).unwrap() - r).abs() / r.abs()
-    };
-    for (q, bound) in [
-        ("tension_tight", 1e-4),
-        ("tension_slack", 1e-4),
-        ("tension_upper_mid", 1e-4),
-        ("tension_lower_mid", 1e-4),
-        ("driven_speed", 5e-7),
-        ("transport_rate", 2e-6),
-        ("driver.contact_arc", 5e-7),
-        ("driven.contact_arc", 5e-7),
-        ("driver.stick_arc", 2e-3),
-        ("driven.stick_arc", 5e-3),
-        ("driver.torque", 2e-7),
-        ("driven.torque", 2e-7),
-    ] {
-        assert!(rel(q) < bound, "{q}: FE {} vs BVP {}: {:e} (bound {bound:e})", fine.get(q).unwrap(), reference.get(q).unwrap(), rel(q));
-    }
+    assert_within(
+        &fine,
+        &reference,
+        &[
+            ("tension_tight", 1e-4),
+            ("tension_slack", 1e-4),
+            ("tension_upper_mid", 1e-4),
+            ("tension_lower_mid", 1e-4),
+            ("driven_speed", 5e-7),
+            ("transport_rate", 2e-6),
+            ("driver.contact_arc", 5e-7),
+            ("driven.contact_arc", 5e-7),
+            ("driver.stick_arc", 2e-3),
+            ("driven.stick_arc", 5e-3),
+            ("driver.torque", 2e-7),
+            ("driven.torque", 2e-7),
+        ],
+    );
 }
 
 /// The hard case of issue 6: a very slack belt with gravity driven (fem/tests/scenes/

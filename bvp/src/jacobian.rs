@@ -86,11 +86,9 @@ pub fn rhs_jacobian<P: Problem>(
     let mut col = vec![0.0; n];
     // Columns of y, of the parameters f_k can depend on (the others are exactly zero),
     // and of η.
-    let read: Vec<usize> = match problem.rhs_params(k) {
-        Some(params) => (0..n).chain(params.iter().map(|&i| n + i)).chain(std::iter::once(n + np)).collect(),
-        None => (0..n + np + 1).collect(),
-    };
-    for j in read {
+    let declared = problem.rhs_params(k);
+    let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
+    for j in (0..n + np + 1).filter(|&j| j < n || j == n + np || reads(j - n)) {
         column(j, &mut col);
         for i in 0..n {
             if j < n {

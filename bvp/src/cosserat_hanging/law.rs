@@ -187,7 +187,7 @@ impl SectionLaw for ScaledCosseratHanging {
         rows.push(yb[topology.len() - 1][MATERIAL] - self.rod.length);
     }
 
-    fn point(&self, d: &CosseratHanging, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], _: &[f64]) -> BeltPoint {
+    fn point(&self, _: &CosseratHanging, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], _: &[f64]) -> BeltPoint {
         let (lh, fr) = (sc.length, sc.force);
         let rod = |x: f64, yy: f64, theta: f64, moment: f64, n: f64, q: f64, material: f64| {
             let (g1, g2) = (n / self.rod.axial_stiffness, q / self.shear_stiffness);
@@ -207,7 +207,6 @@ impl SectionLaw for ScaledCosseratHanging {
                 let mut pt = rod(px, py, theta, y[MOMENT], n, q, y[MATERIAL]);
                 pt.pressure = Some(self.arc_pressure(self.rod.bending, phi, y) * fr / lh);
                 pt.angle = Some(phi);
-                let _ = d;
                 pt
             }
             _ => {

@@ -71,7 +71,8 @@ pub fn cosserat_guess(string: &Solution, problem: &BeltProblem<ScaledCosseratHan
     Solution::from_fn(topo.len(), nodes, spans.params.clone(), 0.0, |k, xi| match topo.segment(k).scaling {
         Scaling::Span { .. } => spans.eval(k, xi),
         Scaling::Arc { start, end, .. } => {
-            let (n, s) = (string.eval(k, xi)[0], string.eval(k, xi)[1]);
+            let arc = string.eval(k, xi);
+            let (n, s) = (arc[0], arc[1]);
             let phi = spans.params[start] + xi * (spans.params[end] - spans.params[start]);
             let lambda = 1.0 + n / law.axial_stiffness;
             vec![lambda, phi - FRAC_PI_2, -law.bending_start * lambda / law.radius, s]
