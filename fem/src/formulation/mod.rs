@@ -62,9 +62,11 @@ pub use crate::quadrature::{QuadratureError, Rule};
 pub use numerics::Scalar;
 
 mod built_in;
+pub mod layout;
 pub mod terms;
 
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
+pub use layout::{RegisteredElement, NDOF_COSSERAT};
 pub use drive::scene::Theory;
 pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
 use terms::EnergySum;
@@ -502,29 +504,43 @@ impl<F: Formulation> Kernel for F {
 
 /// The formulations shipped with the crate, default first. **Add a built-in formulation
 /// here** (one line); an outside crate calls [`register`] instead.
-fn built_in() -> Vec<Arc<dyn Kernel>> {
-    vec![Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)]
+fn built_in() -> Vec<RegisteredElement> {
+    let kernels: [Arc<dyn Kernel>; 4] = [Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)];
+    kernels.into_iter().map(RegisteredElement::String).collect()
 }
 
-/// The process-wide registry: the built-in formulations, then the registered ones in
+/// The process-wide registry: the built-in formulations, then the registered elements in
 /// registration order. Entries are only ever added, so a name once found stays valid.
-static REGISTRY: LazyLock<RwLock<Vec<Arc<dyn Kernel>>>> = LazyLock::new(|| RwLock::new(built_in()));
+static REGISTRY: LazyLock<RwLock<Vec<RegisteredElement>>> = LazyLock::new(|| RwLock::new(built_in()));
 
 /// The registry for reading. No code panics while holding the lock, but a poisoned lock
 /// still holds a consistent list (entries are pushed whole), so it is read anyway.
-fn entries() -> RwLockReadGuard<'static, Vec<Arc<dyn Kernel>>> {
+fn entries() -> RwLockReadGuard<'static, Vec<RegisteredElement>> {
     REGISTRY.read().unwrap_or_else(PoisonError::into_inner)
 }
 
-/// Every registered formulation: the built-in ones (default first), then those added by
-/// [`register`], in registration order. A snapshot: later registrations do not change it.
-pub fn registry() -> Vec<Arc<dyn Kernel>> {
+/// Every registered element of every layout: the built-in formulations (default first),
+/// then those added by [`register`] and [`register_element`], in registration order. A
+/// snapshot: later registrations do not change it.
+pub fn elements() -> Vec<RegisteredElement> {
     entries().clone()
 }
 
-/// The registered formulation called `name`.
-pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
+/// The registered element called `name`, whatever its layout.
+pub fn find_element(name: &str) -> Option<RegisteredElement> {
     entries().iter().find(|k| k.name() == name).cloned()
+}
+
+/// The registered formulations of the string layout ({s, ν}: strings and Kirchhoff rods,
+/// the entries [`RegisteredElement::String`] of [`elements`]), in registry order.
+pub fn registry() -> Vec<Arc<dyn Kernel>> {
+    entries().iter().filter_map(|k| k.string_kernel().cloned()).collect()
+}
+
+/// The registered formulation of the string layout called `name` (`None` also for an
+/// element of another layout of that name: see [`find_element`]).
+pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
+    find_element(name).and_then(|k| k.string_kernel().cloned())
 }
 
 /// Why [`register`] refused a formulation.
@@ -593,14 +609,26 @@ pub fn register<F: Formulation>(formulation: F) -> Result<(), RegistryError> {
 /// # Errors
 /// As [`register`].
 pub fn register_kernel(kernel: Arc<dyn Kernel>) -> Result<(), RegistryError> {
-    let name = kernel.name();
+    register_element(RegisteredElement::String(kernel))
+}
+
+/// Register an element of any layout — e.g. an element on the Cosserat layout,
+/// `register_element(RegisteredElement::Cosserat(Arc::new(MyRod)))` — with the checks and
+/// the process-wide effect of [`register`]: from then on [`find_element`], [`elements`],
+/// [`crate::available_formulations`], [`crate::formulations_for`] and
+/// [`crate::solve_scene`] (the static analysis) find it by name.
+///
+/// # Errors
+/// As [`register`].
+pub fn register_element(element: RegisteredElement) -> Result<(), RegistryError> {
+    let name = element.name();
     if name.is_empty() {
-        return Err(RegistryError::EmptyName { description: kernel.description() });
+        return Err(RegistryError::EmptyName { description: element.description() });
     }
     if let Some(offending) = name.chars().find(|c| !(c.is_ascii_lowercase() || c.is_ascii_digit() || *c == '-')) {
         return Err(RegistryError::InvalidName { name, offending });
     }
-    let rules = kernel.rules();
+    let rules = element.rules();
     for (term, rule) in [("strain", rules.strain), ("gravity", rules.gravity), ("contact", rules.contact), ("bending", rules.bending)] {
         rule.validate().map_err(|source| RegistryError::InvalidRule { name, term, source })?;
     }
@@ -608,7 +636,7 @@ pub fn register_kernel(kernel: Arc<dyn Kernel>) -> Result<(), RegistryError> {
     if reg.iter().any(|k| k.name() == name) {
         return Err(RegistryError::Duplicate { name, registered: reg.iter().map(|k| k.name()).collect() });
     }
-    reg.push(kernel);
+    reg.push(element);
     Ok(())
 }
 
