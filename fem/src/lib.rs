@@ -31,7 +31,7 @@
 //! - [`problem`]: the typed problem built once from the scene ([`FemProblem`]);
 //! - [`static_homotopy`]: the static string (or Kirchhoff rod, with EI) on frictionless
 //!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
-//!   contact fitting;
+//!   contact fitting — generic over the element's layout;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
@@ -60,7 +60,11 @@
 //! workspace's `examples/custom_formulation.rs` defines one, runs `converge` and the
 //! `gate` with it. A formulation shipped with `fem` is a file in `fem/src/formulation/`
 //! and one line in its built-in list; the AD-vs-finite-difference unit test covers every
-//! built-in formulation automatically.
+//! built-in formulation automatically. An element of another 1-D layout (the Cosserat
+//! rod's {s, ν, θ}, 12 unknowns) implements [`assembly::ElementKernel`] and
+//! [`formulation::layout::LayoutElement`] and is registered by name with
+//! [`formulation::register_element`]; the static analysis and the solution view run it
+//! monomorphised for its layout (the drive analyses take the string layout only).
 //!
 //! # Entry points (the contract of the CLI and the verification harness)
 //! [`available_formulations`] (the registry, by name), [`register_formulation`],

@@ -44,6 +44,29 @@
 //! and one line in the built-in list (`built_in` below). The AD-vs-finite-difference
 //! test and the consistency checks in this module's tests run over every built-in
 //! formulation, so a new one is checked without writing a test.
+//!
+//! # Elements of another layout (the Cosserat rod's {s, ν, θ})
+//! [`Formulation`] and [`Kernel`] are the string layout's face ({s, ν}, [`NDOF`] = 8
+//! unknowns, [`PointFields`]); the registry itself holds [`RegisteredElement`]s, one
+//! variant per 1-D layout of [`crate::element`]:
+//! - [`RegisteredElement::String`]: a [`Formulation`] behind `Arc<dyn Kernel>` (strings
+//!   and Kirchhoff rods; [`register`], [`register_kernel`]);
+//! - [`RegisteredElement::Cosserat`]: an element on [`crate::element::COSSERAT`]
+//!   (12 unknowns) that implements [`crate::assembly::ElementKernel`]`<12>` (energy,
+//!   gradient, Hessian, admissibility, transition slopes) and
+//!   [`layout::LayoutElement`]`<12>` (name, theory, rules, term labels, the axial force
+//!   at a point, the effective unknowns, the start of θ), added with
+//!   [`register_element`].
+//!
+//! [`find_element`] and [`elements`] see every entry (the CLI, [`crate::solve_scene`] and
+//! the harness resolve names through them); [`find`] and [`registry`] return the string
+//! layout's kernels only. [`crate::solve_problem`] matches the entry's layout and runs
+//! the static analysis ([`crate::static_homotopy`]) and the solution view
+//! ([`crate::FemSolution`]) monomorphised for it — both are generic over
+//! `<const N, K: LayoutElement<N>>`, so the string path is compiled exactly as before.
+//! The drive analyses (`string_drive`) take the string layout only and answer another
+//! layout with [`crate::FemError::Unsupported`]. `fem/tests/layout_element.rs` registers
+//! a 12-unknown test element by name and solves `rod-hanging` with it.
 
 use std::sync::{Arc, LazyLock, PoisonError, RwLock, RwLockReadGuard};
 
@@ -84,7 +107,8 @@ pub struct TermRules {
     pub bending: Rule,
 }
 
-/// A string element formulation (implement this to add one; see the module docs).
+/// A string-layout element formulation (implement this to add one; see the module
+/// docs; an element of another layout implements [`layout::LayoutElement`]).
 pub trait Formulation: Send + Sync + 'static {
     /// Registry name, e.g. `string-gauss` (lowercase, `-` separated).
     fn name(&self) -> &'static str;
