@@ -3,7 +3,8 @@
 //!
 //! Right-hand sides: a span asks the law with its span parameter, an arc with its polar
 //! angle φ = φ_a + Δφ ξ and Δφ = φ_b − φ_a. Conditions, in this order: the junction that
-//! closes the loop (the belt leaves the last arc into segment 0), then the junction at
+//! closes the loop (the belt leaves the last arc into segment 0) — on an open topology
+//! the end conditions of the inflow and outflow ends instead — then the junction at
 //! the end of each segment 0, 1, …, m − 2, then the law's loop conditions. The closure
 //! jump of a frictionless loop is added at the driver's first contact.
 
@@ -98,6 +99,7 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
                 Junction::ContactEnd { pulley, angle, closes_loop } => {
                     self.law.contact_end(pulley, p[angle], yb[k], start, closes_loop, p, eta, &mut rows);
                 }
+                Junction::OpenEnds => self.law.open_ends(start, yb[k], p, eta, &mut rows),
             }
         }
         self.law.loop_conditions(topo, ya, yb, p, eta, &mut rows);
