@@ -256,7 +256,7 @@ pub fn moment_imbalance(d: &CosseratPulley, point: impl Fn(usize, f64) -> BeltPo
     last_contact.torque.unwrap_or(f64::NAN) + moment_of(&outflow) - moment_of(&inflow)
 }
 
-/// F̃ = T̃ e₁ + (Q b₂... ) of a point: F̃·e₁ = T̃, F̃·e₂ = Q (b₂ − χ)/b₂ (spec §1.2).
+/// The effective force F̃ (N) of a point: F̃·e₁ = T̃, F̃·e₂ = Q (b₂ − χ)/b₂ (spec §1.2).
 pub fn effective_force(d: &CosseratPulley, p: &BeltPoint) -> [f64; 2] {
     let theta = p.theta.unwrap_or(f64::NAN);
     let (te, qe) = (p.effective_tension.unwrap_or(f64::NAN), p.shear.unwrap_or(f64::NAN) * (d.shear_stiffness - d.chi()) / d.shear_stiffness);
@@ -276,7 +276,11 @@ pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulley
     let solved = run::homotopy_and_final_solve(&problem, &guess, opts, accept, clock).map_err(|e| match e {
         StageError::Homotopy(cause) => BeltError::HomotopyStalled {
             stage: "homotopy in log a",
-            eta: f64::NAN,
+            // a failure before the first continuation step is the corrector at the start
+            eta: match &cause {
+                crate::error::BvpError::ContinuationStalled { eta, .. } => *eta,
+                _ => 0.0,
+            },
             at: format!("bending stiffness from a₀ = {:.3e} N·m² to a = {:.3e} N·m²", problem.law.bending_start * scales.force * scales.length * scales.length, data.bending_stiffness),
             hard: format!("bending layer √(a/T̃_out) = {:.3e} R, shear layer √(a/(b₂ − ρc²)) = {:.3e} R", (data.bending_stiffness / data.effective(data.tension_out)).sqrt() / data.radius, data.shear_layer() / data.radius),
             cause,
