@@ -101,18 +101,10 @@ impl CosseratPulley {
 /// ends, and the string creep slip arc within the wrap.
 pub fn validate(d: &CosseratPulley, opts: &BeltOptions) -> Result<(), BeltError> {
     opts.check_tolerance()?;
-    check_positive(&[
-        ("pulley_radius", d.radius),
-        ("end_distance", d.end_distance),
-        ("transport_rate", d.transport_rate),
-        ("tension_in", d.tension_in),
-        ("tension_out", d.tension_out),
-        ("axial_stiffness", d.axial_stiffness),
-        ("bending_stiffness", d.bending_stiffness),
-        ("shear_stiffness", d.shear_stiffness),
-        ("mass_per_length", d.mass_per_length),
-        ("coulomb", d.friction),
-    ])?;
+    let geometry = [("pulley_radius", d.radius), ("end_distance", d.end_distance), ("transport_rate", d.transport_rate)];
+    let loads = [("tension_in", d.tension_in), ("tension_out", d.tension_out), ("coulomb", d.friction)];
+    let section = [("axial_stiffness", d.axial_stiffness), ("bending_stiffness", d.bending_stiffness), ("shear_stiffness", d.shear_stiffness), ("mass_per_length", d.mass_per_length)];
+    check_positive(&[&geometry[..], &loads, &section].concat())?;
     let chi = d.chi();
     for (stiffness, value) in [("axial stiffness b₁", d.axial_stiffness), ("shear stiffness b₂", d.shear_stiffness)] {
         if chi >= value {
