@@ -265,7 +265,13 @@ pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulley
     let problem = BeltProblem::new(Topology::one_pulley(), law);
     let (window, slack) = problem.law.admissible_window();
     let accept = |s: &Solution| problem.topology.check(&s.params, window, slack);
-    let solved = run::homotopy_and_final_solve(&problem, &guess, opts, accept, clock).map_err(|e| match e {
+    // the start at the scene's a needs no homotopy: straight to the path and final solves
+    let stages = if problem.law.bending_start == problem.law.bending {
+        run::direct_and_final_solve(&problem, &Solution { eta: 1.0, ..guess }, opts, clock)
+    } else {
+        run::homotopy_and_final_solve(&problem, &guess, opts, accept, clock)
+    };
+    let solved = stages.map_err(|e| match e {
         StageError::Homotopy(cause) => BeltError::HomotopyStalled {
             stage: "homotopy in log a",
             // a failure before the first continuation step is the corrector at the start
