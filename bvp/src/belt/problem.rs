@@ -178,5 +178,17 @@ mod tests {
             let drive = ScaledStringDrive::fixture(inertia, weight);
             declared_params_are_complete(&BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive), 0.6);
         }
+        let pulley = crate::cosserat_pulley::ScaledCosseratPulley {
+            axial: 600.0,
+            shear: 70.0,
+            chi: 0.03,
+            bending_start: 0.05,
+            bending: 0.07,
+            end_distance: 5.0,
+            end_forces: [0.97, 0.64],
+            mu: 0.3,
+            slip_sign: 1.0,
+        };
+        declared_params_are_complete(&BeltProblem::new(Topology::one_pulley(), pulley), 0.6);
     }
 }

@@ -650,6 +650,30 @@ mod tests {
         assert_eq!(PowerFlow::of_load(0.0, ccw), PowerFlow::FromDriver);
     }
 
+    /// The open one-pulley layout: four segments on the single pulley, five parameters,
+    /// the contact junctions of the loop and `OpenEnds` after the outflow span; the
+    /// acceptance check sees the one pulley only.
+    #[test]
+    fn one_pulley_is_open() {
+        let t = Topology::one_pulley();
+        assert!(t.is_open() && t.has_friction() && t.motion().is_none() && t.closure_jump().is_none());
+        assert_eq!(t.param_names(), ["l0", "l3", "phi_a", "phi_t", "phi_b"]);
+        assert_eq!(t.pulleys(), [Pulley::Single]);
+        assert_eq!(t.junction(0), Junction::ContactStart { pulley: Pulley::Single, angle: 2 });
+        assert_eq!(t.junction(1), Junction::ArcToArc { pulley: Pulley::Single, angle: 3 });
+        assert_eq!(t.junction(2), Junction::ContactEnd { pulley: Pulley::Single, angle: 4, closes_loop: false });
+        assert_eq!(t.junction(3), Junction::OpenEnds);
+        assert_eq!(t.sides(), [Side::UpperSpan, Side::Arc, Side::Arc, Side::LowerSpan]);
+        let p = t.tight_params(3.0);
+        assert_eq!(p, [3.0, 3.0, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2]);
+        assert_eq!(t.check(&p, FRAC_PI_2, 1e-9), Ok(()));
+        let mut q = p.clone();
+        q[3] = FRAC_PI_2 + 0.1;
+        assert!(t.check(&q, FRAC_PI_2, 1e-9).unwrap_err().contains("stick arc on the pulley pulley"));
+        assert!(!Topology::two_pulley(ContactModel::Coulomb).is_open());
+        assert_eq!(Topology::two_pulley(ContactModel::Coulomb).pulleys(), [Pulley::Driven, Pulley::Driver]);
+    }
+
     /// The scene decides the topology by its contact effect.
     #[test]
     fn built_from_the_scene_contact() {

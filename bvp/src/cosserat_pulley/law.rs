@@ -252,8 +252,11 @@ impl SectionLaw for ScaledCosseratPulley {
         (FRAC_PI_2, 1e-9)
     }
 
+    /// Not read: the one-pulley run does not use the loop's acceptance test
+    /// (`belt::solution::on_branch`, whose arc force is arc state 0); its points are
+    /// judged by `CosseratPulleySolution::check_admissible`, whose positive force is T̃.
     fn arc_force_name(&self) -> &'static str {
-        "moment"
+        "effective tension"
     }
 
     fn positive_force(kind: SegmentKind, pt: &BeltPoint) -> Option<(&'static str, f64)> {
