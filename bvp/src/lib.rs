@@ -35,6 +35,7 @@ pub mod string_hanging;
 pub mod string_drive;
 pub mod rod_hanging;
 pub mod cosserat_hanging;
+pub mod cosserat_pulley;
 
 pub use error::BvpError;
 pub use problem::{JacobianMode, Problem, Scalar};

@@ -1,7 +1,7 @@
 //! From a validated scene to a BVP run: which belt problem the scene is, which method and
 //! tolerance solve it, and the outcome as a [`SolutionView`] with its summary and cost.
 
-use drive::scene::{Analysis, Contact, Scene, Theory};
+use drive::scene::{Analysis, Contact, Layout, OnePulleyLoad, Scene, Theory};
 use drive::summary::Summary;
 use drive::view::SolutionView;
 use thiserror::Error;
@@ -9,6 +9,7 @@ use thiserror::Error;
 use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
 use crate::cosserat_hanging::{self, CosseratHanging};
+use crate::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution};
 use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
 use crate::string_drive::{self, StringDrive};
@@ -128,6 +129,53 @@ pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
         driven_torque: scene.drive.driven_torque,
         driven_damping: scene.drive.driven_damping,
     }
+}
+
+/// The physical data of a one-pulley Cosserat scene (`drive.layout: "one-pulley"`,
+/// theory `cosserat`, analysis `steady`, Coulomb contact) in mode `tensions`
+/// (docs/cosserat-pulley.md).
+///
+/// # Errors
+/// [`SceneSolveError::Unsupported`] for another layout, theory, analysis or contact, and
+/// for the prescription modes `transition` and `pulley_speed` (not built yet; the mode
+/// and its values are named).
+pub fn cosserat_pulley_data(scene: &Scene) -> Result<CosseratPulley, SceneSolveError> {
+    let d = &scene.drive;
+    let unsupported = |what: String| Err(SceneSolveError::Unsupported(what));
+    if !(d.layout == Layout::OnePulley && scene.belt.theory == Theory::Cosserat && scene.analysis == Analysis::Steady) {
+        return unsupported(format!(
+            "layout {}, theory {}, analysis {}: the one-pulley BVP solves the Cosserat belt in steady motion",
+            d.layout, scene.belt.theory, scene.analysis
+        ));
+    }
+    let Contact::Coulomb(friction) = scene.effects.contact else {
+        return unsupported(format!("contact {:?}: the one-pulley BVP has Coulomb friction (stick and slip)", scene.effects.contact));
+    };
+    let (tension_in, tension_out) = match d.one_pulley_load() {
+        Some(OnePulleyLoad::Tensions { tension_in, tension_out }) => (tension_in, tension_out),
+        other => return unsupported(format!("one-pulley prescription {other:?}: the BVP solves mode `tensions` (N_in and N_out given) only")),
+    };
+    Ok(CosseratPulley {
+        radius: d.pulley_radius,
+        end_distance: d.end_distance.unwrap_or(f64::NAN),
+        transport_rate: d.transport_rate.unwrap_or(f64::NAN),
+        tension_in,
+        tension_out,
+        axial_stiffness: scene.belt.axial_stiffness,
+        bending_stiffness: scene.belt.bending_stiffness.unwrap_or(f64::NAN),
+        shear_stiffness: scene.belt.shear_stiffness.unwrap_or(f64::NAN),
+        mass_per_length: scene.belt.mass_per_length,
+        friction,
+        inertia: scene.effects.inertia == Some(true),
+    })
+}
+
+/// Solve a one-pulley Cosserat scene in mode `tensions` by the BVP method of `opts`
+/// ([`cosserat_pulley_data`], [`cosserat_pulley::solve`]). Not reached from
+/// [`solve_scene`] yet: the common [`SolutionView`] is typed on the two-pulley contour,
+/// so [`drive::not_yet_solvable`] still refuses the layout for both solvers.
+pub fn solve_one_pulley(scene: &Scene, opts: &BvpRunOptions) -> Result<CosseratPulleySolution, SceneSolveError> {
+    Ok(cosserat_pulley::solve(&cosserat_pulley_data(scene)?, opts)?)
 }
 
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`), the

@@ -35,6 +35,23 @@ pub enum BeltError {
     /// √(EA/ρ) (ρc² < EA in (D2)).
     #[error("no steady solution: belt speed ω₁R = {} m/s reaches the longitudinal wave speed √(EA/ρ) = {} m/s", Sig(*belt_speed), Sig(*wave_speed))]
     WaveSpeedReached { belt_speed: f64, wave_speed: f64 },
+    /// Moving Cosserat belt: the transport term χ = ρc² must stay below the axial and the
+    /// shear stiffness (spec §1.2: the constitutive inversion divides by b − χ).
+    #[error("no steady solution: transport term ρc² = {} N is at or above the {stiffness} {} N (critical transport rate √(b/ρ) = {} m/s, given c = {} m/s)", Sig(*chi), Sig(*value), Sig(*critical_rate), Sig(*transport_rate))]
+    SpeedAtOrAboveCritical { stiffness: &'static str, value: f64, chi: f64, transport_rate: f64, critical_rate: f64 },
+    /// Moving belt on one pulley: an end's effective tension T̃ = N − ρc²(1 + N/b₁) is not
+    /// positive (the belt would buckle under its own momentum flux).
+    #[error("no steady solution: effective tension T̃ = {} N ≤ 0 at the {end} end (axial force {} N, ρc² = {} N)", Sig(*effective), Sig(*tension), Sig(*chi))]
+    EffectiveTensionNotPositive { end: &'static str, tension: f64, effective: f64, chi: f64 },
+    /// One pulley: the tension ratio needs more slip than the wrap offers — the creep
+    /// slip arc ln(T̃_high/T̃_low)/μ exceeds the contact arc (the belt slides over the
+    /// whole contact: no steady creep solution).
+    #[error("no steady creep solution: friction capacity exceeded — slip arc ln(T̃_high/T̃_low)/μ = {} rad (T̃_in = {} N, T̃_out = {} N, μ = {}) exceeds the contact arc {} rad", Sig(*slip_arc), Sig(*effective_in), Sig(*effective_out), Sig(*mu), Sig(*contact_arc))]
+    CapstanLimitExceeded { slip_arc: f64, contact_arc: f64, effective_in: f64, effective_out: f64, mu: f64 },
+    /// One pulley: an admissibility condition of the assumed stick/slip topology fails
+    /// after the solve (spec §2.4), with the numbers.
+    #[error("inadmissible one-pulley solution: {0}")]
+    Inadmissible(String),
     /// Kirchhoff rod: the string of the same data (the homotopy start) failed.
     #[error("string of the same data: {0}")]
     StringStart(Box<BeltError>),

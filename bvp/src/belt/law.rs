@@ -258,6 +258,15 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         rows: &mut Rows<D>,
     );
 
+    /// (3) The end conditions of an open topology ([`Junction::OpenEnds`](super::topology::Junction::OpenEnds)):
+    /// `inflow` is the state at the start of segment 0, `outflow` at the end of the last
+    /// segment. Only a law written for an open layout (the Cosserat belt on one pulley)
+    /// is ever put on an open topology; a closed-loop law keeps this default, which
+    /// says so.
+    fn open_ends<D: Scalar>(&self, _inflow: &[D], _outflow: &[D], _p: &[D], _eta: D, _rows: &mut Rows<D>) {
+        unreachable!("a closed-loop section law has no end conditions: it is never put on an open topology")
+    }
+
     /// (3) The conditions of the whole loop, after the junctions: the total unstretched
     /// length, and for a drive the stick-zone kinematics and the driven pulley's torque
     /// balance.

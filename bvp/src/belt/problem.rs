@@ -3,7 +3,8 @@
 //!
 //! Right-hand sides: a span asks the law with its span parameter, an arc with its polar
 //! angle φ = φ_a + Δφ ξ and Δφ = φ_b − φ_a. Conditions, in this order: the junction that
-//! closes the loop (the belt leaves the last arc into segment 0), then the junction at
+//! closes the loop (the belt leaves the last arc into segment 0) — on an open topology
+//! the end conditions of the inflow and outflow ends instead — then the junction at
 //! the end of each segment 0, 1, …, m − 2, then the law's loop conditions. The closure
 //! jump of a frictionless loop is added at the driver's first contact.
 
@@ -98,6 +99,7 @@ impl<L: SectionLaw> Problem for BeltProblem<L> {
                 Junction::ContactEnd { pulley, angle, closes_loop } => {
                     self.law.contact_end(pulley, p[angle], yb[k], start, closes_loop, p, eta, &mut rows);
                 }
+                Junction::OpenEnds => self.law.open_ends(start, yb[k], p, eta, &mut rows),
             }
         }
         self.law.loop_conditions(topo, ya, yb, p, eta, &mut rows);
@@ -176,5 +178,17 @@ mod tests {
             let drive = ScaledStringDrive::fixture(inertia, weight);
             declared_params_are_complete(&BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive), 0.6);
         }
+        let pulley = crate::cosserat_pulley::ScaledCosseratPulley {
+            axial: 600.0,
+            shear: 70.0,
+            chi: 0.03,
+            bending_start: 0.05,
+            bending: 0.07,
+            end_distance: 5.0,
+            end_forces: [0.97, 0.64],
+            mu: 0.3,
+            slip_sign: 1.0,
+        };
+        declared_params_are_complete(&BeltProblem::new(Topology::one_pulley(), pulley), 0.6);
     }
 }

@@ -92,3 +92,15 @@ pub fn homotopy_and_final_solve<P: Problem>(
     stats.close_with(&solution.stats, clock);
     Ok(Solved { solution, stats, homotopy_steps: branch.points.len() })
 }
+
+/// The stages of a problem whose start is already at the scene (η = `start.eta`, no
+/// homotopy needed): one collocation solve at the path tolerance from `start` (its
+/// failure is reported as the homotopy stage's), then the final solve.
+pub fn direct_and_final_solve<P: Problem>(problem: &P, start: &Solution, opts: &BeltOptions, clock: Instant) -> Result<Solved, StageError> {
+    let path = collocation::solve(problem, start, &path_options(opts)).map_err(StageError::Homotopy)?;
+    let mut stats = Stats::default();
+    stats.add_work(&path.stats);
+    let solution = final_solve(problem, &path, opts).map_err(StageError::Final)?;
+    stats.close_with(&solution.stats, clock);
+    Ok(Solved { solution, stats, homotopy_steps: 1 })
+}

@@ -379,7 +379,7 @@ impl<L: SectionLaw> BeltSolution<L> {
         let (edge_start, edge_end) = match (pulley, edges) {
             (Pulley::Driver, Some(e)) => (Some(e.driver_start), Some(e.driver_end)),
             (Pulley::Driven, Some(e)) => (Some(e.driven_start), Some(e.driven_end)),
-            (_, None) => (None, None),
+            (Pulley::Single, _) | (_, None) => (None, None),
         };
         let edge_pressure = |k: usize, xi: f64| match L::CONTACT_EDGES {
             ContactEdges::Pressures => self.point(k, xi).pressure,

@@ -34,13 +34,18 @@ use drive::scene::{Contact, Scene};
 pub use crate::sigma_map::Side;
 pub use drive::contour::Direction;
 
-/// A pulley of the two-pulley drive.
+/// A pulley of the two-pulley drive, or the single pulley of the open one-pulley
+/// layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Pulley {
     /// The driver (left, centre at x = −H/2).
     Driver,
     /// The driven pulley (right, centre at x = +H/2).
     Driven,
+    /// The one pulley of the open layout (centre at the origin; the belt arrives along
+    /// its upper side in +x and leaves along its lower side in −x, as on the driven
+    /// pulley of the loop).
+    Single,
 }
 
 impl Pulley {
@@ -49,6 +54,7 @@ impl Pulley {
         match self {
             Pulley::Driver => -0.5,
             Pulley::Driven => 0.5,
+            Pulley::Single => 0.0,
         }
     }
 
@@ -57,6 +63,7 @@ impl Pulley {
         match self {
             Pulley::Driver => "driver",
             Pulley::Driven => "driven",
+            Pulley::Single => "pulley",
         }
     }
 
@@ -64,7 +71,7 @@ impl Pulley {
     /// unwrapped as the BVP uses them: driven (π/2, −π/2), driver (−π/2, −3π/2).
     pub fn tight_angles(self) -> (f64, f64) {
         match self {
-            Pulley::Driven => (FRAC_PI_2, -FRAC_PI_2),
+            Pulley::Driven | Pulley::Single => (FRAC_PI_2, -FRAC_PI_2),
             Pulley::Driver => (-FRAC_PI_2, -3.0 * FRAC_PI_2),
         }
     }
@@ -167,6 +174,10 @@ pub enum Junction {
     /// The belt leaves a pulley at angle p[angle]; `closes_loop` at the end of the last
     /// segment (the material coordinate restarts at 0 and the tangent angle gains 2π).
     ContactEnd { pulley: Pulley, angle: usize, closes_loop: bool },
+    /// The end of the last segment of an open topology: no junction, the inflow end
+    /// (start of segment 0) and the outflow end (end of the last segment) carry the
+    /// law's end conditions instead.
+    OpenEnds,
 }
 
 /// The contact model of the pulleys, as the topology sees it.
@@ -203,6 +214,7 @@ pub struct Topology {
     closure_jump: Option<usize>,
     motion: Option<Motion>,
     direction: Direction,
+    open: bool,
 }
 
 impl Topology {
@@ -273,7 +285,37 @@ impl Topology {
             .zip(scalings)
             .map(|(&(kind, side, _), scaling)| Segment { kind, side, scaling: scaling.expect("every segment is scaled") })
             .collect();
-        Self { segments, param_names: names, closure_jump, motion, direction }
+        Self { segments, param_names: names, closure_jump, motion, direction, open: false }
+    }
+
+    /// The open one-pulley layout (spec §2.4): inflow span, stick arc, slip arc, outflow
+    /// span on [`Pulley::Single`], the belt running clockwise. Parameters: the two span
+    /// parameters `l0`, `l3`, then the contact angles `phi_a` (first contact), `phi_t`
+    /// (stick → slip), `phi_b` (last contact); no closure jump and no motion (the
+    /// transport rate is given); the law's own parameters follow.
+    pub fn one_pulley() -> Self {
+        let span = |param, side| Segment { kind: SegmentKind::Span, side, scaling: Scaling::Span { param } };
+        let arc = |kind, start, end| Segment { kind: SegmentKind::Arc(kind), side: Side::Arc, scaling: Scaling::Arc { pulley: Pulley::Single, start, end } };
+        let segments = vec![span(0, Side::UpperSpan), arc(ArcKind::Stick, 2, 3), arc(ArcKind::Slip, 3, 4), span(1, Side::LowerSpan)];
+        let param_names = ["l0", "l3", "phi_a", "phi_t", "phi_b"].map(String::from).to_vec();
+        Self { segments, param_names, closure_jump: None, motion: None, direction: Direction::Clockwise, open: true }
+    }
+
+    /// True for an open topology (the one-pulley layout): its last segment ends in
+    /// [`Junction::OpenEnds`].
+    pub fn is_open(&self) -> bool {
+        self.open
+    }
+
+    /// The pulleys the topology's arcs lie on, in order of first appearance.
+    pub fn pulleys(&self) -> Vec<Pulley> {
+        let mut out: Vec<Pulley> = Vec::new();
+        for p in self.segments.iter().filter_map(Segment::pulley) {
+            if !out.contains(&p) {
+                out.push(p);
+            }
+        }
+        out
     }
 
     /// The topology of a scene: its layout (the two-pulley loop), its contact effect and
@@ -350,6 +392,9 @@ impl Topology {
     /// The junction at the end of segment `k`.
     pub fn junction(&self, k: usize) -> Junction {
         let m = self.segments.len();
+        if self.open && k + 1 == m {
+            return Junction::OpenEnds;
+        }
         let (here, next) = (&self.segments[k], &self.segments[(k + 1) % m]);
         match (here.scaling, next.scaling) {
             (Scaling::Span { .. }, Scaling::Span { .. }) => Junction::MidSpan,
@@ -423,7 +468,7 @@ impl Topology {
     // The negated comparisons are deliberate: a NaN parameter must fail these checks.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub fn check(&self, p: &[f64], window: f64, slack: f64) -> Result<(), String> {
-        for pulley in [Pulley::Driven, Pulley::Driver] {
+        for pulley in self.pulleys() {
             let (first, last) = (self.first_arc(pulley), self.last_arc(pulley));
             let (tight_a, tight_b) = pulley.tight_angles();
             let (Scaling::Arc { start, .. }, Scaling::Arc { end, .. }) = (self.segments[first].scaling, self.segments[last].scaling)
@@ -487,7 +532,7 @@ impl Topology {
                 p[param] = span;
             }
         }
-        for pulley in [Pulley::Driven, Pulley::Driver] {
+        for pulley in self.pulleys() {
             let (a, b) = pulley.tight_angles();
             let arcs = self.arcs_on(pulley);
             for (i, &k) in arcs.iter().enumerate() {
@@ -603,6 +648,30 @@ mod tests {
         assert_eq!(PowerFlow::of_load(-2.0, ccw), PowerFlow::FromDriver);
         assert_eq!(PowerFlow::of_load(2.0, ccw), PowerFlow::FromDriven);
         assert_eq!(PowerFlow::of_load(0.0, ccw), PowerFlow::FromDriver);
+    }
+
+    /// The open one-pulley layout: four segments on the single pulley, five parameters,
+    /// the contact junctions of the loop and `OpenEnds` after the outflow span; the
+    /// acceptance check sees the one pulley only.
+    #[test]
+    fn one_pulley_is_open() {
+        let t = Topology::one_pulley();
+        assert!(t.is_open() && t.has_friction() && t.motion().is_none() && t.closure_jump().is_none());
+        assert_eq!(t.param_names(), ["l0", "l3", "phi_a", "phi_t", "phi_b"]);
+        assert_eq!(t.pulleys(), [Pulley::Single]);
+        assert_eq!(t.junction(0), Junction::ContactStart { pulley: Pulley::Single, angle: 2 });
+        assert_eq!(t.junction(1), Junction::ArcToArc { pulley: Pulley::Single, angle: 3 });
+        assert_eq!(t.junction(2), Junction::ContactEnd { pulley: Pulley::Single, angle: 4, closes_loop: false });
+        assert_eq!(t.junction(3), Junction::OpenEnds);
+        assert_eq!(t.sides(), [Side::UpperSpan, Side::Arc, Side::Arc, Side::LowerSpan]);
+        let p = t.tight_params(3.0);
+        assert_eq!(p, [3.0, 3.0, FRAC_PI_2, -FRAC_PI_2, -FRAC_PI_2]);
+        assert_eq!(t.check(&p, FRAC_PI_2, 1e-9), Ok(()));
+        let mut q = p.clone();
+        q[3] = FRAC_PI_2 + 0.1;
+        assert!(t.check(&q, FRAC_PI_2, 1e-9).unwrap_err().contains("stick arc on the pulley pulley"));
+        assert!(!Topology::two_pulley(ContactModel::Coulomb).is_open());
+        assert_eq!(Topology::two_pulley(ContactModel::Coulomb).pulleys(), [Pulley::Driven, Pulley::Driver]);
     }
 
     /// The scene decides the topology by its contact effect.

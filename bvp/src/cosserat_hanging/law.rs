@@ -59,12 +59,12 @@ pub struct ArcForce<D> {
     pub s_g: D,
 }
 
-impl ScaledCosseratHanging {
-    /// (CH2) F = T t + S n on an arc at stretch λ and shear angle γ.
-    pub fn arc_force<D: Scalar>(&self, lambda: D, gamma: D) -> ArcForce<D> {
-        let (b1, b2) = (self.rod.axial_stiffness, self.shear_stiffness);
+impl<D: Scalar> ArcForce<D> {
+    /// F̃ = T t + S n at stretch λ and shear angle γ for stiffnesses b₁, b₂ and the
+    /// transport term χ = ρc² (spec (C2); χ = 0 at rest, (CH2)).
+    pub fn new(b1: f64, b2: f64, chi: f64, lambda: D, gamma: D) -> Self {
         let (s, c) = (gamma.sin(), gamma.cos());
-        let t_l = c * c * b1 + s * s * b2;
+        let t_l = c * c * (b1 - chi) + s * s * (b2 - chi);
         let s_l = s * c * (b2 - b1);
         ArcForce {
             t: lambda * t_l - c * b1,
@@ -74,6 +74,73 @@ impl ScaledCosseratHanging {
             s_l,
             s_g: lambda * (c * c - s * s) * (b2 - b1) + c * b1,
         }
+    }
+}
+
+/// Where a Cosserat span meets an arc ([`contact_rows`]).
+#[derive(Debug, Clone, Copy)]
+pub enum Edge<D> {
+    /// First contact; the closure jump (if any) is added to the tangential force.
+    Start { jump: Option<D> },
+    /// Last contact; `closes_loop` where θ gains 2π and s restarts.
+    End { closes_loop: bool },
+}
+
+/// (CH4) / spec §1.6: the seven conditions at a contact boundary of a Cosserat span
+/// `span` = (x, y, θ, M, F̃ₓ, F̃ᵧ, s) and an arc end with (θ, M, s) = `arc` and force
+/// `f` (T, S of (C2)): on the circle of `pulley` at φ, θ, M, F̃ and s continuous — no
+/// concentrated edge force.
+#[allow(clippy::too_many_arguments)]
+pub fn contact_rows<D: Scalar>(radius: f64, pulley: Pulley, phi: D, span: &[D], arc: [D; 3], f: &ArcForce<D>, edge: Edge<D>, rows: &mut Rows<D>) {
+    let (px, py) = on_pulley(radius, pulley, phi);
+    let (tx, ty, nx, ny) = (phi.sin(), -phi.cos(), phi.cos(), phi.sin());
+    let [theta, moment, material] = arc;
+    rows.push(span[0] - px);
+    rows.push(span[1] - py);
+    match edge {
+        Edge::Start { jump } => {
+            rows.push(theta - span[2]);
+            rows.push(moment - span[3]);
+            let carried = f.t - (span[4] * tx + span[5] * ty);
+            rows.push(match jump {
+                Some(j) => carried - j,
+                None => carried,
+            });
+            rows.push(f.s - (span[4] * nx + span[5] * ny));
+            rows.push(material - span[6]);
+        }
+        Edge::End { closes_loop } => {
+            rows.push(if closes_loop { span[2] - (theta + 2.0 * PI) } else { span[2] - theta });
+            rows.push(span[3] - moment);
+            rows.push(span[4] * tx + span[5] * ty - f.t);
+            rows.push(span[4] * nx + span[5] * ny - f.s);
+            rows.push(if closes_loop { span[6] } else { span[6] - material });
+        }
+    }
+}
+
+/// (CH1) / spec (C1) in s, times the span length ℓ: state (x, y, θ, M, F̃ₓ, F̃ᵧ, s),
+/// Γ₁ = (F̃·e₁ + χ)/(b₁ − χ), Γ₂ = F̃·e₂/(b₂ − χ) (χ = 0 at rest), weight ρg per length.
+#[allow(clippy::too_many_arguments)]
+pub fn span_rhs<D: Scalar>(b1: f64, b2: f64, chi: f64, weight: f64, a: D, l: D, y: &[D], f: &mut [D]) {
+    let (n, q) = ScaledCosseratHanging::span_nq(y);
+    let (g1, g2) = ((n + chi) / (b1 - chi), q / (b2 - chi));
+    let (c, s) = (y[2].cos(), y[2].sin());
+    let dx = (g1 + 1.0) * c - g2 * s;
+    let dy = (g1 + 1.0) * s + g2 * c;
+    f[0] = l * dx;
+    f[1] = l * dy;
+    f[2] = l * y[3] / a;
+    f[3] = -(l * (dx * y[5] - dy * y[4]));
+    f[4] = D::from(0.0);
+    f[5] = l * weight;
+    f[6] = l;
+}
+
+impl ScaledCosseratHanging {
+    /// (CH2) F = T t + S n on an arc at stretch λ and shear angle γ.
+    pub fn arc_force<D: Scalar>(&self, lambda: D, gamma: D) -> ArcForce<D> {
+        ArcForce::new(self.rod.axial_stiffness, self.shear_stiffness, 0.0, lambda, gamma)
     }
 
     /// The frictionless arc in d/ds ((CH3)): (λ′, θ′, M′, γ′) and the force at polar
@@ -99,8 +166,9 @@ impl ScaledCosseratHanging {
         self.rod.weight * phi.sin() - ds + f.t * y[LAMBDA] / self.rod.radius
     }
 
-    /// (CH1) Axial and shear force N = F·e₁, Q = F·e₂ of a span state.
-    fn span_nq<D: Scalar>(y: &[D]) -> (D, D) {
+    /// (CH1) Axial and shear force N = F·e₁, Q = F·e₂ of a span state (with transport,
+    /// the effective force's components F̃·e₁, F̃·e₂).
+    pub fn span_nq<D: Scalar>(y: &[D]) -> (D, D) {
         let (c, s) = (y[2].cos(), y[2].sin());
         (y[4] * c + y[5] * s, y[5] * c - y[4] * s)
     }
@@ -122,19 +190,8 @@ impl SectionLaw for ScaledCosseratHanging {
 
     fn span_rhs<D: Scalar>(&self, _: &Topology, l: D, y: &[D], _: &[D], eta: D, f: &mut [D]) {
         // (CH1) times the span length ℓ.
-        let a = self.rod.bending_at(eta);
-        let (n, q) = Self::span_nq(y);
-        let (g1, g2) = (n / self.rod.axial_stiffness, q / self.shear_stiffness);
-        let (c, s) = (y[2].cos(), y[2].sin());
-        let dx = (g1 + 1.0) * c - g2 * s;
-        let dy = (g1 + 1.0) * s + g2 * c;
-        f[0] = l * dx;
-        f[1] = l * dy;
-        f[2] = l * y[3] / a;
-        f[3] = -(l * (dx * y[5] - dy * y[4]));
-        f[4] = D::from(0.0);
-        f[5] = l * self.rod.weight;
-        f[6] = l;
+        let r = &self.rod;
+        span_rhs(r.axial_stiffness, self.shear_stiffness, 0.0, r.weight, r.bending_at(eta), l, y, f);
     }
 
     fn arc_rhs<D: Scalar>(&self, _: &Topology, _: ArcKind, _: Pulley, phi: D, dphi: D, y: &[D], _: &[D], eta: D, f: &mut [D]) {
@@ -151,35 +208,16 @@ impl SectionLaw for ScaledCosseratHanging {
     fn contact_start<D: Scalar>(&self, _: ArcKind, pulley: Pulley, phi: D, e: &[D], arc: &[D], jump: Option<D>, _: &[D], _: D, rows: &mut Rows<D>) {
         // (CH4): on the circle; θ, M, F = T t + S n and s continuous (the closure jump
         // is added to the tangential force at the driver's first contact).
-        let (px, py) = on_pulley(self.rod.radius, pulley, phi);
         let f = self.arc_force(arc[LAMBDA], phi - FRAC_PI_2 - arc[THETA]);
-        let (tx, ty, nx, ny) = (phi.sin(), -phi.cos(), phi.cos(), phi.sin());
-        rows.push(e[0] - px);
-        rows.push(e[1] - py);
-        rows.push(arc[THETA] - e[2]);
-        rows.push(arc[MOMENT] - e[3]);
-        let carried = f.t - (e[4] * tx + e[5] * ty);
-        rows.push(match jump {
-            Some(j) => carried - j,
-            None => carried,
-        });
-        rows.push(f.s - (e[4] * nx + e[5] * ny));
-        rows.push(arc[MATERIAL] - e[6]);
+        contact_rows(self.rod.radius, pulley, phi, e, [arc[THETA], arc[MOMENT], arc[MATERIAL]], &f, Edge::Start { jump }, rows);
     }
 
     fn contact_end<D: Scalar>(&self, pulley: Pulley, phi: D, arc_end: &[D], s: &[D], closes_loop: bool, _: &[D], _: D, rows: &mut Rows<D>) {
         // (CH4) where the belt leaves the pulley; θ gains 2π and s restarts where the
         // loop closes.
-        let (px, py) = on_pulley(self.rod.radius, pulley, phi);
         let f = self.arc_force(arc_end[LAMBDA], phi - FRAC_PI_2 - arc_end[THETA]);
-        let (tx, ty, nx, ny) = (phi.sin(), -phi.cos(), phi.cos(), phi.sin());
-        rows.push(s[0] - px);
-        rows.push(s[1] - py);
-        rows.push(if closes_loop { s[2] - (arc_end[THETA] + 2.0 * PI) } else { s[2] - arc_end[THETA] });
-        rows.push(s[3] - arc_end[MOMENT]);
-        rows.push(s[4] * tx + s[5] * ty - f.t);
-        rows.push(s[4] * nx + s[5] * ny - f.s);
-        rows.push(if closes_loop { s[6] } else { s[6] - arc_end[MATERIAL] });
+        let arc = [arc_end[THETA], arc_end[MOMENT], arc_end[MATERIAL]];
+        contact_rows(self.rod.radius, pulley, phi, s, arc, &f, Edge::End { closes_loop }, rows);
     }
 
     fn loop_conditions<D: Scalar>(&self, topology: &Topology, _: &[&[D]], yb: &[&[D]], _: &[D], _: D, rows: &mut Rows<D>) {
