@@ -318,7 +318,7 @@ fn parse_json(file: &Path, text: &str) -> Result<Value, OutsideError> {
         let literal = ["-Infinity", "Infinity", "NaN", "-NaN", "+Infinity"].into_iter().find(|l| rest.starts_with(l));
         if let Some(l) = literal {
             out.push('"');
-            out.push_str(NON_FINITE_MARK);
+            out.push_str("\\u0000non-finite:"); // NON_FINITE_MARK, escaped in the JSON text
             out.push_str(l);
             out.push('"');
             rest = &rest[l.len()..];

@@ -1,0 +1,239 @@
+//! `beltcheck check` and `beltcheck reference` end to end (issue 16): results written by
+//! beltcheck's own FE runs, read back as an outside code's, pass with the gate's limits
+//! and measure the same errors as the gate; one quantity perturbed beyond its limit
+//! fails and is named; every kind of bad file is a named error (exit 2, nothing
+//! compared) or a named skip (and a check with nothing comparable fails, exit 1).
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use serde_json::Value;
+
+mod common;
+use common::{beltcheck, stderr, stdout};
+
+const SCENE: &str = "scenes/string-hanging.json";
+const FORMULATION: &str = "string-gauss";
+const MESHES: [usize; 3] = [64, 128, 256];
+
+/// A fresh directory for one test.
+fn dir(name: &str) -> PathBuf {
+    let d = common::temp("check", name);
+    let _ = std::fs::remove_file(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Result files of `solve --method fem` at 64, 128 and 256 elements, fields on the
+/// harness's 2048-point σ grid (written once per test process).
+fn fe_results() -> &'static [(usize, Value)] {
+    static RESULTS: OnceLock<Vec<(usize, Value)>> = OnceLock::new();
+    RESULTS.get_or_init(|| {
+        let d = dir("fe-source");
+        MESHES
+            .iter()
+            .map(|&n| {
+                let path = d.join(format!("fe-{n}.json"));
+                let o = beltcheck(&[
+                    "solve", SCENE, "--method", "fem", "--formulation", FORMULATION, "--elements", &n.to_string(), "--fields", "2048", "--json", path.to_str().unwrap(),
+                ]);
+                assert!(o.status.success(), "{}", stderr(&o));
+                (n, serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap())
+            })
+            .collect()
+    })
+}
+
+/// Writes the FE results into `d`, each passed through `edit(elements, json)` first.
+fn write_results(d: &Path, edit: impl Fn(usize, &mut Value)) {
+    for (n, v) in fe_results() {
+        let mut v = v.clone();
+        edit(*n, &mut v);
+        std::fs::write(d.join(format!("fe-{n}.json")), serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    }
+}
+
+fn check(args: &[&str]) -> std::process::Output {
+    let mut all = vec!["check", SCENE];
+    all.extend_from_slice(args);
+    beltcheck(&all)
+}
+
+/// The gated error of `quantity` for the outside method, from `check --json`.
+fn check_error(json: &Path, quantity: &str) -> f64 {
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap();
+    let c = v["gate"]["checks"].as_array().unwrap().iter().find(|c| c["quantity"] == quantity && c["measure"] == "error").expect("the quantity is checked");
+    c["value"].as_f64().unwrap()
+}
+
+/// beltcheck's own FE runs, written as result files, pass `check` with the gate's
+/// limits — and the check measures exactly what the gate measures for the same
+/// formulation and meshes (the files carry the fields on the harness's σ grid, so the
+/// interpolation is exact; the errors agree to 1e-6 relative, far below the 1e-3 … 5e-2
+/// limits).
+#[test]
+fn own_fe_results_pass_with_the_gates_numbers() {
+    let d = dir("own");
+    write_results(&d, |_, _| {});
+    let json = d.join("check.json");
+    let o = check(&[d.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    assert!(out.contains("fem (outside)") && out.contains("passed"), "{out}");
+
+    let meshes = MESHES.map(|n| n.to_string()).join(",");
+    let gate_json = d.join("gate.json");
+    let g = beltcheck(&["gate", SCENE, "--formulation", FORMULATION, "--elements", &meshes, "--json", gate_json.to_str().unwrap()]);
+    assert_eq!(g.status.code(), Some(0), "{}", stdout(&g));
+    let gv: Value = serde_json::from_str(&std::fs::read_to_string(&gate_json).unwrap()).unwrap();
+    let gate_checks = gv[0]["checks"].as_array().unwrap();
+    let fe = format!("fem {FORMULATION}");
+    let mut compared = 0;
+    for c in gate_checks.iter().filter(|c| c["method"] == fe.as_str() && c["measure"] == "error") {
+        let q = c["quantity"].as_str().unwrap();
+        let (a, b) = (c["value"].as_f64().unwrap(), check_error(&json, q));
+        assert!((a - b).abs() <= 1e-6 * a.abs().max(1e-12), "{q}: gate {a:e}, check {b:e}");
+        compared += 1;
+    }
+    assert_eq!(compared, 10, "every gated quantity of string-hanging compared");
+}
+
+/// The same files with one quantity of the finest run moved 1 % (limit 1e-3) fail, and
+/// the failure table names the quantity.
+#[test]
+fn a_perturbed_quantity_fails_by_name() {
+    let d = dir("perturbed");
+    write_results(&d, |n, v| {
+        if n == 256 {
+            let t = v["summary"]["tension_upper_mid"].as_f64().unwrap();
+            v["summary"]["tension_upper_mid"] = Value::from(t * 1.01);
+        }
+    });
+    let o = check(&[d.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    let failed = out.split("FAILED").nth(1).expect("a failure table");
+    assert!(failed.contains("tension_upper_mid") && failed.contains("exceeds"), "{failed}");
+    assert!(!failed.contains("tension_lower_mid"), "only the perturbed quantity fails: {failed}");
+}
+
+/// A quantity missing from a run is a failing check that says so (not a pass).
+#[test]
+fn a_missing_quantity_fails_by_name() {
+    let d = dir("missing");
+    write_results(&d, |_, v| {
+        v["summary"].as_object_mut().unwrap().remove("y_lower_mid");
+    });
+    let o = check(&[d.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    let failed = out.split("FAILED").nth(1).expect("a failure table");
+    assert!(failed.contains("y_lower_mid") && failed.contains("absent"), "{failed}");
+}
+
+/// Runs of another scene and runs with no quantity the reference has are skipped by
+/// name; with nothing left to compare the check fails.
+#[test]
+fn skips_are_named_and_zero_comparable_runs_fail() {
+    let d = dir("skips");
+    write_results(&d, |n, v| match n {
+        64 => v["scene"] = Value::from("rod-hanging"),
+        128 => {
+            v["summary"] = serde_json::json!({});
+            v.as_object_mut().unwrap().remove("fields");
+        }
+        _ => v["converged"] = Value::from(false),
+    });
+    let o = check(&[d.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}");
+    assert!(out.contains("skipped 3 file(s)"), "{out}");
+    assert!(out.contains("scene `rod-hanging`"), "{out}");
+    assert!(out.contains("nothing to compare"), "{out}");
+    assert!(out.contains("\"converged\": false"), "{out}");
+    assert!(out.contains("zero comparable runs"), "{out}");
+}
+
+/// Each malformed file is exit status 2 with an error naming the file, the field and
+/// what was expected.
+#[test]
+fn bad_files_are_named_errors() {
+    let base = fe_results()[0].1.clone();
+    let cases: Vec<(&str, String, &[&str])> = vec![
+        ("nan.json", serde_json::to_string(&base).unwrap().replacen("\"y_upper_mid\":", "\"y_upper_mid\": NaN, \"_\":", 1), &["nan.json", "summary.y_upper_mid", "NaN", "finite"]),
+        ("typo.json", serde_json::to_string(&base).unwrap().replacen("\"y_upper_mid\"", "\"y_uper_mid\"", 1), &["typo.json", "summary.y_uper_mid", "y_upper_mid"]),
+        ("type.json", serde_json::to_string(&base).unwrap().replacen("\"converged\":true", "\"converged\":\"yes\"", 1), &["type.json", "converged", "expected a boolean"]),
+        ("nodisc.json", serde_json::to_string(&base).unwrap().replacen("\"discretisation\"", "\"_discretisation\"", 1), &["nodisc.json", "discretisation", "missing", "elements"]),
+        ("notjson.json", "{\"scene\": ".to_string(), &["notjson.json", "line 1"]),
+        ("sigma.json", {
+            let mut v = base.clone();
+            v["fields"]["sigma"][5] = Value::from(0.9);
+            serde_json::to_string(&v).unwrap()
+        }, &["sigma.json", "fields.sigma[5]", "contour normal"]),
+        ("short.json", {
+            let mut v = base.clone();
+            v["fields"]["tension"].as_array_mut().unwrap().pop();
+            serde_json::to_string(&v).unwrap()
+        }, &["short.json", "fields.tension", "2047"]),
+        ("part.json", {
+            let mut v = base.clone();
+            for k in ["sigma", "x", "y", "tension"] {
+                v["fields"][k].as_array_mut().unwrap().truncate(1000);
+            }
+            serde_json::to_string(&v).unwrap()
+        }, &["part.json", "gap", "round the whole loop"]),
+        ("bad.csv", "# {\"scene\":\"string-hanging\",\"method\":\"m\",\"converged\":true,\"summary\":{},\"cost\":{\"wall_seconds\":0,\"newton_iterations\":0,\"unknowns\":0},\"discretisation\":{\"elements\":8}}\nsigma,x,y,tension\n0,-0.225,0.08,nan\n".to_string(), &["bad.csv", "fields.tension[0]", "nan"]),
+    ];
+    for (name, text, needles) in cases {
+        let d = dir(&format!("bad-{name}"));
+        std::fs::write(d.join(name), text).unwrap();
+        let o = check(&[d.join(name).to_str().unwrap()]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{name}: {err}\n{}", stdout(&o));
+        for n in needles {
+            assert!(err.contains(n), "{name}: `{n}` not in: {err}");
+        }
+    }
+    // the same element count twice in one method
+    let d = dir("duplicate");
+    write_results(&d, |_, _| {});
+    std::fs::copy(d.join("fe-64.json"), d.join("fe-64-again.json")).unwrap();
+    let o = check(&[d.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("fe-64.json") && err.contains("fe-64-again.json") && err.contains("64 el."), "{err}");
+}
+
+/// The exported reference, at the harness's own σ grid, as CSV, reads back through
+/// `check` as a run that agrees with the reference (errors at round-off, within the
+/// BVP limits of 1e-6: a run at a tolerance is gated as a BVP run); `--sigma FILE` samples the same solution at given σ.
+#[test]
+fn the_reference_exports_and_reads_back() {
+    let d = dir("reference");
+    let csv = d.join("reference.csv");
+    let o = beltcheck(&["reference", SCENE, "--samples", "2048", "--format", "csv", "-o", csv.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json = d.join("check.json");
+    let c = check(&[csv.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    assert_eq!(c.status.code(), Some(0), "a BVP-kind run (a tolerance) is held to the BVP limits, no order: {}", stdout(&c));
+    for q in ["y_upper_mid", "tension_lower_mid", "deflection_max", "tension_l2"] {
+        let e = check_error(&json, q);
+        assert!(e < 1e-12, "{q}: {e:e}");
+    }
+
+    let sigma = d.join("sigma.txt");
+    std::fs::write(&sigma, "# three points\n0.1, 0.5\n1.2\n").unwrap();
+    let o = beltcheck(&["reference", SCENE, "--sigma", sigma.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["fields"]["sigma"], serde_json::json!([0.1, 0.5, 1.2]));
+    // σ = 0.1 lies on the upper span (x = σ − H/2), below the line y = R by the sag
+    let (x, y) = (v["fields"]["x"][0].as_f64().unwrap(), v["fields"]["y"][0].as_f64().unwrap());
+    assert!((x - (0.1 - 0.225)).abs() < 1e-12 && y < 0.08 && y > 0.0, "({x}, {y})");
+    assert_eq!(v["discretisation"]["tolerance"], 1e-10);
+
+    std::fs::write(&sigma, "0.1 abc\n").unwrap();
+    let o = beltcheck(&["reference", SCENE, "--sigma", sigma.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("`abc` is not a finite number"), "{}", stderr(&o));
+}
