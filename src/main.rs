@@ -90,6 +90,12 @@ enum Command {
     /// The scene's reference solution (the gate's BVP run) sampled where an outside code
     /// wants it: at the σ of a file, or at N equally spaced σ; as a result JSON or CSV.
     Reference(ReferenceArgs),
+    /// Print the JSON Schema of the scene or the result format (shipped in schemas/).
+    Schema {
+        /// Which format.
+        #[arg(value_enum)]
+        format: SchemaArg,
+    },
     /// List every summary quantity of the result format: its JSON name, unit and
     /// meaning (a scene produces only those its layout and effects call for).
     Quantities,
@@ -239,6 +245,14 @@ struct ReferenceArgs {
 }
 
 #[derive(Clone, Copy, ValueEnum)]
+enum SchemaArg {
+    /// The scene format (DESIGN.md "Scene format").
+    Scene,
+    /// The result format (DESIGN.md "Result format", with `discretisation`).
+    Result,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
 enum FormatArg {
     /// Result JSON (DESIGN.md "Result format").
     Json,
@@ -304,6 +318,14 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some(Command::Reference(args)) => run_reference(&args),
+        Some(Command::Schema { format }) => {
+            let schema = match format {
+                SchemaArg::Scene => drive::schemas::scene_schema(),
+                SchemaArg::Result => drive::schemas::result_schema(),
+            };
+            print!("{}", drive::schemas::to_text(&schema));
+            Ok(())
+        }
         Some(Command::Check(args)) => match run_check(&args) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -892,8 +914,8 @@ skipped {} file(s):", checked.skipped.len());
 /// Why `reference --sigma FILE` refuses the file.
 #[derive(Debug, thiserror::Error)]
 enum SigmaFileError {
-    #[error("{}: cannot read: {source}", .file.display())]
-    Read { file: PathBuf, source: std::io::Error },
+    #[error("{}: cannot read: {error}", .file.display())]
+    Read { file: PathBuf, error: std::io::Error },
     #[error("{}: line {line}: `{token}` is not a finite number (σ in m)", .file.display())]
     NotANumber { file: PathBuf, line: usize, token: String },
     #[error("{}: no σ value in the file", .file.display())]
@@ -902,14 +924,14 @@ enum SigmaFileError {
 
 /// σ values of a file: numbers separated by commas, blanks or newlines; `#` comments.
 fn read_sigma_file(file: &Path) -> Result<Vec<f64>, SigmaFileError> {
-    let text = std::fs::read_to_string(file).map_err(|source| SigmaFileError::Read { file: file.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(file).map_err(|error| SigmaFileError::Read { file: file.to_path_buf(), error })?;
     let mut sigma = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let line = line.split('#').next().unwrap_or("");
         for token in line.split(|c: char| c == ',' || c.is_whitespace()).filter(|t| !t.is_empty()) {
             match token.parse::<f64>() {
                 Ok(v) if v.is_finite() => sigma.push(v),
-                _ => return Err(SigmaFileError::NotANumber { file: file.to_path_buf(), line: i + 1, token: drive::error::clip(token).to_string() }),
+                _ => return Err(SigmaFileError::NotANumber { file: file.to_path_buf(), line: i + 1, token: drive::error::clip(token) }),
             }
         }
     }

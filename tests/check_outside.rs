@@ -237,3 +237,14 @@ fn the_reference_exports_and_reads_back() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("`abc` is not a finite number"), "{}", stderr(&o));
 }
+
+/// `beltcheck schema scene|result` prints the shipped schemas.
+#[test]
+fn schema_prints_the_shipped_files() {
+    for (what, file) in [("scene", "schemas/scene.schema.json"), ("result", "schemas/result.schema.json")] {
+        let o = beltcheck(&["schema", what]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert_eq!(stdout(&o), std::fs::read_to_string(file).unwrap(), "{what}");
+    }
+    assert_eq!(beltcheck(&["schema", "scenes"]).status.code(), Some(2));
+}

@@ -14,7 +14,8 @@
 //! - [`view`]: the common solution view ([`SolutionView`]) through which the harness
 //!   samples any solution, and [`sample_fields`];
 //! - [`summary`], [`result`]: the named scalars and the result JSON of DESIGN.md;
-//! - [`error`]: [`SceneError`] and [`ResultError`], which carry paths and numbers.
+//! - [`error`]: [`SceneError`] and [`ResultError`], which carry paths and numbers;
+//! - [`schemas`]: the JSON Schemas of the scene and result formats, from these types.
 //!
 //! Units are SI throughout. Nothing here panics on any input: bad input is an
 //! error value.
@@ -50,6 +51,7 @@ pub mod pending;
 pub mod result;
 pub mod scene;
 mod schema;
+pub mod schemas;
 mod suggest;
 pub mod summary;
 pub mod view;

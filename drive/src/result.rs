@@ -33,7 +33,7 @@ pub const FIELD_NORM_NAMES: [&str; 6] = [
 
 /// Fields sampled at points σ of the contour (`fields`); all vectors have the
 /// length of `sigma`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Fields {
     /// Contour coordinate σ, m, in [0, 2H + 2πR).
     pub sigma: Vec<f64>,
@@ -101,7 +101,7 @@ impl Fields {
 /// `time`. Quantities as in [`Summary`] (tensions are the axial forces at x = 0 of each
 /// span, torques the moment of the belt on the pulley, clockwise positive); arcs in
 /// rad. Written by FE drive runs only (docs/fem-drive.md §8).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct History {
     /// Time t at the end of each step, s.
     pub time: Vec<f64>,
@@ -201,7 +201,7 @@ pub const SURFACE_FIELD_NAMES: [&str; 7] = ["x", "y", "z", "membrane_force", "be
 /// every field a matrix `[i][j]` of `sigma.len()` rows of `zeta.len()` values. JSON:
 /// `{"sigma": [...], "zeta": [...], "<name>": [[...], ...], ...}` with names of
 /// [`SURFACE_FIELD_NAMES`].
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SurfaceFields {
     /// Contour coordinate σ along the belt, m.
     pub sigma: Vec<f64>,
@@ -245,7 +245,7 @@ impl SurfaceFields {
 }
 
 /// Fields at one instant of a time series (`history.frames[k]`).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Frame {
     /// t, s.
     pub time: f64,
@@ -263,7 +263,7 @@ pub struct Frame {
 /// [`History`] converts to it with the same JSON. Channel names are lowercase
 /// identifiers (`a`–`z`, `0`–`9`, `_`, `.`), other than `time` and `frames`; their units
 /// are the model's (the drive's: [`History`]).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct TimeSeries {
     /// Time t at the end of each step, s.
     pub time: Vec<f64>,
@@ -351,7 +351,7 @@ fn check_finite_vec(name: &str, v: &[f64]) -> Result<(), ResultError> {
 /// tolerance), a 1-D mesh along σ (the rods and strings), or a 2-D mesh over (σ, ζ) with a
 /// time step (the shell's transient). JSON: `{"tolerance": 1e-8}`, `{"elements": 64}`,
 /// `{"mesh2d": {"sigma": 64, "zeta": 4, "time_step": 0.01}}`.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Discretisation {
     /// BVP: the solver's relative tolerance (its norm is defined by the `bvp` crate).
@@ -445,7 +445,7 @@ pub fn fmt_tolerance(t: f64) -> String {
 }
 
 /// Work spent on a run (`cost`).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Cost {
     /// Wall-clock time of the solve, s.
     pub wall_seconds: f64,
@@ -459,7 +459,7 @@ pub struct Cost {
 }
 
 /// One run = scene + method + discretisation (DESIGN.md "Result format").
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RunResult {
     /// Scene name.
     pub scene: String,

@@ -47,12 +47,12 @@ pub const MIN_FIELD_SAMPLES: usize = 4;
 #[derive(Debug, thiserror::Error)]
 pub enum OutsideError {
     /// The file or directory cannot be read.
-    #[error("{}: cannot read: {source}", .file.display())]
+    #[error("{}: cannot read: {error}", .file.display())]
     Read {
         /// The path.
         file: PathBuf,
         /// The I/O error.
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// A directory without result files.
     #[error("{}: no result file (*.json, *.csv) in this directory", .dir.display())]
@@ -97,12 +97,12 @@ pub enum OutsideError {
         message: String,
     },
     /// The result's own consistency (field lengths, a discretisation out of range).
-    #[error("{}: {source}", .file.display())]
+    #[error("{}: {error}", .file.display())]
     Result {
         /// The file.
         file: PathBuf,
         /// The offending entry.
-        source: drive::error::ResultError,
+        error: drive::error::ResultError,
     },
     /// A result without `discretisation`: its run cannot be placed in a sequence.
     #[error("{}: `discretisation` is missing: expected e.g. {{\"elements\": 64}} (or {{\"tolerance\": 1e-8}}, {{\"mesh2d\": {{…}}}})", .file.display())]
@@ -239,7 +239,7 @@ pub fn result_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, OutsideError> {
     let mut files = Vec::new();
     for p in inputs {
         if p.is_dir() {
-            let entries = std::fs::read_dir(p).map_err(|source| OutsideError::Read { file: p.clone(), source })?;
+            let entries = std::fs::read_dir(p).map_err(|error| OutsideError::Read { file: p.clone(), error })?;
             let mut found: Vec<PathBuf> = entries
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|f| f.is_file() && f.extension().is_some_and(|x| x == "json" || x == "csv"))
@@ -262,7 +262,7 @@ pub fn result_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, OutsideError> {
 /// # Errors
 /// The first problem, naming the file and the field.
 pub fn read_result(file: &Path, scene: &Scene) -> Result<OutsideRun, OutsideError> {
-    let text = std::fs::read_to_string(file).map_err(|source| OutsideError::Read { file: file.to_path_buf(), source })?;
+    let text = std::fs::read_to_string(file).map_err(|error| OutsideError::Read { file: file.to_path_buf(), error })?;
     let is_csv = file.extension().is_some_and(|x| x.eq_ignore_ascii_case("csv"));
     let (header, csv_fields) = if is_csv {
         let (header, first_line) = csv_header(&text);
@@ -287,7 +287,7 @@ pub fn read_result(file: &Path, scene: &Scene) -> Result<OutsideRun, OutsideErro
     if let Some(f) = csv_fields {
         result.fields = Some(f);
     }
-    result.check().map_err(|source| OutsideError::Result { file: file.to_path_buf(), source })?;
+    result.check().map_err(|error| OutsideError::Result { file: file.to_path_buf(), error })?;
     let Some(discretisation) = result.discretisation else {
         return Err(OutsideError::MissingDiscretisation { file: file.to_path_buf() });
     };
