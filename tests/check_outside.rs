@@ -68,7 +68,7 @@ fn check_error(json: &Path, quantity: &str) -> f64 {
 }
 
 /// beltcheck's own FE runs, written as result files, pass `check` with the gate's
-/// limits — and the check measures exactly what the gate measures for the same
+/// limits (and `--report` writes the report of `report` with them as a method) — and the check measures exactly what the gate measures for the same
 /// formulation and meshes (the files carry the fields on the harness's σ grid, so the
 /// interpolation is exact; the errors agree to 1e-6 relative, far below the 1e-3 … 5e-2
 /// limits).
@@ -77,10 +77,16 @@ fn own_fe_results_pass_with_the_gates_numbers() {
     let d = dir("own");
     write_results(&d, |_, _| {});
     let json = d.join("check.json");
-    let o = check(&[d.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    let report = d.join("report");
+    let o = check(&[d.to_str().unwrap(), "--json", json.to_str().unwrap(), "--report", report.to_str().unwrap()]);
     let out = stdout(&o);
     assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
     assert!(out.contains("fem (outside)") && out.contains("passed"), "{out}");
+    // the report of `report`, with the outside code as a method of the study
+    let md = std::fs::read_to_string(report.join("string-hanging/report.md")).unwrap();
+    assert!(md.contains("### fem (outside)"), "{md}");
+    let study: Value = serde_json::from_str(&std::fs::read_to_string(report.join("string-hanging/study.json")).unwrap()).unwrap();
+    assert!(study.to_string().contains("fem (outside)"));
 
     let meshes = MESHES.map(|n| n.to_string()).join(",");
     let gate_json = d.join("gate.json");
