@@ -516,7 +516,14 @@ fn run_default() -> Result<()> {
 fn result_json(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: usize) -> Result<String> {
     run.summary.check_finite()?;
     let fields = (fields > 0).then(|| sample_fields(run.view.as_ref(), fields));
-    let result = RunResult {
+    let result = run_result(scene, method, disc, run, fields);
+    result.check()?;
+    Ok(serde_json::to_string_pretty(&result)?)
+}
+
+/// The result of a run in the result format, with these fields.
+fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: Option<drive::result::Fields>) -> RunResult {
+    RunResult {
         scene: scene.name.clone(),
         method: method.to_string(),
         converged: run.not_steady.is_none(),
@@ -532,9 +539,7 @@ fn result_json(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, 
         surface: None,
         history: run.history.clone(),
         discretisation: Some(disc),
-    };
-    result.check()?;
-    Ok(serde_json::to_string_pretty(&result)?)
+    }
 }
 
 /// Writes `text` to `path` via a temporary file in the same directory and a rename, so
@@ -958,18 +963,8 @@ fn run_reference(args: &ReferenceArgs) -> Result<()> {
         let l = scene.contour().length();
         (0..n).map(|i| l * i as f64 / n as f64).collect()
     });
-    let result = RunResult {
-        scene: scene.name.clone(),
-        method: label,
-        converged: true,
-        summary: solved.summary.clone(),
-        cost: Cost { wall_seconds: solved.cost.wall_seconds, newton_iterations: solved.cost.newton_iterations, unknowns: solved.cost.unknowns, mesh_nodes: solved.cost.mesh_nodes },
-        fields: Some(drive::view::fields_at(solved.view.as_ref(), sigma)),
-        options: Some(solved.options.clone()),
-        surface: None,
-        history: None,
-        discretisation: Some(Discretisation::Tolerance(args.tolerance)),
-    };
+    let fields = drive::view::fields_at(solved.view.as_ref(), sigma);
+    let result = run_result(&scene, &label, Discretisation::Tolerance(args.tolerance), &solved, Some(fields));
     let text = match args.format {
         FormatArg::Json => result.to_json_pretty()? + "\n",
         FormatArg::Csv => verification::outside::to_csv(&result)?,

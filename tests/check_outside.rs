@@ -291,3 +291,40 @@ fn the_python_example_is_checked() {
     assert_eq!(failing, ["y_upper_mid"], "{out}");
     assert_eq!(c.status.code(), Some(1));
 }
+
+/// `--reference supplied`: the runs are held against the Richardson extrapolation of
+/// their own three finest levels (the reference of a scene no BVP solves). Own FE runs
+/// at 64, 128, 256 elements: the finest run's errors against it are its Richardson
+/// error estimates (1e-7 … 1e-6 here, the FE being second order), far inside the
+/// limits; a quantity that does not converge monotonically is refused by name.
+#[test]
+fn the_supplied_runs_can_be_the_reference() {
+    let d = dir("supplied");
+    write_results(&d, |_, _| {});
+    let json = d.join("check.json");
+    let o = check(&[d.to_str().unwrap(), "--reference", "supplied", "--json", json.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert!(out.contains("Richardson extrapolation of the supplied runs of fem (outside)"), "{out}");
+    for q in ["y_upper_mid", "tension_lower_mid", "driven.contact_arc"] {
+        let e = check_error(&json, q);
+        assert!(e > 0.0 && e < 1e-5, "{q}: {e:e}");
+    }
+    // driver.contact_arc oscillates over 64, 128, 256 (differences −1.6e-6, +6.1e-7): the
+    // extrapolation refuses it, says so, and its gated check fails — never passes on a
+    // number the reference does not have
+    assert!(out.contains("refused (left out of the reference): driver.contact_arc: oscillating"), "{out}");
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let failing: Vec<(&str, &str)> = v["gate"]["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["pass"] == false)
+        .map(|c| (c["quantity"].as_str().unwrap(), c["reason"].as_str().unwrap()))
+        .collect();
+    assert!(failing.contains(&("driver.contact_arc", "not produced by the reference for this scene")), "{failing:?}");
+    // the other failures: the axial force's field norms, whose pointwise extrapolation
+    // across the contact points (kinks that move with the mesh) is not a reference to
+    // 5e-2 — the scalars all pass
+    assert!(failing.iter().all(|(q, _)| *q == "driver.contact_arc" || q.starts_with("tension_")), "{failing:?}");
+    assert_eq!(o.status.code(), Some(1), "{out}");
+}

@@ -563,13 +563,7 @@ pub fn drop_incomparable(methods: Vec<OutsideMethod>, quantities: &[Quantity], s
 /// reports), its fields interpolated onto `n` uniform σ samples.
 fn harness_run(label: &str, family: Family, r: &OutsideRun, scene: &Scene, n: usize) -> Run {
     let c = &r.result.cost;
-    let cost = RunCost {
-        wall_seconds: c.wall_seconds,
-        newton_iterations: c.newton_iterations,
-        unknowns: c.unknowns,
-        mesh_nodes: c.mesh_nodes,
-        elements: r.discretisation.elements_along(),
-    };
+    let cost = RunCost { mesh_nodes: c.mesh_nodes, elements: r.discretisation.elements_along(), ..RunCost::counted(c.wall_seconds, c.newton_iterations, c.unknowns) };
     let samples = r.result.fields.as_ref().map_or_else(Samples::default, |f| interpolate(f, scene, n));
     let data = RunData {
         summary: r.result.summary.clone(),
