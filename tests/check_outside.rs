@@ -209,6 +209,17 @@ fn bad_files_are_named_errors() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("fe-64.json") && err.contains("fe-64-again.json") && err.contains("64 el."), "{err}");
+    // a mesh and a tolerance in one method
+    let d = dir("mixed");
+    write_results(&d, |n, v| {
+        if n == 64 {
+            v["discretisation"] = serde_json::json!({"tolerance": 1e-8});
+        }
+    });
+    let o = check(&[d.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("tol 1e-8") && err.contains("one kind of discretisation per method"), "{err}");
 }
 
 /// The exported reference, at the harness's own σ grid, as CSV, reads back through

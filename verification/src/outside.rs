@@ -157,18 +157,16 @@ pub enum OutsideError {
         second: PathBuf,
     },
     /// Runs of one method at discretisations of different kinds.
-    #[error("{}: a run of `{method}` at {disc}, but {} is at {other}: expected one kind of discretisation per method", .file.display(), .other_file.display())]
+    #[error("{}: a run of `{method}` at {}, but {} is at {}: expected one kind of discretisation per method", .file.display(), .discs.0, .other_file.display(), .discs.1)]
     MixedKinds {
         /// The method.
         method: String,
-        /// This file's discretisation.
-        disc: Discretisation,
         /// This file.
         file: PathBuf,
-        /// Another run's discretisation.
-        other: Discretisation,
-        /// Its file.
+        /// Another run's file.
         other_file: PathBuf,
+        /// This file's discretisation and the other run's.
+        discs: Box<(Discretisation, Discretisation)>,
     },
 }
 
@@ -309,7 +307,7 @@ fn parse_json(file: &Path, text: &str) -> Result<Value, OutsideError> {
     let mut rest = text;
     while let Some(c) = rest.chars().next() {
         if in_string {
-            in_string = !(c == '"' && !escaped);
+            in_string = c != '"' || escaped;
             escaped = c == '\\' && !escaped;
             out.push(c);
             rest = &rest[c.len_utf8()..];
@@ -524,7 +522,7 @@ pub fn group(scene: &Scene, runs: Vec<OutsideRun>) -> Result<(Vec<OutsideMethod>
         };
         let m = &mut methods[k];
         if let Some(other) = m.runs.iter().find(|o| !same_kind(o.discretisation, run.discretisation)) {
-            return Err(OutsideError::MixedKinds { method: m.method.clone(), disc: run.discretisation, file: run.file.clone(), other: other.discretisation, other_file: other.file.clone() });
+            return Err(OutsideError::MixedKinds { method: m.method.clone(), file: run.file.clone(), other_file: other.file.clone(), discs: Box::new((run.discretisation, other.discretisation)) });
         }
         if let Some(other) = m.runs.iter().find(|o| o.discretisation == run.discretisation) {
             return Err(OutsideError::Duplicate { method: m.method.clone(), disc: run.discretisation, first: other.file.clone(), second: run.file.clone() });
