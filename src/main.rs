@@ -81,6 +81,21 @@ enum Command {
     /// with a table of what drifted, 0 if everything holds, 2 for a usage or input error
     /// (missing or invalid scene, bad tolerance, unknown formulation).
     Gate(GateArgs),
+    /// Check the results of an outside FE code (result files, or directories of them)
+    /// against the scene's reference with the scene's `gate` limits: the same errors,
+    /// orders, Richardson values and cost as `converge`; exit status 1 with the table of
+    /// what drifted, 0 if everything holds, 2 for a bad file or argument (each named).
+    /// docs/check-your-code.md.
+    Check(CheckArgs),
+    /// The scene's reference solution (the gate's BVP run) sampled where an outside code
+    /// wants it: at the σ of a file, or at N equally spaced σ; as a result JSON or CSV.
+    Reference(ReferenceArgs),
+    /// Print the JSON Schema of the scene or the result format (shipped in schemas/).
+    Schema {
+        /// Which format.
+        #[arg(value_enum)]
+        format: SchemaArg,
+    },
     /// List every summary quantity of the result format: its JSON name, unit and
     /// meaning (a scene produces only those its layout and effects call for).
     Quantities,
@@ -171,6 +186,80 @@ struct GateArgs {
     json: Option<PathBuf>,
 }
 
+#[derive(clap::Args)]
+struct CheckArgs {
+    /// Scene JSON file (the scene the results were computed for).
+    scene: PathBuf,
+    /// Result files (*.json, or *.csv with a # JSON header) or directories of them.
+    #[arg(required = true)]
+    results: Vec<PathBuf>,
+    /// What the results are held against: the gate's BVP run (`auto` falls back to
+    /// Richardson extrapolation of the supplied runs where no BVP solves the scene),
+    /// the closed form of the scene's model, or the supplied runs' extrapolation.
+    #[arg(long, value_enum, default_value_t = CheckReferenceArg::Auto)]
+    reference: CheckReferenceArg,
+    /// σ samples of the field norms (16 … 100000).
+    #[arg(long, default_value_t = verification::study::DEFAULT_SAMPLES)]
+    samples: usize,
+    /// Also write the Markdown + SVG + JSON report of the check to this directory (the
+    /// outside code is a method of the study, as in `report`).
+    #[arg(long, value_name = "DIR")]
+    report: Option<PathBuf>,
+    /// Also write every check as JSON to this file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum CheckReferenceArg {
+    /// The BVP run; Richardson of the supplied runs where no BVP solves the scene.
+    Auto,
+    /// The BVP run (an error for a scene no BVP solves).
+    Bvp,
+    /// The closed form of the scene's model.
+    ClosedForm,
+    /// Richardson extrapolation of the supplied runs.
+    Supplied,
+}
+
+#[derive(clap::Args)]
+struct ReferenceArgs {
+    /// Scene JSON file.
+    scene: PathBuf,
+    /// File of σ values, m (numbers separated by commas, blanks or newlines; `#` starts
+    /// a comment).
+    #[arg(long, value_name = "FILE", conflicts_with = "samples")]
+    sigma: Option<PathBuf>,
+    /// N equally spaced σ_i = i·L_geom/N (1 … 100000); default 200.
+    #[arg(long, value_name = "N")]
+    samples: Option<usize>,
+    /// Output format: the result JSON, or CSV with a # JSON header.
+    #[arg(long, value_enum, default_value_t = FormatArg::Json)]
+    format: FormatArg,
+    /// Relative tolerance of the BVP run, 0 < tolerance < 1.
+    #[arg(long, default_value_t = verification::gate::GATE_REFERENCE_TOLERANCE)]
+    tolerance: f64,
+    /// Write to this file instead of standard output.
+    #[arg(short = 'o', long = "out", value_name = "FILE")]
+    out: Option<PathBuf>,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum SchemaArg {
+    /// The scene format (DESIGN.md "Scene format").
+    Scene,
+    /// The result format (DESIGN.md "Result format", with `discretisation`).
+    Result,
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum FormatArg {
+    /// Result JSON (DESIGN.md "Result format").
+    Json,
+    /// CSV: a # line with the result JSON without fields, then sigma,x,y,tension[,moment].
+    Csv,
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum MethodArg {
     /// Collocation with residual control (scheme from --scheme or the scene, default gauss6).
@@ -228,6 +317,20 @@ fn main() -> ExitCode {
             print_quantities();
             Ok(())
         }
+        Some(Command::Reference(args)) => run_reference(&args),
+        Some(Command::Schema { format }) => {
+            let schema = match format {
+                SchemaArg::Scene => drive::schemas::scene_schema(),
+                SchemaArg::Result => drive::schemas::result_schema(),
+            };
+            print!("{}", drive::schemas::to_text(&schema));
+            Ok(())
+        }
+        Some(Command::Check(args)) => match run_check(&args) {
+            Ok(true) => Ok(()),
+            Ok(false) => return ExitCode::from(1),
+            Err(e) => Err(e),
+        },
         Some(Command::Gate(args)) => match run_gate(&args) {
             Ok(true) => Ok(()),
             Ok(false) => return ExitCode::from(1),
@@ -386,7 +489,7 @@ fn run_solve(args: &SolveArgs) -> Result<()> {
         eprintln!("warning: {n}");
     }
     if let Some(path) = &args.json {
-        let result = result_json(&scene, &name, &run, args.fields)?;
+        let result = result_json(&scene, &name, disc, &run, args.fields)?;
         write_output(path, &result)?;
         println!("result written to {}", path.display());
     }
@@ -410,10 +513,17 @@ fn run_default() -> Result<()> {
 }
 
 /// The result JSON of DESIGN.md, checked finite before anything is written.
-fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Result<String> {
+fn result_json(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: usize) -> Result<String> {
     run.summary.check_finite()?;
     let fields = (fields > 0).then(|| sample_fields(run.view.as_ref(), fields));
-    let result = RunResult {
+    let result = run_result(scene, method, disc, run, fields);
+    result.check()?;
+    Ok(serde_json::to_string_pretty(&result)?)
+}
+
+/// The result of a run in the result format, with these fields.
+fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: Option<drive::result::Fields>) -> RunResult {
+    RunResult {
         scene: scene.name.clone(),
         method: method.to_string(),
         converged: run.not_steady.is_none(),
@@ -428,9 +538,8 @@ fn result_json(scene: &Scene, method: &str, run: &Solved, fields: usize) -> Resu
         options: Some(run.options.clone()),
         surface: None,
         history: run.history.clone(),
-    };
-    result.check()?;
-    Ok(serde_json::to_string_pretty(&result)?)
+        discretisation: Some(disc),
+    }
 }
 
 /// Writes `text` to `path` via a temporary file in the same directory and a rename, so
@@ -752,4 +861,120 @@ fn run_gate(args: &GateArgs) -> Result<bool> {
         println!("checks written to {}", path.display());
     }
     Ok(passed)
+}
+
+// ---------------------------------------------------------------------------
+// Outside codes: check, reference
+
+/// `beltcheck check`: Ok(true) if every check passed, Ok(false) on drift; a bad file or
+/// argument is an error before anything is written.
+fn run_check(args: &CheckArgs) -> Result<bool> {
+    use verification::check::{self, ReferenceChoice};
+    if !SAMPLES_RANGE.contains(&args.samples) {
+        return Err(CliError::OutOfRange { flag: "samples", value: args.samples.to_string(), range: format!("{} … {} σ samples", SAMPLES_RANGE.start(), SAMPLES_RANGE.end()) }.into());
+    }
+    let scene = load_scene(&args.scene)?;
+    let choice = match args.reference {
+        CheckReferenceArg::Auto => ReferenceChoice::Auto,
+        CheckReferenceArg::Bvp => ReferenceChoice::Bvp,
+        CheckReferenceArg::ClosedForm => ReferenceChoice::ClosedForm,
+        CheckReferenceArg::Supplied => ReferenceChoice::Supplied,
+    };
+    let checked = check::check(&scene, &args.results, choice, args.samples)?;
+    let passed = checked.passed();
+    println!("beltcheck check: {} — {} outside method(s)", scene.name, checked.study.series.len());
+    print!("{}", verification::table::study_text(&checked.study));
+    if !checked.skipped.is_empty() {
+        println!("
+skipped {} file(s):", checked.skipped.len());
+        print!("{}", check::skip_table(&checked.skipped).to_text("  "));
+    }
+    let outcomes = [checked.gate.clone()];
+    println!();
+    print!("{}", verification::gate::summary_table(&outcomes).to_text("  "));
+    for n in &checked.gate.notes {
+        println!("  note: {n}");
+    }
+    if passed {
+        println!("\npassed: every gated quantity within its limit");
+    } else {
+        let failures = verification::gate::failure_table(&outcomes);
+        println!("\nFAILED: {} check(s) out of their limits", failures.rows.len());
+        print!("{}", failures.to_text("  "));
+    }
+    if let Some(dir) = &args.report {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+        let entry = verification::report::write_scene_report(&scene, &args.scene, &checked.study, dir)
+            .with_context(|| format!("writing the report of {}", scene.name))?;
+        println!("report: {}", entry.markdown.display());
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string_pretty(&serde_json::json!({"gate": &checked.gate, "skipped": &checked.skipped}))?;
+        write_output(path, &text)?;
+        println!("checks written to {}", path.display());
+    }
+    Ok(passed)
+}
+
+/// Why `reference --sigma FILE` refuses the file.
+#[derive(Debug, thiserror::Error)]
+enum SigmaFileError {
+    #[error("{}: cannot read: {error}", .file.display())]
+    Read { file: PathBuf, error: std::io::Error },
+    #[error("{}: line {line}: `{token}` is not a finite number (σ in m)", .file.display())]
+    NotANumber { file: PathBuf, line: usize, token: String },
+    #[error("{}: no σ value in the file", .file.display())]
+    Empty { file: PathBuf },
+}
+
+/// σ values of a file: numbers separated by commas, blanks or newlines; `#` comments.
+fn read_sigma_file(file: &Path) -> Result<Vec<f64>, SigmaFileError> {
+    let text = std::fs::read_to_string(file).map_err(|error| SigmaFileError::Read { file: file.to_path_buf(), error })?;
+    let mut sigma = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("");
+        for token in line.split(|c: char| c == ',' || c.is_whitespace()).filter(|t| !t.is_empty()) {
+            match token.parse::<f64>() {
+                Ok(v) if v.is_finite() => sigma.push(v),
+                _ => return Err(SigmaFileError::NotANumber { file: file.to_path_buf(), line: i + 1, token: drive::error::clip(token) }),
+            }
+        }
+    }
+    if sigma.is_empty() {
+        return Err(SigmaFileError::Empty { file: file.to_path_buf() });
+    }
+    Ok(sigma)
+}
+
+/// `beltcheck reference`: the reference sampled at the σ asked for, as result JSON or
+/// CSV; nothing is written on an error.
+fn run_reference(args: &ReferenceArgs) -> Result<()> {
+    check_tolerance("tolerance", args.tolerance)?;
+    if let Some(n) = args.samples {
+        if !(1..=*SAMPLES_RANGE.end()).contains(&n) {
+            return Err(CliError::OutOfRange { flag: "samples", value: n.to_string(), range: format!("1 … {} σ samples", SAMPLES_RANGE.end()) }.into());
+        }
+    }
+    let sigma_file = args.sigma.as_deref().map(read_sigma_file).transpose()?;
+    let scene = load_scene(&args.scene)?;
+    let (label, solved) = verification::check::reference_solution(&scene, args.tolerance).map_err(|e| anyhow::Error::new(e).context("the reference (BVP run)"))?;
+    let sigma = sigma_file.unwrap_or_else(|| {
+        let n = args.samples.unwrap_or(200);
+        let l = scene.contour().length();
+        (0..n).map(|i| l * i as f64 / n as f64).collect()
+    });
+    let fields = drive::view::fields_at(solved.view.as_ref(), sigma);
+    let result = run_result(&scene, &label, Discretisation::Tolerance(args.tolerance), &solved, Some(fields));
+    let text = match args.format {
+        FormatArg::Json => result.to_json_pretty()? + "\n",
+        FormatArg::Csv => verification::outside::to_csv(&result)?,
+    };
+    match &args.out {
+        Some(path) => {
+            write_output(path, &text)?;
+            eprintln!("reference written to {}", path.display());
+        }
+        None => print!("{text}"),
+    }
+    Ok(())
 }

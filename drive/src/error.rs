@@ -313,6 +313,17 @@ pub enum ResultError {
         /// The nearest valid name.
         suggestion: Option<String>,
     },
+    /// A discretisation outside its range (a tolerance not in (0, 1), no elements, a
+    /// time step that is not > 0).
+    #[error("result `{field}` = {} is out of range: expected {expected}", num(.value))]
+    Discretisation {
+        /// Name as in the result JSON, e.g. `discretisation.elements`.
+        field: String,
+        /// The value.
+        value: f64,
+        /// What it must be.
+        expected: &'static str,
+    },
     /// A name that is not a summary scalar (see [`crate::summary::SCALAR_NAMES`]).
     #[error("`{name}` is not a summary quantity{}", unknown_hint(.suggestion.as_deref(), &[]))]
     UnknownQuantity {

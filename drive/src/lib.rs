@@ -14,7 +14,8 @@
 //! - [`view`]: the common solution view ([`SolutionView`]) through which the harness
 //!   samples any solution, and [`sample_fields`];
 //! - [`summary`], [`result`]: the named scalars and the result JSON of DESIGN.md;
-//! - [`error`]: [`SceneError`] and [`ResultError`], which carry paths and numbers.
+//! - [`error`]: [`SceneError`] and [`ResultError`], which carry paths and numbers;
+//! - [`schemas`]: the JSON Schemas of the scene and result formats, from these types.
 //!
 //! Units are SI throughout. Nothing here panics on any input: bad input is an
 //! error value.
@@ -50,6 +51,7 @@ pub mod pending;
 pub mod result;
 pub mod scene;
 mod schema;
+pub mod schemas;
 mod suggest;
 pub mod summary;
 pub mod view;
@@ -57,10 +59,10 @@ pub mod view;
 pub use contour::{Contour, OpenContour, OpenRegion, Pulley, Region};
 pub use pending::{not_yet_solvable, NotYetSolvable, Solver, Unsolved};
 pub use error::{ResultError, SceneError};
-pub use result::{Cost, Fields, Frame, History, RunResult, SurfaceFields, TimeSeries, FIELD_NORM_NAMES, SURFACE_FIELD_NAMES};
+pub use result::{Cost, Discretisation, Fields, Frame, History, RunResult, SurfaceFields, TimeSeries, FIELD_NORM_NAMES, SURFACE_FIELD_NAMES};
 pub use scene::{
     Analysis, Belt, BvpMethod, BvpSettings, Camber, Contact, DriveGeometry, Effects, ElasticLayer, End,
     FemSettings, GateSettings, Layout, OnePulleyLoad, Plate, Scene, Section, Theory,
 };
 pub use summary::{Global, PulleyId, PulleyQuantity, PulleySummary, Quantity, Summary, SCALAR_NAMES};
-pub use view::{sample_fields, ContactState, SolutionView};
+pub use view::{fields_at, sample_fields, ContactState, SolutionView};

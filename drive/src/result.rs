@@ -12,6 +12,7 @@
 //! numbers (serde_json would silently write NaN as `null`).
 
 use std::collections::BTreeMap;
+use std::fmt;
 
 use serde::{Deserialize, Serialize};
 
@@ -32,7 +33,7 @@ pub const FIELD_NORM_NAMES: [&str; 6] = [
 
 /// Fields sampled at points σ of the contour (`fields`); all vectors have the
 /// length of `sigma`.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Fields {
     /// Contour coordinate σ, m, in [0, 2H + 2πR).
     pub sigma: Vec<f64>,
@@ -100,7 +101,7 @@ impl Fields {
 /// `time`. Quantities as in [`Summary`] (tensions are the axial forces at x = 0 of each
 /// span, torques the moment of the belt on the pulley, clockwise positive); arcs in
 /// rad. Written by FE drive runs only (docs/fem-drive.md §8).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct History {
     /// Time t at the end of each step, s.
     pub time: Vec<f64>,
@@ -200,7 +201,7 @@ pub const SURFACE_FIELD_NAMES: [&str; 7] = ["x", "y", "z", "membrane_force", "be
 /// every field a matrix `[i][j]` of `sigma.len()` rows of `zeta.len()` values. JSON:
 /// `{"sigma": [...], "zeta": [...], "<name>": [[...], ...], ...}` with names of
 /// [`SURFACE_FIELD_NAMES`].
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct SurfaceFields {
     /// Contour coordinate σ along the belt, m.
     pub sigma: Vec<f64>,
@@ -244,7 +245,7 @@ impl SurfaceFields {
 }
 
 /// Fields at one instant of a time series (`history.frames[k]`).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Frame {
     /// t, s.
     pub time: f64,
@@ -262,7 +263,7 @@ pub struct Frame {
 /// [`History`] converts to it with the same JSON. Channel names are lowercase
 /// identifiers (`a`–`z`, `0`–`9`, `_`, `.`), other than `time` and `frames`; their units
 /// are the model's (the drive's: [`History`]).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct TimeSeries {
     /// Time t at the end of each step, s.
     pub time: Vec<f64>,
@@ -346,8 +347,105 @@ fn check_finite_vec(name: &str, v: &[f64]) -> Result<(), ResultError> {
     }
 }
 
+/// The discretisation parameter of a run: a tolerance (BVP, closed forms solved to a
+/// tolerance), a 1-D mesh along σ (the rods and strings), or a 2-D mesh over (σ, ζ) with a
+/// time step (the shell's transient). JSON: `{"tolerance": 1e-8}`, `{"elements": 64}`,
+/// `{"mesh2d": {"sigma": 64, "zeta": 4, "time_step": 0.01}}`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Discretisation {
+    /// BVP: the solver's relative tolerance (its norm is defined by the `bvp` crate).
+    Tolerance(f64),
+    /// FE: number of elements round the loop.
+    Elements(usize),
+    /// FE over the mid-surface: elements along σ and across ζ, and the time step Δt, s.
+    Mesh2d {
+        /// Elements along the belt (σ).
+        sigma: usize,
+        /// Elements across the width (ζ).
+        zeta: usize,
+        /// Time step Δt, s.
+        time_step: f64,
+    },
+}
+
+impl Discretisation {
+    /// The refinement ratio r > 1 from `self` to the finer `fine`: n_fine/n for 1-D
+    /// meshes; for 2-D meshes the common ratio of the σ and ζ element counts and of the
+    /// time steps (Δt/Δt_fine), which must agree to 1e-9 — a refinement in space alone or
+    /// time alone has no single h to extrapolate in. `None` for tolerances, mixed kinds,
+    /// ratios ≤ 1 or that differ.
+    pub fn refinement_ratio(self, fine: Discretisation) -> Option<f64> {
+        let r = match (self, fine) {
+            (Discretisation::Elements(a), Discretisation::Elements(b)) => b as f64 / a as f64,
+            (Discretisation::Mesh2d { sigma: s0, zeta: z0, time_step: t0 }, Discretisation::Mesh2d { sigma: s1, zeta: z1, time_step: t1 }) => {
+                let (rs, rz, rt) = (s1 as f64 / s0 as f64, z1 as f64 / z0 as f64, t0 / t1);
+                let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+                if !(close(rs, rz) && close(rs, rt)) {
+                    return None;
+                }
+                rs
+            }
+            _ => return None,
+        };
+        (r.is_finite() && r > 1.0).then_some(r)
+    }
+
+    /// The element count along σ of a mesh (the x-axis of convergence plots); `None`
+    /// for a tolerance.
+    pub fn elements_along(self) -> Option<usize> {
+        match self {
+            Discretisation::Tolerance(_) => None,
+            Discretisation::Elements(n) | Discretisation::Mesh2d { sigma: n, .. } => Some(n),
+        }
+    }
+
+    /// Checks a discretisation read from outside: a tolerance finite in (0, 1), at
+    /// least one element, a time step finite and > 0.
+    ///
+    /// # Errors
+    /// [`ResultError::Discretisation`] naming the entry, e.g. `discretisation.elements`.
+    pub fn check(self) -> Result<(), ResultError> {
+        let bad = |field: &str, value: f64, expected: &'static str| Err(ResultError::Discretisation { field: format!("discretisation.{field}"), value, expected });
+        match self {
+            Discretisation::Tolerance(t) if !(t > 0.0 && t < 1.0) => bad("tolerance", t, "a tolerance in (0, 1)"),
+            Discretisation::Elements(0) => bad("elements", 0.0, "at least one element"),
+            Discretisation::Mesh2d { sigma, zeta, .. } if sigma == 0 || zeta == 0 => {
+                bad(if sigma == 0 { "mesh2d.sigma" } else { "mesh2d.zeta" }, 0.0, "at least one element")
+            }
+            Discretisation::Mesh2d { time_step, .. } if !(time_step.is_finite() && time_step > 0.0) => bad("mesh2d.time_step", time_step, "a finite time step > 0"),
+            _ => Ok(()),
+        }
+    }
+
+    /// The short form of tables and plot labels: `1e-8`, `256`, `64×4 Δt 1e-2`.
+    pub fn cell(self) -> String {
+        match self {
+            Discretisation::Tolerance(t) => fmt_tolerance(t),
+            Discretisation::Elements(n) => n.to_string(),
+            Discretisation::Mesh2d { sigma, zeta, time_step } => format!("{sigma}×{zeta} Δt {}", fmt_tolerance(time_step)),
+        }
+    }
+}
+
+impl fmt::Display for Discretisation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Discretisation::Tolerance(t) => write!(f, "tol {}", fmt_tolerance(*t)),
+            Discretisation::Elements(n) => write!(f, "{n} el."),
+            Discretisation::Mesh2d { sigma, zeta, time_step } => write!(f, "{sigma}×{zeta} el., Δt {} s", crate::error::num(time_step)),
+        }
+    }
+}
+
+/// A tolerance as `1e-8` (or `2.5e-8`).
+pub fn fmt_tolerance(t: f64) -> String {
+    let s = format!("{t:.1e}");
+    s.replace(".0e", "e")
+}
+
 /// Work spent on a run (`cost`).
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Cost {
     /// Wall-clock time of the solve, s.
     pub wall_seconds: f64,
@@ -361,7 +459,7 @@ pub struct Cost {
 }
 
 /// One run = scene + method + discretisation (DESIGN.md "Result format").
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct RunResult {
     /// Scene name.
     pub scene: String,
@@ -386,6 +484,11 @@ pub struct RunResult {
     /// Quantities in time of a transient run (optional; absent for static and BVP runs).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub history: Option<TimeSeries>,
+    /// The discretisation of the run (optional): the tolerance of a BVP run, the
+    /// elements of an FE run. `beltcheck check` needs it on every result it reads: it
+    /// orders the runs of one code and measures their observed orders by it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub discretisation: Option<Discretisation>,
 }
 
 impl RunResult {
@@ -410,6 +513,9 @@ impl RunResult {
         }
         if let Some(h) = &self.history {
             h.check()?;
+        }
+        if let Some(d) = self.discretisation {
+            d.check()?;
         }
         Ok(())
     }

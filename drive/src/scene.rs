@@ -62,7 +62,7 @@ use crate::suggest::nearest;
 use crate::summary::SCALAR_NAMES;
 
 /// A complete scene (one JSON file of the catalogue).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
     /// Identifier, used for report file names: non-empty, only ASCII letters,
@@ -98,7 +98,7 @@ pub struct Scene {
 /// report tabulates them beside the BVP reference with the relative difference. They are
 /// documentation, not a reference: models differ (friction law, bending, transient), so
 /// the gate never uses them.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Peer {
     /// Who computed them and how (code, model, discretisation, instant). Required,
@@ -144,7 +144,7 @@ impl Peer {
 }
 
 /// How the belt runs (`drive.layout`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum Layout {
     /// The closed loop over two pulleys (`"two-pulley"`, the default): DESIGN.md's drive,
     /// σ ∈ [0, 2H + 2πR) ([`Contour`]).
@@ -187,7 +187,7 @@ impl fmt::Display for Layout {
 /// `transport_rate` (required) and exactly two of `tension_in`, `tension_out`,
 /// `pulley_speed`, `stick_slip_angle`, at least one a tension. The two-pulley numbers of a
 /// one-pulley scene are 0 and are not written.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct DriveGeometry {
     /// Closed loop over two pulleys or one pulley with open ends. Optional, default
@@ -349,7 +349,7 @@ impl Serialize for DriveGeometry {
 }
 
 /// Structural theory of the belt (`belt.theory`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Theory {
     /// Extensible string: axial stiffness only (`"string"`).
@@ -386,7 +386,7 @@ impl fmt::Display for Theory {
 /// `poisson_ratio`, `density`, optional `camber`) instead of `axial_stiffness`,
 /// `bending_stiffness` and `mass_per_length`; the reader fills those three with the
 /// planar-limit section of the plate ([`Plate::section`]) and does not write them back.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Belt {
     /// Structural theory. Required.
@@ -433,7 +433,7 @@ pub struct Belt {
 
 /// Camber imperfection of a shell belt (`belt.camber`, spec §4.3): exactly one of the
 /// two fields.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Camber {
     /// κ_c, 1/m, finite: in-plane curvature of the unstretched belt's centre line.
@@ -561,7 +561,7 @@ impl Serialize for Belt {
 ///
 /// JSON: `"frictionless"`, `{"coulomb": μ}`, or
 /// `{"elastic_layer": {"normal_stiffness": P, "tangential_stiffness": P_t}}`.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Contact {
     /// Normal contact only: no tangential unknowns, no stick/slip segments.
@@ -581,7 +581,7 @@ pub enum Contact {
 /// P = E_l(1 − ν_l)/((1 + ν_l)(1 − 2ν_l) d) (a thin layer bonded to the drum is laterally
 /// confined) and P_⊥ = E_l/(2(1 + ν_l) d) ([`ElasticLayer::with_derived_stiffness`]); the
 /// material form is written back as given.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ElasticLayer {
     /// P, N/m³ (pressure per penetration), > 0. Required unless the material is given.
@@ -639,7 +639,7 @@ impl Serialize for ElasticLayer {
 }
 
 /// The effects a scene calls for (`effects` block); absent = not simulated.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct Effects {
     /// g, m/s², ≥ 0, acting in −y. Optional; absent = no gravity term at all (a
@@ -655,7 +655,7 @@ pub struct Effects {
 }
 
 /// Kind of analysis (`analysis`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Analysis {
     /// Equilibrium at rest (`"static"`).
@@ -684,7 +684,7 @@ impl fmt::Display for Analysis {
 }
 
 /// BVP solution method (`bvp.method`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, Serialize, Deserialize, schemars::JsonSchema)]
 pub enum BvpMethod {
     /// Collocation with residual control and mesh adaptation (`"bvp-collocation"`).
     #[default]
@@ -706,7 +706,7 @@ impl BvpMethod {
 }
 
 /// Settings of the BVP reference (`bvp` block). Every field optional.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BvpSettings {
     /// Method. Default `"bvp-collocation"`.
@@ -758,7 +758,7 @@ impl Default for BvpSettings {
 }
 
 /// Settings of the finite element runs (`fem` block). Every field optional.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FemSettings {
     /// Number of elements round the loop for a single run, ≥ 4 (element boundaries
@@ -830,7 +830,7 @@ impl Default for FemSettings {
 }
 
 /// Settings of the CI gate (`gate` block). Every field optional.
-#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GateSettings {
     /// Quantity name → admissible relative error |q − q_ref| / |q_ref| (> 0) against

@@ -400,7 +400,7 @@ macro_rules! accessors {
 
 /// Contact quantities of one pulley (`summary.driver`, `summary.driven`,
 /// `summary.pulley`); see [`PulleyQuantity`] for each field.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct PulleySummary {
     /// Angle of the contact zone, rad.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -455,7 +455,7 @@ impl PulleySummary {
 
 /// Named scalars of one solution; see the module docs for units and signs, and
 /// [`Global`] for each top-level field.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Summary {
     /// y at x = 0 on the upper span, m.
     #[serde(default, skip_serializing_if = "Option::is_none")]

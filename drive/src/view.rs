@@ -85,13 +85,21 @@ pub trait SolutionView {
 pub fn sample_fields<V: SolutionView + ?Sized>(view: &V, n: usize) -> Fields {
     let l = view.contour().length();
     let sigma: Vec<f64> = (0..n).map(|i| l * i as f64 / n as f64).collect();
+    fields_at(view, sigma)
+}
+
+/// Samples a view at the given σ, in their order (`beltcheck reference --sigma`).
+///
+/// `moment` is present only if the view returns a moment at every σ (absent for a
+/// string, and for no σ at all).
+pub fn fields_at<V: SolutionView + ?Sized>(view: &V, sigma: Vec<f64>) -> Fields {
     let pos: Vec<[f64; 2]> = sigma.iter().map(|&s| view.position(s)).collect();
     let moment: Option<Vec<f64>> = sigma.iter().map(|&s| view.bending_moment(s)).collect();
     Fields {
         x: pos.iter().map(|p| p[0]).collect(),
         y: pos.iter().map(|p| p[1]).collect(),
         tension: sigma.iter().map(|&s| view.axial_force(s)).collect(),
-        moment: if n == 0 { None } else { moment },
+        moment: if sigma.is_empty() { None } else { moment },
         sigma,
     }
 }

@@ -28,6 +28,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         options: None,
         surface: None,
         history: None,
+        discretisation: None,
     }
 }
 

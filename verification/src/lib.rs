@@ -16,13 +16,18 @@
 //! - [`study`]: sequences of runs of one scene held against the reference;
 //! - [`table`]: the convergence tables (terminal text and Markdown);
 //! - [`plot`], [`report`]: SVG plots and the Markdown/JSON reports;
-//! - [`gate`]: the CI gate over the catalogue.
+//! - [`gate`]: the CI gate over the catalogue;
+//! - [`outside`] and [`check`]: results of outside codes read from files, studied and
+//!   gated like a built-in method (`beltcheck check`), and the reference exported
+//!   for them (`beltcheck reference`).
 //!
 //! Definitions of every measure: docs/verification.md and [`measure`].
 
+pub mod check;
 pub mod closed_form;
 pub mod gate;
 pub mod measure;
+pub mod outside;
 pub mod plot;
 pub mod reference;
 pub mod report;

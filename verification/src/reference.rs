@@ -54,6 +54,15 @@ pub enum Reference {
         /// Its discretisations, coarsest first.
         levels: Vec<Discretisation>,
     },
+    /// Richardson extrapolation of runs supplied from outside (`beltcheck check` on a
+    /// scene no BVP solves): the same extrapolation and checks as
+    /// [`Reference::Richardson`], over results read from files rather than computed.
+    Supplied {
+        /// The outside code's method name, as its result files give it.
+        method: String,
+        /// Its discretisations, coarsest first.
+        levels: Vec<Discretisation>,
+    },
 }
 
 /// The extrapolated value of one scalar of a Richardson reference.
@@ -100,6 +109,12 @@ pub enum RichardsonError {
         /// Every scalar with why it was refused.
         refused: Vec<String>,
     },
+}
+
+/// The cells of the (up to) three finest levels: `64, 128, 256`.
+fn finest_cells(levels: &[Discretisation]) -> String {
+    let n = levels.len().min(3);
+    levels[levels.len() - n..].iter().map(|d| d.cell()).collect::<Vec<_>>().join(", ")
 }
 
 fn list(levels: &[Discretisation]) -> String {
@@ -168,11 +183,8 @@ impl Reference {
         match self {
             Reference::Bvp { variant, .. } => format!("BVP run {}", variant.label()),
             Reference::ClosedForm => "closed form (elastic catenary loop)".to_string(),
-            Reference::Richardson { formulation, levels } => {
-                let n = levels.len().min(3);
-                let cells: Vec<String> = levels[levels.len() - n..].iter().map(|d| d.cell()).collect();
-                format!("Richardson extrapolation of fem {formulation} (levels {}), finest", cells.join(", "))
-            }
+            Reference::Richardson { formulation, levels } => format!("Richardson extrapolation of fem {formulation} (levels {}), finest", finest_cells(levels)),
+            Reference::Supplied { method, levels } => format!("Richardson extrapolation of the supplied runs of {method} (levels {}), finest", finest_cells(levels)),
         }
     }
 
@@ -181,6 +193,7 @@ impl Reference {
         match self {
             Reference::Bvp { .. } | Reference::ClosedForm => 1,
             Reference::Richardson { levels, .. } => levels.len(),
+            Reference::Supplied { .. } => 0,
         }
     }
 
@@ -215,7 +228,22 @@ impl Reference {
                 let runs: Vec<Run> = levels.iter().map(|&d| execute(&method, scene, d, samples)).collect();
                 self.richardson(&runs)
             }
+            Reference::Supplied { method, .. } => {
+                let why = format!("the supplied runs of {method} are not computed here: `Reference::of_supplied` extrapolates them");
+                let outcome = Err(RunError::NotApplicable(why));
+                let run = Run { method: self.label(), family: Family::Fem, discretisation: Discretisation::Elements(0), wall_seconds: 0.0, outcome };
+                ReferenceRun { run, estimates: Vec::new(), notes: Vec::new() }
+            }
         }
+    }
+
+    /// The reference [`Reference::Supplied`] formed from the supplied runs, coarsest
+    /// first (each sampled on the harness's σ grid): Richardson extrapolation of the
+    /// three finest, as for [`Reference::Richardson`].
+    pub fn of_supplied(method: &str, runs: &[Run]) -> (Reference, ReferenceRun) {
+        let reference = Reference::Supplied { method: method.to_string(), levels: runs.iter().map(|r| r.discretisation).collect() };
+        let computed = reference.richardson(runs);
+        (reference, computed)
     }
 
     /// The Richardson reference from the runs of its levels (coarsest first).

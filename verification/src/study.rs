@@ -19,7 +19,7 @@ use drive::scene::Scene;
 use serde::Serialize;
 
 use crate::measure::{self, Quantity, QuantityKind};
-use crate::reference::{Estimate, Reference};
+use crate::reference::{Estimate, Reference, ReferenceRun};
 use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, Run, RunError};
 
 /// Default σ samples of the field norms: enough that the sampling error of an L2 norm
@@ -373,7 +373,7 @@ impl Study {
         let mut done = 0;
         progress(&Progress { done, total, label: format!("reference: {}", plan.reference.label()) });
         let computed = plan.reference.compute(scene, plan.samples, plan.max_nodes);
-        let reference = computed.run;
+        let reference = &computed.run;
         done += plan.reference.run_count();
         let quantities = reference.data().map(Quantity::of_reference).unwrap_or_default();
 
@@ -392,14 +392,38 @@ impl Study {
                     break;
                 }
                 let prev = rows.last();
-                rows.push(make_row(run, &reference, &quantities, prev));
+                rows.push(make_row(run, reference, &quantities, prev));
             }
-            let extrapolation = if method.family() == Family::Fem { extrapolate(&rows, &reference, &quantities) } else { Vec::new() };
-            let terms = rows.iter().rev().find_map(|r| r.run.data().map(|d| d.terms.clone())).unwrap_or_default();
-            series.push(Series { method: method.label(), family: method.family(), status, rows, extrapolation, terms });
+            series.push(finish_series(method.label(), method.family(), status, rows, reference, &quantities));
         }
         progress(&Progress { done: total, total, label: String::new() });
+        Study::assemble(scene, plan, computed, quantities, series, start)
+    }
 
+    /// A study of runs made elsewhere — an outside code's results read from files
+    /// (`beltcheck check`) — held against `computed`, the reference of `plan`: the same
+    /// errors, orders, Richardson extrapolation and mutual convergence as [`Study::run`].
+    /// Each supplied series is a method label, its family and its runs, coarsest first.
+    pub fn of_runs(scene: &Scene, plan: &StudyPlan, computed: ReferenceRun, supplied: Vec<(String, Family, Vec<Run>)>) -> Study {
+        let start = std::time::Instant::now();
+        let quantities = computed.run.data().map(Quantity::of_reference).unwrap_or_default();
+        let series = supplied
+            .into_iter()
+            .map(|(label, family, runs)| {
+                let mut rows: Vec<Row> = Vec::new();
+                for run in runs {
+                    let row = make_row(run, &computed.run, &quantities, rows.last());
+                    rows.push(row);
+                }
+                finish_series(label, family, SeriesStatus::Studied, rows, &computed.run, &quantities)
+            })
+            .collect();
+        Study::assemble(scene, plan, computed, quantities, series, start)
+    }
+
+    /// The study of a computed reference and its series, with the notes a reader needs.
+    fn assemble(scene: &Scene, plan: &StudyPlan, computed: ReferenceRun, quantities: Vec<Quantity>, series: Vec<Series>, start: std::time::Instant) -> Study {
+        let reference = computed.run;
         let registered: Vec<String> = fem::available_formulations().into_iter().map(String::from).collect();
         let mut notes = computed.notes;
         if let Err(e) = &reference.outcome {
@@ -468,6 +492,14 @@ impl Study {
     pub fn has_fem(&self) -> bool {
         self.series.iter().any(|s| s.family == Family::Fem && s.status == SeriesStatus::Studied)
     }
+}
+
+/// A series of rows with its Richardson extrapolation (FE) and the terms of its finest
+/// successful run.
+fn finish_series(method: String, family: Family, status: SeriesStatus, rows: Vec<Row>, reference: &Run, quantities: &[Quantity]) -> Series {
+    let extrapolation = if family == Family::Fem { extrapolate(&rows, reference, quantities) } else { Vec::new() };
+    let terms = rows.iter().rev().find_map(|r| r.run.data().map(|d| d.terms.clone())).unwrap_or_default();
+    Series { method, family, status, rows, extrapolation, terms }
 }
 
 /// Errors, orders and the scalar aggregate of one run.
