@@ -904,7 +904,10 @@ skipped {} file(s):", checked.skipped.len());
     }
     if let Some(dir) = &args.report {
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-        let entry = verification::report::write_scene_report(&scene, &args.scene, &checked.study, dir)
+        // the report shows the scene's own FE formulations at the same meshes beside the
+        // outside code (not gated: the verdict above is the outside code's)
+        let study = checked.study.clone().with_built_in_fem(&scene);
+        let entry = verification::report::write_scene_report(&scene, &args.scene, &study, dir)
             .with_context(|| format!("writing the report of {}", scene.name))?;
         println!("report: {}", entry.markdown.display());
     }

@@ -87,6 +87,11 @@ fn own_fe_results_pass_with_the_gates_numbers() {
     assert!(md.contains("### fem (outside)"), "{md}");
     let study: Value = serde_json::from_str(&std::fs::read_to_string(report.join("string-hanging/study.json")).unwrap()).unwrap();
     assert!(study.to_string().contains("fem (outside)"));
+    // beside the scene's own FE formulations at the same meshes (issue 16: "the outside
+    // code named as a method beside the built-in ones")
+    let labels: Vec<&str> = study["series"].as_array().unwrap().iter().map(|s| s["method"].as_str().unwrap()).collect();
+    assert!(labels.contains(&"fem string-simpson") && labels.contains(&"fem string-gauss") && labels.contains(&"fem (outside)"), "{labels:?}");
+    assert!(md.contains("### fem string-simpson"), "the built-in formulation has its section in the report");
 
     let meshes = MESHES.map(|n| n.to_string()).join(",");
     let gate_json = d.join("gate.json");

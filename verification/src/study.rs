@@ -379,25 +379,38 @@ impl Study {
 
         let mut series = Vec::new();
         for (method, discs) in &methods {
-            let mut rows: Vec<Row> = Vec::new();
-            let mut status = SeriesStatus::Studied;
-            for (i, &disc) in discs.iter().enumerate() {
-                progress(&Progress { done, total, label: format!("{} {disc}", method.label()) });
-                let run = execute(method.as_ref(), scene, disc, plan.samples);
+            let before = done;
+            series.push(study_series(scene, method.as_ref(), discs, plan.samples, strict_fem, reference, &quantities, &mut |label| {
+                progress(&Progress { done, total, label });
                 done += 1;
-                let lenient = method.family() == Family::Bvp || !strict_fem;
-                if let (0, Err(RunError::NotApplicable(why)), true) = (i, &run.outcome, lenient) {
-                    status = SeriesStatus::NotApplicable(why.clone());
-                    done += discs.len() - 1;
-                    break;
-                }
-                let prev = rows.last();
-                rows.push(make_row(run, reference, &quantities, prev));
-            }
-            series.push(finish_series(method.label(), method.family(), status, rows, reference, &quantities));
+            }));
+            done = before + discs.len();
         }
         progress(&Progress { done: total, total, label: String::new() });
         Study::assemble(scene, plan, computed, quantities, series, start)
+    }
+
+    /// The series of the scene's own FE formulations of `plan` (those that discretise its
+    /// belt theory) at `plan.meshes`, held against this study's reference and added
+    /// before its series: the built-in methods beside the outside ones in the report of
+    /// `beltcheck check --report`.
+    pub fn with_built_in_fem(mut self, scene: &Scene) -> Study {
+        if self.reference.data().is_none() {
+            return self;
+        }
+        let meshes: Vec<Discretisation> = self.plan.meshes.iter().map(|&n| Discretisation::Elements(n)).collect();
+        let mut plan = self.plan.clone();
+        plan.formulations = crate::gate::gate_plan_with(scene, crate::gate::GATE_BVP_TOLERANCE, None, None).formulations;
+        let mut built_in = Vec::new();
+        for f in plan.fem_methods() {
+            let series = study_series(scene, &f, &meshes, self.plan.samples, false, &self.reference, &self.quantities, &mut |_| {});
+            if series.status == SeriesStatus::Studied {
+                built_in.push(series);
+            }
+        }
+        built_in.append(&mut self.series);
+        self.series = built_in;
+        self
     }
 
     /// A study of runs made elsewhere — an outside code's results read from files
@@ -500,6 +513,37 @@ fn finish_series(method: String, family: Family, status: SeriesStatus, rows: Vec
     let extrapolation = if family == Family::Fem { extrapolate(&rows, reference, quantities) } else { Vec::new() };
     let terms = rows.iter().rev().find_map(|r| r.run.data().map(|d| d.terms.clone())).unwrap_or_default();
     Series { method, family, status, rows, extrapolation, terms }
+}
+
+/// One method over its discretisations, held against `reference` (the loop of
+/// [`Study::run_methods`]): `progress` hears each run's label before it starts. A method
+/// that is not applicable at its first discretisation becomes a not-applicable series
+/// (BVP methods always; FE methods unless `strict_fem`).
+#[allow(clippy::too_many_arguments)]
+fn study_series(
+    scene: &Scene,
+    method: &dyn Method,
+    discs: &[Discretisation],
+    samples: usize,
+    strict_fem: bool,
+    reference: &Run,
+    quantities: &[Quantity],
+    progress: &mut dyn FnMut(String),
+) -> Series {
+    let mut rows: Vec<Row> = Vec::new();
+    let mut status = SeriesStatus::Studied;
+    for (i, &disc) in discs.iter().enumerate() {
+        progress(format!("{} {disc}", method.label()));
+        let run = execute(method, scene, disc, samples);
+        let lenient = method.family() == Family::Bvp || !strict_fem;
+        if let (0, Err(RunError::NotApplicable(why)), true) = (i, &run.outcome, lenient) {
+            status = SeriesStatus::NotApplicable(why.clone());
+            break;
+        }
+        let prev = rows.last();
+        rows.push(make_row(run, reference, quantities, prev));
+    }
+    finish_series(method.label(), method.family(), status, rows, reference, quantities)
 }
 
 /// Errors, orders and the scalar aggregate of one run.
