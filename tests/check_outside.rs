@@ -339,3 +339,45 @@ fn the_supplied_runs_can_be_the_reference() {
     assert!(failing.iter().all(|(q, _)| *q == "driver.contact_arc" || q.starts_with("tension_")), "{failing:?}");
     assert_eq!(o.status.code(), Some(1), "{out}");
 }
+
+/// `--reference auto` (the default) on a scene no BVP solves falls back to Richardson
+/// extrapolation of the supplied runs, and says so. The scene is `string-hanging` made
+/// transient (the BVP models static and steady drives only, so it answers "not
+/// applicable"); the runs are the same FE files, renamed to it. The fallback's errors are
+/// exactly those of `--reference supplied` on the static scene (same runs, same
+/// extrapolation, to 1e-12 relative); without the fallback the check would have no
+/// reference and compare nothing.
+#[test]
+fn auto_falls_back_to_the_supplied_runs_where_no_bvp_solves_the_scene() {
+    let d = dir("auto-fallback");
+    let mut scene: Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    scene["name"] = Value::from("string-hanging-transient");
+    scene["analysis"] = Value::from("transient");
+    scene.as_object_mut().unwrap().remove("bvp");
+    let scene_path = d.join("scene.json");
+    std::fs::write(&scene_path, serde_json::to_string_pretty(&scene).unwrap()).unwrap();
+    let runs = d.join("runs");
+    std::fs::create_dir_all(&runs).unwrap();
+    write_results(&runs, |_, v| v["scene"] = Value::from("string-hanging-transient"));
+
+    // the BVP refuses the transient scene by name
+    let r = beltcheck(&["reference", scene_path.to_str().unwrap()]);
+    assert_ne!(r.status.code(), Some(0), "{}", stdout(&r));
+    assert!(stderr(&r).contains("not applicable"), "{}", stderr(&r));
+
+    let json = d.join("auto.json");
+    let o = beltcheck(&["check", scene_path.to_str().unwrap(), runs.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert!(out.contains("no BVP reference for this scene") && out.contains("Richardson extrapolation of the supplied runs"), "{out}\n{}", stderr(&o));
+
+    // the same numbers as `--reference supplied` on the static scene
+    let same = dir("auto-fallback-supplied");
+    write_results(&same, |_, _| {});
+    let supplied = same.join("supplied.json");
+    let s = check(&[same.to_str().unwrap(), "--reference", "supplied", "--json", supplied.to_str().unwrap()]);
+    assert_eq!(s.status.code(), o.status.code(), "{out}\n{}", stdout(&s));
+    for q in ["y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "driven.contact_arc", "deflection_l2"] {
+        let (a, b) = (check_error(&json, q), check_error(&supplied, q));
+        assert!(a > 0.0 && a < 1e-5 && (a - b).abs() <= 1e-12 * b, "{q}: auto fallback {a:e}, supplied {b:e}");
+    }
+}
