@@ -268,11 +268,13 @@ fn schema_prints_the_shipped_files() {
 }
 
 /// The worked example of docs/check-your-code.md: the Python finite-difference string
-/// solver writes result files at 128, 256 and 512 links and `check` reads all three. Its
-/// every error is inside the gate's limits; the one failing check is the order of
-/// y_upper_mid, whose chain value settles 2.9e-6 m off the reference (the doc's
-/// finding) — if the example improves or worsens, this test says so. Skipped, with a
-/// message, where python3 is not installed.
+/// solver writes result files at 512, 1024 and 2048 links (about 12 s) and `check` reads
+/// all three and passes with the scene's limits: every error at 2048 links inside its
+/// limit, every observed order between 1024 and 2048 at least 1. Measured: the field
+/// norms, tensions and contact arcs converge at order 1.8 … 2.6, the mid-span heights
+/// faster (4.6, 5.5: their errors, 6e-8 m at 1024, are near a change of sign); the test
+/// holds the orders to [1.5, 7] so that a first-order or stalling example fails it.
+/// Skipped, with a message, where python3 is not installed.
 #[test]
 fn the_python_example_is_checked() {
     let python = std::process::Command::new("python3").arg("--version").output();
@@ -282,7 +284,7 @@ fn the_python_example_is_checked() {
     }
     let d = dir("python");
     let o = std::process::Command::new("python3")
-        .args(["examples/python/fd_string.py", SCENE, d.to_str().unwrap(), "128", "256", "512"])
+        .args(["examples/python/fd_string.py", SCENE, d.to_str().unwrap(), "512", "1024", "2048"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
@@ -294,13 +296,16 @@ fn the_python_example_is_checked() {
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let checks = v["gate"]["checks"].as_array().unwrap();
     assert_eq!(checks.len(), 20, "10 errors and 10 orders: {out}");
-    for c in checks.iter().filter(|c| c["measure"] == "error") {
-        assert_eq!(c["pass"], true, "{c}");
-        assert_eq!(c["discretisation"]["elements"], 512);
+    for c in checks {
+        assert_eq!(c["pass"], true, "{c}\n{out}");
+        if c["measure"] == "error" {
+            assert_eq!(c["discretisation"]["elements"], 2048);
+        } else {
+            let p = c["value"].as_f64().unwrap();
+            assert!((1.5..=7.0).contains(&p), "{}: order {p}\n{out}", c["quantity"]);
+        }
     }
-    let failing: Vec<&str> = checks.iter().filter(|c| c["pass"] == false).map(|c| c["quantity"].as_str().unwrap()).collect();
-    assert_eq!(failing, ["y_upper_mid"], "{out}");
-    assert_eq!(c.status.code(), Some(1));
+    assert_eq!(c.status.code(), Some(0), "{out}");
 }
 
 /// `--reference supplied`: the runs are held against the Richardson extrapolation of
