@@ -273,11 +273,13 @@ fn schema_prints_the_shipped_files() {
 }
 
 /// The worked example of docs/check-your-code.md: the Python finite-difference string
-/// solver writes result files at 128, 256 and 512 links and `check` reads all three. Its
-/// every error is inside the gate's limits; the one failing check is the order of
-/// y_upper_mid, whose chain value settles 2.9e-6 m off the reference (the doc's
-/// finding) — if the example improves or worsens, this test says so. Skipped, with a
-/// message, where python3 is not installed.
+/// solver writes result files at 512, 1024 and 2048 links (about 12 s) and `check` reads
+/// all three and passes with the scene's limits: every error at 2048 links inside its
+/// limit, every observed order between 1024 and 2048 at least 1. Measured: the field
+/// norms, tensions and contact arcs converge at order 1.8 … 2.6, the mid-span heights
+/// faster (4.6, 5.5: their errors, 6e-8 m at 1024, are near a change of sign); the test
+/// holds the orders to [1.5, 7] so that a first-order or stalling example fails it.
+/// Skipped, with a message, where python3 is not installed.
 #[test]
 fn the_python_example_is_checked() {
     let python = std::process::Command::new("python3").arg("--version").output();
@@ -287,7 +289,7 @@ fn the_python_example_is_checked() {
     }
     let d = dir("python");
     let o = std::process::Command::new("python3")
-        .args(["examples/python/fd_string.py", SCENE, d.to_str().unwrap(), "128", "256", "512"])
+        .args(["examples/python/fd_string.py", SCENE, d.to_str().unwrap(), "512", "1024", "2048"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .unwrap();
@@ -299,13 +301,16 @@ fn the_python_example_is_checked() {
     let v: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let checks = v["gate"]["checks"].as_array().unwrap();
     assert_eq!(checks.len(), 20, "10 errors and 10 orders: {out}");
-    for c in checks.iter().filter(|c| c["measure"] == "error") {
-        assert_eq!(c["pass"], true, "{c}");
-        assert_eq!(c["discretisation"]["elements"], 512);
+    for c in checks {
+        assert_eq!(c["pass"], true, "{c}\n{out}");
+        if c["measure"] == "error" {
+            assert_eq!(c["discretisation"]["elements"], 2048);
+        } else {
+            let p = c["value"].as_f64().unwrap();
+            assert!((1.5..=7.0).contains(&p), "{}: order {p}\n{out}", c["quantity"]);
+        }
     }
-    let failing: Vec<&str> = checks.iter().filter(|c| c["pass"] == false).map(|c| c["quantity"].as_str().unwrap()).collect();
-    assert_eq!(failing, ["y_upper_mid"], "{out}");
-    assert_eq!(c.status.code(), Some(1));
+    assert_eq!(c.status.code(), Some(0), "{out}");
 }
 
 /// `--reference supplied`: the runs are held against the Richardson extrapolation of
@@ -343,4 +348,46 @@ fn the_supplied_runs_can_be_the_reference() {
     // 5e-2 — the scalars all pass
     assert!(failing.iter().all(|(q, _)| *q == "driver.contact_arc" || q.starts_with("tension_")), "{failing:?}");
     assert_eq!(o.status.code(), Some(1), "{out}");
+}
+
+/// `--reference auto` (the default) on a scene no BVP solves falls back to Richardson
+/// extrapolation of the supplied runs, and says so. The scene is `string-hanging` made
+/// transient (the BVP models static and steady drives only, so it answers "not
+/// applicable"); the runs are the same FE files, renamed to it. The fallback's errors are
+/// exactly those of `--reference supplied` on the static scene (same runs, same
+/// extrapolation, to 1e-12 relative); without the fallback the check would have no
+/// reference and compare nothing.
+#[test]
+fn auto_falls_back_to_the_supplied_runs_where_no_bvp_solves_the_scene() {
+    let d = dir("auto-fallback");
+    let mut scene: Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    scene["name"] = Value::from("string-hanging-transient");
+    scene["analysis"] = Value::from("transient");
+    scene.as_object_mut().unwrap().remove("bvp");
+    let scene_path = d.join("scene.json");
+    std::fs::write(&scene_path, serde_json::to_string_pretty(&scene).unwrap()).unwrap();
+    let runs = d.join("runs");
+    std::fs::create_dir_all(&runs).unwrap();
+    write_results(&runs, |_, v| v["scene"] = Value::from("string-hanging-transient"));
+
+    // the BVP refuses the transient scene by name
+    let r = beltcheck(&["reference", scene_path.to_str().unwrap()]);
+    assert_ne!(r.status.code(), Some(0), "{}", stdout(&r));
+    assert!(stderr(&r).contains("not applicable"), "{}", stderr(&r));
+
+    let json = d.join("auto.json");
+    let o = beltcheck(&["check", scene_path.to_str().unwrap(), runs.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    let out = stdout(&o);
+    assert!(out.contains("no BVP reference for this scene") && out.contains("Richardson extrapolation of the supplied runs"), "{out}\n{}", stderr(&o));
+
+    // the same numbers as `--reference supplied` on the static scene
+    let same = dir("auto-fallback-supplied");
+    write_results(&same, |_, _| {});
+    let supplied = same.join("supplied.json");
+    let s = check(&[same.to_str().unwrap(), "--reference", "supplied", "--json", supplied.to_str().unwrap()]);
+    assert_eq!(s.status.code(), o.status.code(), "{out}\n{}", stdout(&s));
+    for q in ["y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "driven.contact_arc", "deflection_l2"] {
+        let (a, b) = (check_error(&json, q), check_error(&supplied, q));
+        assert!(a > 0.0 && a < 1e-5 && (a - b).abs() <= 1e-12 * b, "{q}: auto fallback {a:e}, supplied {b:e}");
+    }
 }

@@ -4,10 +4,17 @@ written as an outside code would be, and the result files `beltcheck check` read
 
 The belt is a closed chain of N nodes joined by N elastic links (the finite-difference
 form of the extensible string: unstretched spacing l0 = L/N, axial force
-N = EA (l/l0 - 1) in each link, weight rho*g*l0 lumped at each node). The pulleys push
-on the nodes by a penalty, k (R - |p - c|) when a node is inside the pulley surface of
-the centreline contour, with k = 50 EA/l0 so that the penetration shrinks like l0^2 with
-the mesh. Equilibrium is the minimum of the total energy, found by Newton's method
+N = EA (l/l0 - 1) in each link, weight rho*g*l0 lumped at each node). A link's length l
+is its chord, or where the chord would cut into a pulley (the circle of radius R of the
+centreline contour), the taut path round it: tangent, arc, tangent. So a node-to-node
+link on a pulley is an arc of it, and the link across a lift-off point is arc plus
+tangent: the belt length a pulley takes up is exact wherever between two nodes the span
+leaves it. (A chain of chords instead rests on the pulley as a polygon, whose free spans
+leave it from a vertex: their line misses the circle by up to R (l0/R)^2 / 12, with a
+sign that depends on where the lift-off point falls between nodes, and the span's sag
+error oscillates with N instead of converging.) The pulleys push on the nodes by a
+penalty, k (rc - |p - c|) when a node is inside the circle rc = R (1 + 1e-7), with
+k = 50 EA/l0. Equilibrium is the minimum of the total energy, found by Newton's method
 with a line search on the energy; the Hessian is banded after numbering the nodes
 0, 1, N-1, 2, N-2, ... . Node 0 is held at x = 0 on the upper span (the mirror line of
 the symmetric scene): a frictionless loop could otherwise slide round the pulleys.
@@ -82,16 +89,17 @@ def solve(scene, n, guess=None):
     g = scene["effects"].get("gravity", 0.0)
     l0 = length / n
     k = 50.0 * ea / l0
-    # the nodes on a pulley form a polygon of chords l0: they rest on the circle of radius
-    # rc whose chords span the same arc of the pulley as a belt of length l0 wrapped on
-    # it, so that the polygon uses up the right length of belt (the free spans' sag is
-    # very sensitive to it)
-    rc = 0.5 * l0 / math.sin(0.5 * l0 / r)
+    # a link whose chord would cut into a pulley is the taut path round it (tangent,
+    # arc, tangent: `wrapped` below), so the belt length a pulley takes up does not depend
+    # on where between two nodes the span lifts off; the penalty holds the nodes on the
+    # circle 1e-7 R outside the pulley, clear of the square-root kink of the tangent
+    # length at its surface (the path round costs 1e-12 R a link for it)
+    rc = r * (1.0 + 1e-7)
     centres = [(-0.5 * h, 0.0), (0.5 * h, 0.0)]
     weight = rho * g * l0
 
     # start: both spans sag as parabolas, the loop 1e-4 longer than the belt, the arcs
-    # pressed 1e-9 R into the pulleys (so that the contact holds them from the first step)
+    # pressed 1e-9 R into the penalty circle (so that the contact holds them from the first step)
     ra = rc * (1.0 - 1e-9)
 
     def start(sag):
@@ -156,6 +164,60 @@ def solve(scene, n, guess=None):
     nu = 2 * n - 1
     band = 9
 
+    def wrapped(p, q):
+        """Length of link p -> q and its gradient: the chord, or where the chord cuts into
+        the pulley next to it, the taut path round it (tangent, arc, tangent)."""
+        cx = 0.5 * h if p[0] + q[0] > 0.0 else -0.5 * h
+        px, py, qx, qy = p[0] - cx, p[1], q[0] - cx, q[1]
+        dp, dq = math.hypot(px, py), math.hypot(qx, qy)
+        dth = math.atan2(py, px) - math.atan2(qy, qx)  # clockwise angle from p to q
+        dth = dth - 2.0 * math.pi * round(dth / (2.0 * math.pi))
+        # tangent lengths and their angles, free of cancellation near the surface
+        tp, tq = math.sqrt(max((dp - r) * (dp + r), 0.0)), math.sqrt(max((dq - r) * (dq + r), 0.0))
+        ap, aq = math.atan2(tp, r), math.atan2(tq, r)
+        beta = dth - ap - aq
+        if dth > 0.0 and beta > 0.0:
+            gp = [(tp * px / dp - r * py / dp) / dp, (tp * py / dp + r * px / dp) / dp]
+            gq = [(tq * qx / dq + r * qy / dq) / dq, (tq * qy / dq - r * qx / dq) / dq]
+            return tp + tq + r * beta, gp, gq, True
+        dx, dy = q[0] - p[0], q[1] - p[1]
+        l = math.hypot(dx, dy)
+        if l == 0.0:
+            return 0.0, [0.0, 0.0], [0.0, 0.0], False
+        return l, [-dx / l, -dy / l], [dx / l, dy / l], False
+
+    def link(p, q, with_hessian):
+        w, gp, gq, wrap = wrapped(p, q)
+        if not with_hessian or w == 0.0:
+            return w, gp, gq, None
+        if not wrap:
+            dx, dy = q[0] - p[0], q[1] - p[1]
+            ex, ey = dx / w, dy / w
+            b = [[(1 - ex * ex) / w, -ex * ey / w], [-ex * ey / w, (1 - ey * ey) / w]]
+            hw = [[b[a % 2][c % 2] * (1 if (a < 2) == (c < 2) else -1) for c in range(4)] for a in range(4)]
+            return w, gp, gq, hw
+        # round the pulley: the second derivatives by central differences of the gradient
+        x0 = [p[0], p[1], q[0], q[1]]
+        # (the step stays on one side of the pulley surface, where the path's length
+        # changes its law)
+        cx = 0.5 * h if p[0] + q[0] > 0.0 else -0.5 * h
+        gap = min(abs(math.hypot(p[0] - cx, p[1]) - r), abs(math.hypot(q[0] - cx, q[1]) - r))
+        d = min(1e-7 * r, 0.5 * gap) if gap > 0.0 else 1e-7 * r
+        hw = [[0.0] * 4 for _ in range(4)]
+        for c in range(4):
+            up, dn = x0[:], x0[:]
+            up[c] += d
+            dn[c] -= d
+            _, a1, b1, _ = wrapped(up[0:2], up[2:4])
+            _, a2, b2, _ = wrapped(dn[0:2], dn[2:4])
+            col = [(u - v) / (2.0 * d) for u, v in zip(a1 + b1, a2 + b2)]
+            for a in range(4):
+                hw[a][c] = col[a]
+        for a in range(4):
+            for c in range(a):
+                hw[a][c] = hw[c][a] = 0.5 * (hw[a][c] + hw[c][a])
+        return w, gp, gq, hw
+
     def energy_parts(pos):
         e, grad, hess = 0.0, [0.0] * nu, [dict() for _ in range(nu)]
         def add_g(node, gx, gy):
@@ -171,26 +233,23 @@ def solve(scene, n, guess=None):
                         hess[da[p]][db[q]] = hess[da[p]].get(db[q], 0.0) + kk[p][q]
         for i in range(n):
             j = (i + 1) % n
-            dx, dy = pos[j][0] - pos[i][0], pos[j][1] - pos[i][1]
-            l = math.hypot(dx, dy)
-            if l == 0.0:
+            w, gi, gj, hw = link(pos[i], pos[j], True)
+            if w == 0.0:
                 return math.inf, grad, hess
-            ex, ey = dx / l, dy / l
-            f = ea * (l / l0 - 1.0)
-            e += 0.5 * ea / l0 * (l - l0) ** 2
-            add_g(i, -f * ex, -f * ey)
-            add_g(j, f * ex, f * ey)
+            f = ea * (w / l0 - 1.0)
+            e += 0.5 * ea / l0 * (w - l0) ** 2
+            add_g(i, f * gi[0], f * gi[1])
+            add_g(j, f * gj[0], f * gj[1])
             # a link in compression is given no transverse stiffness (a string has
             # none), so the Newton matrix stays positive definite on the way; at the
             # solution every link is in tension and the matrix is the exact Hessian
-            kl, kg = ea / l0, max(f, 0.0) / l
-            kk = [[kl * ex * ex + kg * (1 - ex * ex), kl * ex * ey - kg * ex * ey],
-                  [kl * ex * ey - kg * ex * ey, kl * ey * ey + kg * (1 - ey * ey)]]
-            neg = [[-v for v in row] for row in kk]
-            add_h(i, i, kk)
-            add_h(j, j, kk)
-            add_h(i, j, neg)
-            add_h(j, i, neg)
+            g4 = gi + gj
+            kl, kg = ea / l0, max(f, 0.0)
+            m4 = [[kl * g4[a] * g4[b] + kg * hw[a][b] for b in range(4)] for a in range(4)]
+            add_h(i, i, [row[0:2] for row in m4[0:2]])
+            add_h(i, j, [row[2:4] for row in m4[0:2]])
+            add_h(j, i, [row[0:2] for row in m4[2:4]])
+            add_h(j, j, [row[2:4] for row in m4[2:4]])
         for i in range(n):
             e += weight * pos[i][1]
             add_g(i, 0.0, weight)
@@ -219,19 +278,22 @@ def solve(scene, n, guess=None):
     iterations = 0
     e, grad, hess = energy_parts(pos)
     scale = weight * n
-    while max(abs(v) for v in grad) > 1e-8 * scale:
+    while max(abs(v) for v in grad) > 1e-9 * scale:
         iterations += 1
         if iterations > 200:
             raise RuntimeError(f"Newton did not converge at N = {n}")
         # Newton step with a backtracking line search on the energy; where it finds no
         # descent, the matrix is shifted by mu*I (mu growing tenfold) and the step retried
         diag = max(hess[i][i] for i in range(nu))
-        mu = 1e-14 * diag
+        mu, done = 1e-14 * diag, False
         while True:
             shifted = [dict(row) for row in hess]
             for i in range(nu):
                 shifted[i][i] += mu
             step = banded_solve(shifted, grad, nu, band)
+            if mu <= 1e-14 * diag and max(abs(v) for v in step) < 1e-13 * h:
+                done = True  # the residual is at its round-off floor (k |x| eps): converged
+                break
             # no node moves more than R/20 in one step: a node may not jump through a pulley
             longest = max(abs(v) for v in step)
             alpha, accepted = min(1.0, 0.05 * r / longest) if longest > 0.0 else 1.0, False
@@ -249,11 +311,20 @@ def solve(scene, n, guess=None):
             mu = max(10.0 * mu, 1e-8 * diag)
             if mu > 1e3 * diag:
                 raise RuntimeError(f"no descent direction at N = {n}")
+        if done:
+            break
         pos, e, grad, hess = trial, e_trial, g_trial, h_trial
 
-    tension_links = [ea * (math.dist(pos[i], pos[(i + 1) % n]) / l0 - 1.0) for i in range(n)]
+    tension_links = [ea * (wrapped(pos[i], pos[(i + 1) % n])[0] / l0 - 1.0) for i in range(n)]
     tension_nodes = [0.5 * (tension_links[i - 1] + tension_links[i]) for i in range(n)]
-    return pos, tension_nodes, iterations, nu, rc
+    # a node is on a pulley where a link next to it is a path round that pulley
+    contact = [None] * n
+    for i in range(n):
+        j = (i + 1) % n
+        if wrapped(pos[i], pos[j])[3]:
+            name = "driven" if pos[i][0] + pos[j][0] > 0.0 else "driver"
+            contact[i] = contact[j] = name
+    return pos, tension_nodes, iterations, nu, contact
 
 
 def lift_off(pos, centre, contact, pulley):
@@ -289,19 +360,12 @@ def lift_off(pos, centre, contact, pulley):
 
 def result(scene, n, guess=None):
     t0 = time.perf_counter()
-    pos, tension, iterations, unknowns, rc = solve(scene, n, guess)
+    pos, tension, iterations, unknowns, contact = solve(scene, n, guess)
     wall = time.perf_counter() - t0
     d = scene["drive"]
     r, h = d["pulley_radius"], d["centre_distance"]
     contour = Contour(r, h)
     centres = {"driver": (-0.5 * h, 0.0), "driven": (0.5 * h, 0.0)}
-    contact = []
-    for p in pos:
-        c = None
-        for name, (cx, cy) in centres.items():
-            if math.hypot(p[0] - cx, p[1] - cy) < rc:
-                c = name
-        contact.append(c)
     summary = {
         "y_upper_mid": pos[0][1],
         "y_lower_mid": pos[n // 2][1],
