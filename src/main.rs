@@ -880,7 +880,7 @@ fn run_check(args: &CheckArgs) -> Result<bool> {
         CheckReferenceArg::ClosedForm => ReferenceChoice::ClosedForm,
         CheckReferenceArg::Supplied => ReferenceChoice::Supplied,
     };
-    let checked = check::check(&scene, &args.results, choice, args.samples)?;
+    let checked = check::check(&scene, &args.results, args.json.as_slice(), choice, args.samples)?;
     let passed = checked.passed();
     println!("beltcheck check: {} — {} outside method(s)", scene.name, checked.study.series.len());
     print!("{}", verification::table::study_text(&checked.study));

@@ -129,6 +129,28 @@ fn a_perturbed_quantity_fails_by_name() {
     assert!(!failed.contains("tension_lower_mid"), "only the perturbed quantity fails: {failed}");
 }
 
+/// `--json` into the results directory: a second identical run passes over the first
+/// run's checks file (it is the check's own output, not a result) and gives the same
+/// verdict; the same file named explicitly as a result is still read and refused.
+#[test]
+fn the_checks_file_in_the_results_directory_is_not_a_result() {
+    let d = dir("json-inside");
+    write_results(&d, |n, v| {
+        if n == 256 {
+            let t = v["summary"]["tension_upper_mid"].as_f64().unwrap();
+            v["summary"]["tension_upper_mid"] = Value::from(t * 1.01);
+        }
+    });
+    let json = d.join("checks.json");
+    for round in 0..2 {
+        let o = check(&[d.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "round {round}: drift, not a bad file: {}\n{}", stdout(&o), stderr(&o));
+        assert!(json.is_file());
+    }
+    let o = check(&[json.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "a checks file given as a result is a bad result file");
+}
+
 /// A quantity missing from a run is a failing check that says so (not a pass).
 #[test]
 fn a_missing_quantity_fails_by_name() {

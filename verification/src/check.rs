@@ -57,13 +57,14 @@ impl Checked {
     }
 }
 
-/// Reads `inputs` (result files or directories of them) and checks them against
-/// `scene` (module docs). `samples` σ points carry the field norms.
+/// Reads `inputs` (result files or directories of them; a directory's files that are
+/// one of `exclude` — the check's own output files — are passed over) and checks them
+/// against `scene` (module docs). `samples` σ points carry the field norms.
 ///
 /// # Errors
 /// The first unreadable or malformed file (nothing is computed then).
-pub fn check(scene: &Scene, inputs: &[PathBuf], choice: ReferenceChoice, samples: usize) -> Result<Checked, OutsideError> {
-    let files = outside::result_files(inputs)?;
+pub fn check(scene: &Scene, inputs: &[PathBuf], exclude: &[PathBuf], choice: ReferenceChoice, samples: usize) -> Result<Checked, OutsideError> {
+    let files = outside::result_files(inputs, exclude)?;
     let runs = files.iter().map(|f| outside::read_result(f, scene)).collect::<Result<Vec<_>, _>>()?;
     let (methods, mut skipped) = outside::group(scene, runs)?;
     let mut plan = gate::gate_plan_with(scene, gate::GATE_BVP_TOLERANCE, None, Some(Formulations::Named(Vec::new())));

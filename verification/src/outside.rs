@@ -230,7 +230,13 @@ pub struct OutsideRun {
 ///
 /// # Errors
 /// [`OutsideError::NoFiles`], [`OutsideError::Read`], [`OutsideError::EmptyDirectory`].
-pub fn result_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, OutsideError> {
+pub fn result_files(inputs: &[PathBuf], exclude: &[PathBuf]) -> Result<Vec<PathBuf>, OutsideError> {
+    // beltcheck's own output of an earlier run (`check --json` into the results
+    // directory) is not a result file: a directory listing passes it over
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
     if inputs.is_empty() {
         return Err(OutsideError::NoFiles);
     }
@@ -241,6 +247,7 @@ pub fn result_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, OutsideError> {
             let mut found: Vec<PathBuf> = entries
                 .filter_map(|e| e.ok().map(|e| e.path()))
                 .filter(|f| f.is_file() && f.extension().is_some_and(|x| x == "json" || x == "csv"))
+                .filter(|f| !exclude.iter().any(|x| same(f, x)))
                 .collect();
             found.sort();
             if found.is_empty() {
