@@ -62,6 +62,7 @@ pub use crate::quadrature::{QuadratureError, Rule};
 pub use numerics::Scalar;
 
 mod built_in;
+pub mod cosserat;
 pub mod terms;
 
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
