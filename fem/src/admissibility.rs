@@ -18,6 +18,7 @@ use drive::contour::Pulley;
 use drive::view::SolutionView;
 
 use crate::error::FemError;
+use crate::formulation::layout::LayoutElement;
 use crate::solution::FemSolution;
 
 /// A negative edge force is inadmissible below −1e-6 F (the recovery is a difference of
@@ -74,7 +75,7 @@ fn name(p: Pulley) -> &'static str {
 
 /// The bending layers at the contact edges of a rod solution (empty for a string or
 /// without contact).
-pub fn edge_layers(sol: &FemSolution) -> Vec<(Pulley, EdgeLayer)> {
+pub fn edge_layers<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, K>) -> Vec<(Pulley, EdgeLayer)> {
     let Some(ei) = sol.params().bending_stiffness else { return Vec::new() };
     let mut out = Vec::new();
     for p in [Pulley::Driver, Pulley::Driven] {
@@ -99,7 +100,7 @@ pub fn edge_layers(sol: &FemSolution) -> Vec<(Pulley, EdgeLayer)> {
 /// # Errors
 /// [`FemError::InadmissibleContact`] with the pulley, the quantity, its value and limit,
 /// and the elements a resolved mesh needs where the bending layer tells.
-pub fn check(sol: &FemSolution) -> Result<Vec<String>, FemError> {
+pub fn check<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, K>) -> Result<Vec<String>, FemError> {
     if sol.params().penalty.is_none() {
         return Ok(Vec::new());
     }

@@ -94,16 +94,26 @@ impl ElementContext {
     /// The fields at ξ from the local unknowns (eq. 43).
     #[inline]
     pub fn fields<D: Scalar>(&self, q: &[D; NDOF], xi: f64) -> PointFields<D> {
+        self.layout_fields(STRING, q, xi)
+    }
+
+    /// The fields S, ∂σS, ν, ∂σν, ∂²σν at ξ of an element of any 1-D Hermite `layout`
+    /// from its N local unknowns (layout order): every 1-D layout carries s as field 0
+    /// and ν as field 1 ([`crate::element`]); further fields (θ) are read by
+    /// [`Self::field`].
+    #[inline]
+    pub fn layout_fields<D: Scalar, const N: usize>(&self, layout: ElementLayout, q: &[D; N], xi: f64) -> PointFields<D> {
         let (wv, wd) = hermite::weights(xi, self.geometry.h);
         let comb = |w: &[f64; 4], i: [usize; 4]| -> D { q[i[0]] * w[0] + q[i[1]] * w[1] + q[i[2]] * w[2] + q[i[3]] * w[3] };
         let w2 = hermite::second_weights(xi, self.geometry.h);
+        let (s, nu) = (layout.hermite_indices(0), layout.hermite_indices(1));
         PointFields {
             sigma: self.sigma(xi),
-            s: comb(&wv, S_DOFS),
-            ds: comb(&wd, S_DOFS),
-            nu: comb(&wv, NU_DOFS),
-            dnu: comb(&wd, NU_DOFS),
-            d2nu: comb(&w2, NU_DOFS),
+            s: comb(&wv, s),
+            ds: comb(&wd, s),
+            nu: comb(&wv, nu),
+            dnu: comb(&wd, nu),
+            d2nu: comb(&w2, nu),
         }
     }
 
@@ -165,12 +175,16 @@ impl ElementContext {
     /// Position r, ∂σr and ∂²σr at ξ (f64 post-processing), from (F1), (F2) and
     /// ∂²σr = 2α ∂σν t_g + (∂²σν − α(1 + αν)) n_g (eq. 38 applied twice).
     pub fn curve(&self, q: &[f64; NDOF], xi: f64) -> [[f64; 2]; 3] {
-        let p = self.fields(q, xi);
-        let d2 = self.second_derivative_nu(q, xi);
+        self.curve_at(&self.fields(q, xi))
+    }
+
+    /// [`Self::curve`] from the point fields (∂²σν included), for any layout.
+    pub fn curve_at(&self, p: &PointFields<f64>) -> [[f64; 2]; 3] {
+        let d2 = p.d2nu;
         let a = self.alpha();
         let t = self.contour.t_g(p.sigma);
         let n = self.contour.n_g(p.sigma);
-        let r = self.position(&p);
+        let r = self.position(p);
         let c1 = (1.0 + a * p.nu, p.dnu);
         let c2 = (2.0 * a * p.dnu, d2 - a * (1.0 + a * p.nu));
         [

@@ -31,7 +31,7 @@
 //! - [`problem`]: the typed problem built once from the scene ([`FemProblem`]);
 //! - [`static_homotopy`]: the static string (or Kirchhoff rod, with EI) on frictionless
 //!   pulleys — tight start (F11), homotopy with step control, penalty continuation,
-//!   contact fitting;
+//!   contact fitting — generic over the element's layout;
 //! - [`solution`]: the converged solution behind the common view — recovered axial force
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
@@ -60,7 +60,11 @@
 //! workspace's `examples/custom_formulation.rs` defines one, runs `converge` and the
 //! `gate` with it. A formulation shipped with `fem` is a file in `fem/src/formulation/`
 //! and one line in its built-in list; the AD-vs-finite-difference unit test covers every
-//! built-in formulation automatically.
+//! built-in formulation automatically. An element of another 1-D layout (the Cosserat
+//! rod's {s, ν, θ}, 12 unknowns) implements [`assembly::ElementKernel`] and
+//! [`formulation::layout::LayoutElement`] and is registered by name with
+//! [`formulation::register_element`]; the static analysis and the solution view run it
+//! monomorphised for its layout (the drive analyses take the string layout only).
 //!
 //! # Entry points (the contract of the CLI and the verification harness)
 //! [`available_formulations`] (the registry, by name), [`register_formulation`],
@@ -154,13 +158,13 @@ pub struct FemRun {
 /// Names of the registered element formulations: the built-in ones (default first), then
 /// those added by [`register_formulation`] in registration order.
 pub fn available_formulations() -> Vec<&'static str> {
-    formulation::registry().iter().map(|k| k.name()).collect()
+    formulation::elements().iter().map(|k| k.name()).collect()
 }
 
 /// Names of the registered formulations that discretise `theory` (registry order):
 /// `string-*` for strings, `rod-*` for Kirchhoff rods (docs/fem-rod.md §4).
 pub fn formulations_for(theory: Theory) -> Vec<&'static str> {
-    formulation::registry().iter().filter(|k| k.theory() == theory).map(|k| k.name()).collect()
+    formulation::elements().iter().filter(|k| k.theory() == theory).map(|k| k.name()).collect()
 }
 
 /// Register an element formulation defined outside this crate, process-wide: from then
@@ -234,11 +238,19 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
     let clock = Instant::now();
     opts.validate()?;
     settings.validate()?;
+    let element = formulation::find_element(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
+        name: opts.formulation.clone(),
+        available: available_formulations().iter().map(|s| s.to_string()).collect(),
+    })?;
     if problem.is_string_drive() {
-        let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
-            name: opts.formulation.clone(),
-            available: available_formulations().iter().map(|s| s.to_string()).collect(),
-        })?;
+        // the drive analyses run on the string layout only (docs/architecture.md)
+        let Some(kernel) = element.string_kernel().cloned() else {
+            return Err(FemError::Unsupported(format!(
+                "formulation `{}` is an element of the {:?} layout; the drive analyses (steady, transient) run on the string layout {{s, ν}} only",
+                element.name(),
+                element.layout().fields
+            )));
+        };
         // `steady`: the direct steady solve (docs/fem-drive.md §12); `transient`: the
         // quasistatic transient run to its steady state, with its history
         if problem.analysis == Analysis::Steady {
@@ -247,20 +259,32 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         return string_drive::solve(problem, opts, settings, drive_settings, kernel);
     }
     let data = problem.static_data(opts, settings)?;
-    let kernel = formulation::find(&opts.formulation).ok_or_else(|| FemError::UnknownFormulation {
-        name: opts.formulation.clone(),
-        available: available_formulations().iter().map(|s| s.to_string()).collect(),
-    })?;
-    // a formulation discretises one theory: string elements cannot carry EI, rod
+    // an element discretises one theory: string elements cannot carry EI, rod
     // elements need it (docs/fem-rod.md §4); the harness prints "not applicable"
-    if kernel.theory() != problem.belt.theory {
+    if element.theory() != problem.belt.theory {
         return Err(FemError::Unsupported(format!(
             "formulation `{}` discretises theory `{}`, the scene's belt is theory `{}`",
-            kernel.name(),
-            kernel.theory(),
+            element.name(),
+            element.theory(),
             problem.belt.theory
         )));
     }
+    // the static analysis, monomorphised for the element's layout
+    match element {
+        formulation::RegisteredElement::String(kernel) => solve_static(&data, kernel, opts, settings, clock),
+        formulation::RegisteredElement::Cosserat(kernel) => solve_static(&data, kernel, opts, settings, clock),
+    }
+}
+
+/// The static analysis of `data` with the element `kernel` of any 1-D layout, and the
+/// run around its solution (admissibility, summary, terms, options, work).
+fn solve_static<const N: usize, K: formulation::layout::LayoutElement<N> + ?Sized + 'static>(
+    data: &StringHanging,
+    kernel: std::sync::Arc<K>,
+    opts: &FemOptions,
+    settings: &SolverSettings,
+    clock: Instant,
+) -> Result<FemRun, FemError> {
     let contour = data.contour()?;
     let mesh = mesh::Mesh::new(contour, opts.elements, settings.arc_weight)?;
     let (solution, report, unknowns) = data.solve(mesh, kernel.clone(), settings)?;

@@ -10,7 +10,7 @@
 
 use numerics::newton::{Damping, Evaluation, NewtonError, NewtonOptions, NewtonProblem, Progress, TrialKind, TrialStep, Verdict};
 
-use crate::assembly::Assembler;
+use crate::assembly::{Assembler, ElementKernel};
 use crate::dofs::DofKind;
 use crate::kinematics::TermParams;
 use crate::linear::SparseLu;
@@ -34,7 +34,7 @@ pub struct Scales {
 impl Scales {
     /// Weights for the unknowns of `asm` with length scale `length` (H, m) and force
     /// scale `force` (F_ref, N).
-    pub fn new(asm: &Assembler, length: f64, force: f64) -> Scales {
+    pub fn new<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, length: f64, force: f64) -> Scales {
         let kinds = asm.dofs().kinds();
         let spacing = asm.dofs().spacing();
         Scales {
@@ -225,8 +225,8 @@ pub(crate) fn shifted(values: &[f64], diagonal: &[usize], d: &[f64], mu: f64, fl
 /// The static Newton problem on [`numerics::newton`]: G = ∂Π/∂z with its tangent from
 /// one assembly pass, trials judged by the energy alone, the levels of
 /// [`EnergyLevels`] (the last resort on the scaled residual ‖G‖).
-struct StaticNewton<'a> {
-    asm: &'a Assembler,
+struct StaticNewton<'a, const N: usize, K: ElementKernel<N> + ?Sized> {
+    asm: &'a Assembler<N, K>,
     lu: &'a mut SparseLu,
     params: &'a TermParams,
     length: f64,
@@ -253,7 +253,7 @@ enum StaticError {
     Singular(String),
 }
 
-impl StaticNewton<'_> {
+impl<const N: usize, K: ElementKernel<N> + ?Sized> StaticNewton<'_, N, K> {
     fn factorize_level(&mut self) -> Result<(), StaticError> {
         let mu = self.levels.mu;
         if mu == 0.0 {
@@ -264,7 +264,7 @@ impl StaticNewton<'_> {
     }
 }
 
-impl NewtonProblem for StaticNewton<'_> {
+impl<const N: usize, K: ElementKernel<N> + ?Sized> NewtonProblem for StaticNewton<'_, N, K> {
     type Error = StaticError;
     fn size(&self) -> usize {
         self.asm.len()
@@ -363,8 +363,8 @@ impl NewtonProblem for StaticNewton<'_> {
 /// the plain Newton step is accepted where the scaled residual does not grow. The
 /// iteration is [`numerics::newton::solve`] (backtracking, the gradient taken from the
 /// tangent's assembly, trials judged by Π alone).
-pub fn solve(
-    asm: &Assembler,
+pub fn solve<const N: usize, K: ElementKernel<N> + ?Sized>(
+    asm: &Assembler<N, K>,
     lu: &mut SparseLu,
     z: &mut [f64],
     params: &TermParams,

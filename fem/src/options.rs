@@ -66,7 +66,7 @@ impl FemOptions {
                 });
             }
         }
-        if crate::formulation::find(&self.formulation).is_none() {
+        if crate::formulation::find_element(&self.formulation).is_none() {
             return Err(FemError::UnknownFormulation {
                 name: self.formulation.clone(),
                 available: crate::available_formulations().iter().map(|s| s.to_string()).collect(),

@@ -9,6 +9,8 @@ use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
 
 use crate::dofs::DofMap;
+use crate::element::{ElementLayout, Field};
+use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, PointFields, TermParams, NDOF};
 use crate::mesh::Mesh;
@@ -17,14 +19,19 @@ use crate::mesh::Mesh;
 const GAP_SCAN: usize = 16;
 
 /// A converged MEL solution: the mesh, each element's local unknowns, the term
-/// parameters and the formulation (for the axial force).
-#[derive(Clone)]
-pub struct FemSolution {
+/// parameters and the element (for the axial force and the recovery rules). Generic
+/// over the element's unknown count N and its kernel K, like
+/// [`crate::assembly::Assembler`]: the point fields S, ν (and any further field of the
+/// layout, e.g. θ, by [`Self::field`]) are read through the element's
+/// [`ElementLayout`]; the default is the string layout of the registered formulations
+/// (N = 8, `dyn Kernel`).
+pub struct FemSolution<const N: usize = NDOF, K: LayoutElement<N> + ?Sized = dyn Kernel> {
     mesh: Mesh,
-    local: Vec<[f64; NDOF]>,
+    layout: ElementLayout,
+    local: Vec<[f64; N]>,
     params: TermParams,
     length: f64,
-    kernel: Arc<dyn Kernel>,
+    kernel: Arc<K>,
     summary: Summary,
     /// Recovered contact zones (driver, driven).
     zones: [Option<ContactZone>; 2],
@@ -69,20 +76,37 @@ const GL8: [(f64, f64); 8] = [
     (0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
 ];
 
-impl FemSolution {
+impl<const N: usize, K: LayoutElement<N> + ?Sized> Clone for FemSolution<N, K> {
+    fn clone(&self) -> Self {
+        FemSolution {
+            mesh: self.mesh.clone(),
+            layout: self.layout,
+            local: self.local.clone(),
+            params: self.params,
+            length: self.length,
+            kernel: self.kernel.clone(),
+            summary: self.summary.clone(),
+            zones: self.zones,
+            transport: self.transport,
+        }
+    }
+}
+
+impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     /// The solution for global unknowns `z` of `dofs` on `mesh` with belt length `length`.
-    pub fn new(mesh: Mesh, dofs: &DofMap, z: &[f64], params: TermParams, length: f64, kernel: Arc<dyn Kernel>) -> Self {
-        // effective local unknowns: the augmented map (docs/fem-rod.md K9) applied once,
-        // so that every evaluation below sees the slopes each element actually uses
-        let separate = kernel.theory() == drive::scene::Theory::String;
-        let flags = crate::dofs::augmented_flags(&mesh, separate);
+    pub fn new(mesh: Mesh, dofs: &DofMap<N>, z: &[f64], params: TermParams, length: f64, kernel: Arc<K>) -> Self {
+        // effective local unknowns: the element's map at shared transition slopes (the
+        // rod's augmented map, docs/fem-rod.md K9) applied once, so that every evaluation
+        // below sees the slopes each element actually uses
+        let flags = crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes());
         let local = (0..mesh.len())
             .map(|e| {
                 let el = ElementContext { geometry: mesh.elements()[e], contour: *mesh.contour(), params, augmented: flags[e] };
-                el.effective(&dofs.gather(e, z, length))
+                kernel.effective(&el, &dofs.gather(e, z, length))
             })
             .collect();
-        let mut sol = FemSolution { mesh, local, params, length, kernel, summary: Summary::default(), zones: [None; 2], transport: None };
+        let layout = kernel.layout();
+        let mut sol = FemSolution { mesh, layout, local, params, length, kernel, summary: Summary::default(), zones: [None; 2], transport: None };
         if sol.params.penalty.is_some() {
             sol.zones = if sol.params.bending_stiffness.is_some() {
                 [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
@@ -136,12 +160,40 @@ impl FemSolution {
         ElementContext { geometry: self.mesh.elements()[e], contour: *self.mesh.contour(), params: self.params, augmented: [false; 2] }
     }
 
+    /// The fields S, ∂σS, ν, ∂σν, ∂²σν of element e at ξ.
+    #[inline]
+    fn point(&self, e: usize, xi: f64) -> PointFields<f64> {
+        self.context(e).layout_fields(self.layout, &self.local[e], xi)
+    }
+
     /// Element, its context and the fields at σ.
     fn at(&self, sigma: f64) -> (ElementContext, PointFields<f64>) {
         let (e, xi) = self.mesh.locate(sigma);
-        let el = self.context(e);
-        let p = el.fields(&self.local[e], xi);
-        (el, p)
+        (self.context(e), self.point(e, xi))
+    }
+
+    /// The element's field layout.
+    pub fn layout(&self) -> ElementLayout {
+        self.layout
+    }
+
+    /// The element.
+    pub fn kernel(&self) -> &Arc<K> {
+        &self.kernel
+    }
+
+    /// Value, ∂σ and ∂²σ of `field` at σ (wrapped); `None` if the element's layout does
+    /// not carry the field (θ of a string). For S without the per-loop offset.
+    pub fn field(&self, field: Field, sigma: f64) -> Option<[f64; 3]> {
+        let f = self.layout.position(field)?;
+        Some(self.one_sided_field(f, sigma, false))
+    }
+
+    /// Value, ∂σ and ∂²σ of field number `field` of the layout at σ from one side (as
+    /// [`Self::one_sided_fields`]).
+    pub fn one_sided_field(&self, field: usize, sigma: f64, left: bool) -> [f64; 3] {
+        let (e, xi) = if left { self.mesh.locate_left(sigma) } else { self.mesh.locate(sigma) };
+        self.context(e).field(self.layout, &self.local[e], field, xi)
     }
 
     /// Fields S, ∂σS, ν, ∂σν at σ (wrapped; S without the per-loop offset).
@@ -153,7 +205,7 @@ impl FemSolution {
     /// slopes differ at a region transition), else the element containing σ.
     pub fn one_sided_fields(&self, sigma: f64, left: bool) -> PointFields<f64> {
         let (e, xi) = if left { self.mesh.locate_left(sigma) } else { self.mesh.locate(sigma) };
-        self.context(e).fields(&self.local[e], xi)
+        self.point(e, xi)
     }
 
     /// Belt length L, m.
@@ -167,14 +219,7 @@ impl FemSolution {
         let (e, xi) = self.mesh.locate(sigma);
         let el = self.context(e);
         let pts = self.kernel.rules().strain.points();
-        let ea = self.params.axial_stiffness;
-        let values: Vec<(f64, f64)> = pts
-            .iter()
-            .map(|&(x, _)| {
-                let p = el.fields(&self.local[e], x);
-                (x, self.kernel.axial_force(el.stretch(&p), ea))
-            })
-            .collect();
+        let values: Vec<(f64, f64)> = pts.iter().map(|&(x, _)| (x, self.kernel.axial_force_at(&el, &self.local[e], x))).collect();
         lagrange(&values, xi)
     }
 
@@ -207,7 +252,7 @@ impl FemSolution {
         for e in 0..self.mesh.len() {
             let el = self.context(e);
             for xi in rule.points().iter().map(|p| p.0).chain([-1.0, 1.0]) {
-                if let Some(g) = el.gap(&el.fields(&self.local[e], xi)) {
+                if let Some(g) = el.gap(&self.point(e, xi)) {
                     m = m.max(-g);
                 }
             }
@@ -223,10 +268,9 @@ impl FemSolution {
         for e in 0..self.mesh.len() {
             let el = self.context(e);
             for xi in rule.points().iter().map(|p| p.0).chain([-1.0, 1.0]) {
-                let p = el.fields(&self.local[e], xi);
-                let n = self.kernel.axial_force(el.stretch(&p), self.params.axial_stiffness);
+                let n = self.kernel.axial_force_at(&el, &self.local[e], xi);
                 if n < best.1 {
-                    best = (p.sigma, n);
+                    best = (el.sigma(xi), n);
                 }
             }
         }
@@ -267,7 +311,7 @@ impl FemSolution {
         let mut events: Vec<(f64, bool)> = Vec::new(); // (σ unwrapped, entering contact?)
         for &(_, e, off) in &parts {
             let el = self.context(e);
-            let gap_at = |xi: f64| -> f64 { el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY) };
+            let gap_at = |xi: f64| -> f64 { el.gap(&self.point(e, xi)).unwrap_or(f64::INFINITY) };
             let mut xi_prev = -1.0;
             let mut g_prev = gap_at(-1.0);
             for j in 1..=GAP_SCAN {
@@ -365,8 +409,8 @@ impl FemSolution {
         }
         let (e, xi) = self.mesh.locate(sigma_p);
         let el = self.context(e);
-        let p = el.fields(&self.local[e], xi);
-        let [r, r1, _] = el.curve(&self.local[e], xi);
+        let p = self.point(e, xi);
+        let [r, r1, _] = el.curve_at(&p);
         let speed = r1[0].hypot(r1[1]);
         let ea = self.params.axial_stiffness;
         let t = [r1[0] / speed, r1[1] / speed];
@@ -449,8 +493,7 @@ impl FemSolution {
         for k in 0..samples {
             let s = a + (b - a) * (0.25 + 0.5 * (k as f64 + 0.5) / samples as f64);
             let (e, xi) = self.mesh.locate(s);
-            let el = self.context(e);
-            let [_, r1, _] = el.curve(&self.local[e], xi);
+            let [_, r1, _] = self.context(e).curve_at(&self.point(e, xi));
             let speed = r1[0].hypot(r1[1]);
             let n = self.recovered_axial_force(s) - self.transport.map_or(0.0, |rc2| rc2 * self.stretch(s));
             sum += n * r1[0] / speed;
@@ -513,7 +556,7 @@ impl FemSolution {
                     if sigma <= w0 || sigma >= w1 {
                         continue;
                     }
-                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    let gap = el.gap(&self.point(e, xi)).unwrap_or(f64::INFINITY);
                     out.push((sigma, wt * el.jacobian() * penalty * (-gap).max(0.0)));
                 }
             }
@@ -595,7 +638,7 @@ impl FemSolution {
         let d = (mid - c.wrap(sigma_b)).rem_euclid(l);
         let sigma_m = sigma_b + if d > 0.5 * l { d - l } else { d };
         let (em, xm) = self.mesh.locate(sigma_m);
-        let [_, r1, _] = self.context(em).curve(&self.local[em], xm);
+        let [_, r1, _] = self.context(em).curve_at(&self.point(em, xm));
         let speed = r1[0].hypot(r1[1]);
         let (t, n) = ([r1[0] / speed, r1[1] / speed], [-r1[1] / speed, r1[0] / speed]);
         let (nm, vm) = (self.axial_force(sigma_m), self.rod_resultants(sigma_m)?.1);
@@ -668,7 +711,7 @@ impl FemSolution {
                 .points()
                 .iter()
                 .map(|&(xi, wt)| {
-                    let gap = el.gap(&el.fields(&self.local[e], xi)).unwrap_or(f64::INFINITY);
+                    let gap = el.gap(&self.point(e, xi)).unwrap_or(f64::INFINITY);
                     wt * el.jacobian() * penalty * (-gap).max(0.0)
                 })
                 .sum();
@@ -701,8 +744,9 @@ impl FemSolution {
         let q = &self.local[e];
         let x = Dual64::from_re(xi).derivative();
         let (wv, wd, w2) = crate::hermite::weights_generic(x, el.geometry.h);
-        let comb = |w: &[Dual64; 4], o: usize| w[0] * q[o] + w[1] * q[o + 1] + w[2] * q[o + 4] + w[3] * q[o + 5];
-        let p = PointFields { sigma: el.sigma(xi), s: comb(&wv, 0), ds: comb(&wd, 0), nu: comb(&wv, 2), dnu: comb(&wd, 2), d2nu: comb(&w2, 2) };
+        let comb = |w: &[Dual64; 4], i: [usize; 4]| w[0] * q[i[0]] + w[1] * q[i[1]] + w[2] * q[i[2]] + w[3] * q[i[3]];
+        let (s, nu) = (self.layout.hermite_indices(0), self.layout.hermite_indices(1));
+        let p = PointFields { sigma: el.sigma(xi), s: comb(&wv, s), ds: comb(&wd, s), nu: comb(&wv, nu), dnu: comb(&wd, nu), d2nu: comb(&w2, nu) };
         let m = el.curvature(&p) * ei;
         let speed = el.tangent_length(&p).re;
         let dm_dsigma = m.eps * 2.0 / el.geometry.h;
@@ -778,7 +822,7 @@ fn bisect(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
     0.5 * (a + b)
 }
 
-impl SolutionView for FemSolution {
+impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<N, K> {
     fn contour(&self) -> &Contour {
         self.mesh.contour()
     }
@@ -823,7 +867,7 @@ impl SolutionView for FemSolution {
             .contact
             .points()
             .iter()
-            .map(|&(x, _)| (x, el.gap(&el.fields(&self.local[e], x)).map_or(0.0, |g| penalty * (-g).max(0.0))))
+            .map(|&(x, _)| (x, el.gap(&self.point(e, x)).map_or(0.0, |g| penalty * (-g).max(0.0))))
             .collect();
         Some(lagrange(&values, xi).max(0.0))
     }

@@ -10,12 +10,13 @@ use std::sync::Arc;
 
 use drive::contour::Contour;
 
-use crate::assembly::Assembler;
+use crate::assembly::{Assembler, ElementKernel};
 use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, StepControl, StepLimit, StepOptions};
 use crate::error::FemError;
 use crate::fitting::{self, Beyond, FitEnd, FitRules, Fallback, Fitted, Measure, MoveLimit, Secant};
+use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
-use crate::kinematics::TermParams;
+use crate::kinematics::{TermParams, NDOF};
 use crate::linear::SparseLu;
 use crate::mesh::Mesh;
 use crate::newton::{self, NewtonFailure, NewtonSettings, Scales};
@@ -86,9 +87,9 @@ pub fn tight_loop(contour: &Contour, l0: f64, axial_stiffness: f64, penalty: Opt
 /// The discrete problem at the tight start of the homotopy (F11), with the term
 /// parameters and belt length of a homotopy parameter η — one Newton solve of the path,
 /// for benchmarks and work-counter tests ([`StringHanging::start_problem`]).
-pub struct StartProblem {
+pub struct StartProblem<const N: usize = NDOF, K: LayoutElement<N> + ?Sized = dyn Kernel> {
     /// Mesh, numbering and formulation.
-    pub assembler: Assembler,
+    pub assembler: Assembler<N, K>,
     /// Global unknowns: the tight loop at L₀ (F11).
     pub z: Vec<f64>,
     /// Term parameters at η (penalty capped at the homotopy value).
@@ -99,7 +100,7 @@ pub struct StartProblem {
     pub scales: Scales,
 }
 
-impl StartProblem {
+impl<const N: usize, K: LayoutElement<N> + ?Sized> StartProblem<N, K> {
     /// Newton from `z` at the problem's parameters (the LU with its symbolic
     /// factorisation is built here), `z` overwritten with the solution.
     ///
@@ -121,7 +122,7 @@ impl StringHanging {
     ///
     /// # Errors
     /// [`FemError::IllPosed`] for a weightless slack loop; an invalid `settings`.
-    pub fn start_problem(&self, mesh: Mesh, kernel: Arc<dyn Kernel>, settings: &SolverSettings, eta: f64) -> Result<StartProblem, FemError> {
+    pub fn start_problem<const N: usize, K: LayoutElement<N> + ?Sized>(&self, mesh: Mesh, kernel: Arc<K>, settings: &SolverSettings, eta: f64) -> Result<StartProblem<N, K>, FemError> {
         settings.validate()?;
         let contour = *mesh.contour();
         let (l0, t_start) = self.start(&contour)?;
@@ -129,7 +130,7 @@ impl StringHanging {
         let cap = settings.homotopy_penalty_factor * self.belt.axial_stiffness / (contour.radius() * contour.radius());
         let soft = StringHanging { penalty: self.penalty.map(|p| p.min(cap)), ..*self };
         let (t0, delta) = tight_loop(&contour, l0, self.belt.axial_stiffness, soft.penalty);
-        let assembler = Assembler::new(mesh, kernel);
+        let assembler = Assembler::with_kernel(mesh, kernel);
         let scales = Scales::new(&assembler, contour.centre_distance(), f_ref);
         let z = tight_state(&assembler, l0, t0, delta, self.belt.axial_stiffness);
         let (params, length) = soft.at(eta.clamp(0.0, 1.0), l0);
@@ -181,17 +182,20 @@ impl StringHanging {
     }
 
     /// Solve on `mesh` with `kernel` by the homotopy of §9, then fit the mesh to the
-    /// contact boundaries (§5) if `settings.contact_fitting`.
+    /// contact boundaries (§5) if `settings.contact_fitting`. Generic over the element
+    /// (its layout, N unknowns): a registered formulation (`Arc<dyn Kernel>`, N = 8) or an
+    /// element of another layout (the Cosserat layout's {s, ν, θ}, N = 12), monomorphised
+    /// for each; fields after s and ν start from [`LayoutElement::start_field`].
     ///
     /// # Errors
     /// [`FemError::IllPosed`], [`FemError::HomotopyStalled`], [`FemError::NewtonDiverged`],
     /// [`FemError::SingularTangent`], [`FemError::NonFinite`].
-    pub fn solve(
+    pub fn solve<const N: usize, K: LayoutElement<N> + ?Sized>(
         &self,
         mesh: Mesh,
-        kernel: Arc<dyn Kernel>,
+        kernel: Arc<K>,
         settings: &SolverSettings,
-    ) -> Result<(FemSolution, HomotopyReport, usize), FemError> {
+    ) -> Result<(FemSolution<N, K>, HomotopyReport, usize), FemError> {
         settings.validate()?;
         let contour = *mesh.contour();
         let (l0, t_start) = self.start(&contour)?;
@@ -204,7 +208,7 @@ impl StringHanging {
         let (t0, delta) = tight_loop(&contour, l0, self.belt.axial_stiffness, soft.penalty);
         let mut report = HomotopyReport { start_length: l0, start_tension: t0, ..Default::default() };
 
-        let asm = Assembler::new(mesh, kernel.clone());
+        let asm = Assembler::with_kernel(mesh, kernel.clone());
         let scales = Scales::new(&asm, contour.centre_distance(), f_ref);
         let mut lu = SparseLu::new();
         let (rows, cols) = asm.pattern();
@@ -226,7 +230,7 @@ impl StringHanging {
         // penalty continuation to the final P on the (fitted) mesh, then refit
         if let (Some(target), Some(mut current)) = (self.penalty, soft.penalty) {
             if current < target {
-                let asm = Assembler::new(sol.mesh().clone(), kernel.clone());
+                let asm = Assembler::with_kernel(sol.mesh().clone(), kernel.clone());
                 let mut z = transfer(&sol, &asm);
                 while current < target {
                     current = (10.0 * current).min(target);
@@ -256,9 +260,9 @@ impl StringHanging {
 
     /// Natural-parameter continuation η: 0 → 1 from the converged start `z` (§9).
     #[allow(clippy::too_many_arguments)]
-    fn homotopy(
+    fn homotopy<const N: usize, K: ElementKernel<N> + ?Sized>(
         &self,
-        asm: &Assembler,
+        asm: &Assembler<N, K>,
         lu: &mut SparseLu,
         mut z: Vec<f64>,
         l0: f64,
@@ -323,9 +327,9 @@ impl StringHanging {
 
 /// The two-phase homotopy of §9 as a [`Homotopy`]: the path is smooth within each phase
 /// [0, ½] (gravity on), [½, 1] (length to L), kinked at ½, which a step hits exactly.
-struct StaticPath<'a> {
+struct StaticPath<'a, const N: usize, K: ElementKernel<N> + ?Sized> {
     data: &'a StringHanging,
-    asm: &'a Assembler,
+    asm: &'a Assembler<N, K>,
     lu: &'a mut SparseLu,
     l0: f64,
     scales: &'a Scales,
@@ -349,7 +353,7 @@ fn phase(a: f64, b: f64) -> u8 {
     }
 }
 
-impl Homotopy for StaticPath<'_> {
+impl<const N: usize, K: ElementKernel<N> + ?Sized> Homotopy for StaticPath<'_, N, K> {
     /// The failure as the error it would be, in words.
     type Failure = String;
     type Error = std::convert::Infallible;
@@ -409,17 +413,17 @@ impl Homotopy for StaticPath<'_> {
 /// passes stagnate at the noise level of the recovery, ≈ 1e-6 m at 64 elements, 5e-8 m
 /// at 256).
 #[allow(clippy::too_many_arguments)]
-fn fit(
-    sol: FemSolution,
+fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
+    sol: FemSolution<N, K>,
     params: &TermParams,
     length: f64,
-    kernel: &Arc<dyn Kernel>,
+    kernel: &Arc<K>,
     lu: &mut SparseLu,
     scales: &Scales,
     newton_settings: &NewtonSettings,
     settings: &SolverSettings,
     report: &mut HomotopyReport,
-) -> FemSolution {
+) -> FemSolution<N, K> {
     let contour = *sol.mesh().contour();
     let elements = sol.mesh().len();
     let h_min = Mesh::new(contour, elements, settings.arc_weight).map_or(0.0, |m| m.elements().iter().fold(f64::INFINITY, |a, e| a.min(e.h)));
@@ -451,11 +455,11 @@ fn fit(
 
 /// The static solution as a [`Fitted`]: a refit transfers it to the fitted mesh and
 /// solves by Newton at the final homotopy parameters.
-struct StaticFit<'a> {
-    sol: FemSolution,
+struct StaticFit<'a, const N: usize, K: LayoutElement<N> + ?Sized> {
+    sol: FemSolution<N, K>,
     params: &'a TermParams,
     length: f64,
-    kernel: &'a Arc<dyn Kernel>,
+    kernel: &'a Arc<K>,
     lu: &'a mut SparseLu,
     scales: &'a Scales,
     newton_settings: &'a NewtonSettings,
@@ -463,9 +467,9 @@ struct StaticFit<'a> {
     report: &'a mut HomotopyReport,
 }
 
-impl Fitted for StaticFit<'_> {
+impl<const N: usize, K: LayoutElement<N> + ?Sized> Fitted for StaticFit<'_, N, K> {
     type Failure = FemError;
-    type Snapshot = FemSolution;
+    type Snapshot = FemSolution<N, K>;
 
     fn mesh(&self) -> &Mesh {
         self.sol.mesh()
@@ -476,7 +480,7 @@ impl Fitted for StaticFit<'_> {
     }
 
     fn refit(&mut self, mesh: Mesh, _points: &[f64]) -> Result<(), FemError> {
-        let asm = Assembler::new(mesh, self.kernel.clone());
+        let asm = Assembler::with_kernel(mesh, self.kernel.clone());
         let mut z = transfer(&self.sol, &asm);
         // same topology, so the same sparsity pattern: the symbolic LU is reused
         match newton::solve(&asm, self.lu, &mut z, self.params, self.length, self.scales, self.newton_settings) {
@@ -495,28 +499,29 @@ impl Fitted for StaticFit<'_> {
         }
     }
 
-    fn snapshot(&self) -> FemSolution {
+    fn snapshot(&self) -> FemSolution<N, K> {
         self.sol.clone()
     }
 
-    fn restore(&mut self, snapshot: FemSolution) {
+    fn restore(&mut self, snapshot: FemSolution<N, K>) {
         self.sol = snapshot;
     }
 }
 
 /// For every node in contact at `z` (gap < 0 with the element on either side), copy its
 /// ν and ∂σν from `z` into `trial`.
-fn keep_contact_nodes(asm: &Assembler, z: &[f64], trial: &mut [f64], params: &TermParams, length: f64) {
+fn keep_contact_nodes<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, z: &[f64], trial: &mut [f64], params: &TermParams, length: f64) {
     let mesh = asm.mesh();
     let dofs = asm.dofs();
     let n = mesh.len();
     for k in 0..n {
         let el = asm.context(k, params);
         let q = dofs.gather(k, z, length);
-        let p = el.fields(&q, -1.0);
+        let p = el.layout_fields(dofs.layout(), &q, -1.0);
         if el.gap(&p).is_some_and(|g| g < 0.0) {
-            let nd = dofs.node(k);
-            for i in [nd.nu, nd.slopes_in.1, nd.slopes_out.1] {
+            let nd = dofs.node_unknowns(k);
+            let nu = nd.values[1].expect("ν is an unknown at every node");
+            for i in [nu, nd.slopes_in[1], nd.slopes_out[1]] {
                 trial[i] = z[i];
             }
         }
@@ -524,85 +529,92 @@ fn keep_contact_nodes(asm: &Assembler, z: &[f64], trial: &mut [f64], params: &Te
 }
 
 /// The global unknowns on `asm`'s mesh interpolated from a solution on another mesh of
-/// the same contour (one-sided slopes at region transitions) — the static homotopy's
-/// refits and the drives' start.
-pub fn transfer(sol: &FemSolution, asm: &Assembler) -> Vec<f64> {
+/// the same contour and layout (one-sided slopes at region transitions), field by field
+/// — the static homotopy's refits and the drives' start.
+pub fn transfer<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, K>, asm: &Assembler<N, K>) -> Vec<f64> {
     let mesh = asm.mesh();
     let dofs = asm.dofs();
+    let fields = dofs.layout().fields.len();
     let mut z = vec![0.0; asm.len()];
     for k in 0..mesh.len() {
         let sigma = mesh.node_sigmas()[k];
-        let nd = dofs.node(k);
-        let right = sol.one_sided_fields(sigma, false);
-        let left = sol.one_sided_fields(sigma, true);
-        if let Some(i) = nd.s {
-            z[i] = right.s;
-        }
-        z[nd.nu] = right.nu;
-        z[nd.slopes_in.0] = left.ds;
-        z[nd.slopes_in.1] = left.dnu;
-        z[nd.slopes_out.0] = right.ds;
-        z[nd.slopes_out.1] = right.dnu;
-        if nd.slopes_in == nd.slopes_out && mesh.is_transition(k) && !mesh.elements()[k].region.is_polar() {
-            // one shared pair at a rod transition: the Cartesian side's (docs/fem-rod.md §3)
-            let n = mesh.len();
-            debug_assert!(mesh.elements()[(k + n - 1) % n].region.is_polar());
-            z[nd.slopes_out.0] = right.ds;
-            z[nd.slopes_out.1] = right.dnu;
-        } else if nd.slopes_in == nd.slopes_out && mesh.is_transition(k) {
-            z[nd.slopes_in.0] = left.ds;
-            z[nd.slopes_in.1] = left.dnu;
+        let nd = dofs.node_unknowns(k);
+        let shared_transition = nd.slopes_in == nd.slopes_out && mesh.is_transition(k);
+        for f in 0..fields {
+            let right = sol.one_sided_field(f, sigma, false);
+            let left = sol.one_sided_field(f, sigma, true);
+            if let Some(i) = nd.values[f] {
+                z[i] = right[0];
+            }
+            z[nd.slopes_in[f]] = left[1];
+            z[nd.slopes_out[f]] = right[1];
+            if shared_transition && mesh.elements()[k].region.is_polar() {
+                // one shared slope at a rod transition: the Cartesian side's, here the
+                // element ending at the node (docs/fem-rod.md §3)
+                z[nd.slopes_in[f]] = left[1];
+            }
         }
     }
     z
 }
 
 /// Multiply every s value and ∂σs by `ratio` (the predictor when only L changes).
-fn scale_material(asm: &Assembler, z: &mut [f64], ratio: f64) {
+fn scale_material<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, z: &mut [f64], ratio: f64) {
     if ratio == 1.0 || !ratio.is_finite() {
         return;
     }
     let dofs = asm.dofs();
     for k in 0..asm.mesh().len() {
-        let nd = dofs.node(k);
-        if let Some(s) = nd.s {
+        let nd = dofs.node_unknowns(k);
+        if let Some(s) = nd.values[0] {
             z[s] *= ratio;
         }
-        z[nd.slopes_in.0] *= ratio;
-        if nd.slopes_out.0 != nd.slopes_in.0 {
-            z[nd.slopes_out.0] *= ratio;
+        z[nd.slopes_in[0]] *= ratio;
+        if nd.slopes_out[0] != nd.slopes_in[0] {
+            z[nd.slopes_out[0]] *= ratio;
         }
     }
 }
 
 /// The global unknowns of the tight loop (F11): ν = −δ, ∂σS = (1 + αν)/λ₀ per region,
-/// S integrated from S(0) = 0.
-fn tight_state(asm: &Assembler, l0: f64, t0: f64, delta: f64, axial_stiffness: f64) -> Vec<f64> {
+/// S integrated from S(0) = 0; the fields after s and ν from the element's
+/// [`LayoutElement::start_field`].
+fn tight_state<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, l0: f64, t0: f64, delta: f64, axial_stiffness: f64) -> Vec<f64> {
     let mesh = asm.mesh();
     let contour = mesh.contour();
     let lambda = 1.0 + t0 / axial_stiffness;
     let slope = |polar: bool| if polar { (1.0 - delta / contour.radius()) / lambda } else { 1.0 / lambda };
     let dofs = asm.dofs();
+    let fields = dofs.layout().fields.len();
     let mut z = vec![0.0; asm.len()];
     let mut s = 0.0;
     let n = mesh.len();
     let els = mesh.elements();
     for k in 0..n {
-        let nd = dofs.node(k);
-        if let Some(i) = nd.s {
+        let nd = dofs.node_unknowns(k);
+        if let Some(i) = nd.values[0] {
             z[i] = s;
         }
-        z[nd.nu] = -delta;
-        let before = els[(k + n - 1) % n].region.is_polar();
-        let after = els[k].region.is_polar();
-        z[nd.slopes_in.0] = slope(before);
-        z[nd.slopes_in.1] = 0.0;
-        z[nd.slopes_out.0] = slope(after);
-        z[nd.slopes_out.1] = 0.0;
-        if nd.slopes_in == nd.slopes_out {
+        z[nd.values[1].expect("ν is an unknown at every node")] = -delta;
+        let (region_before, region_after) = (els[(k + n - 1) % n].region, els[k].region);
+        let (before, after) = (region_before.is_polar(), region_after.is_polar());
+        z[nd.slopes_in[0]] = slope(before);
+        z[nd.slopes_in[1]] = 0.0;
+        z[nd.slopes_out[0]] = slope(after);
+        z[nd.slopes_out[1]] = 0.0;
+        let shared = nd.slopes_in == nd.slopes_out;
+        if shared {
             // one shared pair at a rod transition: the Cartesian side's primary slope;
             // the polar side's (1 − δ/R)/λ₀ follows from it by the map (docs/fem-rod.md K9)
-            z[nd.slopes_out.0] = slope(before && after);
+            z[nd.slopes_out[0]] = slope(before && after);
+        }
+        let sigma = mesh.node_sigmas()[k];
+        for f in 2..fields {
+            let [value, slope_in] = asm.kernel().start_field(f, contour, sigma, region_before);
+            let [_, slope_out] = asm.kernel().start_field(f, contour, sigma, region_after);
+            z[nd.values[f].expect("fields after s are unknowns at every node")] = value;
+            z[nd.slopes_in[f]] = slope_in;
+            z[nd.slopes_out[f]] = if shared && after { slope_in } else { slope_out };
         }
         s += slope(after) * els[k].h;
     }

@@ -470,9 +470,10 @@ impl Method for FemFormulation {
 }
 
 /// The belt theory a registered formulation discretises (`None` if not registered) —
-/// built-in or added from outside `fem` by [`fem::register_formulation`].
+/// built-in or added from outside `fem` by [`fem::register_formulation`] or
+/// [`fem::formulation::register_element`] (an element of any layout).
 pub fn formulation_theory(name: &str) -> Option<Theory> {
-    fem::formulation::find(name).map(|k| k.theory())
+    fem::formulation::find_element(name).map(|k| k.theory())
 }
 
 /// Names of the registered FE formulations, default first.

@@ -44,6 +44,29 @@
 //! and one line in the built-in list (`built_in` below). The AD-vs-finite-difference
 //! test and the consistency checks in this module's tests run over every built-in
 //! formulation, so a new one is checked without writing a test.
+//!
+//! # Elements of another layout (the Cosserat rod's {s, ν, θ})
+//! [`Formulation`] and [`Kernel`] are the string layout's face ({s, ν}, [`NDOF`] = 8
+//! unknowns, [`PointFields`]); the registry itself holds [`RegisteredElement`]s, one
+//! variant per 1-D layout of [`crate::element`]:
+//! - [`RegisteredElement::String`]: a [`Formulation`] behind `Arc<dyn Kernel>` (strings
+//!   and Kirchhoff rods; [`register`], [`register_kernel`]);
+//! - [`RegisteredElement::Cosserat`]: an element on [`crate::element::COSSERAT`]
+//!   (12 unknowns) that implements [`crate::assembly::ElementKernel`]`<12>` (energy,
+//!   gradient, Hessian, admissibility, transition slopes) and
+//!   [`layout::LayoutElement`]`<12>` (name, theory, rules, term labels, the axial force
+//!   at a point, the effective unknowns, the start of θ), added with
+//!   [`register_element`].
+//!
+//! [`find_element`] and [`elements`] see every entry (the CLI, [`crate::solve_scene`] and
+//! the harness resolve names through them); [`find`] and [`registry`] return the string
+//! layout's kernels only. [`crate::solve_problem`] matches the entry's layout and runs
+//! the static analysis ([`crate::static_homotopy`]) and the solution view
+//! ([`crate::FemSolution`]) monomorphised for it — both are generic over
+//! `<const N, K: LayoutElement<N>>`, so the string path is compiled exactly as before.
+//! The drive analyses (`string_drive`) take the string layout only and answer another
+//! layout with [`crate::FemError::Unsupported`]. `fem/tests/layout_element.rs` registers
+//! a 12-unknown test element by name and solves `rod-hanging` with it.
 
 use std::sync::{Arc, LazyLock, PoisonError, RwLock, RwLockReadGuard};
 
@@ -63,9 +86,11 @@ pub use numerics::Scalar;
 
 mod built_in;
 pub mod cosserat;
+pub mod layout;
 pub mod terms;
 
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
+pub use layout::{RegisteredElement, NDOF_COSSERAT};
 pub use drive::scene::Theory;
 pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
 use terms::EnergySum;
@@ -83,7 +108,8 @@ pub struct TermRules {
     pub bending: Rule,
 }
 
-/// A string element formulation (implement this to add one; see the module docs).
+/// A string-layout element formulation (implement this to add one; see the module
+/// docs; an element of another layout implements [`layout::LayoutElement`]).
 pub trait Formulation: Send + Sync + 'static {
     /// Registry name, e.g. `string-gauss` (lowercase, `-` separated).
     fn name(&self) -> &'static str;
@@ -503,29 +529,43 @@ impl<F: Formulation> Kernel for F {
 
 /// The formulations shipped with the crate, default first. **Add a built-in formulation
 /// here** (one line); an outside crate calls [`register`] instead.
-fn built_in() -> Vec<Arc<dyn Kernel>> {
-    vec![Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)]
+fn built_in() -> Vec<RegisteredElement> {
+    let kernels: [Arc<dyn Kernel>; 4] = [Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)];
+    kernels.into_iter().map(RegisteredElement::String).collect()
 }
 
-/// The process-wide registry: the built-in formulations, then the registered ones in
+/// The process-wide registry: the built-in formulations, then the registered elements in
 /// registration order. Entries are only ever added, so a name once found stays valid.
-static REGISTRY: LazyLock<RwLock<Vec<Arc<dyn Kernel>>>> = LazyLock::new(|| RwLock::new(built_in()));
+static REGISTRY: LazyLock<RwLock<Vec<RegisteredElement>>> = LazyLock::new(|| RwLock::new(built_in()));
 
 /// The registry for reading. No code panics while holding the lock, but a poisoned lock
 /// still holds a consistent list (entries are pushed whole), so it is read anyway.
-fn entries() -> RwLockReadGuard<'static, Vec<Arc<dyn Kernel>>> {
+fn entries() -> RwLockReadGuard<'static, Vec<RegisteredElement>> {
     REGISTRY.read().unwrap_or_else(PoisonError::into_inner)
 }
 
-/// Every registered formulation: the built-in ones (default first), then those added by
-/// [`register`], in registration order. A snapshot: later registrations do not change it.
-pub fn registry() -> Vec<Arc<dyn Kernel>> {
+/// Every registered element of every layout: the built-in formulations (default first),
+/// then those added by [`register`] and [`register_element`], in registration order. A
+/// snapshot: later registrations do not change it.
+pub fn elements() -> Vec<RegisteredElement> {
     entries().clone()
 }
 
-/// The registered formulation called `name`.
-pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
+/// The registered element called `name`, whatever its layout.
+pub fn find_element(name: &str) -> Option<RegisteredElement> {
     entries().iter().find(|k| k.name() == name).cloned()
+}
+
+/// The registered formulations of the string layout ({s, ν}: strings and Kirchhoff rods,
+/// the entries [`RegisteredElement::String`] of [`elements`]), in registry order.
+pub fn registry() -> Vec<Arc<dyn Kernel>> {
+    entries().iter().filter_map(|k| k.string_kernel().cloned()).collect()
+}
+
+/// The registered formulation of the string layout called `name` (`None` also for an
+/// element of another layout of that name: see [`find_element`]).
+pub fn find(name: &str) -> Option<Arc<dyn Kernel>> {
+    find_element(name).and_then(|k| k.string_kernel().cloned())
 }
 
 /// Why [`register`] refused a formulation.
@@ -594,14 +634,26 @@ pub fn register<F: Formulation>(formulation: F) -> Result<(), RegistryError> {
 /// # Errors
 /// As [`register`].
 pub fn register_kernel(kernel: Arc<dyn Kernel>) -> Result<(), RegistryError> {
-    let name = kernel.name();
+    register_element(RegisteredElement::String(kernel))
+}
+
+/// Register an element of any layout — e.g. an element on the Cosserat layout,
+/// `register_element(RegisteredElement::Cosserat(Arc::new(MyRod)))` — with the checks and
+/// the process-wide effect of [`register`]: from then on [`find_element`], [`elements`],
+/// [`crate::available_formulations`], [`crate::formulations_for`] and
+/// [`crate::solve_scene`] (the static analysis) find it by name.
+///
+/// # Errors
+/// As [`register`].
+pub fn register_element(element: RegisteredElement) -> Result<(), RegistryError> {
+    let name = element.name();
     if name.is_empty() {
-        return Err(RegistryError::EmptyName { description: kernel.description() });
+        return Err(RegistryError::EmptyName { description: element.description() });
     }
     if let Some(offending) = name.chars().find(|c| !(c.is_ascii_lowercase() || c.is_ascii_digit() || *c == '-')) {
         return Err(RegistryError::InvalidName { name, offending });
     }
-    let rules = kernel.rules();
+    let rules = element.rules();
     for (term, rule) in [("strain", rules.strain), ("gravity", rules.gravity), ("contact", rules.contact), ("bending", rules.bending)] {
         rule.validate().map_err(|source| RegistryError::InvalidRule { name, term, source })?;
     }
@@ -609,7 +661,7 @@ pub fn register_kernel(kernel: Arc<dyn Kernel>) -> Result<(), RegistryError> {
     if reg.iter().any(|k| k.name() == name) {
         return Err(RegistryError::Duplicate { name, registered: reg.iter().map(|k| k.name()).collect() });
     }
-    reg.push(kernel);
+    reg.push(element);
     Ok(())
 }
 

@@ -1,0 +1,160 @@
+//! The registry's face for any 1-D element layout: [`LayoutElement`] (what the static
+//! analysis and the solution view need of an element with N unknowns besides assembly)
+//! and [`RegisteredElement`] (a registry entry: a [`Formulation`](super::Formulation) on
+//! the string layout, or an element on the Cosserat layout).
+
+use std::sync::Arc;
+
+use drive::contour::{Contour, Region};
+
+use super::{Kernel, TermRules, Theory};
+use crate::assembly::ElementKernel;
+use crate::element::{ElementLayout, COSSERAT, STRING};
+use crate::kinematics::{ElementContext, TermParams, NDOF};
+
+/// Unknowns of an element on the Cosserat layout {s, ν, θ} ([`COSSERAT`]).
+pub const NDOF_COSSERAT: usize = COSSERAT.dofs();
+
+/// A 1-D element with N local unknowns as the static analysis
+/// ([`crate::static_homotopy`]), the solution view ([`crate::FemSolution`]) and the
+/// registry use it: the assembly face [`ElementKernel`] plus its name, theory, the
+/// integration rules the view recovers forces at, and its axial force at a point.
+///
+/// Every [`Formulation`](super::Formulation) is one on the string layout (N = 8, through
+/// `dyn Kernel`); an element of another layout — the Cosserat rod's {s, ν, θ}, N = 12 —
+/// implements [`ElementKernel`] and this trait and is registered with
+/// [`super::register_element`] as a [`RegisteredElement::Cosserat`].
+pub trait LayoutElement<const N: usize>: ElementKernel<N> {
+    /// Registry name (lowercase ASCII letters, digits, `-`).
+    fn name(&self) -> &'static str;
+    /// One line for listings and reports.
+    fn description(&self) -> &'static str;
+    /// The belt theory the element discretises (scenes of another theory are answered
+    /// `Unsupported`).
+    fn theory(&self) -> Theory;
+    /// The integration rule of each term: the view recovers the axial force at the
+    /// strain rule's points and the contact pressure at the contact rule's points.
+    fn rules(&self) -> TermRules;
+    /// Labels of the terms assembled for `params` (for reports).
+    fn term_labels(&self, params: &TermParams) -> Vec<String>;
+    /// Axial force at ξ of an element with the effective local unknowns `q`
+    /// ([`Self::effective`]; `el.augmented` is then all false), N.
+    fn axial_force_at(&self, el: &ElementContext, q: &[f64; N], xi: f64) -> f64;
+    /// The local unknowns the element's energy actually uses: an element with shared
+    /// transition slopes ([`ElementKernel::separate_transition_slopes`] false) applies its
+    /// map at the flagged nodes of `el.augmented` here (the Kirchhoff rod's augmented map,
+    /// docs/fem-rod.md K9); the default is the identity.
+    fn effective(&self, _el: &ElementContext, q: &[f64; N]) -> [f64; N] {
+        *q
+    }
+    /// Value and ∂σ of field number `field` (≥ 2: the fields after s and ν, e.g. θ) at σ
+    /// on an element of `region` in the tight start state of the static analysis (F11:
+    /// the belt on the contour, ν = −δ); the default is 0 and 0.
+    fn start_field(&self, _field: usize, _contour: &Contour, _sigma: f64, _region: Region) -> [f64; 2] {
+        [0.0; 2]
+    }
+}
+
+/// A registered formulation of the string layout is a [`LayoutElement`] with 8 unknowns:
+/// its name, theory and rules from the [`Formulation`](super::Formulation), the axial force
+/// N = dW/dλ at the point's stretch, and the augmented map (K9) of [`ElementContext::effective`].
+impl LayoutElement<NDOF> for dyn Kernel {
+    fn name(&self) -> &'static str {
+        Kernel::name(self)
+    }
+
+    fn description(&self) -> &'static str {
+        Kernel::description(self)
+    }
+
+    fn theory(&self) -> Theory {
+        Kernel::theory(self)
+    }
+
+    fn rules(&self) -> TermRules {
+        Kernel::rules(self)
+    }
+
+    fn term_labels(&self, params: &TermParams) -> Vec<String> {
+        Kernel::term_labels(self, params)
+    }
+
+    #[inline]
+    fn axial_force_at(&self, el: &ElementContext, q: &[f64; NDOF], xi: f64) -> f64 {
+        Kernel::axial_force(self, el.stretch(&el.fields(q, xi)), el.params.axial_stiffness)
+    }
+
+    #[inline]
+    fn effective(&self, el: &ElementContext, q: &[f64; NDOF]) -> [f64; NDOF] {
+        el.effective(q)
+    }
+}
+
+/// One entry of the registry: an element of one of the 1-D layouts, found by name.
+/// [`crate::solve_problem`] matches on the layout and runs the analysis monomorphised
+/// for it (the static analysis takes either; the drive analyses take the string layout).
+#[derive(Clone)]
+pub enum RegisteredElement {
+    /// A [`Formulation`](super::Formulation) on the string layout {s, ν} ([`STRING`], 8
+    /// unknowns): the string and the Kirchhoff rod.
+    String(Arc<dyn Kernel>),
+    /// An element on the Cosserat layout {s, ν, θ} ([`COSSERAT`], 12 unknowns).
+    Cosserat(Arc<dyn LayoutElement<NDOF_COSSERAT>>),
+}
+
+impl RegisteredElement {
+    /// Registry name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            RegisteredElement::String(k) => Kernel::name(k.as_ref()),
+            RegisteredElement::Cosserat(k) => k.name(),
+        }
+    }
+
+    /// One line for listings and reports.
+    pub fn description(&self) -> &'static str {
+        match self {
+            RegisteredElement::String(k) => Kernel::description(k.as_ref()),
+            RegisteredElement::Cosserat(k) => k.description(),
+        }
+    }
+
+    /// The belt theory the element discretises.
+    pub fn theory(&self) -> Theory {
+        match self {
+            RegisteredElement::String(k) => Kernel::theory(k.as_ref()),
+            RegisteredElement::Cosserat(k) => k.theory(),
+        }
+    }
+
+    /// The integration rule of each term.
+    pub fn rules(&self) -> TermRules {
+        match self {
+            RegisteredElement::String(k) => Kernel::rules(k.as_ref()),
+            RegisteredElement::Cosserat(k) => k.rules(),
+        }
+    }
+
+    /// The element's field layout.
+    pub fn layout(&self) -> ElementLayout {
+        match self {
+            RegisteredElement::String(_) => STRING,
+            RegisteredElement::Cosserat(k) => k.layout(),
+        }
+    }
+
+    /// The string-layout formulation, if this entry is one (the drive analyses run on
+    /// it only).
+    pub fn string_kernel(&self) -> Option<&Arc<dyn Kernel>> {
+        match self {
+            RegisteredElement::String(k) => Some(k),
+            RegisteredElement::Cosserat(_) => None,
+        }
+    }
+}
+
+impl std::fmt::Debug for RegisteredElement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RegisteredElement").field("name", &self.name()).field("theory", &self.theory()).field("layout", &self.layout()).finish()
+    }
+}
