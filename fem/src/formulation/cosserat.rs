@@ -21,7 +21,8 @@ use nalgebra::{Const, SVector, U1};
 use num_dual::Dual2SVec64;
 
 use super::terms::{Gravity, PenaltyContact, PointDensity};
-use super::{ElementContext, ElementDerivatives, PointFields, Rule, Scalar, TermParams, NDOF};
+use super::layout::LayoutElement;
+use super::{ElementContext, ElementDerivatives, PointFields, Rule, Scalar, TermParams, TermRules, Theory, NDOF};
 use crate::assembly::{ElementKernel, ADMISSIBILITY_POINTS};
 use crate::element::{ElementLayout, COSSERAT, STRING};
 
@@ -225,7 +226,7 @@ impl CosseratElement {
     /// The effective unknowns q̃ (C3): at a flagged node of a polar element (ν that
     /// node's deflection, f = 1 + αν) ∂σs and ∂σν by the rod's map (K9,
     /// [`ElementContext::effective`]) and ∂σψ̃ = f ∂σψ + α; elsewhere q̃ = q.
-    pub fn effective<D: Scalar>(el: &ElementContext, q: &[D; NC]) -> [D; NC] {
+    pub fn effective_unknowns<D: Scalar>(el: &ElementContext, q: &[D; NC]) -> [D; NC] {
         if !el.augmented.iter().any(|&a| a) {
             return *q;
         }
@@ -259,7 +260,7 @@ impl CosseratElement {
     /// The element energy, J, for the unknowns q (before the map), generic so that AD
     /// differentiates it (and the map) exactly.
     pub fn element_energy<D: Scalar>(&self, el: &ElementContext, q: &[D; NC]) -> D {
-        let qe = Self::effective(el, q);
+        let qe = Self::effective_unknowns(el, q);
         let mut sum = Sum { el, q: &qe, total: D::zero() };
         self.visit(&el.params, &mut sum);
         sum.total
@@ -275,7 +276,7 @@ impl CosseratElement {
     /// Energy, gradient and Hessian: per point by `Dual2SVec64<5>` over u (linear in q̃),
     /// then the chain rule through the map (C3) — exact, equal to [`Self::derivatives_full`].
     pub fn derivatives_pointwise(&self, el: &ElementContext, q: &[f64; NC]) -> ElementDerivatives<NC> {
-        let qe = Self::effective(el, q);
+        let qe = Self::effective_unknowns(el, q);
         let mut v = PointHessian { el, q: &qe, out: ElementDerivatives { energy: 0.0, gradient: [0.0; NC], hessian: [[0.0; NC]; NC] } };
         self.visit(&el.params, &mut v);
         chain_through_map(el, q, v.out)
@@ -399,7 +400,7 @@ impl ElementKernel<NC> for CosseratElement {
 
     /// ∂σs > 0 (after the map) at the admissibility points and every term's points.
     fn admissible(&self, el: &ElementContext, q: &[f64; NC]) -> bool {
-        let qe = Self::effective(el, q);
+        let qe = Self::effective_unknowns(el, q);
         let rules = self.rules.all();
         let points = rules.iter().flat_map(|r| r.points().iter().map(|p| p.0));
         ADMISSIBILITY_POINTS.into_iter().chain(points).all(|xi| el.field(COSSERAT, &qe, FIELD_S, xi)[1] > 0.0)
@@ -418,6 +419,60 @@ impl ElementKernel<NC> for CosseratElement {
 
     fn derivatives(&self, el: &ElementContext, q: &[f64; NC]) -> ElementDerivatives<NC> {
         self.derivatives_pointwise(el, q)
+    }
+}
+
+/// The element on the registry's face ([`LayoutElement`]): what the static analysis and
+/// the solution view need besides assembly. The axial force is N = b₁Γ₁ (eq. 14) at the
+/// point; fields after s and ν (ψ) start at 0 (the director along the contour tangent,
+/// the tight start state's ν = −δ is straight in the contour frame).
+impl LayoutElement<NC> for CosseratElement {
+    fn name(&self) -> &'static str {
+        match self.rules.shear {
+            Rule::Gauss(3) => "cosserat-gauss",
+            Rule::Simpson => "cosserat-simpson",
+            Rule::Gauss(2) => "cosserat-gauss2",
+            _ => "cosserat",
+        }
+    }
+
+    fn description(&self) -> &'static str {
+        "Cosserat rod (shear-deformable), fields {s, ν, ψ} on Hermite cubics (eq. 43) with the augmented map at the transitions, Simpson stretch, selectable shear rule, Gauss 3 bending, gravity and penalty contact (docs/fem-cosserat.md)"
+    }
+
+    fn theory(&self) -> Theory {
+        Theory::Cosserat
+    }
+
+    fn rules(&self) -> TermRules {
+        let r = &self.rules;
+        TermRules { strain: r.stretch, gravity: r.gravity, contact: r.contact, bending: r.bending }
+    }
+
+    fn term_labels(&self, params: &TermParams) -> Vec<String> {
+        let r = &self.rules;
+        let mut out = vec![
+            format!("stretch energy ({}, b₁ = {:.6e} N)", r.stretch, params.axial_stiffness),
+            format!("shear energy ({}, b₂ = {:.6e} N)", r.shear, self.shear_stiffness),
+        ];
+        if let Some(a) = params.bending_stiffness {
+            out.push(format!("bending energy ({}, a = {:.6e} N·m², augmented transitions for ∂σs, ∂σν, ∂σψ)", r.bending, a));
+        }
+        if let Some(w) = params.weight {
+            out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", r.gravity, w));
+        }
+        if let Some(p) = params.penalty {
+            out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
+        }
+        out
+    }
+
+    fn axial_force_at(&self, el: &ElementContext, q: &[f64; NC], xi: f64) -> f64 {
+        el.params.axial_stiffness * Self::point(el, q, xi).strains(el)[0]
+    }
+
+    fn effective(&self, el: &ElementContext, q: &[f64; NC]) -> [f64; NC] {
+        Self::effective_unknowns(el, q)
     }
 }
 
@@ -724,8 +779,8 @@ mod tests {
                 for &node in &mesh.transition_nodes() {
                     let ctx = |e: usize| ElementContext { geometry: mesh.elements()[e], contour: contour(), params: params(), augmented: flags[e] };
                     let (cl, cr) = (ctx((node + n - 1) % n), ctx(node));
-                    let ql = CosseratElement::effective(&cl, &map.gather((node + n - 1) % n, &z, 1.3));
-                    let qr = CosseratElement::effective(&cr, &map.gather(node, &z, 1.3));
+                    let ql = CosseratElement::effective_unknowns(&cl, &map.gather((node + n - 1) % n, &z, 1.3));
+                    let qr = CosseratElement::effective_unknowns(&cr, &map.gather(node, &z, 1.3));
                     let sl = CosseratElement::point(&cl, &ql, 1.0).strains(&cl);
                     let sr = CosseratElement::point(&cr, &qr, -1.0).strains(&cr);
                     let ok = sl.iter().zip(&sr).all(|(a, b)| (a - b).abs() <= 1e-12 * a.abs().max(b.abs()).max(1.0));
