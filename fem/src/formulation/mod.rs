@@ -85,6 +85,7 @@ pub use crate::quadrature::{QuadratureError, Rule};
 pub use numerics::Scalar;
 
 mod built_in;
+pub mod cosserat;
 pub mod layout;
 pub mod terms;
 
