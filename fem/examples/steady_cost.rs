@@ -23,7 +23,7 @@ fn main() {
     let (r, ea) = (0.08, 2.0e4);
     let penalty = settings.penalty_factor * ea / (r * r);
     let geometry = Geometry { radius: r, centre_distance: 0.45 };
-    let belt = BeltSection { theory: Theory::String, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, bending_stiffness: None };
+    let belt = BeltSection { theory: Theory::String, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, bending_stiffness: None, shear_stiffness: None };
     let data = StringHanging { geometry, belt, gravity: Some(9.81), penalty: Some(penalty) };
     println!("{:>8} {:>9} {:>13} {:>14} {:>20} {:>16}", "elements", "unknowns", "assemble [ms]", "full LU [ms]", "Newton iteration [ms]", "per element [µs]");
     for n in [128, 256, 512, 1024, 2048] {
@@ -31,7 +31,7 @@ fn main() {
         let (start, _, _) = data.solve(mesh, kernel.clone(), &settings).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[], drive::contour::Direction::Clockwise);
-        let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None };
+        let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None, shear_stiffness: None };
         let sp = SteadyParams { mu: 0.3, penalty, kappa: 1e6, radius: r, omega1: 10.0, torque: 2.0, damping: 0.0, inertia: Some(0.12) };
         let prob = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = fem::static_homotopy::transfer(&start, &asm);

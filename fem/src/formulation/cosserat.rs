@@ -24,6 +24,8 @@ use super::terms::{Gravity, PenaltyContact, PointDensity};
 use super::layout::LayoutElement;
 use super::{ElementContext, ElementDerivatives, PointFields, Rule, Scalar, TermParams, TermRules, Theory, NDOF};
 use crate::assembly::{ElementKernel, ADMISSIBILITY_POINTS};
+use crate::problem::BeltSection;
+use std::sync::Arc;
 use crate::element::{ElementLayout, COSSERAT, STRING};
 
 /// Unknowns per Cosserat element: per node (s, ∂σs, ν, ∂σν, ψ, ∂σψ).
@@ -81,11 +83,15 @@ pub enum Transitions {
 /// penalty factor P come from the [`TermParams`] of each evaluation — as for every
 /// element on the assembler, whose callers (the homotopy in the weight) pass them per
 /// call; the shear stiffness b₂, the rules and the transition treatment are the
-/// element's own.
+/// element's own. The registered elements (`cosserat-gauss`, `cosserat-reduced`) carry
+/// no b₂ (`None`): the static analysis binds the scene's `belt.shear_stiffness` to them
+/// ([`LayoutElement::for_belt`]) before it assembles; an unbound element assembles a NaN
+/// shear energy, which the solver reports as non-finite.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CosseratElement {
-    /// Shear stiffness b₂, N (> 0).
-    pub shear_stiffness: f64,
+    /// Shear stiffness b₂, N (> 0); `None` for a registered element, bound to the
+    /// scene's b₂ by [`LayoutElement::for_belt`].
+    pub shear_stiffness: Option<f64>,
     /// Rule per term.
     pub rules: CosseratRules,
     /// Slopes at the transitions.
@@ -202,7 +208,13 @@ impl CosseratElement {
     /// The element with shear stiffness `shear_stiffness` (N), the rules `rules` and the
     /// augmented transitions.
     pub fn new(shear_stiffness: f64, rules: CosseratRules) -> CosseratElement {
-        CosseratElement { shear_stiffness, rules, transitions: Transitions::Augmented }
+        CosseratElement { shear_stiffness: Some(shear_stiffness), rules, transitions: Transitions::Augmented }
+    }
+
+    /// The registered element of shear rule `shear`: no b₂ of its own, the scene's is
+    /// bound by [`LayoutElement::for_belt`].
+    pub const fn from_scene(shear: Rule) -> CosseratElement {
+        CosseratElement { shear_stiffness: None, rules: CosseratRules::with_shear(shear), transitions: Transitions::Augmented }
     }
 
     /// Visit the active terms in assembly order: stretch, shear, bending (if
@@ -211,7 +223,7 @@ impl CosseratElement {
     pub fn visit<D: Scalar, V: CosseratVisitor<D>>(&self, params: &TermParams, v: &mut V) {
         let r = &self.rules;
         v.visit(r.stretch, &Stretch(params.axial_stiffness));
-        v.visit(r.shear, &Shear(self.shear_stiffness));
+        v.visit(r.shear, &Shear(self.shear_stiffness.unwrap_or(f64::NAN)));
         if let Some(a) = params.bending_stiffness {
             v.visit(r.bending, &SectionBending(a));
         }
@@ -431,7 +443,7 @@ impl LayoutElement<NC> for CosseratElement {
         match self.rules.shear {
             Rule::Gauss(3) => "cosserat-gauss",
             Rule::Simpson => "cosserat-simpson",
-            Rule::Gauss(2) => "cosserat-gauss2",
+            Rule::Gauss(2) => "cosserat-reduced",
             _ => "cosserat",
         }
     }
@@ -453,7 +465,7 @@ impl LayoutElement<NC> for CosseratElement {
         let r = &self.rules;
         let mut out = vec![
             format!("stretch energy ({}, b₁ = {:.6e} N)", r.stretch, params.axial_stiffness),
-            format!("shear energy ({}, b₂ = {:.6e} N)", r.shear, self.shear_stiffness),
+            format!("shear energy ({}, b₂ = {:.6e} N)", r.shear, self.shear_stiffness.unwrap_or(f64::NAN)),
         ];
         if let Some(a) = params.bending_stiffness {
             out.push(format!("bending energy ({}, a = {:.6e} N·m², augmented transitions for ∂σs, ∂σν, ∂σψ)", r.bending, a));
@@ -473,6 +485,11 @@ impl LayoutElement<NC> for CosseratElement {
 
     fn effective(&self, el: &ElementContext, q: &[f64; NC]) -> [f64; NC] {
         Self::effective_unknowns(el, q)
+    }
+
+    fn for_belt(&self, belt: &BeltSection) -> Option<Arc<dyn LayoutElement<NC>>> {
+        let b2 = belt.shear_stiffness?;
+        Some(Arc::new(CosseratElement { shear_stiffness: Some(b2), ..*self }))
     }
 }
 
