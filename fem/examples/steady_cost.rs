@@ -31,7 +31,7 @@ fn main() {
         let (start, _, _) = data.solve(mesh, kernel.clone(), &settings).unwrap();
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[], drive::contour::Direction::Clockwise);
-        let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None, shear_stiffness: None };
+        let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None };
         let sp = SteadyParams { mu: 0.3, penalty, kappa: 1e6, radius: r, omega1: 10.0, torque: 2.0, damping: 0.0, inertia: Some(0.12) };
         let prob = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = fem::static_homotopy::transfer(&start, &asm);
