@@ -108,7 +108,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let layout = kernel.layout();
         let mut sol = FemSolution { mesh, layout, local, params, length, kernel, summary: Summary::default(), zones: [None; 2], transport: None };
         if sol.params.penalty.is_some() {
-            sol.zones = if sol.layout == crate::element::COSSERAT {
+            sol.zones = if sol.kernel.theory() == drive::scene::Theory::Cosserat {
                 [sol.loaded_zone(Pulley::Driver), sol.loaded_zone(Pulley::Driven)]
             } else if sol.params.bending_stiffness.is_some() {
                 [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
@@ -518,7 +518,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
         // the Cosserat rod has no concentrated edge forces (its pressure is finite)
-        let rod = self.params.bending_stiffness.is_some() && self.layout != crate::element::COSSERAT;
+        let rod = self.params.bending_stiffness.is_some() && self.kernel.theory() != drive::scene::Theory::Cosserat;
         match self.zone(pulley) {
             None => PulleySummary {
                 contact_arc: Some(0.0),
