@@ -219,11 +219,14 @@ fn solvers_refuse_what_they_cannot_solve_yet_naming_the_issue() {
     assert_eq!(not_yet_solvable(&read(&drive).unwrap(), Solver::Fem).unwrap().issue, 14);
     let rod = Scene::from_json_str(include_str!("../../scenes/rod-hanging.json")).unwrap();
     assert!(not_yet_solvable(&rod, Solver::Fem).is_none());
-    // The static Cosserat loop: the BVP solves it, the FE not yet (issue 13).
+    // The static Cosserat loop: both solve it (friction at rest is a scene error).
     let mut hanging: Value = serde_json::from_str(include_str!("../../scenes/rod-hanging.json")).unwrap();
     hanging["belt"]["theory"] = json!("cosserat");
     hanging["belt"]["shear_stiffness"] = json!(1e3);
-    let hanging = read(&hanging).unwrap();
-    assert!(not_yet_solvable(&hanging, Solver::Bvp).is_none());
-    assert_eq!(not_yet_solvable(&hanging, Solver::Fem).unwrap().issue, 13);
+    let frictionless = read(&hanging).unwrap();
+    assert!(not_yet_solvable(&frictionless, Solver::Bvp).is_none());
+    assert!(not_yet_solvable(&frictionless, Solver::Fem).is_none());
+    hanging["analysis"] = json!("steady");
+    hanging["effects"]["contact"] = json!({"coulomb": 0.3});
+    assert_eq!(not_yet_solvable(&read(&hanging).unwrap(), Solver::Fem).unwrap().issue, 14);
 }

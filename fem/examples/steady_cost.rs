@@ -23,7 +23,7 @@ fn main() {
     let (r, ea) = (0.08, 2.0e4);
     let penalty = settings.penalty_factor * ea / (r * r);
     let geometry = Geometry { radius: r, centre_distance: 0.45 };
-    let belt = BeltSection { theory: Theory::String, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, bending_stiffness: None };
+    let belt = BeltSection { theory: Theory::String, length: 1.3956749, axial_stiffness: ea, mass_per_length: 0.12, bending_stiffness: None, shear_stiffness: None };
     let data = StringHanging { geometry, belt, gravity: Some(9.81), penalty: Some(penalty) };
     println!("{:>8} {:>9} {:>13} {:>14} {:>20} {:>16}", "elements", "unknowns", "assemble [ms]", "full LU [ms]", "Newton iteration [ms]", "per element [µs]");
     for n in [128, 256, 512, 1024, 2048] {

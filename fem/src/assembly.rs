@@ -15,7 +15,7 @@ use crate::kinematics::{ElementContext, TermParams, NDOF};
 use crate::mesh::Mesh;
 
 /// Points per element at which ∂σS > 0 is required (besides the strain rule's points).
-const ADMISSIBILITY_POINTS: [f64; 5] = [-1.0, -0.5, 0.0, 0.5, 1.0];
+pub(crate) const ADMISSIBILITY_POINTS: [f64; 5] = [-1.0, -0.5, 0.0, 0.5, 1.0];
 
 /// What assembly needs from an element with N local unknowns in the 1-D Hermite layout
 /// [`Self::layout`] (N = `layout().dofs()`): its energy with gradient and Hessian, when
@@ -257,7 +257,7 @@ impl<const N: usize, K: ElementKernel<N> + ?Sized> Assembler<N, K> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     //! The assembler over another layout: a three-field {s, ν, θ} element (the
     //! [`crate::element::COSSERAT`] layout, 12 unknowns) assembled on the closed loop, its
     //! assembled gradient and Jacobian (the Hessian, from the triplets) against central
@@ -333,25 +333,22 @@ mod tests {
         assert_eq!(asm.pattern().0.len(), 8 * NC * NC + 2 * (NC - 1) * (NC - 1));
         // a stretched state with deflection and rotation waves of either sign
         let length = 1.03 * contour.length();
-        let stretch = length / contour.length();
-        let mut z = vec![0.0; asm.len()];
-        for k in 0..10 {
-            let sigma = asm.mesh().node_sigmas()[k];
-            let n = asm.dofs().node_unknowns(k);
-            let phase = 7.0 * sigma;
-            let values = [sigma * stretch, 0.002 * phase.sin(), 0.05 * phase.cos()];
-            let slopes = [stretch + 0.01 * phase.cos(), 0.014 * phase.cos(), -0.35 * phase.sin()];
-            for f in 0..3 {
-                if let Some(i) = n.values[f] {
-                    z[i] = values[f];
-                }
-                z[n.slopes_in[f]] = slopes[f];
-                z[n.slopes_out[f]] = slopes[f] * 1.01;
-            }
-        }
+        let z = wave_state(&asm, length / contour.length());
         let params = TermParams { axial_stiffness: 1.0e4, weight: None, penalty: None, bending_stiffness: None };
-        let a = asm.assemble(&z, &params, length).expect("admissible");
-        let (e0, g0) = asm.gradient(&z, &params, length).unwrap();
+        let jac = assert_consistent_jacobian(&asm, &z, &params, length);
+        // θ couples into the assembled system: its unknowns have nonzero diagonal entries
+        let theta_value = asm.dofs().node_unknowns(3).values[2].unwrap();
+        assert!(jac[theta_value][theta_value] > 0.0);
+    }
+
+    /// The assembled energy, gradient and Jacobian (the Hessian, from the triplets) of
+    /// `asm` at z against central differences of the assembled energy and gradient
+    /// (step 1e-6, tolerance 1e-6 relative to the largest entry; the callers justify it
+    /// for their element), and `gradient` against `assemble` to round-off. Returns the
+    /// dense Jacobian.
+    pub(crate) fn assert_consistent_jacobian<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, z: &[f64], params: &TermParams, length: f64) -> Vec<Vec<f64>> {
+        let a = asm.assemble(z, params, length).expect("admissible");
+        let (e0, g0) = asm.gradient(z, params, length).unwrap();
         assert!((a.energy - e0).abs() <= 1e-12 * e0.abs());
         // the Jacobian of the residual G = ∂Π/∂z: sum the triplets
         let nz = asm.len();
@@ -364,11 +361,11 @@ mod tests {
         let jscale = jac.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
         let h = 1e-6;
         for i in 0..nz {
-            let (mut zp, mut zm) = (z.clone(), z.clone());
+            let (mut zp, mut zm) = (z.to_vec(), z.to_vec());
             zp[i] += h;
             zm[i] -= h;
-            let (ep, gp) = asm.gradient(&zp, &params, length).unwrap();
-            let (em, gm) = asm.gradient(&zm, &params, length).unwrap();
+            let (ep, gp) = asm.gradient(&zp, params, length).unwrap();
+            let (em, gm) = asm.gradient(&zm, params, length).unwrap();
             let fd = (ep - em) / (2.0 * h);
             assert!((fd - a.gradient[i]).abs() <= 1e-6 * gscale, "G[{i}]: {} vs FD {fd}", a.gradient[i]);
             assert!((g0[i] - a.gradient[i]).abs() <= 1e-12 * gscale);
@@ -377,8 +374,28 @@ mod tests {
                 assert!((fdj - jac[j][i]).abs() <= 1e-6 * jscale, "J[{j}][{i}]: {} vs FD {fdj}", jac[j][i]);
             }
         }
-        // θ couples into the assembled system: its unknowns have nonzero diagonal entries
-        let theta_value = asm.dofs().node_unknowns(3).values[2].unwrap();
-        assert!(jac[theta_value][theta_value] > 0.0);
+        jac
+    }
+
+    /// A state of a three-field ({s, ν, θ}) assembler: uniform stretch `stretch` with
+    /// deflection and rotation waves of either sign; the slopes of the element starting
+    /// at a node are 1 % larger than those of the one ending there (the same unknown
+    /// where the slopes are shared, which then takes the larger value).
+    pub(crate) fn wave_state<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, stretch: f64) -> Vec<f64> {
+        let mut z = vec![0.0; asm.len()];
+        for (k, &sigma) in asm.mesh().node_sigmas().iter().take(asm.mesh().len()).enumerate() {
+            let n = asm.dofs().node_unknowns(k);
+            let phase = 7.0 * sigma;
+            let values = [sigma * stretch, 0.002 * phase.sin(), 0.05 * phase.cos()];
+            let slopes = [stretch + 0.01 * phase.cos(), 0.014 * phase.cos(), -0.35 * phase.sin()];
+            for f in 0..3 {
+                if let Some(i) = n.values[f] {
+                    z[i] = values[f];
+                }
+                z[n.slopes_in[f]] = slopes[f];
+                z[n.slopes_out[f]] = slopes[f] * 1.01;
+            }
+        }
+        z
     }
 }

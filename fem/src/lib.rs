@@ -272,7 +272,11 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
     // the static analysis, monomorphised for the element's layout
     match element {
         formulation::RegisteredElement::String(kernel) => solve_static(&data, kernel, opts, settings, clock),
-        formulation::RegisteredElement::Cosserat(kernel) => solve_static(&data, kernel, opts, settings, clock),
+        formulation::RegisteredElement::Cosserat(kernel) => {
+            // the scene's shear stiffness b₂ (validated > 0 for theory cosserat)
+            let kernel = kernel.for_belt(&problem.belt).unwrap_or(kernel);
+            solve_static(&data, kernel, opts, settings, clock)
+        }
     }
 }
 
@@ -321,7 +325,8 @@ mod tests {
     #[test]
     fn registry_lists_the_shipped_formulations() {
         let names = super::available_formulations();
-        assert_eq!(names, vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss"]);
+        assert_eq!(names, vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss", "cosserat-gauss", "cosserat-reduced"]);
         assert_eq!(names[0], super::default_formulation());
+        assert_eq!(super::formulations_for(drive::scene::Theory::Cosserat), vec!["cosserat-gauss", "cosserat-reduced"]);
     }
 }

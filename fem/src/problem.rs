@@ -31,8 +31,11 @@ pub struct BeltSection {
     pub axial_stiffness: f64,
     /// ρ, kg/m.
     pub mass_per_length: f64,
-    /// EI, N·m²; `Some` only for a Kirchhoff rod (a string's EI is ignored).
+    /// EI, N·m²; `Some` only for a Kirchhoff or Cosserat rod (a string's EI is ignored).
     pub bending_stiffness: Option<f64>,
+    /// Shear stiffness b₂, N; `Some` only for a Cosserat rod (`belt.shear_stiffness`,
+    /// read by the Cosserat elements, docs/fem-cosserat.md).
+    pub shear_stiffness: Option<f64>,
 }
 
 /// The contact law between belt and pulleys.
@@ -104,7 +107,11 @@ impl FemProblem {
                 axial_stiffness: b.axial_stiffness,
                 mass_per_length: b.mass_per_length,
                 bending_stiffness: match b.theory {
-                    Theory::Kirchhoff => b.bending_stiffness,
+                    Theory::Kirchhoff | Theory::Cosserat => b.bending_stiffness,
+                    _ => None,
+                },
+                shear_stiffness: match b.theory {
+                    Theory::Cosserat => b.shear_stiffness,
                     _ => None,
                 },
             },
@@ -145,9 +152,9 @@ impl FemProblem {
             && matches!(self.effects.contact, ContactLaw::Coulomb { .. })
     }
 
-    /// True for the static string or Kirchhoff rod on frictionless pulleys.
+    /// True for the static string, Kirchhoff or Cosserat rod on frictionless pulleys.
     pub fn is_static_hanging(&self) -> bool {
-        matches!(self.belt.theory, Theory::String | Theory::Kirchhoff)
+        matches!(self.belt.theory, Theory::String | Theory::Kirchhoff | Theory::Cosserat)
             && matches!(self.analysis, Analysis::Static)
             && matches!(self.effects.contact, ContactLaw::Frictionless)
             && self.drive.driver_speed == 0.0
@@ -168,7 +175,7 @@ impl FemProblem {
     pub fn static_data(&self, opts: &FemOptions, settings: &SolverSettings) -> Result<StringHanging, FemError> {
         if !self.is_static_hanging() {
             return Err(FemError::Unsupported(format!(
-                "theory {}, analysis {}, contact {:?}: only the static string and Kirchhoff rod on frictionless pulleys (string-hanging, rod-hanging) have an MEL model so far",
+                "theory {}, analysis {}, contact {:?}: only the static string, Kirchhoff and Cosserat rod on frictionless pulleys (string-hanging, rod-hanging, cosserat-hanging) have an MEL model so far",
                 self.belt.theory,
                 self.analysis,
                 self.effects.contact
@@ -194,6 +201,7 @@ mod tests {
         let p = FemProblem::from_scene(&scene);
         assert_eq!(p.geometry, Geometry { radius: 0.1, centre_distance: 0.5 });
         assert_eq!(p.belt.bending_stiffness, None);
+        assert_eq!(p.belt.shear_stiffness, None);
         assert_eq!((p.belt.length, p.belt.axial_stiffness, p.belt.mass_per_length), (1.3, 2.0e4, 0.2));
         assert_eq!(p.effects.contact, ContactLaw::Coulomb { mu: 0.4 });
         assert!(p.effects.inertia);

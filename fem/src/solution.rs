@@ -108,7 +108,9 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let layout = kernel.layout();
         let mut sol = FemSolution { mesh, layout, local, params, length, kernel, summary: Summary::default(), zones: [None; 2], transport: None };
         if sol.params.penalty.is_some() {
-            sol.zones = if sol.params.bending_stiffness.is_some() {
+            sol.zones = if sol.kernel.theory() == drive::scene::Theory::Cosserat {
+                [sol.loaded_zone(Pulley::Driver), sol.loaded_zone(Pulley::Driven)]
+            } else if sol.params.bending_stiffness.is_some() {
                 [sol.rod_zone(Pulley::Driver), sol.rod_zone(Pulley::Driven)]
             } else {
                 [sol.recovered_zone(Pulley::Driver), sol.recovered_zone(Pulley::Driven)]
@@ -515,7 +517,8 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     }
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
-        let rod = self.params.bending_stiffness.is_some();
+        // the Cosserat rod has no concentrated edge forces (its pressure is finite)
+        let rod = self.params.bending_stiffness.is_some() && self.kernel.theory() != drive::scene::Theory::Cosserat;
         match self.zone(pulley) {
             None => PulleySummary {
                 contact_arc: Some(0.0),
@@ -655,6 +658,30 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let v_span = q[0] * nr[0] + q[1] * nr[1];
         let force = inward * (v_span - v_arc);
         (force.is_finite() && sigma_b.is_finite()).then_some((sigma_b, force))
+    }
+
+    /// The contact zone of a Cosserat rod (docs/fem-cosserat.md): from the first to the
+    /// last point of the contact rule the penalty loads — the finite pressure peak of
+    /// width √(a/b₂) is the edge, there is no concentrated edge force to locate.
+    pub fn loaded_zone(&self, pulley: Pulley) -> Option<ContactZone> {
+        let forces = self.contact_forces(pulley);
+        let sigma_start = forces.iter().find(|f| f.1 > 0.0)?.0;
+        let sigma_end = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
+        if sigma_end <= sigma_start {
+            return None;
+        }
+        let c = self.mesh.contour();
+        let angle = |s: f64| c.polar_angle(pulley, self.position(s));
+        Some(ContactZone {
+            sigma_start,
+            sigma_end,
+            angle_start: angle(sigma_start),
+            angle_end: angle(sigma_end),
+            intervals: 1,
+            recovered: false,
+            edge_force_start: None,
+            edge_force_end: None,
+        })
     }
 
     /// The contact zone of a rod (docs/fem-rod.md §5): both edges located and their

@@ -12,9 +12,10 @@ fn opts(elements: usize) -> FemOptions {
 
 #[test]
 fn registry_and_defaults() {
-    assert_eq!(fem::available_formulations(), vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss"]);
+    assert_eq!(fem::available_formulations(), vec!["string-simpson", "string-gauss", "rod-simpson", "rod-gauss", "cosserat-gauss", "cosserat-reduced"]);
     assert_eq!(fem::formulations_for(drive::scene::Theory::String), vec!["string-simpson", "string-gauss"]);
     assert_eq!(fem::formulations_for(drive::scene::Theory::Kirchhoff), vec!["rod-simpson", "rod-gauss"]);
+    assert_eq!(fem::formulations_for(drive::scene::Theory::Cosserat), vec!["cosserat-gauss", "cosserat-reduced"]);
     assert_eq!(fem::default_formulation(), "string-simpson");
     let scene = scene("string-hanging");
     let o = FemOptions::from_scene(&scene, "string-simpson");
@@ -26,7 +27,7 @@ fn registry_and_defaults() {
 fn invalid_options() {
     let scene = scene("string-hanging");
     let e = fem::solve_scene(&scene, &FemOptions { formulation: "string-nonsense".into(), ..opts(64) }).err().unwrap();
-    assert!(matches!(&e, FemError::UnknownFormulation { name, available } if name == "string-nonsense" && available.len() == 4), "{e}");
+    assert!(matches!(&e, FemError::UnknownFormulation { name, available } if name == "string-nonsense" && available.len() == 6), "{e}");
     for n in [0, 3, (1 << 20) + 1] {
         let e = fem::solve_scene(&scene, &opts(n)).err().unwrap();
         assert!(matches!(&e, FemError::InvalidOption { field: "elements", .. }), "{n}: {e}");

@@ -53,6 +53,12 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn start_field(&self, _field: usize, _contour: &Contour, _sigma: f64, _region: Region) -> [f64; 2] {
         [0.0; 2]
     }
+    /// The element with the section data of `belt` bound that it does not take from the
+    /// [`TermParams`] (the Cosserat elements' shear stiffness b₂), or `None` if it needs
+    /// nothing more (the default) or `belt` lacks it.
+    fn for_belt(&self, _belt: &crate::problem::BeltSection) -> Option<std::sync::Arc<dyn LayoutElement<N>>> {
+        None
+    }
 }
 
 /// A registered formulation of the string layout is a [`LayoutElement`] with 8 unknowns:

@@ -85,6 +85,7 @@ pub use crate::quadrature::{QuadratureError, Rule};
 pub use numerics::Scalar;
 
 mod built_in;
+pub mod cosserat;
 pub mod layout;
 pub mod terms;
 
@@ -530,7 +531,10 @@ impl<F: Formulation> Kernel for F {
 /// here** (one line); an outside crate calls [`register`] instead.
 fn built_in() -> Vec<RegisteredElement> {
     let kernels: [Arc<dyn Kernel>; 4] = [Arc::new(STRING_SIMPSON), Arc::new(STRING_GAUSS), Arc::new(ROD_SIMPSON), Arc::new(ROD_GAUSS)];
-    kernels.into_iter().map(RegisteredElement::String).collect()
+    // the Cosserat rod: Gauss 3 on the shear energy (the default of theory cosserat) and
+    // the reduced Gauss 2 rule (shear locking, docs/fem-cosserat.md); b₂ from the scene
+    let cosserat = [Rule::Gauss(3), Rule::Gauss(2)].map(|r| RegisteredElement::Cosserat(Arc::new(cosserat::CosseratElement::from_scene(r))));
+    kernels.into_iter().map(RegisteredElement::String).chain(cosserat).collect()
 }
 
 /// The process-wide registry: the built-in formulations, then the registered elements in
