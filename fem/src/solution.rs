@@ -667,21 +667,18 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let forces = self.contact_forces(pulley);
         let sigma_start = forces.iter().find(|f| f.1 > 0.0)?.0;
         let sigma_end = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
+        self.zone_between(pulley, sigma_start, sigma_end, false, [None, None])
+    }
+
+    /// The one-interval contact zone on `pulley` from σ_start to σ_end (`None` if empty),
+    /// with its polar angles and the edge forces at start and end.
+    fn zone_between(&self, pulley: Pulley, sigma_start: f64, sigma_end: f64, recovered: bool, [edge_force_start, edge_force_end]: [Option<f64>; 2]) -> Option<ContactZone> {
         if sigma_end <= sigma_start {
             return None;
         }
         let c = self.mesh.contour();
         let angle = |s: f64| c.polar_angle(pulley, self.position(s));
-        Some(ContactZone {
-            sigma_start,
-            sigma_end,
-            angle_start: angle(sigma_start),
-            angle_end: angle(sigma_end),
-            intervals: 1,
-            recovered: false,
-            edge_force_start: None,
-            edge_force_end: None,
-        })
+        Some(ContactZone { sigma_start, sigma_end, angle_start: angle(sigma_start), angle_end: angle(sigma_end), intervals: 1, recovered, edge_force_start, edge_force_end })
     }
 
     /// The contact zone of a rod (docs/fem-rod.md §5): both edges located and their
@@ -691,25 +688,10 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let forces = self.contact_forces(pulley);
         let first = forces.iter().find(|f| f.1 > 0.0)?.0;
         let last = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
-        let c = self.mesh.contour();
         let start = self.rod_edge(pulley, first, 1.0);
         let end = self.rod_edge(pulley, last, -1.0);
-        let sigma_start = start.map_or(first, |x| x.0);
-        let sigma_end = end.map_or(last, |x| x.0);
-        if sigma_end <= sigma_start {
-            return None;
-        }
-        let angle = |s: f64| c.polar_angle(pulley, self.position(s));
-        Some(ContactZone {
-            sigma_start,
-            sigma_end,
-            angle_start: angle(sigma_start),
-            angle_end: angle(sigma_end),
-            intervals: 1,
-            recovered: start.is_some() && end.is_some(),
-            edge_force_start: start.map(|x| x.1),
-            edge_force_end: end.map(|x| x.1),
-        })
+        let (sigma_start, sigma_end) = (start.map_or(first, |x| x.0), end.map_or(last, |x| x.0));
+        self.zone_between(pulley, sigma_start, sigma_end, start.is_some() && end.is_some(), [start.map(|x| x.1), end.map(|x| x.1)])
     }
 
     /// The penalty-window measure of an edge force (docs/fem-rod.md §5, K11): at the
