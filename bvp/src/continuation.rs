@@ -515,7 +515,7 @@ pub fn natural_checked<P: Problem>(
     let (cur, sol) = first_point(problem, guess, eta_from, opts, &mut total)?;
     let points = vec![BranchPoint { solution: sol, eta: eta_from, step: 0.0, tangent_eta: None }];
     let mut control = step_control(copts, numerics::continuation::StepLimit::Accepted(copts.max_steps))?;
-    let mut path = NaturalPath { opts, accept: &accept, cur, points, total };
+    let mut path = NaturalPath { opts, accept: &accept, cur, points, total, corrector: FixedEta::new(opts) };
     let stalled = |eta: f64, step: f64, cause: String| BvpError::ContinuationStalled { eta, step, min_step: copts.min_step, cause };
     match numerics::continuation::natural(&mut path, eta_from, eta_to, &mut control, &[]) {
         Ok(_) => {}
@@ -555,6 +555,9 @@ struct NaturalPath<'a, 'p, P: Problem, A> {
     cur: Adapted<'p, P>,
     points: Vec<BranchPoint>,
     total: Stats,
+    /// One corrector for all steps: its symbolic factorisation serves every step on the
+    /// same mesh.
+    corrector: FixedEta,
 }
 
 impl<'p, P: Problem, A: Fn(&Solution) -> Result<(), String>> Homotopy for NaturalPath<'_, 'p, P, A> {
@@ -580,7 +583,7 @@ impl<'p, P: Problem, A: Fn(&Solution) -> Result<(), String>> Homotopy for Natura
         let baseline = cur.disc.rhs_evals.get();
         let t0 = Instant::now();
         let mut st = Stats::default();
-        match adapt(disc, z0, target, &mut FixedEta::new(self.opts), self.opts, &mut st) {
+        match adapt(disc, z0, target, &mut self.corrector, self.opts, &mut st) {
             Ok(a) => {
                 self.total.add_iterations(&st);
                 let iterations = st.newton_iterations;

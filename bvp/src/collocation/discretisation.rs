@@ -159,7 +159,7 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     }
 
     /// First row of interval i of segment k.
-    fn row(&self, k: usize, i: usize) -> usize {
+    pub(crate) fn row(&self, k: usize, i: usize) -> usize {
         self.row_offsets[k] + i * (self.tab.s + 1) * self.dims[k]
     }
 
@@ -168,7 +168,7 @@ impl<'a, P: Problem> Discretisation<'a, P> {
         &z[self.offsets[self.n_segments()]..]
     }
 
-    fn count(&self, evals: usize) {
+    pub(crate) fn count(&self, evals: usize) {
         self.rhs_evals.set(self.rhs_evals.get() + evals);
     }
 
@@ -187,7 +187,7 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     }
 
     /// End states y_k(0), y_k(1) of all segments.
-    fn ends<'z>(&self, z: &'z [f64]) -> (Vec<&'z [f64]>, Vec<&'z [f64]>) {
+    pub(crate) fn ends<'z>(&self, z: &'z [f64]) -> (Vec<&'z [f64]>, Vec<&'z [f64]>) {
         let m = self.n_segments();
         let ya = (0..m).map(|k| &z[self.node(k, 0)..self.node(k, 0) + self.dims[k]]).collect();
         let yb = (0..m)
@@ -273,10 +273,7 @@ impl<'a, P: Problem> Discretisation<'a, P> {
         };
         for k in 0..self.n_segments() {
             let n = self.dims[k];
-            let per_call = match self.mode {
-                JacobianMode::Ad => 1,
-                JacobianMode::FiniteDifference => 1 + 2 * (n + np + 1),
-            };
+            let per_call = super::condensed::per_call(self.mode, n, np);
             let mesh = &self.meshes[k];
             let mut jac = Vec::with_capacity(s);
             for i in 0..mesh.len() - 1 {

@@ -1,0 +1,445 @@
+//! The Newton systems of the collocation equations solved by condensing the stage
+//! unknowns interval by interval (local elimination, as in COLNEW: Ascher, Christiansen
+//! & Russell, ACM TOMS 7, 1981), so that the sparse LU only sees the much smaller system
+//! of the mesh-node values and the parameters.
+//!
+//! # Condensation
+//!
+//! On interval i of segment k (dimension n, s stages, width h) write J_l = ∂f/∂y and
+//! P_l = ∂f/∂p at stage l. A Newton system J x = b (layout of
+//! [`super::discretisation`]) has there the stage rows and the continuity rows
+//!
+//! ```text
+//!     K x_Y − E x_i − G x_p = b_S,      K = I − h (a_jl J_l)_{jl},  E = (I, …, I)ᵀ,  G_j = h Σ_l a_jl P_l,
+//!     x_{i+1} − x_i − B x_Y − h Σ_l b_l P_l x_p = b_C,              B = h (b_1 J_1, …, b_s J_s),
+//! ```
+//!
+//! so with K's dense LU (partial pivoting), t = K⁻¹ b_S and W = K⁻¹ [E | G],
+//!
+//! ```text
+//!     x_Y = t + W [x_i; x_p],
+//!     x_{i+1} − Φ x_i − Ψ x_p = b_C + B t,      Φ = I + B W_E,  Ψ = h Σ_l b_l P_l + B W_p.
+//! ```
+//!
+//! These n rows per interval and the boundary rows (which only see the segment ends and
+//! p) form the condensed system in the node values and p; it is factorised by the
+//! sparse LU ([`SparseLu`], symbolic factorisation kept while the mesh does not
+//! change), and the stage values follow from x_Y = t + W [x_i; x_p]. The work per
+//! interval is that of one dense LU of order s n, independent of the mesh, and the
+//! sparse LU is (s + 1) times smaller than that of the full system.
+//!
+//! K is nonsingular for h ‖J‖ small enough (it is the matrix of one implicit
+//! Runge–Kutta step). Where a pivot of K vanishes (|u_rr| ≤ 10⁻¹⁴ max |K|, or not
+//! finite), the whole Jacobian of that Newton iteration is factorised uncondensed
+//! instead ([`Discretisation::jacobian`] and the sparse LU), so the condensation never
+//! makes a solvable Newton step fail.
+
+use super::discretisation::Discretisation;
+use crate::error::BvpError;
+use crate::jacobian::{bc_jacobian, rhs_jacobian};
+use crate::newton::SparseLu;
+use crate::problem::{JacobianMode, Problem};
+
+/// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
+/// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
+/// pivot is not finite or |u_rr| ≤ 10⁻¹⁴ max |a_ij| (numerically singular).
+fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
+    let scale = a.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+    if !(scale.is_finite() && scale > 0.0) {
+        return false;
+    }
+    for r in 0..m {
+        let p = (r..m).fold(r, |best, i| if a[i * m + r].abs() > a[best * m + r].abs() { i } else { best });
+        piv[r] = p;
+        if p != r {
+            for c in 0..m {
+                a.swap(r * m + c, p * m + c);
+            }
+        }
+        let d = a[r * m + r];
+        if !(d.is_finite() && d.abs() > 1e-14 * scale) {
+            return false;
+        }
+        for i in r + 1..m {
+            let f = a[i * m + r] / d;
+            a[i * m + r] = f;
+            if f != 0.0 {
+                for c in r + 1..m {
+                    a[i * m + c] -= f * a[r * m + c];
+                }
+            }
+        }
+    }
+    true
+}
+
+/// Overwrite `x` with A⁻¹ x for the factorisation of [`dense_lu`].
+fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64]) {
+    for r in 0..m {
+        x.swap(r, piv[r]);
+    }
+    for r in 0..m {
+        let mut acc = x[r];
+        for c in 0..r {
+            acc -= lu[r * m + c] * x[c];
+        }
+        x[r] = acc;
+    }
+    for r in (0..m).rev() {
+        let mut acc = x[r];
+        for c in r + 1..m {
+            acc -= lu[r * m + c] * x[c];
+        }
+        x[r] = acc / lu[r * m + r];
+    }
+}
+
+/// Where the data of one interval lives in the flat buffers of [`CondensedLu`].
+#[derive(Debug, Clone, Copy)]
+struct Interval {
+    /// Segment k and interval i.
+    k: usize,
+    i: usize,
+    /// Start of K's LU (s n × s n) and of its pivots (s n).
+    lu: usize,
+    piv: usize,
+    /// Start of W, column-major s n × (n + n_p).
+    w: usize,
+    /// Start of B, row-major n × s n.
+    b: usize,
+    /// Start of t = K⁻¹ b_S in the solve scratch (s n).
+    t: usize,
+}
+
+/// The factorised Newton matrix ∂F/∂z of a [`Discretisation`], condensed to the node
+/// values and parameters (module documentation), with the uncondensed sparse LU as the
+/// fallback. Both sparse LUs keep their symbolic factorisation while the pattern does
+/// not change, so one `CondensedLu` should live across the Newton iterations, meshes
+/// and continuation steps of a solve.
+#[derive(Debug, Default)]
+pub(crate) struct CondensedLu {
+    /// Sparse LU of the condensed system.
+    lu: SparseLu,
+    /// Sparse LU of the full system (only when a K was singular).
+    full: SparseLu,
+    /// The last factorisation was the full one.
+    uncondensed: bool,
+    intervals: Vec<Interval>,
+    /// Condensed index of the first node of each segment; `node_offsets[m]` = first
+    /// parameter = number of node unknowns.
+    node_offsets: Vec<usize>,
+    /// Full-system sizes the layout was built for (n, stages).
+    layout: (usize, usize),
+    k_lu: Vec<f64>,
+    piv: Vec<usize>,
+    w: Vec<f64>,
+    b: Vec<f64>,
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    vals: Vec<f64>,
+    jeta: Vec<f64>,
+    scratch: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+impl CondensedLu {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Numeric factorisations of the condensed and of the full system.
+    #[cfg(test)]
+    pub fn factorisations(&self) -> (usize, usize) {
+        (self.lu.numeric_factorisations(), self.full.numeric_factorisations())
+    }
+
+    /// The buffer layout for `disc` (recomputed only when its shape changes).
+    fn set_layout<P: Problem>(&mut self, disc: &Discretisation<'_, P>) {
+        let s = disc.tab.s;
+        let np = disc.n_params;
+        let same = self.layout == (disc.n, s)
+            && self.node_offsets.len() == disc.n_segments() + 1
+            && self.intervals.len() == disc.meshes.iter().map(|m| m.len() - 1).sum::<usize>()
+            && disc.meshes.iter().enumerate().all(|(k, m)| {
+                self.node_offsets[k + 1] - self.node_offsets[k] == m.len() * disc.dims[k]
+            });
+        if same {
+            return;
+        }
+        self.layout = (disc.n, s);
+        self.intervals.clear();
+        self.node_offsets = vec![0];
+        let (mut lu, mut piv, mut w, mut b, mut t) = (0, 0, 0, 0, 0);
+        for (k, mesh) in disc.meshes.iter().enumerate() {
+            let n = disc.dims[k];
+            let sn = s * n;
+            self.node_offsets.push(self.node_offsets[k] + mesh.len() * n);
+            for i in 0..mesh.len() - 1 {
+                self.intervals.push(Interval { k, i, lu, piv, w, b, t });
+                lu += sn * sn;
+                piv += sn;
+                w += sn * (n + np);
+                b += n * sn;
+                t += sn;
+            }
+        }
+        self.k_lu.resize(lu, 0.0);
+        self.piv.resize(piv, 0);
+        self.w.resize(w, 0.0);
+        self.b.resize(b, 0.0);
+        self.scratch.resize(t, 0.0);
+    }
+
+    /// Condensed row of the first continuity equation of interval i of segment k.
+    fn condensed_row(&self, disc_dims: &[usize], k: usize, i: usize) -> usize {
+        self.node_offsets[k] - k_rows_before(disc_dims, k) + i * disc_dims[k]
+    }
+
+    /// Evaluate and factorise ∂F/∂z of `disc` at (z, η).
+    ///
+    /// # Errors
+    /// The sparse LU's errors ([`BvpError::SingularJacobian`], [`BvpError::NonFinite`]).
+    pub fn factorize<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<(), BvpError> {
+        self.set_layout(disc);
+        if self.condense(disc, z, eta)? {
+            self.uncondensed = false;
+            let nc = self.node_offsets[disc.n_segments()] + disc.n_params;
+            self.lu.factorize(nc, &self.rows, &self.cols, &self.vals)
+        } else {
+            self.uncondensed = true;
+            disc.jacobian(z, eta, &mut self.rows, &mut self.cols, &mut self.vals, &mut self.jeta);
+            self.full.factorize(disc.n, &self.rows, &self.cols, &self.vals)
+        }
+    }
+
+    /// Build K's LU, W, B per interval and the condensed triplets; false if a K is
+    /// singular (nothing usable then).
+    fn condense<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<bool, BvpError> {
+        let s = disc.tab.s;
+        let np = disc.n_params;
+        let m = disc.n_segments();
+        let pofs = self.node_offsets[m];
+        let p = disc.params(z);
+        self.rows.clear();
+        self.cols.clear();
+        self.vals.clear();
+        let mut phi = Vec::new();
+        let mut psi = Vec::new();
+        let mut jac = Vec::with_capacity(s);
+        for iv in 0..self.intervals.len() {
+            let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
+            let n = disc.dims[k];
+            let sn = s * n;
+            let nw = n + np;
+            let mesh = &disc.meshes[k];
+            let h = mesh[i + 1] - mesh[i];
+            jac.clear();
+            for j in 0..s {
+                let at = disc.stage(k, i, j);
+                jac.push(rhs_jacobian(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta));
+            }
+            disc.count(s * per_call(disc.mode, n, np));
+            // K = I − h (a_jl J_l), row-major; W's columns start as [E | G].
+            let kk = &mut self.k_lu[lu..lu + sn * sn];
+            let ww = &mut self.w[w..w + sn * nw];
+            ww.fill(0.0);
+            for j in 0..s {
+                for a in 0..n {
+                    let r = j * n + a;
+                    for l in 0..s {
+                        let ajl = disc.tab.a[j * s + l];
+                        for c in 0..n {
+                            kk[r * sn + l * n + c] = -h * ajl * jac[l].1[a * n + c];
+                        }
+                        for q in 0..np {
+                            ww[(n + q) * sn + r] += h * ajl * jac[l].2[a * np + q];
+                        }
+                    }
+                    kk[r * sn + r] += 1.0;
+                    ww[a * sn + r] = 1.0;
+                }
+            }
+            if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
+                return Ok(false);
+            }
+            for col in 0..nw {
+                dense_solve(kk, sn, &self.piv[piv..piv + sn], &mut ww[col * sn..(col + 1) * sn]);
+            }
+            // B = h (b_l J_l), then Φ = I + B W_E, Ψ = h Σ b_l P_l + B W_p.
+            let bb = &mut self.b[b..b + n * sn];
+            for a in 0..n {
+                for l in 0..s {
+                    for c in 0..n {
+                        bb[a * sn + l * n + c] = h * disc.tab.b[l] * jac[l].1[a * n + c];
+                    }
+                }
+            }
+            phi.clear();
+            phi.resize(n * n, 0.0);
+            psi.clear();
+            psi.resize(n * np, 0.0);
+            for a in 0..n {
+                let brow = &bb[a * sn..(a + 1) * sn];
+                for col in 0..nw {
+                    let wc = &ww[col * sn..(col + 1) * sn];
+                    let v: f64 = brow.iter().zip(wc).map(|(x, y)| x * y).sum();
+                    if col < n {
+                        phi[a * n + col] = v + if col == a { 1.0 } else { 0.0 };
+                    } else {
+                        let q = col - n;
+                        psi[a * np + q] = v + h * (0..s).map(|l| disc.tab.b[l] * jac[l].2[a * np + q]).sum::<f64>();
+                    }
+                }
+            }
+            let r0 = self.condensed_row(&disc.dims, k, i);
+            let c0 = self.node_offsets[k] + i * n;
+            for a in 0..n {
+                for c in 0..n {
+                    self.rows.push(r0 + a);
+                    self.cols.push(c0 + c);
+                    self.vals.push(-phi[a * n + c]);
+                }
+                self.rows.push(r0 + a);
+                self.cols.push(c0 + n + a);
+                self.vals.push(1.0);
+                for q in 0..np {
+                    self.rows.push(r0 + a);
+                    self.cols.push(pofs + q);
+                    self.vals.push(-psi[a * np + q]);
+                }
+            }
+        }
+        // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
+        let (ya, yb) = disc.ends(z);
+        let (_, dg) = bc_jacobian(disc.problem, disc.mode, &ya, &yb, p, eta);
+        let mut colmap = Vec::new();
+        for k in 0..m {
+            let n = disc.dims[k];
+            let a0 = self.node_offsets[k];
+            let b0 = self.node_offsets[k + 1] - n;
+            colmap.extend(a0..a0 + n);
+            colmap.extend(b0..b0 + n);
+        }
+        colmap.extend(pofs..pofs + np);
+        let nu = colmap.len() + 1;
+        let r0 = pofs - disc.dims.iter().sum::<usize>();
+        for row in 0..disc.problem.n_bc() {
+            for (c, &col) in colmap.iter().enumerate() {
+                self.rows.push(r0 + row);
+                self.cols.push(col);
+                self.vals.push(dg[row * nu + c]);
+            }
+        }
+        Ok(true)
+    }
+
+    /// Overwrite `x` (length `disc.n`, the right-hand side in the row layout) with the
+    /// solution of the last factorised system (in the unknown layout).
+    ///
+    /// # Errors
+    /// The sparse LU's errors.
+    pub fn solve<P: Problem>(&mut self, disc: &Discretisation<'_, P>, x: &mut [f64]) -> Result<(), BvpError> {
+        if self.uncondensed {
+            return self.full.solve_in_place(x);
+        }
+        let s = disc.tab.s;
+        let np = disc.n_params;
+        let m = disc.n_segments();
+        let pofs = self.node_offsets[m];
+        self.rhs.clear();
+        self.rhs.resize(pofs + np, 0.0);
+        for iv in &self.intervals {
+            let n = disc.dims[iv.k];
+            let sn = s * n;
+            let row = disc.row(iv.k, iv.i);
+            let r0 = self.condensed_row(&disc.dims, iv.k, iv.i);
+            let t = &mut self.scratch[iv.t..iv.t + sn];
+            t.copy_from_slice(&x[row..row + sn]);
+            dense_solve(&self.k_lu[iv.lu..iv.lu + sn * sn], sn, &self.piv[iv.piv..iv.piv + sn], t);
+            let bb = &self.b[iv.b..iv.b + n * sn];
+            for a in 0..n {
+                let bt: f64 = bb[a * sn..(a + 1) * sn].iter().zip(t.iter()).map(|(u, v)| u * v).sum();
+                self.rhs[r0 + a] = x[row + sn + a] + bt;
+            }
+        }
+        let bc0 = disc.row_offsets[m];
+        let cbc0 = pofs - disc.dims.iter().sum::<usize>();
+        let n_bc = disc.n - bc0;
+        self.rhs[cbc0..cbc0 + n_bc].copy_from_slice(&x[bc0..]);
+        self.lu.solve_in_place(&mut self.rhs)?;
+        // Back substitution: node values and parameters, then x_Y = t + W [x_i; x_p].
+        let full_p = disc.offsets[m];
+        x[full_p..].copy_from_slice(&self.rhs[pofs..]);
+        for k in 0..m {
+            let n = disc.dims[k];
+            for i in 0..disc.meshes[k].len() {
+                let at = disc.node(k, i);
+                let from = self.node_offsets[k] + i * n;
+                x[at..at + n].copy_from_slice(&self.rhs[from..from + n]);
+            }
+        }
+        for iv in &self.intervals {
+            let n = disc.dims[iv.k];
+            let sn = s * n;
+            let nw = n + np;
+            let at = disc.stage(iv.k, iv.i, 0);
+            let xs = &mut x[at..at + sn];
+            xs.copy_from_slice(&self.scratch[iv.t..iv.t + sn]);
+            let xi = self.node_offsets[iv.k] + iv.i * n;
+            let ww = &self.w[iv.w..iv.w + sn * nw];
+            for col in 0..nw {
+                let v = if col < n { self.rhs[xi + col] } else { self.rhs[pofs + col - n] };
+                if v != 0.0 {
+                    for (o, wv) in xs.iter_mut().zip(&ww[col * sn..(col + 1) * sn]) {
+                        *o += wv * v;
+                    }
+                }
+            }
+        }
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(BvpError::SingularJacobian {
+                iteration: 0,
+                detail: "condensed collocation solve produced non-finite values".into(),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Σ_{k' < k} n_k': the condensed rows of segment k start this far before its first
+/// node unknown (one node more than intervals per segment).
+fn k_rows_before(dims: &[usize], k: usize) -> usize {
+    dims[..k].iter().sum()
+}
+
+/// Right-hand-side evaluations of one stage Jacobian.
+pub(crate) fn per_call(mode: JacobianMode, n: usize, np: usize) -> usize {
+    match mode {
+        JacobianMode::Ad => 1,
+        JacobianMode::FiniteDifference => 1 + 2 * (n + np + 1),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The dense LU solves a system needing pivoting to round-off, and reports a
+    /// singular matrix.
+    #[test]
+    fn dense_lu_pivots_and_detects_singularity() {
+        // A = [[0, 2, 1], [1, 1, 0], [3, 0, 1]], x = (1, −2, 3) → b = A x.
+        let a0 = [0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 3.0, 0.0, 1.0];
+        let x_true = [1.0, -2.0, 3.0];
+        let mut b: Vec<f64> = (0..3).map(|r| (0..3).map(|c| a0[r * 3 + c] * x_true[c]).sum()).collect();
+        let mut a = a0;
+        let mut piv = [0; 3];
+        assert!(dense_lu(&mut a, 3, &mut piv));
+        dense_solve(&a, 3, &piv, &mut b);
+        for (u, v) in b.iter().zip(&x_true) {
+            assert!((u - v).abs() < 1e-14, "{b:?}");
+        }
+        let mut singular = [1.0, 2.0, 2.0, 4.0];
+        assert!(!dense_lu(&mut singular, 2, &mut [0; 2]));
+    }
+}
