@@ -103,6 +103,87 @@ pub fn rhs_jacobian<P: Problem>(
     (f, dfdy, dfdp, dfdeta)
 }
 
+/// [`rhs_jacobian`] into reusable buffers: in AD mode the dual-number arguments are
+/// seeded in place, one column at a time, so that a Jacobian per collocation point
+/// allocates nothing once the buffers have their sizes (same values as
+/// [`rhs_jacobian`], bit for bit: the same operations on the same dual numbers).
+#[derive(Debug, Default)]
+pub struct RhsJacobian {
+    /// f (n_k).
+    pub f: Vec<f64>,
+    /// ∂f/∂y, n_k × n_k row-major.
+    pub dfdy: Vec<f64>,
+    /// ∂f/∂p, n_k × n_p row-major.
+    pub dfdp: Vec<f64>,
+    /// ∂f/∂η (n_k).
+    pub dfdeta: Vec<f64>,
+    yd: Vec<Dual64>,
+    pd: Vec<Dual64>,
+    out: Vec<Dual64>,
+}
+
+impl RhsJacobian {
+    /// Evaluate f_k and its derivatives at (x, y, p, η) into the buffers.
+    #[allow(clippy::too_many_arguments)]
+    pub fn evaluate<P: Problem>(
+        &mut self,
+        problem: &P,
+        mode: JacobianMode,
+        k: usize,
+        x: f64,
+        y: &[f64],
+        p: &[f64],
+        eta: f64,
+    ) {
+        if matches!(mode, JacobianMode::FiniteDifference) {
+            (self.f, self.dfdy, self.dfdp, self.dfdeta) = rhs_jacobian(problem, mode, k, x, y, p, eta);
+            return;
+        }
+        let n = y.len();
+        let np = p.len();
+        self.f.clear();
+        self.f.resize(n, 0.0);
+        problem.rhs(k, x, y, p, eta, &mut self.f);
+        for (v, len) in [(&mut self.dfdy, n * n), (&mut self.dfdp, n * np), (&mut self.dfdeta, n)] {
+            v.clear();
+            v.resize(len, 0.0);
+        }
+        self.yd.clear();
+        self.yd.extend(y.iter().map(|&v| Dual64::from_re(v)));
+        self.pd.clear();
+        self.pd.extend(p.iter().map(|&v| Dual64::from_re(v)));
+        let declared = problem.rhs_params(k);
+        let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
+        for j in (0..n + np + 1).filter(|&j| j < n || j == n + np || reads(j - n)) {
+            let mut ed = Dual64::from_re(eta);
+            if j < n {
+                self.yd[j].eps = 1.0;
+            } else if j < n + np {
+                self.pd[j - n].eps = 1.0;
+            } else {
+                ed.eps = 1.0;
+            }
+            self.out.clear();
+            self.out.resize(n, Dual64::from_re(0.0));
+            problem.rhs(k, x, &self.yd, &self.pd, ed, &mut self.out);
+            for (i, v) in self.out.iter().enumerate() {
+                if j < n {
+                    self.dfdy[i * n + j] = v.eps;
+                } else if j < n + np {
+                    self.dfdp[i * np + (j - n)] = v.eps;
+                } else {
+                    self.dfdeta[i] = v.eps;
+                }
+            }
+            if j < n {
+                self.yd[j].eps = 0.0;
+            } else if j < n + np {
+                self.pd[j - n].eps = 0.0;
+            }
+        }
+    }
+}
+
 /// Value and full derivative of the boundary residual g.
 ///
 /// Arguments are the stacked end states `ya[k] = y_k(0)`, `yb[k] = y_k(1)`.

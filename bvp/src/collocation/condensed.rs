@@ -36,7 +36,7 @@
 
 use super::discretisation::Discretisation;
 use crate::error::BvpError;
-use crate::jacobian::{bc_jacobian, rhs_jacobian};
+use crate::jacobian::{bc_jacobian, RhsJacobian};
 use crate::newton::SparseLu;
 use crate::problem::{JacobianMode, Problem};
 
@@ -75,22 +75,18 @@ fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
 
 /// Overwrite `x` with A⁻¹ x for the factorisation of [`dense_lu`].
 fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64]) {
-    for r in 0..m {
-        x.swap(r, piv[r]);
+    let x = &mut x[..m];
+    for (r, &p) in piv[..m].iter().enumerate() {
+        x.swap(r, p);
     }
-    for r in 0..m {
-        let mut acc = x[r];
-        for c in 0..r {
-            acc -= lu[r * m + c] * x[c];
-        }
-        x[r] = acc;
+    for r in 1..m {
+        let (done, rest) = x.split_at_mut(r);
+        rest[0] = lu[r * m..r * m + r].iter().zip(done.iter()).fold(rest[0], |acc, (l, v)| acc - l * v);
     }
     for r in (0..m).rev() {
-        let mut acc = x[r];
-        for c in r + 1..m {
-            acc -= lu[r * m + c] * x[c];
-        }
-        x[r] = acc / lu[r * m + r];
+        let (head, tail) = x.split_at_mut(r + 1);
+        let acc = lu[r * m + r + 1..(r + 1) * m].iter().zip(tail.iter()).fold(head[r], |acc, (u, v)| acc - u * v);
+        head[r] = acc / lu[r * m + r];
     }
 }
 
@@ -140,6 +136,8 @@ pub(crate) struct CondensedLu {
     jeta: Vec<f64>,
     scratch: Vec<f64>,
     rhs: Vec<f64>,
+    /// f and its derivatives at the s stages of the current interval.
+    jac: Vec<RhsJacobian>,
 }
 
 impl CondensedLu {
@@ -223,91 +221,12 @@ impl CondensedLu {
         self.rows.clear();
         self.cols.clear();
         self.vals.clear();
-        let mut phi = Vec::new();
-        let mut psi = Vec::new();
-        let mut jac = Vec::with_capacity(s);
-        for iv in 0..self.intervals.len() {
-            let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
-            let n = disc.dims[k];
-            let sn = s * n;
-            let nw = n + np;
-            let mesh = &disc.meshes[k];
-            let h = mesh[i + 1] - mesh[i];
-            jac.clear();
-            for j in 0..s {
-                let at = disc.stage(k, i, j);
-                jac.push(rhs_jacobian(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta));
-            }
-            disc.count(s * per_call(disc.mode, n, np));
-            // K = I − h (a_jl J_l), row-major; W's columns start as [E | G].
-            let kk = &mut self.k_lu[lu..lu + sn * sn];
-            let ww = &mut self.w[w..w + sn * nw];
-            ww.fill(0.0);
-            for j in 0..s {
-                for a in 0..n {
-                    let r = j * n + a;
-                    for l in 0..s {
-                        let ajl = disc.tab.a[j * s + l];
-                        for c in 0..n {
-                            kk[r * sn + l * n + c] = -h * ajl * jac[l].1[a * n + c];
-                        }
-                        for q in 0..np {
-                            ww[(n + q) * sn + r] += h * ajl * jac[l].2[a * np + q];
-                        }
-                    }
-                    kk[r * sn + r] += 1.0;
-                    ww[a * sn + r] = 1.0;
-                }
-            }
-            if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
-                return Ok(false);
-            }
-            for col in 0..nw {
-                dense_solve(kk, sn, &self.piv[piv..piv + sn], &mut ww[col * sn..(col + 1) * sn]);
-            }
-            // B = h (b_l J_l), then Φ = I + B W_E, Ψ = h Σ b_l P_l + B W_p.
-            let bb = &mut self.b[b..b + n * sn];
-            for a in 0..n {
-                for l in 0..s {
-                    for c in 0..n {
-                        bb[a * sn + l * n + c] = h * disc.tab.b[l] * jac[l].1[a * n + c];
-                    }
-                }
-            }
-            phi.clear();
-            phi.resize(n * n, 0.0);
-            psi.clear();
-            psi.resize(n * np, 0.0);
-            for a in 0..n {
-                let brow = &bb[a * sn..(a + 1) * sn];
-                for col in 0..nw {
-                    let wc = &ww[col * sn..(col + 1) * sn];
-                    let v: f64 = brow.iter().zip(wc).map(|(x, y)| x * y).sum();
-                    if col < n {
-                        phi[a * n + col] = v + if col == a { 1.0 } else { 0.0 };
-                    } else {
-                        let q = col - n;
-                        psi[a * np + q] = v + h * (0..s).map(|l| disc.tab.b[l] * jac[l].2[a * np + q]).sum::<f64>();
-                    }
-                }
-            }
-            let r0 = self.condensed_row(&disc.dims, k, i);
-            let c0 = self.node_offsets[k] + i * n;
-            for a in 0..n {
-                for c in 0..n {
-                    self.rows.push(r0 + a);
-                    self.cols.push(c0 + c);
-                    self.vals.push(-phi[a * n + c]);
-                }
-                self.rows.push(r0 + a);
-                self.cols.push(c0 + n + a);
-                self.vals.push(1.0);
-                for q in 0..np {
-                    self.rows.push(r0 + a);
-                    self.cols.push(pofs + q);
-                    self.vals.push(-psi[a * np + q]);
-                }
-            }
+        let mut jac = std::mem::take(&mut self.jac);
+        jac.resize_with(s, RhsJacobian::default);
+        let singular = self.condense_intervals(disc, z, eta, &mut jac);
+        self.jac = jac;
+        if singular {
+            return Ok(false);
         }
         // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
         let (ya, yb) = disc.ends(z);
@@ -331,6 +250,99 @@ impl CondensedLu {
             }
         }
         Ok(true)
+    }
+
+    /// The interval part of [`Self::condense`]; true if a K is singular.
+    fn condense_intervals<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64, jac: &mut [RhsJacobian]) -> bool {
+        let s = disc.tab.s;
+        let np = disc.n_params;
+        let pofs = self.node_offsets[disc.n_segments()];
+        let p = disc.params(z);
+        let mut phi = Vec::new();
+        let mut psi = Vec::new();
+        for iv in 0..self.intervals.len() {
+            let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
+            let n = disc.dims[k];
+            let sn = s * n;
+            let nw = n + np;
+            let mesh = &disc.meshes[k];
+            let h = mesh[i + 1] - mesh[i];
+            for (j, jj) in jac.iter_mut().enumerate() {
+                let at = disc.stage(k, i, j);
+                jj.evaluate(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta);
+            }
+            disc.count(s * per_call(disc.mode, n, np));
+            // K = I − h (a_jl J_l), row-major; W's columns start as [E | G].
+            let kk = &mut self.k_lu[lu..lu + sn * sn];
+            let ww = &mut self.w[w..w + sn * nw];
+            ww.fill(0.0);
+            for j in 0..s {
+                for a in 0..n {
+                    let r = j * n + a;
+                    for l in 0..s {
+                        let ajl = disc.tab.a[j * s + l];
+                        for c in 0..n {
+                            kk[r * sn + l * n + c] = -h * ajl * jac[l].dfdy[a * n + c];
+                        }
+                        for q in 0..np {
+                            ww[(n + q) * sn + r] += h * ajl * jac[l].dfdp[a * np + q];
+                        }
+                    }
+                    kk[r * sn + r] += 1.0;
+                    ww[a * sn + r] = 1.0;
+                }
+            }
+            if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
+                return true;
+            }
+            for col in 0..nw {
+                dense_solve(kk, sn, &self.piv[piv..piv + sn], &mut ww[col * sn..(col + 1) * sn]);
+            }
+            // B = h (b_l J_l), then Φ = I + B W_E, Ψ = h Σ b_l P_l + B W_p.
+            let bb = &mut self.b[b..b + n * sn];
+            for a in 0..n {
+                for l in 0..s {
+                    for c in 0..n {
+                        bb[a * sn + l * n + c] = h * disc.tab.b[l] * jac[l].dfdy[a * n + c];
+                    }
+                }
+            }
+            phi.clear();
+            phi.resize(n * n, 0.0);
+            psi.clear();
+            psi.resize(n * np, 0.0);
+            for a in 0..n {
+                let brow = &bb[a * sn..(a + 1) * sn];
+                for col in 0..nw {
+                    let wc = &ww[col * sn..(col + 1) * sn];
+                    let v: f64 = brow.iter().zip(wc).map(|(x, y)| x * y).sum();
+                    if col < n {
+                        phi[a * n + col] = v + if col == a { 1.0 } else { 0.0 };
+                    } else {
+                        let q = col - n;
+                        psi[a * np + q] = v + h * (0..s).map(|l| disc.tab.b[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
+                    }
+                }
+            }
+            let r0 = self.condensed_row(&disc.dims, k, i);
+            let c0 = self.node_offsets[k] + i * n;
+            for a in 0..n {
+                for c in 0..n {
+                    self.rows.push(r0 + a);
+                    self.cols.push(c0 + c);
+                    self.vals.push(-phi[a * n + c]);
+                }
+                self.rows.push(r0 + a);
+                self.cols.push(c0 + n + a);
+                self.vals.push(1.0);
+                for q in 0..np {
+                    self.rows.push(r0 + a);
+                    self.cols.push(pofs + q);
+                    self.vals.push(-psi[a * np + q]);
+                }
+            }
+        }
+        false
     }
 
     /// Overwrite `x` (length `disc.n`, the right-hand side in the row layout) with the
