@@ -28,6 +28,7 @@ use drive::view::SolutionView;
 
 use crate::assembly::Assembler;
 use crate::error::FemError;
+use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{TermParams, NDOF};
 use crate::linear::BorderedLu;
@@ -511,10 +512,10 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
 /// the static frictionless solution of the scene's string with its gravity and length
 /// (homotopy of fem-string.md §9, fitted to its contact boundaries, at the final penalty
 /// P), and the force scale F_ref = max(T_static, M₂/R, ρgL) of the norms.
-struct DriveStart {
+struct DriveStart<const N: usize = NDOF, K: LayoutElement<N> + ?Sized = dyn Kernel> {
     mu: f64,
     omega1: f64,
-    start: FemSolution,
+    start: FemSolution<N, K>,
     report: HomotopyReport,
     penalty: f64,
     /// The larger |mid-span axial force| of the static start, N.
@@ -527,7 +528,7 @@ struct DriveStart {
 /// # Errors
 /// [`FemError::InvalidOption`] (drive settings), [`FemError::Unsupported`] (no Coulomb
 /// contact, ω₁ = 0), the static start's errors.
-fn drive_start(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<DriveStart, FemError> {
+fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<K>) -> Result<DriveStart<N, K>, FemError> {
     drive_settings.validate()?;
     let ContactLaw::Coulomb { mu } = problem.effects.contact else {
         return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
@@ -557,7 +558,7 @@ fn drive_start(problem: &FemProblem, opts: &FemOptions, settings: &SolverSetting
 /// them (docs/string-drive.md) — midway between the contact entry and the stick→slip
 /// transition `transition` (σ; the whole zone without one); `None` without a recovered
 /// zone or with the transition outside it.
-fn stick_zone_force(base: &FemSolution, pulley: Pulley, transition: Option<f64>, direction: Direction) -> Option<f64> {
+fn stick_zone_force<const N: usize, K: LayoutElement<N> + ?Sized>(base: &FemSolution<N, K>, pulley: Pulley, transition: Option<f64>, direction: Direction) -> Option<f64> {
     let contour = base.mesh().contour();
     let zone = base.zone(pulley)?;
     let span = zone.sigma_end - zone.sigma_start;
