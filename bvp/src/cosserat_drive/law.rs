@@ -17,6 +17,7 @@ use crate::belt::solution::BeltSolution;
 use crate::belt::topology::{ArcKind, Pulley, SegmentKind, Topology};
 use crate::belt::{balance, BeltError};
 use crate::cosserat_hanging::law::{contact_rows, moving_span_rhs, ArcForce, Edge, ScaledCosseratHanging};
+use crate::cosserat_pulley::law::ArcSlopes;
 use crate::cosserat_pulley::ScaledCosseratPulley;
 use crate::problem::Scalar;
 use crate::string_drive::{ScaledStringDrive, StringDriveSolution};
@@ -24,9 +25,7 @@ use crate::string_hanging::law::on_pulley;
 
 use super::CosseratDrive;
 
-/// Span state components (the Cosserat span of the static loop).
-pub const SPAN: [&str; 7] = ["x", "y", "theta", "M", "F_x", "F_y", "s"];
-/// Arc state components: θ, M, s, τ; λ (slip only).
+/// Arc state components (the one-pulley belt's): θ, M, s, τ; λ (slip only).
 const THETA: usize = 0;
 const MOMENT: usize = 1;
 const MATERIAL: usize = 2;
@@ -54,25 +53,27 @@ pub struct ScaledCosseratDrive {
     pub bending: f64,
 }
 
-/// One arc point in d/ds (lengths of H): slopes, contact loads and the effective force.
-#[derive(Debug, Clone, Copy)]
-pub struct ArcPoint<D> {
-    /// θ′, M′, λ′, τ′.
-    pub d: [D; 4],
-    /// p and f_t per unstretched length (scaled by F_ref/H).
-    pub pressure: D,
-    pub friction: D,
-    /// F̃ = T̃ t + S n (CD2).
-    pub force: ArcForce<D>,
-    /// Stretch λ and shear angle γ.
-    pub lambda: D,
-    pub gamma: D,
-}
-
 impl ScaledCosseratDrive {
-    /// a(η) (scaled).
+    /// The one-pulley belt of this drive's section with slip sign `slip_sign` (its arc
+    /// equations and its log-a path), at χ = 0: the drive adds the transport and the
+    /// weight itself.
+    fn one_pulley(&self, slip_sign: f64) -> ScaledCosseratPulley {
+        ScaledCosseratPulley {
+            axial: self.string.axial_stiffness,
+            shear: self.shear,
+            chi: 0.0,
+            bending_start: self.bending_start,
+            bending: self.bending,
+            end_distance: f64::NAN,
+            end_forces: [f64::NAN; 2],
+            mu: self.string.friction,
+            slip_sign,
+        }
+    }
+
+    /// a(η) = a₀^(1−η) a^η (scaled), the one-pulley belt's path.
     pub fn bending_at<D: Scalar>(&self, eta: D) -> D {
-        (D::from(self.bending_start.ln()) * (D::from(1.0) - eta) + eta * self.bending.ln()).exp()
+        self.one_pulley(1.0).bending_at(eta)
     }
 
     /// χ/F_ref = c̃² with the inertia effect, else 0.
@@ -99,25 +100,15 @@ impl ScaledCosseratDrive {
     /// no weight in lengths of R, converted to lengths of H, plus the transport and
     /// weight terms.
     #[allow(clippy::too_many_arguments)]
-    pub fn arc<D: Scalar>(&self, topology: &Topology, kind: ArcKind, pulley: Pulley, phi: D, y: &[D], p: &[D], eta: D) -> ArcPoint<D> {
+    pub(crate) fn arc<D: Scalar>(&self, topology: &Topology, kind: ArcKind, pulley: Pulley, phi: D, y: &[D], p: &[D], eta: D) -> ArcSlopes<D> {
         let (r, w) = (self.string.radius, self.string.weight);
-        let sm = pulley.slip_sign(topology.direction(), self.string.flow) * self.string.friction;
-        let one_pulley = ScaledCosseratPulley {
-            axial: self.string.axial_stiffness,
-            shear: self.shear,
-            chi: 0.0,
-            bending_start: f64::NAN,
-            bending: f64::NAN,
-            end_distance: f64::NAN,
-            end_forces: [f64::NAN; 2],
-            mu: self.string.friction,
-            slip_sign: pulley.slip_sign(topology.direction(), self.string.flow),
-        };
+        let one_pulley = self.one_pulley(pulley.slip_sign(topology.direction(), self.string.flow));
+        let sm = one_pulley.slip_sign * one_pulley.mu;
         let zero = D::from(0.0);
         let slip = kind == ArcKind::Slip;
         // state in lengths of R: M/R = M_H / r
         let y_r = [y[THETA], y[MOMENT] / r, zero, zero, if slip { y[LAMBDA] } else { zero }];
-        let a = self.bending_at(eta);
+        let a = one_pulley.bending_at(eta);
         let sl = one_pulley.arc_slopes(kind, a / (r * r), phi, &y_r, Self::stick_stretch(pulley, p));
         let (lambda, f0) = (sl.lambda, sl.force);
         // d/ds_H = (1/r) d/ds_R; p, f_t per length of H = (per length of R)/r
@@ -134,7 +125,7 @@ impl ScaledCosseratDrive {
         let change = dlambda - dlambda0;
         let pressure = sl.pressure / r - f0.s_l * change + chi * lambda * dphi + sin * w;
         let friction = sl.friction / r - f0.t_l * change + chi * dlambda - cos * w;
-        ArcPoint {
+        ArcSlopes {
             d: [dtheta, dmoment, dlambda, -(friction * r)],
             pressure,
             friction,
@@ -166,19 +157,12 @@ impl ScaledCosseratDrive {
     }
 }
 
-fn arc_kind(kind: SegmentKind) -> ArcKind {
-    match kind {
-        SegmentKind::Arc(k) => k,
-        SegmentKind::Span => unreachable!("an arc segment"),
-    }
-}
-
 impl SectionLaw for ScaledCosseratDrive {
     type Data = CosseratDrive;
     type Start = StringDriveSolution;
 
-    const SPAN_STATES: &'static [&'static str] = &SPAN;
-    const ARC_STATES: &'static [&'static str] = &["theta", "M", "s", "tau"];
+    const SPAN_STATES: &'static [&'static str] = ScaledCosseratPulley::SPAN_STATES;
+    const ARC_STATES: &'static [&'static str] = ScaledCosseratPulley::ARC_STATES;
     const CONTACT_EDGES: ContactEdges = ContactEdges::Pressures;
 
     fn friction(d: &CosseratDrive) -> Option<f64> {
@@ -189,12 +173,9 @@ impl SectionLaw for ScaledCosseratDrive {
         self.string.flow
     }
 
+    /// The one-pulley belt's layout: λ is a state in slip only.
     fn state_names(&self, kind: SegmentKind) -> &'static [&'static str] {
-        match kind {
-            SegmentKind::Span => Self::SPAN_STATES,
-            SegmentKind::Arc(ArcKind::Slip) => &["theta", "M", "s", "tau", "lambda"],
-            SegmentKind::Arc(_) => Self::ARC_STATES,
-        }
+        self.one_pulley(1.0).state_names(kind)
     }
 
     fn extra_params(&self) -> &'static [&'static str] {
@@ -216,13 +197,10 @@ impl SectionLaw for ScaledCosseratDrive {
         // (CD3) with φ as variable, ds/dφ = −R/λ, times Δφ.
         let arc = self.arc(topology, kind, pulley, phi, y, p, eta);
         let ds = -(dphi * self.string.radius / arc.lambda);
+        // d/ds of (θ, M, s, τ, λ) in the state order; a stick arc has no λ
         let [dtheta, dmoment, dlambda, dtorque] = arc.d;
-        f[THETA] = ds * dtheta;
-        f[MOMENT] = ds * dmoment;
-        f[MATERIAL] = ds;
-        f[TORQUE] = ds * dtorque;
-        if kind == ArcKind::Slip {
-            f[LAMBDA] = ds * dlambda;
+        for (fj, slope) in f.iter_mut().zip([dtheta, dmoment, D::from(1.0), dtorque, dlambda]) {
+            *fj = ds * slope;
         }
     }
 
@@ -263,20 +241,21 @@ impl SectionLaw for ScaledCosseratDrive {
     fn point(&self, _: &CosseratDrive, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], p: &[f64]) -> BeltPoint {
         let chi = self.chi(p);
         let seg = topology.segment(k);
-        match (seg.pulley(), phi) {
-            (Some(pulley), Some(phi)) => {
-                let arc = self.arc(topology, arc_kind(seg.kind), pulley, phi, y, p, 1.0);
+        match (seg.pulley(), phi, seg.kind) {
+            (Some(pulley), Some(phi), SegmentKind::Arc(kind)) => {
+                let arc = self.arc(topology, kind, pulley, phi, y, p, 1.0);
                 let (sg, cg) = (arc.gamma.sin(), arc.gamma.cos());
                 // e₁ = cos γ t − sin γ n, e₂ = sin γ t + cos γ n
                 let (f, fr, lh) = (arc.force, sc.force, sc.length);
                 let (te, qe) = (f.t * cg - f.s * sg, f.t * sg + f.s * cg);
                 let (px, py) = on_pulley(self.string.radius, pulley, phi);
-                let mut pt = self.section(sc, chi, [px, py], y[THETA], y[MOMENT], te, qe, y[MATERIAL]);
-                pt.pressure = Some(arc.pressure * fr / lh);
-                pt.friction = Some(arc.friction * fr / lh);
-                pt.angle = Some(phi);
-                pt.torque = Some(y[TORQUE] * fr * lh);
-                pt
+                BeltPoint {
+                    pressure: Some(arc.pressure * fr / lh),
+                    friction: Some(arc.friction * fr / lh),
+                    angle: Some(phi),
+                    torque: Some(y[TORQUE] * fr * lh),
+                    ..self.section(sc, chi, [px, py], y[THETA], y[MOMENT], te, qe, y[MATERIAL])
+                }
             }
             _ => {
                 let (te, qe) = ScaledCosseratHanging::span_nq(y);

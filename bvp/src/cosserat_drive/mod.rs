@@ -23,7 +23,7 @@ use drive::scene::{Analysis, Contact, Layout, Scene, Theory};
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, Run};
 use crate::belt::topology::{ArcKind, Pulley, Scaling, SegmentKind};
-use crate::belt::{check_positive, BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod, SectionLaw};
+use crate::belt::{check_positive, BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod};
 use crate::collocation::Scheme;
 use crate::error::BvpError;
 use crate::rod_hanging::{self, ScaledRodHanging};
@@ -220,7 +220,7 @@ impl CosseratDriveSolution {
 
     /// The admissibility check the loop's `check_contact` does not make (spec §3.3): b₁,
     /// b₂ > χ at the solved transport rate c. (The slip direction is checked there by the
-    /// stretch, [`SectionLaw::slip_force`].)
+    /// stretch, [`crate::belt::SectionLaw::slip_force`].)
     pub fn check_admissible(&self) -> Result<(), BeltError> {
         critical(&self.data, self.transport_rate().unwrap_or(f64::NAN).abs())
     }
