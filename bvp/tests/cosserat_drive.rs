@@ -236,3 +236,46 @@ fn ad_jacobians_match_finite_differences() {
         assert!(worst <= 1e-6, "η = {eta}: AD vs central differences {worst:e}");
     }
 }
+
+/// Both rotation senses (issue 14): a negative driver speed with the load resisting
+/// (M₂ < 0) runs the belt counter-clockwise, slip then stick along σ on each pulley.
+/// Without gravity (belt 1.40 m, stretched on) it is the mirror image of the clockwise
+/// drive: span tensions (upper and lower swapped), stick stretches and arcs equal, c,
+/// ω₂ and the torques negated, to
+/// 1e-6 of their scales (both solves at 1e-8); with gravity it solves too, with the
+/// upper span the tight one (its mid-span tension above the lower span's).
+#[test]
+fn counter_clockwise_mirrors_without_gravity() {
+    let (_, base) = scene_data();
+    let opts = BeltOptions::default();
+    let drive = |speed: f64, torque: f64, gravity: f64, length: f64| {
+        let belt = bvp::string_hanging::StringHanging { gravity, length, ..base.drive.belt };
+        CosseratDrive { drive: bvp::string_drive::StringDrive { driver_speed: speed, driven_torque: torque, belt, ..base.drive }, ..base }
+    };
+    let cw = cosserat_drive::solve(&drive(20.0, 0.1, 0.0, 1.40), &opts).expect("clockwise, no gravity");
+    let ccw = cosserat_drive::solve(&drive(-20.0, -0.1, 0.0, 1.40), &opts).expect("counter-clockwise, no gravity");
+    let (a, b) = (cw.summary(), ccw.summary());
+    let fr = cw.scales.force;
+    let r = base.drive.radius;
+    let same = [
+        // the tight span is the lower one clockwise, the upper one counter-clockwise
+        ("tight mid-span tension", a.tension_lower_mid.unwrap(), b.tension_upper_mid.unwrap(), fr),
+        ("slack mid-span tension", a.tension_upper_mid.unwrap(), b.tension_lower_mid.unwrap(), fr),
+        ("driver stick stretch", cw.stick_stretches().0, ccw.stick_stretches().0, 1.0),
+        ("driven stick stretch", cw.stick_stretches().1, ccw.stick_stretches().1, 1.0),
+        ("driver.slip_arc", a.driver.as_ref().unwrap().slip_arc.unwrap(), b.driver.as_ref().unwrap().slip_arc.unwrap(), 1.0),
+        ("driven.stick_arc", a.driven.as_ref().unwrap().stick_arc.unwrap(), b.driven.as_ref().unwrap().stick_arc.unwrap(), 1.0),
+        ("driver.contact_arc", a.driver.as_ref().unwrap().contact_arc.unwrap(), b.driver.as_ref().unwrap().contact_arc.unwrap(), 1.0),
+        ("transport_rate", a.transport_rate.unwrap(), -b.transport_rate.unwrap(), 20.0 * r),
+        ("driven_speed", a.driven_speed.unwrap(), -b.driven_speed.unwrap(), 20.0),
+        ("driver.torque", a.driver.as_ref().unwrap().torque.unwrap(), -b.driver.as_ref().unwrap().torque.unwrap(), fr * r),
+    ];
+    for (name, x, y, scale) in same {
+        assert!((x - y).abs() <= 1e-6 * scale, "{name}: clockwise {x} vs mirrored counter-clockwise {y}");
+    }
+    let heavy = cosserat_drive::solve(&drive(-20.0, -0.1, 9.81, base.drive.length), &opts).expect("counter-clockwise with gravity");
+    let s = heavy.summary();
+    assert!(s.tension_upper_mid.unwrap() > s.tension_lower_mid.unwrap(), "upper span tight: {s:?}");
+    let (input, output, dissipation) = heavy.power_balance();
+    assert!((input - output - dissipation).abs() <= 1e-7 * input && dissipation > 0.0, "power {input} = {output} + {dissipation}");
+}
