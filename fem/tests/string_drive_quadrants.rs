@@ -17,10 +17,40 @@ fn creep_scene() -> Scene {
     Scene::from_path(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn steady(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
+/// `solver` (the direct steady solve or the transient) on `scene` with the default
+/// formulation and settings.
+fn run_with<S>(solver: S, scene: &Scene, elements: usize) -> Result<FemRun, FemError>
+where
+    S: Fn(&fem::FemProblem, &FemOptions, &SolverSettings, &DriveSettings, std::sync::Arc<dyn fem::formulation::Kernel>) -> Result<FemRun, FemError>,
+{
     let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
     let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    string_drive::steady::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
+    solver(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
+}
+
+fn steady(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
+    run_with(string_drive::steady::solve, scene, elements)
+}
+
+/// The creep scene with the load M₂ = `torque` and its reversal (−ω₁, −M₂).
+fn reversed_pair(torque: f64) -> (Scene, Scene) {
+    let mut cw = creep_scene();
+    cw.drive.driven_torque = torque;
+    let mut ccw = cw.clone();
+    ccw.drive.driver_speed = -cw.drive.driver_speed;
+    ccw.drive.driven_torque = -torque;
+    (cw, ccw)
+}
+
+/// Every summary scalar of `ccw` is that of `cw` mirrored (`Summary::mirror_y`) to `tol`
+/// relative (absolute below 1e-3, where a quantity is zero).
+fn assert_mirror_image(cw: &drive::summary::Summary, ccw: &drive::summary::Summary, tol: f64, label: &str) {
+    let (want, got) = (cw.mirror_y().scalars(), ccw.scalars());
+    assert_eq!(want.len(), got.len());
+    for ((name, w), (other, g)) in want.iter().zip(&got) {
+        assert_eq!(name, other);
+        assert!((g - w).abs() <= tol * w.abs().max(1e-3), "{label}: {name}: {g} vs mirrored {w}");
+    }
 }
 
 fn drive_option(run: &FemRun, key: &str) -> f64 {
@@ -34,19 +64,10 @@ fn drive_option(run: &FemRun, key: &str) -> f64 {
 #[test]
 fn counter_clockwise_is_the_mirror_image_without_gravity() {
     for torque in [2.0, -2.0] {
-        let mut cw = creep_scene();
-        cw.drive.driven_torque = torque;
-        let mut ccw = cw.clone();
-        ccw.drive.driver_speed = -cw.drive.driver_speed;
-        ccw.drive.driven_torque = -torque;
-        let a = steady(&cw, 64).unwrap_or_else(|e| panic!("cw {e}")).summary.mirror_y();
+        let (cw, ccw) = reversed_pair(torque);
+        let a = steady(&cw, 64).unwrap_or_else(|e| panic!("cw {e}")).summary;
         let b = steady(&ccw, 64).unwrap_or_else(|e| panic!("ccw {e}")).summary;
-        let (want, got) = (a.scalars(), b.scalars());
-        assert_eq!(want.len(), got.len());
-        for ((name, w), (other, g)) in want.iter().zip(&got) {
-            assert_eq!(name, other);
-            assert!((g - w).abs() <= 1e-9 * w.abs().max(1e-3), "M₂ {torque}: {name}: {g} vs mirrored {w}");
-        }
+        assert_mirror_image(&a, &b, 1e-9, &format!("M₂ {torque}"));
     }
 }
 
@@ -80,9 +101,7 @@ fn the_load_drives() {
 }
 
 fn transient(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
-    let opts = FemOptions { elements, formulation: fem::default_formulation().into(), penalty: None };
-    let kernel = fem::formulation::find(&opts.formulation).unwrap();
-    string_drive::solve(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), &DriveSettings::from_scene(scene), kernel)
+    run_with(string_drive::solve, scene, elements)
 }
 
 /// (d) The quasistatic transient (docs/fem-drive.md §3–§7, §13) turned counter-clockwise:
@@ -95,19 +114,10 @@ fn transient(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
 #[test]
 fn transient_counter_clockwise_is_the_mirror_image_without_gravity() {
     for torque in [2.0, -2.0] {
-        let mut cw = creep_scene();
-        cw.drive.driven_torque = torque;
-        let mut ccw = cw.clone();
-        ccw.drive.driver_speed = -cw.drive.driver_speed;
-        ccw.drive.driven_torque = -torque;
+        let (cw, ccw) = reversed_pair(torque);
         let (ra, rb) = (transient(&cw, 32).unwrap_or_else(|e| panic!("cw {e}")), transient(&ccw, 32).unwrap_or_else(|e| panic!("ccw {e}")));
         assert_eq!(ra.history.as_ref().unwrap().len(), rb.history.as_ref().unwrap().len(), "M₂ {torque}: steps to the steady state");
-        let (want, got) = (ra.summary.mirror_y().scalars(), rb.summary.scalars());
-        assert_eq!(want.len(), got.len());
-        for ((name, w), (other, g)) in want.iter().zip(&got) {
-            assert_eq!(name, other);
-            assert!((g - w).abs() <= 1e-8 * w.abs().max(1e-3), "M₂ {torque}: {name}: {g} vs mirrored {w}");
-        }
+        assert_mirror_image(&ra.summary, &rb.summary, 1e-8, &format!("M₂ {torque}"));
         for key in ["power_in", "power_out", "dissipation"] {
             let (w, g) = (drive_option(&ra, key), drive_option(&rb, key));
             assert!((g - w).abs() <= 1e-8 * w.abs(), "M₂ {torque}: {key}: {g} vs {w}");
