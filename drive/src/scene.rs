@@ -1285,6 +1285,15 @@ impl Scene {
         }
     }
 
+    /// The reference line of this scene's layout: the two-pulley loop ([`Scene::contour`])
+    /// or the open one-pulley contour ([`Scene::open_contour`]); assumes a validated scene.
+    pub fn path(&self) -> crate::contour::Path {
+        match self.open_contour() {
+            Some(open) => crate::contour::Path::Open(open),
+            None => crate::contour::Path::Loop(self.contour()),
+        }
+    }
+
     /// L_geom = 2H + 2πR, m: length of the contour.
     pub fn geometric_length(&self) -> f64 {
         self.contour().length()

@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use drive::contour::{Contour, Pulley, Region};
+use drive::contour::{Pulley, Region};
 use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
 
@@ -832,8 +832,8 @@ fn bisect(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
 }
 
 impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<N, K> {
-    fn contour(&self) -> &Contour {
-        self.mesh.contour()
+    fn path(&self) -> drive::contour::Path {
+        drive::contour::Path::Loop(*self.mesh.contour())
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {

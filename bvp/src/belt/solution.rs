@@ -8,7 +8,7 @@ use std::cell::RefCell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use drive::contour::Contour;
+use drive::contour::{Contour, Path};
 use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
 
@@ -402,8 +402,8 @@ impl<L: SectionLaw> BeltSolution<L> {
 }
 
 impl<L: SectionLaw> SolutionView for BeltSolution<L> {
-    fn contour(&self) -> &Contour {
-        self.sigma_map.contour()
+    fn path(&self) -> Path {
+        self.sigma_map.path()
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {

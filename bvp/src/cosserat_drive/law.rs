@@ -17,7 +17,7 @@ use crate::belt::solution::BeltSolution;
 use crate::belt::topology::{ArcKind, Pulley, SegmentKind, Topology};
 use crate::belt::{balance, BeltError};
 use crate::cosserat_hanging::law::{contact_rows, moving_span_rhs, ArcForce, Edge, ScaledCosseratHanging};
-use crate::cosserat_pulley::law::ArcSlopes;
+use crate::cosserat_pulley::law::{ArcSlopes, Closing};
 use crate::cosserat_pulley::ScaledCosseratPulley;
 use crate::problem::Scalar;
 use crate::string_drive::{ScaledStringDrive, StringDriveSolution};
@@ -68,6 +68,8 @@ impl ScaledCosseratDrive {
             end_forces: [f64::NAN; 2],
             mu: self.string.friction,
             slip_sign,
+            free_end: None,
+            closing: Closing::None,
         }
     }
 
