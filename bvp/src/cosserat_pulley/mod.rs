@@ -170,7 +170,7 @@ impl CosseratPulley {
                 check_positive(&[("pulley_speed", pulley_speed), ("transport_rate", d.transport_rate)])?;
                 let stretch = pulley_speed * d.radius / d.transport_rate;
                 let effective = (d.axial_stiffness - d.chi()) * stretch - d.axial_stiffness;
-                if !(effective > 0.0) {
+                if effective.is_nan() || effective <= 0.0 {
                     return Err(BeltError::InvalidInput { name: "pulley_speed", value: pulley_speed, reason: "the stick stretch ωR/c leaves no positive effective tension at the inflow end" });
                 }
                 d.tension_in = d.tension_of(effective);
@@ -189,7 +189,7 @@ impl CosseratPulley {
                 let mut t_out = known;
                 for _ in 0..30 {
                     let arc = stick_slip_angle - contact_end(t_out);
-                    if !(arc >= 0.0) {
+                    if arc.is_nan() || arc < 0.0 {
                         return Err(BeltError::InvalidInput { name: "stick_slip_angle", value: stick_slip_angle, reason: "the stick → slip angle lies below the contact end φ_C ≈ −π/2 + √(a/T̃_out)/R: no slip arc" });
                     }
                     if given == End::Out {

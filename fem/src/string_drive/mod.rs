@@ -667,7 +667,7 @@ fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour:
     let end_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(last), |z| z.angle_end);
     let start_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(first), |z| z.angle_start);
     let arc = (start_angle - end_angle).rem_euclid(2.0 * PI);
-    (arc, slip_arc(out, arc, [start_angle, end_angle], &angle, direction))
+    (arc, slip_arc(out, arc, [start_angle, end_angle], angle, direction))
 }
 
 /// Axial force and stretch of the state z at σ.
@@ -704,7 +704,7 @@ fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler
         let (contact, slip) = match (pts.first(), pts.last()) {
             (Some(&a), Some(&b)) => {
                 let arc = (angle(a) - angle(b)).rem_euclid(2.0 * PI);
-                (arc, slip_arc(&outs[k], arc, [angle(a), angle(b)], &angle, direction))
+                (arc, slip_arc(&outs[k], arc, [angle(a), angle(b)], angle, direction))
             }
             _ => (0.0, 0.0),
         };
