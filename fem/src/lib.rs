@@ -258,6 +258,22 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         }
         return string_drive::solve(problem, opts, settings, drive_settings, kernel);
     }
+    if problem.is_cosserat_steady_drive() {
+        // the direct steady solve, monomorphised for the Cosserat layout {s, ν, ψ}
+        let formulation::RegisteredElement::Cosserat(kernel) = element else {
+            return Err(FemError::Unsupported(format!(
+                "formulation `{}` discretises theory `{}`, the scene's belt is theory `{}`",
+                element.name(),
+                element.theory(),
+                problem.belt.theory
+            )));
+        };
+        // the scene's shear stiffness b₂ (validated > 0 for theory cosserat)
+        let kernel = kernel.for_belt(&problem.belt).unwrap_or(kernel);
+        const NC: usize = formulation::layout::NDOF_COSSERAT;
+        use string_drive::steady::{element_size, point_size};
+        return string_drive::steady::solve_layout::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
+    }
     let data = problem.static_data(opts, settings)?;
     // an element discretises one theory: string elements cannot carry EI, rod
     // elements need it (docs/fem-rod.md §4); the harness prints "not applicable"

@@ -152,6 +152,13 @@ impl FemProblem {
             && matches!(self.effects.contact, ContactLaw::Coulomb { .. })
     }
 
+    /// True for the steady friction drive of a Cosserat rod (analysis steady, Coulomb
+    /// contact) — the problem [`crate::string_drive::steady`] solves with the Cosserat
+    /// element (docs/fem-cosserat.md §7).
+    pub fn is_cosserat_steady_drive(&self) -> bool {
+        matches!(self.belt.theory, Theory::Cosserat) && matches!(self.analysis, Analysis::Steady) && matches!(self.effects.contact, ContactLaw::Coulomb { .. })
+    }
+
     /// True for the static string, Kirchhoff or Cosserat rod on frictionless pulleys.
     pub fn is_static_hanging(&self) -> bool {
         matches!(self.belt.theory, Theory::String | Theory::Kirchhoff | Theory::Cosserat)

@@ -220,13 +220,13 @@ impl StepSystem<'_> {
 /// Norm weights of the step unknowns: d_i = H for S̃, ν and a, H/R for φ, 1 for slopes
 /// (docs/fem-drive.md §3); `steady` gives the steady-state weights of §7 (∂σS by
 /// F_ref/EA) instead.
-pub fn weights(asm: &Assembler, centre_distance: f64, radius: f64, slope_s: f64) -> Vec<f64> {
+pub fn weights<const N: usize, K: crate::assembly::ElementKernel<N> + ?Sized>(asm: &Assembler<N, K>, centre_distance: f64, radius: f64, slope_s: f64) -> Vec<f64> {
     let dofs = asm.dofs();
     let mut w: Vec<f64> = dofs.kinds().iter().map(|k| if *k == DofKind::Value { centre_distance } else { 1.0 }).collect();
     for k in 0..asm.mesh().len() {
-        let nd = dofs.node(k);
-        w[nd.slopes_in.0] = slope_s;
-        w[nd.slopes_out.0] = slope_s;
+        let nd = dofs.node_unknowns(k);
+        w[nd.slopes_in[0]] = slope_s;
+        w[nd.slopes_out[0]] = slope_s;
     }
     w.push(centre_distance);
     w.push(centre_distance / radius);

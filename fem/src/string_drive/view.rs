@@ -3,10 +3,13 @@
 //! Stick/Slip, the normal traction and the friction traction from the integration-point
 //! states.
 
-use drive::contour::{Contour, Pulley};
+use drive::contour::Pulley;
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 
+use crate::formulation::layout::LayoutElement;
+use crate::formulation::Kernel;
+use crate::kinematics::NDOF;
 use crate::solution::FemSolution;
 
 use super::contact::PointState;
@@ -41,10 +44,10 @@ impl From<&PointState> for ViewPoint {
     }
 }
 
-/// A converged drive state behind the common view.
-#[derive(Clone)]
-pub struct DriveSolution {
-    base: FemSolution,
+/// A converged drive state behind the common view, for an element of any 1-D layout
+/// (the string's by default).
+pub struct DriveSolution<const N: usize = NDOF, K: LayoutElement<N> + ?Sized = dyn Kernel> {
+    base: FemSolution<N, K>,
     /// Contact-capable points of the normal term, sorted by σ.
     points: Vec<ViewPoint>,
     /// Friction points (element edges), sorted by σ.
@@ -54,10 +57,16 @@ pub struct DriveSolution {
     summary: Summary,
 }
 
-impl DriveSolution {
+impl<const N: usize, K: LayoutElement<N> + ?Sized> Clone for DriveSolution<N, K> {
+    fn clone(&self) -> Self {
+        DriveSolution { base: self.base.clone(), points: self.points.clone(), friction: self.friction.clone(), edge_tractions: self.edge_tractions.clone(), summary: self.summary.clone() }
+    }
+}
+
+impl<const N: usize, K: LayoutElement<N> + ?Sized> DriveSolution<N, K> {
     /// The view of `base` with the point states `points` (per element) and the drive
     /// summary.
-    pub fn new(base: FemSolution, per_element: &[Vec<ViewPoint>], summary: Summary) -> DriveSolution {
+    pub fn new(base: FemSolution<N, K>, per_element: &[Vec<ViewPoint>], summary: Summary) -> Self {
         let edge_tractions = per_element
             .iter()
             .map(|pts| {
@@ -73,8 +82,8 @@ impl DriveSolution {
         DriveSolution { base, points, friction, edge_tractions, summary }
     }
 
-    /// The string solution.
-    pub fn string(&self) -> &FemSolution {
+    /// The belt's solution (string or rod).
+    pub fn string(&self) -> &FemSolution<N, K> {
         &self.base
     }
 
@@ -106,9 +115,9 @@ impl DriveSolution {
     }
 }
 
-impl SolutionView for DriveSolution {
-    fn contour(&self) -> &Contour {
-        self.base.contour()
+impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for DriveSolution<N, K> {
+    fn path(&self) -> drive::contour::Path {
+        self.base.path()
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {
@@ -119,12 +128,14 @@ impl SolutionView for DriveSolution {
         self.base.axial_force(sigma)
     }
 
-    fn bending_moment(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// The rod's bending moment ([`FemSolution`]'s; `None` for the string).
+    fn bending_moment(&self, sigma: f64) -> Option<f64> {
+        self.base.bending_moment(sigma)
     }
 
-    fn transverse_force(&self, _sigma: f64) -> Option<f64> {
-        None
+    /// The rod's transverse force ([`FemSolution`]'s; `None` for the string).
+    fn transverse_force(&self, sigma: f64) -> Option<f64> {
+        self.base.transverse_force(sigma)
     }
 
     /// τ_γ interpolated linearly between the neighbouring contact points; 0 outside

@@ -23,10 +23,14 @@ pub struct SteadyParams {
     pub inertia: Option<f64>,
 }
 
-/// The steady problem on one mesh: X = (z, c, ω₂, τ₁ … τ_m).
-pub struct SteadyProblem<'a> {
-    /// Assembler of the string (strain, gravity, normal penalty in its params).
-    pub asm: &'a Assembler,
+/// The steady problem on one mesh: X = (z, c, ω₂, τ₁ … τ_m), for an element of any
+/// 1-D layout with N unknowns (the string's 8 by default, the Cosserat rod's 12); P and
+/// E are the sizes of a friction point's and an element load's variable lists,
+/// 2N + 4 and N + 4 ([`point_size`], [`element_size`]; checked in [`Self::len`]).
+pub struct SteadyProblem<'a, const N: usize = NDOF, const P: usize = NPV, const E: usize = NEV, K: LayoutElement<N> + ?Sized = dyn Kernel> {
+    /// Assembler of the element (its energy: strain, gravity, normal penalty in its
+    /// params; for the Cosserat rod also shear and bending).
+    pub asm: &'a Assembler<N, K>,
     /// Term parameters with the normal penalty.
     pub params: TermParams,
     /// Belt length L, m.
@@ -42,7 +46,26 @@ pub struct SteadyProblem<'a> {
 /// Entries of one friction point: rows and columns in the point's variable list
 /// (q of the left element, q of the right element, c, ω₂, τ, and for the slip half of a
 /// split node the τ of its stick half) — see [`SteadyProblem::variables`].
-pub(super) const NPV: usize = 2 * NDOF + 4;
+pub(super) const NPV: usize = point_size(NDOF);
+
+/// Size of a friction point's variable list for an element of N unknowns: 2N + 4.
+pub const fn point_size(n: usize) -> usize {
+    2 * n + 4
+}
+
+/// Size of an element load's variable list for an element of N unknowns: N + 4.
+pub const fn element_size(n: usize) -> usize {
+    n + 4
+}
+
+// the copies of a problem share its references (a derived Clone would ask K: Clone)
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Clone for SteadyProblem<'_, N, P, E, K> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Copy for SteadyProblem<'_, N, P, E, K> {}
 
 /// Residual, Jacobian values (pattern order) and the point results of one evaluation.
 pub struct Evaluated {
@@ -55,18 +78,22 @@ pub struct Evaluated {
 }
 
 /// Variables of an element's friction load: q (8), c, ω₂, τ_a, τ_b.
-pub(super) const NEV: usize = NDOF + 4;
+pub(super) const NEV: usize = element_size(NDOF);
 
 /// Residual entries and Jacobian block of an element's friction load.
-pub(super) type ElementLoad = ([f64; NEV], [[f64; NEV]; NEV]);
+pub(super) type ElementLoad<const E: usize> = ([f64; E], [[f64; E]; E]);
 
 /// Quadrature of the friction load (DS1)–(DS3): 4-point Gauss–Legendre (τ linear × λ ×
 /// a cubic shape function).
 pub(super) const FRICTION_RULE: Rule = Rule::Gauss(4);
 
-impl SteadyProblem<'_> {
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> SteadyProblem<'_, N, P, E, K> {
+    /// The variable-list sizes fit N.
+    const SIZES: () = assert!(P == point_size(N) && E == element_size(N), "SteadyProblem<N, P, E>: P = 2N + 4, E = N + 4");
+
     /// Number of unknowns nz + 2 + m.
     pub fn len(&self) -> usize {
+        let () = Self::SIZES;
         self.asm.len() + 2 + self.points.len()
     }
 
@@ -89,17 +116,17 @@ impl SteadyProblem<'_> {
     /// The global indices of point i's variables (q of the left and right elements,
     /// c, ω₂, τ_i). The node's own unknowns appear twice (once per element); the pattern
     /// sums duplicates.
-    pub(super) fn variables(&self, i: usize) -> [Option<usize>; NPV] {
+    pub(super) fn variables(&self, i: usize) -> [Option<usize>; P] {
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
         let partner = self.stick_partner(i).map(|j| self.it(j));
         std::array::from_fn(|k| match k {
-            k if k < NDOF => il[k],
-            k if k < 2 * NDOF => ir[k - NDOF],
-            k if k == 2 * NDOF => Some(self.ic()),
-            k if k == 2 * NDOF + 1 => Some(self.iw()),
-            k if k == 2 * NDOF + 2 => Some(self.it(i)),
+            k if k < N => il[k],
+            k if k < 2 * N => ir[k - N],
+            k if k == 2 * N => Some(self.ic()),
+            k if k == 2 * N + 1 => Some(self.iw()),
+            k if k == 2 * N + 2 => Some(self.it(i)),
             _ => partner,
         })
     }
@@ -132,13 +159,13 @@ impl SteadyProblem<'_> {
     }
 
     /// Global indices of element e's friction-load variables (q, c, ω₂, τ_a, τ_b).
-    pub(super) fn element_variables(&self, e: usize, owners: [Option<usize>; 2]) -> [Option<usize>; NEV] {
+    pub(super) fn element_variables(&self, e: usize, owners: [Option<usize>; 2]) -> [Option<usize>; E] {
         let idx = self.asm.dofs().element(e);
         std::array::from_fn(|k| match k {
-            k if k < NDOF => idx[k],
-            k if k == NDOF => Some(self.ic()),
-            k if k == NDOF + 1 => Some(self.iw()),
-            k if k == NDOF + 2 => owners[0].map(|i| self.it(i)),
+            k if k < N => idx[k],
+            k if k == N => Some(self.ic()),
+            k if k == N + 1 => Some(self.iw()),
+            k if k == N + 2 => owners[0].map(|i| self.it(i)),
             _ => owners[1].map(|i| self.it(i)),
         })
     }
@@ -147,39 +174,50 @@ impl SteadyProblem<'_> {
     /// linear between its edge values: −∫ τ λ ∂S/∂q dσ on the S-rows (values and
     /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element;
     /// with its Jacobian in (q, c, ω₂, τ_a, τ_b).
-    pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad {
+    pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad<E> {
         let el = self.asm.context(e, &self.params);
+        let layout = self.asm.kernel().layout();
         let q = self.asm.dofs().gather(e, z, self.length);
-        let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
+        let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
         let jac = el.jacobian();
         let h = el.geometry.h;
-        let (ic, iw, ia) = (NDOF, NDOF + 1, NDOF + 2);
-        let mut r = [0.0; NEV];
-        let mut j = [[0.0; NEV]; NEV];
+        let (ic, iw, ia) = (N, N + 1, N + 2);
+        let mut r = [0.0; E];
+        let mut j = [[0.0; E]; E];
         for &(xi, wg) in FRICTION_RULE.points() {
-            let (lam, dl) = gradient(
-                |v| {
-                    let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-                    el.stretch(&el.fields(&qq, xi))
-                },
-                &qv,
-            );
+            let (lam, dl) = point_stretch(layout, &el, &qv, xi);
             let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
             let t = shape[0] * tau[0] + shape[1] * tau[1];
             let w = wg * jac;
-            let (vw, _) = crate::hermite::weights(xi, h);
-            // S = Σ vw_k (s_a, s'_a, s_b, s'_b): local indices 0, 1, 4, 5
-            for (k, &loc) in [0usize, 1, 4, 5].iter().enumerate() {
-                r[loc] -= w * t * lam * vw[k];
-                for m in 0..NDOF {
-                    j[loc][m] -= w * t * dl[m] * vw[k];
+            match material_derivatives(layout, &el, &q, xi) {
+                (_, None) => {
+                    let (vw, _) = crate::hermite::weights(xi, h);
+                    // S = Σ vw_k (s_a, s'_a, s_b, s'_b): the s unknowns of the layout
+                    for (k, &loc) in layout.hermite_indices(0).iter().enumerate() {
+                        r[loc] -= w * t * lam * vw[k];
+                        for m in 0..N {
+                            j[loc][m] -= w * t * dl[m] * vw[k];
+                        }
+                        for a in 0..2 {
+                            j[loc][ia + a] -= w * shape[a] * lam * vw[k];
+                        }
+                    }
                 }
-                for a in 0..2 {
-                    j[loc][ia + a] -= w * shape[a] * lam * vw[k];
+                // S through the augmented map: ∂S/∂q on every row, with ∂²S/∂q²
+                (ds, Some(d2s)) => {
+                    for loc in 0..N {
+                        r[loc] -= w * t * lam * ds[loc];
+                        for m in 0..N {
+                            j[loc][m] -= w * t * (dl[m] * ds[loc] + lam * d2s[loc][m]);
+                        }
+                        for a in 0..2 {
+                            j[loc][ia + a] -= w * shape[a] * lam * ds[loc];
+                        }
+                    }
                 }
             }
             r[ic] += w * t * lam;
-            for m in 0..NDOF {
+            for m in 0..N {
                 j[ic][m] += w * t * dl[m];
             }
             for a in 0..2 {
@@ -206,7 +244,7 @@ impl SteadyProblem<'_> {
             let omega = if self.points[first].pulley == Pulley::Driven { w2 } else { self.sp.omega1 };
             let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
             let el = self.asm.context(e, &self.params);
-            let q = self.asm.dofs().gather(e, z, self.length);
+            let q = centreline(self.asm.kernel().layout(), &el, &self.asm.dofs().gather(e, z, self.length));
             for &(xi, wg) in FRICTION_RULE.points() {
                 let t = 0.5 * (1.0 - xi) * tau[0] + 0.5 * (1.0 + xi) * tau[1];
                 d += wg * el.jacobian() * t * (c * el.stretch(&el.fields(&q, xi)) - self.sp.radius * omega);
@@ -278,29 +316,22 @@ impl SteadyProblem<'_> {
         residual.resize(self.len(), 0.0);
         // transport inertia (D8) with c an unknown: rows q, columns (q, c)
         if let Some(rho) = sp.inertia {
-            let per: Vec<(f64, [f64; NDOF + 1], [[f64; NDOF + 1]; NDOF + 1])> = (0..self.asm.mesh().len())
+            let layout = self.asm.kernel().layout();
+            let per: Vec<InertiaBlock<N>> = (0..self.asm.mesh().len())
                 .into_par_iter()
                 .map(|e| {
                     let el = self.asm.context(e, &self.params);
                     let q = self.asm.dofs().gather(e, z, self.length);
-                    let v = SVector::<f64, { NDOF + 1 }>::from_fn(|i, _| if i < NDOF { q[i] } else { c });
-                    let (en, g, h) = hessian(
-                        |v| {
-                            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-                            inertia_energy(&el, &qq, v[NDOF], rho, self.strain_rule)
-                        },
-                        &v,
-                    );
-                    (en, std::array::from_fn(|i| g[i]), std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])))
+                    inertia_derivatives(layout, &el, &q, c, rho, self.strain_rule)
                 })
                 .collect();
-            for (e, (_, g, h)) in per.iter().enumerate() {
+            for (e, (g, gc, h)) in per.iter().enumerate() {
                 // the c column after each row's q columns
-                scatter(self.asm.dofs().element(e), g, &|i, j| h[i][j], Some(NDOF), &mut residual, with_jacobian.then_some(&mut values));
+                scatter(self.asm.dofs().element(e), g, &|i, j| if j == N { gc[i] } else { h[i][j] }, Some(N), &mut residual, with_jacobian.then_some(&mut values));
             }
         }
         // friction points (DS1)–(DS4)
-        let mut per: Vec<([f64; NPV], [[f64; NPV]; NPV], PointResult)> = (0..self.points.len())
+        let mut per: Vec<([f64; P], [[f64; P]; P], PointResult)> = (0..self.points.len())
             .into_par_iter()
             .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false))
             .collect();
@@ -329,11 +360,11 @@ impl SteadyProblem<'_> {
             let Some(j) = self.stick_partner(i) else { continue };
             if !per[i].2.slip && !per[j].2.slip {
                 let w = self.points[i].weight;
-                let it = 2 * NDOF + 2;
+                let it = 2 * N + 2;
                 per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
-                per[i].1[it] = [0.0; NPV];
+                per[i].1[it] = [0.0; P];
                 per[i].1[it][it] = w;
-                per[i].1[it][NPV - 1] = -w;
+                per[i].1[it][P - 1] = -w;
             }
         }
         let mut results = Vec::with_capacity(self.points.len());
@@ -343,7 +374,7 @@ impl SteadyProblem<'_> {
         }
         // (DS1)–(DS3): the consistent friction load of every element with friction points
         let owners = self.edge_owners();
-        let loads: Vec<Option<ElementLoad>> = owners
+        let loads: Vec<Option<ElementLoad<E>>> = owners
             .par_iter()
             .enumerate()
             .map(|(e, o)| {
@@ -370,42 +401,44 @@ impl SteadyProblem<'_> {
     /// (q_left, q_right, c, ω₂, τ_i): (DS1) −wτλ̄ on the S-row of the node, (DS2)
     /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
     /// b = μP⟨−γ̄⟩ (λ̄, γ̄: trapezoidal means of the two edges).
-    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; NPV], [[f64; NPV]; NPV], PointResult) {
+    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; P], [[f64; P]; P], PointResult) {
         let pt = self.points[i];
         let sp = &self.sp;
         let w = pt.weight;
+        let layout = self.asm.kernel().layout();
         // λ̄ of the point's velocity element (DS0), γ̄ the trapezoidal mean of the
         // node's two edges, with gradients in (q_left, q_right)
         let (lam, dlam) = {
             let e = pt.velocity_element();
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let (l, dl) = element_stretch(&el, &q);
-            let mut d = [0.0; 2 * NDOF];
-            let off = if pt.velocity_from_right() { NDOF } else { 0 };
-            d[off..off + NDOF].copy_from_slice(&dl);
+            let (l, dl) = element_stretch(layout, &el, &q);
+            // (q_left, q_right) in the first 2N entries
+            let mut d = [0.0; P];
+            let off = if pt.velocity_from_right() { N } else { 0 };
+            d[off..off + N].copy_from_slice(&dl);
             (l, d)
         };
-        let mut gap: Option<(f64, [f64; 2 * NDOF])> = Some((0.0, [0.0; 2 * NDOF]));
+        let mut gap: Option<(f64, [f64; P])> = Some((0.0, [0.0; P]));
         let node_weight = pt.left.1 + pt.right.1;
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let g = point_gap(&el, &q, xi);
+            let g = point_gap(layout, &el, &q, xi);
             let f = we / node_weight;
             gap = match (gap, g) {
                 (Some((acc, mut dacc)), Some((gv, dg))) => {
-                    for k in 0..NDOF {
-                        dacc[side * NDOF + k] += f * dg[k];
+                    for k in 0..N {
+                        dacc[side * N + k] += f * dg[k];
                     }
                     Some((acc + f * gv, dacc))
                 }
                 _ => None,
             };
         }
-        let (ic, iw, it) = (2 * NDOF, 2 * NDOF + 1, 2 * NDOF + 2);
-        let mut r = [0.0; NPV];
-        let mut j = [[0.0; NPV]; NPV];
+        let (ic, iw, it) = (2 * N, 2 * N + 1, 2 * N + 2);
+        let mut r = [0.0; P];
+        let mut j = [[0.0; P]; P];
         // (DS1)–(DS3) are the elements' consistent friction loads (`element_friction`)
         let driven = pt.pulley == Pulley::Driven;
         // (DS4)
@@ -413,7 +446,7 @@ impl SteadyProblem<'_> {
         let v = c * lam - sp.radius * omega;
         let (normal, dnormal) = match gap {
             Some((g, dg)) if g < 0.0 => (-sp.penalty * g, dg.map(|d| -sp.penalty * d)),
-            _ => (0.0, [0.0; 2 * NDOF]),
+            _ => (0.0, [0.0; P]),
         };
         let b = sp.mu * normal;
         let y = tau + sp.kappa * v;
@@ -422,12 +455,12 @@ impl SteadyProblem<'_> {
             let s = if b > 0.0 { y.signum() } else { 0.0 };
             r[it] = w * (tau - b * s);
             j[it][it] = w;
-            for k in 0..2 * NDOF {
+            for k in 0..2 * N {
                 j[it][k] = -w * s * sp.mu * dnormal[k];
             }
         } else {
             r[it] = -w * sp.kappa * v;
-            for k in 0..2 * NDOF {
+            for k in 0..2 * N {
                 j[it][k] = -w * sp.kappa * c * dlam[k];
             }
             j[it][ic] = -w * sp.kappa * lam;

@@ -109,12 +109,12 @@ pub(super) fn interpolate_traction(old: &[PointResult], contour: &Contour, p: &F
 }
 
 /// What a steady refit needs besides the state.
-pub(super) struct SteadyFitData<'a> {
+pub(super) struct SteadyFitData<'a, K: ?Sized> {
     pub params: TermParams,
     pub length: f64,
     /// The final normal penalty P, N/m².
     pub penalty: f64,
-    pub kernel: &'a Arc<dyn Kernel>,
+    pub kernel: &'a Arc<K>,
     /// The η-scaled parameters (the refits solve at η = 1).
     pub sp_at: &'a dyn Fn(f64) -> SteadyParams,
     pub strain_rule: Rule,
@@ -133,34 +133,34 @@ pub(super) struct SteadyFitData<'a> {
 /// The steady state as a [`Fitted`]: the breakpoints are the contact boundaries and the
 /// stick→slip transitions (docs/fem-drive.md §12); a refit splits the node at each
 /// fitted transition into its stick and slip halves.
-pub(super) struct SteadyFit<'a> {
-    state: State,
-    /// The accepted state's string solution (boundaries, transfer).
-    sol: FemSolution,
+pub(super) struct SteadyFit<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
+    state: State<N, K>,
+    /// The accepted state's solution (boundaries, transfer).
+    sol: FemSolution<N, K>,
     /// How many of the located breakpoints are contact boundaries (the rest are
     /// transitions).
     boundaries: usize,
-    data: SteadyFitData<'a>,
+    data: SteadyFitData<'a, K>,
     report: &'a mut SteadyReport,
 }
 
-impl<'a> SteadyFit<'a> {
-    pub(super) fn new(state: State, data: SteadyFitData<'a>, report: &'a mut SteadyReport) -> SteadyFit<'a> {
+impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> SteadyFit<'a, N, P, E, K> {
+    pub(super) fn new(state: State<N, K>, data: SteadyFitData<'a, K>, report: &'a mut SteadyReport) -> Self {
         let sol = solution(&state, &data);
         SteadyFit { state, sol, boundaries: 0, data, report }
     }
 
-    pub(super) fn into_state(self) -> State {
+    pub(super) fn into_state(self) -> State<N, K> {
         self.state
     }
 }
 
-/// The string solution of a steady state (with its transport inertia ρc²).
-fn solution(state: &State, d: &SteadyFitData) -> FemSolution {
+/// The solution of a steady state (with its transport inertia ρc²).
+fn solution<const N: usize, K: LayoutElement<N> + ?Sized>(state: &State<N, K>, d: &SteadyFitData<K>) -> FemSolution<N, K> {
     FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], d.params, d.length, d.kernel.clone()).with_transport_inertia(rho_c2(state))
 }
 
-impl Fitted for SteadyFit<'_> {
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Fitted for SteadyFit<'_, N, P, E, K> {
     type Failure = NewtonFailure;
     type Snapshot = (Mesh, Vec<f64>, Vec<PointResult>);
 
@@ -179,14 +179,14 @@ impl Fitted for SteadyFit<'_> {
     fn refit(&mut self, mesh: Mesh, breaks: &[f64]) -> Result<(), NewtonFailure> {
         let d = &self.data;
         let contour = *mesh.contour();
-        let asm = Assembler::new(mesh, d.kernel.clone());
+        let asm = Assembler::with_kernel(mesh, d.kernel.clone());
         // the node at each fitted transition is split into its stick and slip halves
         let points = friction_points(&asm, &breaks[self.boundaries..], d.direction);
         let mut x = crate::static_homotopy::transfer(&self.sol, &asm);
         let nz_old = self.state.asm.len();
         x.extend([self.state.x[nz_old], self.state.x[nz_old + 1]]);
         x.extend(points.iter().map(|p| interpolate_traction(&self.state.results, &contour, p)));
-        let prob = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
+        let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
         let w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
         let scales = row_scales(&asm, d.f_ref, points.len());
         // the transferred state is far from equilibrium in the stiff normal penalty
@@ -200,7 +200,7 @@ impl Fitted for SteadyFit<'_> {
             for f in [1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0] {
                 let soft = TermParams { penalty: Some(f * d.penalty), ..d.params };
                 let sp = SteadyParams { penalty: f * d.penalty, ..(d.sp_at)(1.0) };
-                let p = SteadyProblem { asm: &asm, params: soft, length: d.length, points: &points, sp, strain_rule: d.strain_rule };
+                let p: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params: soft, length: d.length, points: &points, sp, strain_rule: d.strain_rule };
                 solved = newton(&p, &mut x, &w, &scales, d.tolerance, d.max_iterations).map(|n| {
                     iterations += n.iterations;
                     SteadyNewton { iterations, ..n }
@@ -223,7 +223,7 @@ impl Fitted for SteadyFit<'_> {
     }
 
     fn restore(&mut self, (mesh, x, results): Self::Snapshot) {
-        self.state = State { asm: Assembler::new(mesh, self.data.kernel.clone()), x, results, rho: self.state.rho };
+        self.state = State { asm: Assembler::with_kernel(mesh, self.data.kernel.clone()), x, results, rho: self.state.rho };
         self.sol = solution(&self.state, &self.data);
     }
 }

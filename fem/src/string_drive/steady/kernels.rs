@@ -1,18 +1,43 @@
-//! Element kernels of the direct steady solve: the gap and stretch of an element at a point, the transport-inertia energy (AD over point values).
+//! Element kernels of the direct steady solve for an element of any 1-D layout
+//! ([`crate::element::ElementLayout`]): the centreline {s, ν} of its unknowns, the gap and
+//! stretch of an element at a point, the material coordinate's derivatives for the
+//! friction load, and the transport-inertia energy (AD over the element's unknowns).
 
 use super::*;
+use crate::element::ElementLayout;
 use crate::formulation::terms::TransportInertia;
+
+/// The centreline unknowns {s, ν} of an element of `layout` in the string order
+/// ([`crate::element::STRING`]), after the augmented map of the element's flagged nodes
+/// ([`ElementContext::effective`], docs/fem-rod.md K9; the Cosserat element's map (C3)
+/// scales ∂σs and ∂σν the same way) — the identity for the string. The friction and
+/// contact rows act on these only (docs/fem-cosserat.md §7); generic so that AD
+/// differentiates through the map.
+#[inline]
+pub(super) fn centreline<D: Scalar, const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[D; N]) -> [D; NDOF] {
+    let mut out = [q[0]; NDOF];
+    for f in 0..2 {
+        for (i, j) in crate::element::STRING.hermite_indices(f).into_iter().zip(layout.hermite_indices(f)) {
+            out[i] = q[j];
+        }
+    }
+    if el.augmented.iter().any(|&a| a) {
+        el.effective(&out)
+    } else {
+        out
+    }
+}
 
 /// The gap γ at a point of an element and its gradient in the element's q; `None`
 /// where no pulley can be reached (F10).
-pub(super) fn point_gap(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> Option<(f64, [f64; NDOF])> {
-    el.gap(&el.fields(q, xi))?;
+pub(super) fn point_gap<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], xi: f64) -> Option<(f64, [f64; N])> {
+    el.gap(&el.fields(&centreline(layout, el, q), xi))?;
     let (g, gg) = gradient(
         |v| {
-            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
-            el.gap(&el.fields(&qq, xi)).unwrap_or(v[0] * 0.0)
+            let qq: [_; N] = std::array::from_fn(|i| v[i]);
+            el.gap(&el.fields(&centreline(layout, el, &qq), xi)).unwrap_or(v[0] * 0.0)
         },
-        &SVector::<f64, NDOF>::from_fn(|i, _| q[i]),
+        &SVector::<f64, N>::from_fn(|i, _| q[i]),
     );
     Some((g, std::array::from_fn(|i| gg[i])))
 }
@@ -21,26 +46,72 @@ pub(super) fn point_gap(el: &ElementContext, q: &[f64; NDOF], xi: f64) -> Option
 /// material length, λ̄_e = ∫_e |∂σr| dσ / (S_b − S_a) (5-point Gauss–Legendre), with its
 /// gradient in q. The steady limit of the transient's windowed slip (D2) for a window of
 /// one element.
-pub(super) fn element_stretch(el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]) {
-    let qv = SVector::<f64, NDOF>::from_fn(|i, _| q[i]);
+pub(super) fn element_stretch<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N]) -> (f64, [f64; N]) {
+    let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
     let jac = el.jacobian();
     let (lam, g) = gradient(
         |v| {
-            let qq: [_; NDOF] = std::array::from_fn(|i| v[i]);
+            let qq: [_; N] = std::array::from_fn(|i| v[i]);
+            let qc = centreline(layout, el, &qq);
             let mut len = v[0] * 0.0;
             for &(xi, w) in Rule::Gauss(5).points() {
-                let p = el.fields(&qq, xi);
+                let p = el.fields(&qc, xi);
                 len += el.tangent_length(&p) * (w * jac);
             }
-            len / (qq[4] - qq[0])
+            len / (qc[4] - qc[0])
         },
         &qv,
     );
     (lam, std::array::from_fn(|i| g[i]))
 }
 
-/// −T of (D8) for one element with c an unknown: the [`TransportInertia`] term unit
-/// with the strain rule, −∫ ρc²|∂σr|²/(2∂σS) dσ.
-pub(super) fn inertia_energy<D: Scalar>(el: &ElementContext, q: &[D; NDOF], c: D, rho: f64, rule: Rule) -> D {
-    TransportInertia { rule, rho }.element_energy(el, q, c)
+/// The stretch λ at ξ of an element with its gradient in q.
+pub(super) fn point_stretch<const N: usize>(layout: ElementLayout, el: &ElementContext, qv: &SVector<f64, N>, xi: f64) -> (f64, SVector<f64, N>) {
+    gradient(
+        |v| {
+            let qq: [_; N] = std::array::from_fn(|i| v[i]);
+            el.stretch(&el.fields(&centreline(layout, el, &qq), xi))
+        },
+        qv,
+    )
+}
+
+/// ∂S/∂q at ξ, and ∂²S/∂q² where the augmented map makes S nonlinear in q (`None`:
+/// S is linear in q, ∂S/∂q the Hermite value weights of the s unknowns).
+pub(super) fn material_derivatives<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], xi: f64) -> ([f64; N], Option<[[f64; N]; N]>) {
+    if !el.augmented.iter().any(|&a| a) {
+        let (vw, _) = crate::hermite::weights(xi, el.geometry.h);
+        let mut d = [0.0; N];
+        for (k, i) in layout.hermite_indices(0).into_iter().enumerate() {
+            d[i] = vw[k];
+        }
+        return (d, None);
+    }
+    let (_, g, h) = hessian(
+        |v| {
+            let qq: [_; N] = std::array::from_fn(|i| v[i]);
+            el.fields(&centreline(layout, el, &qq), xi).s
+        },
+        &SVector::<f64, N>::from_fn(|i, _| q[i]),
+    );
+    (std::array::from_fn(|i| g[i]), Some(std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)]))))
+}
+
+/// −T of (D8) for one element, the [`TransportInertia`] term unit with the strain rule
+/// on the element's centreline, −∫ ρc²|∂σr|²/(2∂σS) dσ (docs/fem-cosserat.md (C10)),
+/// with its derivatives: ∂/∂q, ∂²/∂q∂c and ∂²/∂q². −T is c² times its value at c = 1,
+/// so ∂²(−T)/∂q∂c = 2 ∂(−T)/∂q / c.
+pub(super) type InertiaBlock<const N: usize> = ([f64; N], [f64; N], [[f64; N]; N]);
+
+pub(super) fn inertia_derivatives<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], c: f64, rho: f64, rule: Rule) -> InertiaBlock<N> {
+    let (_, g, h) = hessian(
+        |v| {
+            let qq: [_; N] = std::array::from_fn(|i| v[i]);
+            TransportInertia { rule, rho }.element_energy(el, &centreline(layout, el, &qq), v[0] * 0.0 + c)
+        },
+        &SVector::<f64, N>::from_fn(|i, _| q[i]),
+    );
+    let gq: [f64; N] = std::array::from_fn(|i| g[i]);
+    let gc = if c != 0.0 { gq.map(|v| 2.0 * v / c) } else { [0.0; N] };
+    (gq, gc, std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])))
 }

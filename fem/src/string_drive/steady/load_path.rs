@@ -13,9 +13,9 @@ const MIN_STEP: f64 = 1e-4;
 const FAST_SOLVE: usize = 6;
 
 /// The steady problem along η, and its last converged state.
-pub(super) struct LoadPath<'a> {
+pub(super) struct LoadPath<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
     /// The steady equations at η (everything but the η-scaled parameters).
-    pub problem: SteadyProblem<'a>,
+    pub problem: SteadyProblem<'a, N, P, E, K>,
     /// The η-scaled parameters.
     pub at: &'a dyn Fn(f64) -> SteadyParams,
     /// Variable weights and row scales of the semismooth Newton.
@@ -24,7 +24,7 @@ pub(super) struct LoadPath<'a> {
     /// Newton tolerance and iteration limit.
     pub tolerance: f64,
     pub max_iterations: usize,
-    pub kernel: &'a Arc<dyn Kernel>,
+    pub kernel: &'a Arc<K>,
     /// ρ of the belt, kg/m, if the transport inertia is on (the critical speed is checked
     /// on every converged state).
     pub inertia: Option<f64>,
@@ -34,7 +34,7 @@ pub(super) struct LoadPath<'a> {
     pub report: &'a mut SteadyReport,
 }
 
-impl Homotopy for LoadPath<'_> {
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Homotopy for LoadPath<'_, N, P, E, K> {
     type Failure = NewtonFailure;
     type Error = FemError;
 
@@ -64,7 +64,7 @@ impl Homotopy for LoadPath<'_> {
     }
 }
 
-impl LoadPath<'_> {
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> LoadPath<'_, N, P, E, K> {
     /// Solve at η = 0, then continue to η = 1.
     ///
     /// # Errors

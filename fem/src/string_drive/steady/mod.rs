@@ -18,6 +18,7 @@ use rayon::prelude::*;
 use crate::assembly::Assembler;
 use crate::error::{FemError, NewtonFailure};
 use crate::fitting::{Beyond, FitEnd, FitRules, Fallback, Measure, MoveLimit, Secant, Stall};
+use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
 use crate::linear::BorderedLu;
@@ -74,10 +75,10 @@ pub struct SteadyReport {
 }
 
 /// A converged steady state on one mesh.
-struct State {
+struct State<const N: usize, K: LayoutElement<N> + ?Sized> {
     /// ρ of the transport inertia (kg/m), if any.
     rho: Option<f64>,
-    asm: Assembler,
+    asm: Assembler<N, K>,
     x: Vec<f64>,
     results: Vec<PointResult>,
 }
@@ -92,6 +93,18 @@ struct State {
 /// [`FemError::HomotopyStalled`] (the load continuation failed otherwise),
 /// [`FemError::SteadyFitFailed`], [`FemError::NonFinite`].
 pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<dyn Kernel>) -> Result<crate::FemRun, FemError> {
+    solve_layout::<NDOF, NPV, NEV, dyn Kernel>(problem, opts, settings, drive_settings, kernel)
+}
+
+/// [`solve`] for an element of any 1-D layout with N unknowns (P = 2N + 4, E = N + 4:
+/// [`point_size`], [`element_size`]): the string's formulations (N = 8, [`solve`]) and
+/// the Cosserat rod's elements (N = 12, docs/fem-cosserat.md §9). The friction and
+/// contact rows act on the element's centreline {s, ν}; further fields (the Cosserat
+/// rotation ψ) enter through the element's energy only.
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<K>) -> Result<crate::FemRun, FemError> {
     let clock = std::time::Instant::now();
     let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
     let static_seconds = clock.elapsed().as_secs_f64();
@@ -101,11 +114,13 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     let h = contour.centre_distance();
     let (load_torque, damping) = (problem.drive.driven_torque, problem.drive.driven_damping);
     let weight = problem.weight();
-    let params = TermParams { axial_stiffness: b.axial_stiffness, weight, penalty: Some(penalty), bending_stiffness: None };
+    // the belt's bending stiffness as the static start has it (the Cosserat rod's a;
+    // none for the string)
+    let params = TermParams { axial_stiffness: b.axial_stiffness, weight, penalty: Some(penalty), bending_stiffness: start.params().bending_stiffness };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
     let inertia = problem.effects.inertia;
-    let asm = Assembler::new(start.mesh().clone(), kernel.clone());
+    let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
     // κ = P_⊥ Δt₀: the transient's tangential penalty times its default step (§5, §7)
     let kappa = drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r) * (PI * r / arc_elements as f64) / (r * omega1.abs());
@@ -140,7 +155,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
     let w = variable_weights(&asm, h, r, omega1.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
     let mut path = LoadPath {
-        problem: SteadyProblem { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule },
+        problem: SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule },
         at: &sp_at,
         w: &w,
         scales: &scales,
@@ -183,7 +198,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fits = out.passes;
@@ -204,17 +219,17 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
         let reason = report.fit_failure.clone().unwrap_or_else(|| "the passes did not converge".into());
         return Err(FemError::SteadyFitFailed { passes: report.fits + report.rejected_fits, last_move: m, element, reason });
     }
-    finish(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
+    finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
 }
 
 /// ρc² of a state (0 without inertia).
-fn rho_c2(state: &State) -> f64 {
+fn rho_c2<const N: usize, K: LayoutElement<N> + ?Sized>(state: &State<N, K>) -> f64 {
     let c = state.x[state.asm.len()];
     state.rho.map_or(0.0, |rho| rho * c * c)
 }
 
 /// SpeedAtOrAboveCritical if N − ρc²λ ≤ 0 at a span midpoint of `sol` (ρc² given).
-fn check_critical(sol: &FemSolution, rc2: f64) -> Result<(), FemError> {
+fn check_critical<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, K>, rc2: f64) -> Result<(), FemError> {
     let c = sol.mesh().contour();
     let (h, r) = (c.centre_distance(), c.radius());
     for (span, sigma) in [("upper", 0.5 * h), ("lower", 1.5 * h + PI * r)] {
@@ -258,7 +273,7 @@ mod tests {
         // a soft penalty keeps the FD of the normal term well conditioned
         let params = TermParams { penalty: Some(1e-3 * penalty), ..params };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
-        let prob = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
+        let prob: SteadyProblem = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)

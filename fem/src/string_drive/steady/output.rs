@@ -4,13 +4,13 @@ use super::*;
 
 /// Outputs of a converged steady state (docs/fem-drive.md §8, §12).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn finish(
+pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static>(
     problem: &crate::problem::FemProblem,
     opts: &crate::options::FemOptions,
     settings: &crate::options::SolverSettings,
     drive_settings: &super::super::DriveSettings,
-    kernel: Arc<dyn Kernel>,
-    state: State,
+    kernel: Arc<K>,
+    state: State<N, K>,
     params: TermParams,
     penalty: f64,
     kappa: f64,
@@ -88,7 +88,7 @@ pub(super) fn finish(
     }
     let points: Vec<FrictionPoint> = state.results.iter().map(|p| p.point).collect();
     let sp = SteadyParams { mu, penalty, kappa, radius: r, omega1, torque: load_torque, damping, inertia: None };
-    let dissipation = SteadyProblem { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain }.dissipation(&state.x);
+    let dissipation = SteadyProblem::<N, P, E, K> { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain }.dissipation(&state.x);
     let power_in = -torques[0] * omega1;
     let power_out = (load_torque + damping * omega2) * omega2;
     let max_penetration = base.max_penetration();
@@ -128,7 +128,7 @@ pub(super) fn finish(
 /// Per element the point states the common view reads (docs/fem-drive.md §8): the
 /// contact rule's points with their normal traction, the two edges with the traction
 /// and state of their friction point.
-pub(super) fn view_points(state: &State, params: TermParams, length: f64, kernel: &Arc<dyn Kernel>) -> Vec<Vec<super::super::ViewPoint>> {
+pub(super) fn view_points<const N: usize, K: LayoutElement<N> + ?Sized>(state: &State<N, K>, params: TermParams, length: f64, kernel: &Arc<K>) -> Vec<Vec<super::super::ViewPoint>> {
     let asm = &state.asm;
     let mesh = asm.mesh();
     let contour = mesh.contour();
@@ -148,7 +148,7 @@ pub(super) fn view_points(state: &State, params: TermParams, length: f64, kernel
     (0..n)
         .map(|e| {
             let el = asm.context(e, &params);
-            let q = asm.dofs().gather(e, &state.x[..asm.len()], length);
+            let q = centreline(kernel.layout(), &el, &asm.dofs().gather(e, &state.x[..asm.len()], length));
             super::super::contact::mixed_rule(rule)
                 .into_iter()
                 .map(|(xi, w, wf)| {

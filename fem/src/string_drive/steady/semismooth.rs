@@ -8,7 +8,7 @@ use super::*;
 /// slopes), R ω₁ for c, ω₁ for ω₂, 10³ F_ref/R for the tractions (they follow z; the
 /// round-off of the stiff normal penalty, ≈ 10⁻⁸ N in the ν-rows, would otherwise keep
 /// their update above 10⁻¹⁰ of F_ref/R).
-pub(super) fn variable_weights(asm: &Assembler, h: f64, r: f64, omega1: f64, f_ref: f64, m: usize) -> Vec<f64> {
+pub(super) fn variable_weights<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, h: f64, r: f64, omega1: f64, f_ref: f64, m: usize) -> Vec<f64> {
     let mut w = super::super::system::weights(asm, h, r, 1.0);
     w.truncate(asm.len());
     w.push(r * omega1);
@@ -19,7 +19,7 @@ pub(super) fn variable_weights(asm: &Assembler, h: f64, r: f64, omega1: f64, f_r
 
 /// Row scales of the merit ½‖F‖²: 1/F_ref for force rows, 1/(F_ref h_node) for the
 /// slope rows (whose residuals are moments, N·m).
-pub(super) fn row_scales(asm: &Assembler, f_ref: f64, m: usize) -> Vec<f64> {
+pub(super) fn row_scales<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, f_ref: f64, m: usize) -> Vec<f64> {
     let dofs = asm.dofs();
     let mut s: Vec<f64> = dofs
         .kinds()
@@ -36,22 +36,22 @@ pub(super) fn merit(r: &[f64], s: &[f64]) -> f64 {
 }
 
 /// A problem with its pattern.
-pub(super) struct Patterned<'p, 'a> {
-    problem: &'p SteadyProblem<'a>,
+pub(super) struct Patterned<'p, 'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
+    problem: &'p SteadyProblem<'a, N, P, E, K>,
     rows: Vec<usize>,
     cols: Vec<usize>,
 }
 
-impl<'p, 'a> Patterned<'p, 'a> {
-    pub(super) fn new(problem: &'p SteadyProblem<'a>) -> Self {
+impl<'p, 'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Patterned<'p, 'a, N, P, E, K> {
+    pub(super) fn new(problem: &'p SteadyProblem<'a, N, P, E, K>) -> Self {
         let (rows, cols) = problem.pattern();
         Patterned { problem, rows, cols }
     }
 }
 
-impl<'a> std::ops::Deref for Patterned<'_, 'a> {
-    type Target = SteadyProblem<'a>;
-    fn deref(&self) -> &SteadyProblem<'a> {
+impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> std::ops::Deref for Patterned<'_, 'a, N, P, E, K> {
+    type Target = SteadyProblem<'a, N, P, E, K>;
+    fn deref(&self) -> &SteadyProblem<'a, N, P, E, K> {
         self.problem
     }
 }
@@ -68,8 +68,8 @@ pub struct SteadyNewton {
 /// The steady equations as a [`NewtonProblem`] for the semismooth Newton: the
 /// generalised Jacobian of the active set of the Jacobian pass (which yields F as
 /// well), trials judged by their residual (the active set may change along the step).
-struct Semismooth<'s, 'p, 'a> {
-    problem: &'s Patterned<'p, 'a>,
+struct Semismooth<'s, 'p, 'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
+    problem: &'s Patterned<'p, 'a, N, P, E, K>,
     lu: BorderedLu,
     w: &'s [f64],
     scales: &'s [f64],
@@ -95,7 +95,7 @@ enum SemismoothError {
     Singular(String),
 }
 
-impl NewtonProblem for Semismooth<'_, '_, '_> {
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> NewtonProblem for Semismooth<'_, '_, '_, N, P, E, K> {
     type Error = SemismoothError;
     fn size(&self) -> usize {
         self.problem.len()
@@ -189,7 +189,7 @@ impl NewtonProblem for Semismooth<'_, '_, '_> {
 ///
 /// # Errors
 /// [`NewtonFailure`] with the iteration count and the last update norm.
-pub fn newton(problem: &SteadyProblem, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, NewtonFailure> {
+pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(problem: &SteadyProblem<N, P, E, K>, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, NewtonFailure> {
     let n = x.len();
     let problem = &Patterned::new(problem);
     let lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()]).map_err(NewtonFailure::Pattern)?;

@@ -100,7 +100,7 @@ pub struct PointResult {
 /// `direction`: one per node within reach of a pulley, two (the halves [`Part::Left`],
 /// [`Part::Right`]) at a node within 10⁻⁶ of its element lengths of one of the
 /// stick→slip transitions `splits` (σ).
-pub fn friction_points(asm: &Assembler, splits: &[f64], direction: Direction) -> Vec<FrictionPoint> {
+pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, splits: &[f64], direction: Direction) -> Vec<FrictionPoint> {
     let mesh = asm.mesh();
     let contour = mesh.contour();
     let lc = contour.length();
