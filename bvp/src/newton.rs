@@ -41,6 +41,13 @@ pub trait NewtonSystem {
     fn factorize(&mut self, z: &[f64]) -> Result<(), BvpError>;
     /// Overwrite `b` with J⁻¹ b for the last factorised Jacobian.
     fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError>;
+    /// The round-off floor of the Newton correction at `z` (the Jacobian factorised
+    /// there), in the scaled norm: [`numerics::newton::NewtonProblem::correction_floor`].
+    /// Default: none.
+    fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, BvpError> {
+        let _ = z;
+        Ok(None)
+    }
 }
 
 /// A [`NewtonSystem`] as the shared Newton's problem (default damping, norm and hooks).
@@ -59,6 +66,9 @@ impl<S: NewtonSystem> NewtonProblem for Shared<'_, S> {
     }
     fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError> {
         self.0.solve(b)
+    }
+    fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, BvpError> {
+        self.0.correction_floor(z)
     }
 }
 

@@ -31,6 +31,18 @@
 //!    this saves one Jacobian near the solution).
 //! 4. The next iteration starts with λ = min(1, 2λ_k).
 //!
+//! **Round-off floor.** F(z) is evaluated in floating point, so near the root the
+//! computed residual is its rounding error δ and the computed correction is J⁻¹δ,
+//! however close z is: the correction cannot fall below that floor, and there the
+//! monotonicity test compares two round-off corrections (Θ ≈ 1) and rejects. A tolerance
+//! below the floor would end in [`NewtonError::DampingExhausted`] at a point that is as
+//! converged as it can be. So when a correction above the tolerance first fails the
+//! test in an iteration, the problem is asked for the floor at z_k
+//! ([`NewtonProblem::correction_floor`], an estimate of ‖J⁻¹δ‖ from the residual's
+//! terms); if ‖Δz_k‖ ≤ floor, z_k + Δz_k is returned as converged (its last correction
+//! in [`NewtonStats::last_correction`] is then above the tolerance, below the floor).
+//! A problem without a floor (the default) is judged by the tolerance alone.
+//!
 //! **Backtracking** on a merit function m ([`NewtonProblem::merit`], by default
 //! ½‖F‖₂²), at iterate z_k:
 //! 1. Δz_k as above. If ‖Δz_k‖ ≤ tol the full step is taken without a merit test when
@@ -423,6 +435,15 @@ pub trait NewtonProblem {
         let _ = (z, level);
         Ok(false)
     }
+    /// Natural monotonicity: the round-off floor of the Newton correction at `z`, the
+    /// Jacobian factorised there — the size, in [`Self::norm`], of J⁻¹δ for the rounding
+    /// errors δ of the residual's evaluation at `z` (module documentation, "Round-off
+    /// floor"). Asked only when a correction above the tolerance fails the
+    /// monotonicity test. Default: `None` (no floor known: the tolerance alone decides).
+    fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, Self::Error> {
+        let _ = z;
+        Ok(None)
+    }
     /// Backtracking: whether the iteration has converged after an accepted step.
     /// Default: a full step (α = 1) whose correction met the tolerance.
     fn converged(&mut self, p: &Progress<'_>) -> bool {
@@ -555,6 +576,17 @@ impl<P: NewtonProblem> Run<'_, P> {
         Ok(())
     }
 
+    /// [`NewtonProblem::correction_floor`] at `z` (a failure is reported at
+    /// [`Stage::Solve`]: the floor is a solve with the current factorisation).
+    fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, NewtonError<P::Error>> {
+        let iteration = self.stats.iterations;
+        let floor = self.problem.correction_floor(z).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Solve, error })?;
+        if floor.is_some() {
+            self.stats.solves += 1;
+        }
+        Ok(floor)
+    }
+
     fn max_iterations(&self, correction: f64) -> NewtonError<P::Error> {
         NewtonError::MaxIterations {
             iterations: self.stats.iterations,
@@ -590,6 +622,7 @@ impl<P: NewtonProblem> Run<'_, P> {
                 }
                 return self.finish(z, &trial, r);
             }
+            let mut floor_asked = false;
             loop {
                 for (t, (&zi, &d)) in trial.iter_mut().zip(z.iter().zip(&dz)) {
                     *t = zi + lambda * d;
@@ -622,6 +655,15 @@ impl<P: NewtonProblem> Run<'_, P> {
                 }
                 if accepted {
                     break;
+                }
+                if !floor_asked {
+                    floor_asked = true;
+                    if self.correction_floor(z)?.is_some_and(|floor| norm <= floor) {
+                        for (t, (&zi, &d)) in trial.iter_mut().zip(z.iter().zip(&dz)) {
+                            *t = zi + d;
+                        }
+                        return self.finish(z, &trial, r);
+                    }
                 }
                 lambda = (mu.min(lambda / 2.0)).max(lambda / 10.0);
                 self.stats.min_damping_used = self.stats.min_damping_used.min(lambda);
@@ -932,6 +974,55 @@ impl<S: SparseSystem> NewtonProblem for Sparse<S> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// F(z) = ((z + 10⁴) − 10⁴) − 0.3: the root 0.3, J = 1, but z + 10⁴ is rounded to
+    /// the grid of ulp(10⁴) = 2⁻³⁹ ≈ 1.8e-12, on which 0.3 lies 0.4 of a step from a
+    /// point, so the computed |F| never falls below ≈ 7e-13: the correction's round-off
+    /// floor. `floor` says whether [`NewtonProblem::correction_floor`] reports it,
+    /// u (|z| + 2·10⁴ + 0.3) / (1 + |z|) (the rounding of the two sums, in the scaled
+    /// norm).
+    struct Snapped {
+        floor: bool,
+    }
+
+    impl NewtonProblem for Snapped {
+        type Error = LinearError;
+        fn size(&self) -> usize {
+            1
+        }
+        fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), LinearError> {
+            r[0] = ((z[0] + 1e4) - 1e4) - 0.3;
+            Ok(())
+        }
+        fn factorize(&mut self, _: &[f64]) -> Result<(), LinearError> {
+            Ok(())
+        }
+        fn solve(&mut self, _: &mut [f64]) -> Result<(), LinearError> {
+            Ok(())
+        }
+        fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, LinearError> {
+            let u = f64::EPSILON / 2.0;
+            Ok(self.floor.then(|| u * (z[0].abs() + 2e4 + 0.3) / (1.0 + z[0].abs())))
+        }
+    }
+
+    /// A tolerance (1e-15) below the round-off floor (≈ 5e-13 scaled): without the floor
+    /// natural monotonicity stalls there and fails with the damping exhausted; with it the
+    /// stalled correction is recognised and the iterate is the root to within the floor
+    /// (|z − 0.3| ≤ 2 ulp(10⁴) ≈ 3.6e-12), after the one full step from z = 1 and one
+    /// stalled iteration.
+    #[test]
+    fn natural_monotonicity_stops_at_the_round_off_floor() {
+        let opts = NewtonOptions { tolerance: 1e-15, ..Default::default() };
+        let mut z = [1.0];
+        let err = solve(&mut Snapped { floor: false }, &mut z, &opts).unwrap_err();
+        assert!(matches!(err, NewtonError::DampingExhausted { correction, .. } if correction > 1e-13 && correction < 2e-12), "{err}");
+        let mut z = [1.0];
+        let stats = solve(&mut Snapped { floor: true }, &mut z, &opts).unwrap();
+        assert!((z[0] - 0.3).abs() <= 2.0 * 2f64.powi(-39), "z = {}", z[0]);
+        assert_eq!(stats.iterations, 2, "{stats:?}");
+        assert!(stats.last_correction > opts.tolerance && stats.last_correction < 2e-12, "{stats:?}");
+    }
 
     /// F(x, y, w) = (x² + y² + w² − 3, x − y, y − w³): the root (1, 1, 1) is regular
     /// (det J = −2(3w² + 1 + … ) ≠ 0 there); given as residual + sparse Jacobian.

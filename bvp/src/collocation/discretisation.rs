@@ -237,6 +237,57 @@ impl<'a, P: Problem> Discretisation<'a, P> {
         self.problem.bc(&ya, &yb, self.params(z), eta, &mut r[self.row_offsets[m]..]);
     }
 
+    /// The magnitude T_i of the terms that [`Self::residual`] sums in each row i, so that
+    /// its rounding error is |δF_i| ≲ u T_i (u = 2⁻⁵³; each row is a short sum whose
+    /// partial sums are bounded by T_i):
+    ///
+    /// ```text
+    ///     stage row (j, a):       |Y_ja| + |y_ia| + h Σ_l |a_jl| |f_la|,
+    ///     continuity row a:       |y_{i+1,a}| + |y_ia| + h Σ_l |b_l| |f_la|,
+    ///     boundary row r:         |g_r| + Σ_c |∂g_r/∂w_c| |w_c|   (w: segment ends, p, η),
+    /// ```
+    ///
+    /// the boundary rows' terms estimated to first order through their derivatives (a
+    /// function of the ends is a sum of terms of that size). Written into `t` (length n).
+    pub fn residual_terms(&self, z: &[f64], eta: f64, t: &mut [f64]) {
+        let s = self.tab.s;
+        let mut f = Vec::new();
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            f.resize(s * n, 0.0);
+            let mesh = &self.meshes[k];
+            for i in 0..mesh.len() - 1 {
+                let h = mesh[i + 1] - mesh[i];
+                self.stage_rhs(z, eta, k, i, &mut f);
+                let yi = self.node(k, i);
+                let yn = self.node(k, i + 1);
+                let row = self.row(k, i);
+                for j in 0..s {
+                    let yj = self.stage(k, i, j);
+                    for a in 0..n {
+                        let acc: f64 = (0..s).map(|l| (self.tab.a[j * s + l] * f[l * n + a]).abs()).sum();
+                        t[row + j * n + a] = z[yj + a].abs() + z[yi + a].abs() + h * acc;
+                    }
+                }
+                for a in 0..n {
+                    let acc: f64 = (0..s).map(|l| (self.tab.b[l] * f[l * n + a]).abs()).sum();
+                    t[row + s * n + a] = z[yn + a].abs() + z[yi + a].abs() + h * acc;
+                }
+            }
+        }
+        let (ya, yb) = self.ends(z);
+        let m = self.n_segments();
+        let p = self.params(z);
+        let (g, dg) = bc_jacobian(self.problem, self.mode, &ya, &yb, p, eta);
+        // Columns of dg: [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
+        let args: Vec<f64> = (0..m).flat_map(|k| ya[k].iter().chain(yb[k]).copied()).chain(p.iter().copied()).chain([eta]).collect();
+        let nu = args.len();
+        for (r, gr) in g.iter().enumerate() {
+            let terms: f64 = args.iter().enumerate().map(|(c, w)| (dg[r * nu + c] * w).abs()).sum();
+            t[self.row_offsets[m] + r] = gr.abs() + terms;
+        }
+    }
+
     /// The boundary residual g alone.
     pub fn bc_residual(&self, z: &[f64], eta: f64) -> Vec<f64> {
         let (ya, yb) = self.ends(z);

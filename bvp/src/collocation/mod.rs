@@ -244,6 +244,34 @@ impl<P: Problem> NewtonSystem for FixedEtaSystem<'_, '_, P> {
     fn solve(&mut self, b: &mut [f64]) -> Result<(), BvpError> {
         self.lu.solve(self.disc, b)
     }
+    /// ‖J⁻¹δ‖ for a sample δ of the residual's rounding errors ([`rounding_sample`]):
+    /// an upper estimate of the floor — at the 1e-11 solve of `string-hanging-steel`,
+    /// where the corrections stall at 1.3–2.9e-13 (`docs/bvp-engine.md`, "Round-off
+    /// floor"), it gives 4e-12 to 2e-11, so stalled corrections are recognised and a
+    /// correction far above round-off is not.
+    fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, BvpError> {
+        let mut delta = vec![0.0; self.disc.n];
+        self.disc.residual_terms(z, self.eta, &mut delta);
+        rounding_sample(&mut delta);
+        self.lu.solve(self.disc, &mut delta)?;
+        let floor = newton::scaled_norm(&delta, z);
+        Ok(Some(floor))
+    }
+}
+
+/// Turn the term magnitudes T_i of the residual's rows
+/// ([`Discretisation::residual_terms`]) into a sample of its rounding error,
+/// δ_i = ±u T_i (u = 2⁻⁵³, the signs a fixed pseudo-random sequence, so that the floor
+/// and the iterates are reproducible).
+fn rounding_sample(t: &mut [f64]) {
+    let u = f64::EPSILON / 2.0;
+    let mut state: u64 = 0x9E37_79B9_7F4A_7C15;
+    for v in t.iter_mut() {
+        // 64-bit LCG (Knuth's MMIX constants); the top bit gives the sign.
+        state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        let sign = if state >> 63 == 0 { 1.0 } else { -1.0 };
+        *v *= sign * u;
+    }
 }
 
 impl<P: Problem> Corrector<P> for FixedEta {
