@@ -60,6 +60,26 @@ pub(crate) fn validate_mesh(mesh: &[f64], what: &str) -> Result<(), BvpError> {
     Ok(())
 }
 
+/// One collocation row of F: end − start − h Σ_l w_l f_l with w a row of the tableau's A
+/// (stage row) or its b (continuity row) and f_l the l-th stage slope of component a
+/// (`slopes` holds the s stage slopes of dimension n one after the other).
+pub(crate) struct OdeRow<'r> {
+    end: f64,
+    start: f64,
+    h: f64,
+    weights: &'r [f64],
+    slopes: &'r [f64],
+    n: usize,
+    a: usize,
+}
+
+impl OdeRow<'_> {
+    /// The terms w_l f_la, l = 1 … s.
+    fn weighted(&self) -> impl Iterator<Item = f64> + '_ {
+        self.weights.iter().enumerate().map(|(l, w)| w * self.slopes[l * self.n + self.a])
+    }
+}
+
 /// The collocation system of a problem on a fixed set of meshes.
 pub(crate) struct Discretisation<'a, P: Problem> {
     pub problem: &'a P,
@@ -199,8 +219,10 @@ impl<'a, P: Problem> Discretisation<'a, P> {
         (ya, yb)
     }
 
-    /// Residual F(z, η) of the module documentation into `r` (length n).
-    pub fn residual(&self, z: &[f64], eta: f64, r: &mut [f64]) {
+    /// Every collocation row of F (all but the boundary rows) as `put(row, terms)`:
+    /// F_row = end − start − h Σ_l w_l f_l ([`OdeRow`]), for [`Self::residual`] and
+    /// [`Self::residual_terms`].
+    fn ode_rows(&self, z: &[f64], eta: f64, mut put: impl FnMut(usize, OdeRow<'_>)) {
         let s = self.tab.s;
         let mut f = Vec::new();
         for k in 0..self.n_segments() {
@@ -216,22 +238,20 @@ impl<'a, P: Problem> Discretisation<'a, P> {
                 for j in 0..s {
                     let yj = self.stage(k, i, j);
                     for a in 0..n {
-                        let mut acc = 0.0;
-                        for l in 0..s {
-                            acc += self.tab.a[j * s + l] * f[l * n + a];
-                        }
-                        r[row + j * n + a] = z[yj + a] - z[yi + a] - h * acc;
+                        let weights = &self.tab.a[j * s..(j + 1) * s];
+                        put(row + j * n + a, OdeRow { end: z[yj + a], start: z[yi + a], h, weights, slopes: &f, n, a });
                     }
                 }
                 for a in 0..n {
-                    let mut acc = 0.0;
-                    for l in 0..s {
-                        acc += self.tab.b[l] * f[l * n + a];
-                    }
-                    r[row + s * n + a] = z[yn + a] - z[yi + a] - h * acc;
+                    put(row + s * n + a, OdeRow { end: z[yn + a], start: z[yi + a], h, weights: &self.tab.b, slopes: &f, n, a });
                 }
             }
         }
+    }
+
+    /// Residual F(z, η) of the module documentation into `r` (length n).
+    pub fn residual(&self, z: &[f64], eta: f64, r: &mut [f64]) {
+        self.ode_rows(z, eta, |row, o| r[row] = o.end - o.start - o.h * o.weighted().fold(0.0, |acc, v| acc + v));
         let (ya, yb) = self.ends(z);
         let m = self.n_segments();
         self.problem.bc(&ya, &yb, self.params(z), eta, &mut r[self.row_offsets[m]..]);
@@ -250,31 +270,7 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     /// the boundary rows' terms estimated to first order through their derivatives (a
     /// function of the ends is a sum of terms of that size). Written into `t` (length n).
     pub fn residual_terms(&self, z: &[f64], eta: f64, t: &mut [f64]) {
-        let s = self.tab.s;
-        let mut f = Vec::new();
-        for k in 0..self.n_segments() {
-            let n = self.dims[k];
-            f.resize(s * n, 0.0);
-            let mesh = &self.meshes[k];
-            for i in 0..mesh.len() - 1 {
-                let h = mesh[i + 1] - mesh[i];
-                self.stage_rhs(z, eta, k, i, &mut f);
-                let yi = self.node(k, i);
-                let yn = self.node(k, i + 1);
-                let row = self.row(k, i);
-                for j in 0..s {
-                    let yj = self.stage(k, i, j);
-                    for a in 0..n {
-                        let acc: f64 = (0..s).map(|l| (self.tab.a[j * s + l] * f[l * n + a]).abs()).sum();
-                        t[row + j * n + a] = z[yj + a].abs() + z[yi + a].abs() + h * acc;
-                    }
-                }
-                for a in 0..n {
-                    let acc: f64 = (0..s).map(|l| (self.tab.b[l] * f[l * n + a]).abs()).sum();
-                    t[row + s * n + a] = z[yn + a].abs() + z[yi + a].abs() + h * acc;
-                }
-            }
-        }
+        self.ode_rows(z, eta, |row, o| t[row] = o.end.abs() + o.start.abs() + o.h * o.weighted().map(f64::abs).sum::<f64>());
         let (ya, yb) = self.ends(z);
         let m = self.n_segments();
         let p = self.params(z);
