@@ -166,9 +166,10 @@ struct ReportArgs {
 struct GateArgs {
     /// Scene files or directories of scenes (default: scenes/).
     scenes: Vec<PathBuf>,
-    /// Tolerance of the gated BVP runs (gauss4, shooting), 0 < tolerance < 1.
-    #[arg(long, default_value_t = verification::gate::GATE_BVP_TOLERANCE)]
-    tolerance: f64,
+    /// Tolerance of the gated BVP runs (gauss4, shooting), 0 < tolerance < 1; default:
+    /// each scene's `gate.bvp_tolerance`, else 1e-8.
+    #[arg(long)]
+    tolerance: Option<f64>,
     /// FE element counts (4 … 16384, increasing), e.g. 16,32,64; default: each
     /// scene's `fem` mesh sequence.
     #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
@@ -834,7 +835,9 @@ fn run_report(args: &ReportArgs) -> Result<()> {
 /// formulation) are errors before anything runs.
 fn run_gate(args: &GateArgs) -> Result<bool> {
     use verification::gate;
-    check_tolerance("tolerance", args.tolerance)?;
+    if let Some(t) = args.tolerance {
+        check_tolerance("tolerance", t)?;
+    }
     for &n in &args.elements {
         check_elements("elements", n)?;
     }

@@ -61,7 +61,7 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
 /// tolerance 1e-8).
 #[test]
 fn cosserat_drive_is_solved_by_both_bvp_methods() {
-    let scene = "bvp/tests/data/cosserat-drive.json";
+    let scene = "scenes/cosserat-drive.json";
     let mut summaries = Vec::new();
     for method in ["bvp-collocation", "bvp-shooting"] {
         let out = temp("cli-layouts", &format!("cosserat-drive-{method}.json"));

@@ -12,7 +12,7 @@ use drive::scene::Scene;
 use drive::view::SolutionView;
 
 fn scene_data() -> (Scene, CosseratDrive) {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cosserat-drive.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cosserat-drive.json");
     let scene = Scene::from_path(&path).expect("the scene parses and validates");
     let data = CosseratDrive::from_scene(&scene).expect("a Cosserat drive scene");
     (scene, data)
