@@ -63,8 +63,8 @@ enum Command {
     /// Solve one scene and print its summary (optionally write the result JSON).
     ///
     /// `beltcheck quantities` says what each summary name means: e.g. `tension_tight` /
-    /// `tension_slack` are the axial forces in the driver's / the driven pulley's stick
-    /// zones, by both methods — the tight / slack sides while the driver drives (either
+    /// `tension_slack` are the axial forces at the middle of the driver's / the driven
+    /// pulley's stick arcs, by both methods — the tight / slack sides while the driver drives (either
     /// sense of rotation: a negative `driver_speed` turns it counter-clockwise and makes
     /// the upper span the tight one), swapped when the load drives (a `driven_torque`
     /// of the sign opposite to `driver_speed`, larger than the damping's d₂|ω₁|).

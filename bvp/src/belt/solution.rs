@@ -411,7 +411,11 @@ impl<L: SectionLaw> SolutionView for BeltSolution<L> {
     fn summary(&self) -> Summary {
         let topo = self.topology();
         let (upper, lower) = self.mid_span();
-        let stick_start = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
+        // N at the middle of the pulley's stick arc (ξ = ½: φ is linear in ξ on an arc),
+        // spec §3.7 and the FE's definition (docs/fem-drive.md §8); for the string and the
+        // Kirchhoff rod N is constant in a stick zone, for the Cosserat belt it varies in
+        // the edge layers at its ends.
+        let stick_middle = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.5).tension);
         let edges = self.edge_forces();
         Summary {
             y_upper_mid: Some(upper.y),
@@ -420,8 +424,8 @@ impl<L: SectionLaw> SolutionView for BeltSolution<L> {
             tension_lower_mid: Some(lower.tension),
             moment_upper_mid: upper.moment,
             moment_lower_mid: lower.moment,
-            tension_tight: stick_start(Pulley::Driver),
-            tension_slack: stick_start(Pulley::Driven),
+            tension_tight: stick_middle(Pulley::Driver),
+            tension_slack: stick_middle(Pulley::Driven),
             driven_speed: self.driven_speed(),
             transport_rate: self.transport_rate(),
             driver: Some(self.pulley_summary(Pulley::Driver, edges)),
