@@ -63,8 +63,8 @@ enum Command {
     /// Solve one scene and print its summary (optionally write the result JSON).
     ///
     /// `beltcheck quantities` says what each summary name means: e.g. `tension_tight` /
-    /// `tension_slack` are the axial forces in the driver's / the driven pulley's stick
-    /// zones, by both methods — the tight / slack sides while the driver drives (either
+    /// `tension_slack` are the axial forces at the middle of the driver's / the driven
+    /// pulley's stick arcs, by both methods — the tight / slack sides while the driver drives (either
     /// sense of rotation: a negative `driver_speed` turns it counter-clockwise and makes
     /// the upper span the tight one), swapped when the load drives (a `driven_torque`
     /// of the sign opposite to `driver_speed`, larger than the damping's d₂|ω₁|).
@@ -166,9 +166,10 @@ struct ReportArgs {
 struct GateArgs {
     /// Scene files or directories of scenes (default: scenes/).
     scenes: Vec<PathBuf>,
-    /// Tolerance of the gated BVP runs (gauss4, shooting), 0 < tolerance < 1.
-    #[arg(long, default_value_t = verification::gate::GATE_BVP_TOLERANCE)]
-    tolerance: f64,
+    /// Tolerance of the gated BVP runs (gauss4, shooting), 0 < tolerance < 1; default:
+    /// each scene's `gate.bvp_tolerance`, else 1e-8.
+    #[arg(long)]
+    tolerance: Option<f64>,
     /// FE element counts (4 … 16384, increasing), e.g. 16,32,64; default: each
     /// scene's `fem` mesh sequence.
     #[arg(long, value_delimiter = ',', value_name = "N,N,…")]
@@ -834,7 +835,9 @@ fn run_report(args: &ReportArgs) -> Result<()> {
 /// formulation) are errors before anything runs.
 fn run_gate(args: &GateArgs) -> Result<bool> {
     use verification::gate;
-    check_tolerance("tolerance", args.tolerance)?;
+    if let Some(t) = args.tolerance {
+        check_tolerance("tolerance", t)?;
+    }
     for &n in &args.elements {
         check_elements("elements", n)?;
     }

@@ -243,7 +243,7 @@ fn quantities_lists_every_summary_name_with_its_meaning() {
         assert!(out.lines().any(|l| l.split_whitespace().next() == Some(listed.as_str())), "{name} missing:\n{out}");
     }
     let tight = out.lines().find(|l| l.starts_with("tension_tight ")).expect("tension_tight listed");
-    assert!(tight.contains(" N ") && tight.contains("driver's stick zone"), "{tight}");
+    assert!(tight.contains(" N ") && tight.contains("driver's stick zone") && tight.contains("middle of the stick arc"), "{tight}");
     let slack = out.lines().find(|l| l.starts_with("tension_slack ")).expect("tension_slack listed");
     assert!(slack.contains("driven pulley's stick zone"), "{slack}");
     // The solve help points to the glossary.

@@ -1,5 +1,5 @@
 //! End to end: a scene the contract describes but no solver solves yet (spec §2.2's
-//! `cosserat-pulley`, a Cosserat drive, a shell) is refused by every method of `solve`
+//! `cosserat-pulley` as a string, the Cosserat drive by the FE, a shell) is refused by `solve`
 //! and by `converge` with exit status 2, a message naming the scene, the layout or theory
 //! and the issue that brings it, and no result file — never solved as something else.
 
@@ -29,9 +29,14 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
     cosserat["belt"]["theory"] = json!("cosserat");
     cosserat["belt"]["bending_stiffness"] = json!(0.005);
     cosserat["belt"]["shear_stiffness"] = json!(1e3);
-    let cases = [(write("pulley.json", &pulley), "layout `one-pulley`", "issue 13"), (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14")];
-    for (scene, what, issue) in &cases {
-        for method in ["bvp-collocation", "bvp-shooting", "fem"] {
+    // the one-pulley string by every method; the Cosserat drive, which the BVP solves
+    // (`cosserat_drive_is_solved_by_both_bvp_methods`), by the FE
+    let cases = [
+        (write("pulley.json", &pulley), "layout `one-pulley`", "issue 13", &["bvp-collocation", "bvp-shooting", "fem"][..]),
+        (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14", &["fem"][..]),
+    ];
+    for (scene, what, issue, methods) in &cases {
+        for &method in *methods {
             let out = temp("cli-layouts", &format!("{method}.json"));
             let _ = std::fs::remove_file(&out);
             let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", method, "--json", out.to_str().unwrap()]);
@@ -46,6 +51,42 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
     let o = beltcheck(&["converge", cases[0].0.to_str().unwrap(), "--elements", "8,16"]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("issue 13"), "{}", stderr(&o));
+}
+
+/// The Cosserat two-pulley drive in steady motion (issue 14, docs/cosserat-drive.md) is
+/// solved from its file by both BVP methods through `solve`: exit 0, the summary of
+/// docs/cosserat-drive.md ("Scene summary": c = 1.59924 m/s, ω₂ = 19.99893 rad/s,
+/// contact arcs 2.6022 rad, driven torque = M₂), edge pressures and no edge forces, and
+/// the two methods agree to 1e-6 relative (the gate's BVP limit; measured ≤ 2e-7 at
+/// tolerance 1e-8).
+#[test]
+fn cosserat_drive_is_solved_by_both_bvp_methods() {
+    let scene = "scenes/cosserat-drive.json";
+    let mut summaries = Vec::new();
+    for method in ["bvp-collocation", "bvp-shooting"] {
+        let out = temp("cli-layouts", &format!("cosserat-drive-{method}.json"));
+        let _ = std::fs::remove_file(&out);
+        let o = beltcheck(&["solve", scene, "--method", method, "--json", out.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(0), "{method}: {}", stderr(&o));
+        let result: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+        let summary = result["summary"].clone();
+        let get = |path: &str| path.split('.').fold(&summary, |v, k| &v[k]).as_f64().unwrap_or_else(|| panic!("{method}: {path} in {summary}"));
+        // the documented values to half a unit of their last digit
+        for (path, documented, half_unit) in [("transport_rate", 1.59924, 5e-6), ("driven_speed", 19.99893, 5e-6), ("driver.contact_arc", 2.6022, 5e-5), ("driven.contact_arc", 2.6022, 5e-5), ("driven.torque", 0.1, 5e-8)] {
+            assert!((get(path) - documented).abs() <= half_unit, "{method}: {path} = {} against {documented}", get(path));
+        }
+        for pulley in ["driver", "driven"] {
+            for end in ["start", "end"] {
+                assert!(get(&format!("{pulley}.edge_pressure_{end}")) > 0.0, "{method}: {summary}");
+                assert!(summary[pulley].get(format!("edge_force_{end}")).is_none_or(|v| v.is_null()), "{method}: {summary}");
+            }
+        }
+        summaries.push(summary);
+    }
+    for path in ["tension_tight", "tension_slack", "tension_upper_mid", "transport_rate", "driver.stick_arc", "driven.slip_arc"] {
+        let [a, b] = [0, 1].map(|i| path.split('.').fold(&summaries[i], |v, k| &v[k]).as_f64().unwrap());
+        assert!((a / b - 1.0).abs() < 1e-6, "{path}: collocation {a}, shooting {b}");
+    }
 }
 
 /// The static Cosserat rod on the two-pulley loop (issue 13's `cosserat-hanging`) is

@@ -27,7 +27,7 @@ fn gate_with_zero_comparable_fe_runs_fails() {
     let settings = GateSettings { tolerances: [("y_upper_mid".to_string(), 1e-3)].into(), ..GateSettings::default() };
     let bvp = || -> (Box<dyn Method>, Vec<Discretisation>) { (Box::new(BvpSolver::new(BvpVariant::Shooting)), vec![Discretisation::Tolerance(1e-8)]) };
 
-    let plan = gate::gate_plan_with(&scene, 1e-8, Some(&[16]), Some(Formulations::Discovered));
+    let plan = gate::gate_plan_with(&scene, Some(1e-8), Some(&[16]), Some(Formulations::Discovered));
     let methods = vec![bvp(), (Box::new(never_applies()) as Box<dyn Method>, vec![Discretisation::Elements(16)])];
     let study = Study::run_methods(&scene, &plan, methods, false, &mut |_| {});
     let outcome = gate::evaluate(&settings, &study);
@@ -37,7 +37,7 @@ fn gate_with_zero_comparable_fe_runs_fails() {
     assert_eq!(failures[0].quantity, "(FE runs)");
     assert!(failures[0].reason.contains("zero comparable FE runs"), "{}", failures[0].reason);
 
-    let plan = gate::gate_plan_with(&scene, 1e-8, Some(&[16]), Some(Formulations::Named(Vec::new())));
+    let plan = gate::gate_plan_with(&scene, Some(1e-8), Some(&[16]), Some(Formulations::Named(Vec::new())));
     let study = Study::run_methods(&scene, &plan, vec![bvp()], false, &mut |_| {});
     let outcome = gate::evaluate(&settings, &study);
     assert!(outcome.passed(), "{:#?}", outcome.checks);
@@ -92,4 +92,21 @@ fn solver_errors_stay_typed() {
         }
         other => panic!("expected a typed BVP error, got {:?}", other.err()),
     }
+}
+
+/// The gate sizes a scene's BVP runs by its `gate.reference_tolerance` and
+/// `gate.bvp_tolerance` (the catalogue's `cosserat-drive`: 1e-8 and 1e-7, for CI time,
+/// docs/verification.md); a tolerance given to the gate (`--tolerance`) overrides the
+/// scene's, and a scene without them keeps the defaults 1e-10 and 1e-8.
+#[test]
+fn gate_plan_takes_the_scene_tolerances() {
+    let tolerances = |plan: &verification::study::StudyPlan| {
+        let verification::reference::Reference::Bvp { tolerance, .. } = plan.reference else { panic!("a BVP reference") };
+        (tolerance, plan.bvp.iter().map(|s| s.tolerances.clone()).collect::<Vec<_>>())
+    };
+    let drive = catalogue_scene("cosserat-drive");
+    assert_eq!(tolerances(&gate::gate_plan_with(&drive, None, None, None)), (1e-8, vec![vec![1e-7]; 2]));
+    assert_eq!(tolerances(&gate::gate_plan_with(&drive, Some(1e-6), None, None)), (1e-8, vec![vec![1e-6]; 2]));
+    let hanging = catalogue_scene("string-hanging");
+    assert_eq!(tolerances(&gate::gate_plan_with(&hanging, None, None, None)), (gate::GATE_REFERENCE_TOLERANCE, vec![vec![gate::GATE_BVP_TOLERANCE]; 2]));
 }

@@ -8,6 +8,7 @@ use thiserror::Error;
 
 use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
+use crate::cosserat_drive::{self, CosseratDrive};
 use crate::cosserat_hanging::{self, CosseratHanging};
 use crate::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution, Mode};
 use crate::rod_hanging::{self, RodHanging};
@@ -229,8 +230,8 @@ fn one_pulley_run(sol: CosseratPulleySolution, opts: &BvpRunOptions, options: se
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`), the
 /// static Kirchhoff rod (`rod-hanging`) or the static Cosserat rod (`cosserat-hanging`)
 /// on frictionless pulleys, the string in steady motion with Coulomb friction
-/// (`string-drive`), or the Cosserat belt in steady motion over one pulley
-/// (`cosserat-pulley`, the open layout).
+/// (`string-drive`), the Cosserat belt in steady motion with Coulomb friction on two
+/// pulleys (`cosserat-drive`) or over one pulley (`cosserat-pulley`, the open layout).
 ///
 /// # Errors
 /// [`SceneSolveError::NotYetSolvable`] for a layout or theory the BVP does not solve yet
@@ -308,8 +309,30 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             }
             Ok(BvpRun::of(sol, opts, options, notes))
         }
+        Theory::Cosserat if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
+            let data = CosseratDrive::from_scene(scene)?;
+            let sol = cosserat_drive::solve(&data, opts)?;
+            let (input, output, dissipation) = sol.power_balance();
+            let (lambda_driver, lambda_driven) = sol.stick_stretches();
+            let c = sol.transport_rate().unwrap_or(f64::NAN);
+            let notes = vec![
+                format!(
+                    "homotopy: the string drive ({} continuation steps), then {} in log a from a₀ = {} N·m²",
+                    sol.start.homotopy_steps,
+                    sol.homotopy_steps,
+                    numerics::Sig(sol.bending_start())
+                ),
+                format!(
+                    "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
+                    input - output - dissipation
+                ),
+                format!("stick stretches λ₁ = {lambda_driver:.9}, λ₂ = {lambda_driven:.9} (creep ω₂/ω₁ = λ₂/λ₁)"),
+                format!("shear layer √(a/(b₂ − ρc²)) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(data.shear_layer(c))),
+            ];
+            Ok(BvpRun::of(sol, opts, options, notes))
+        }
         _ => Err(SceneSolveError::Unsupported(format!(
-            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string, Kirchhoff rod and Cosserat rod on frictionless pulleys, and the string in steady motion with Coulomb friction",
+            "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string, Kirchhoff rod and Cosserat rod on frictionless pulleys, and the string and the Cosserat belt in steady motion with Coulomb friction",
             scene.belt.theory, scene.analysis, scene.effects.contact
         ))),
     }

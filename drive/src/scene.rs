@@ -851,6 +851,18 @@ pub struct GateSettings {
     /// absent = order not gated.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub min_order: Option<f64>,
+    /// Tolerance of the gate's BVP reference (collocation gauss6) for this scene,
+    /// 0 < tolerance < 1. Default absent = the gate's 1e-10
+    /// (`verification::gate::GATE_REFERENCE_TOLERANCE`). A scene whose reference is
+    /// costly at 1e-10 takes a looser one; its limits must then sit above the errors
+    /// measured against the tighter reference.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference_tolerance: Option<f64>,
+    /// Tolerance of the gated BVP runs (collocation gauss4, shooting) for this scene,
+    /// 0 < tolerance < 1, above `reference_tolerance` when both are given. Default
+    /// absent = the gate's 1e-8; `beltcheck gate --tolerance` overrides it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bvp_tolerance: Option<f64>,
 }
 
 // ---------------------------------------------------------------------------
@@ -1349,14 +1361,7 @@ impl BvpSettings {
     /// # Errors
     /// The first field out of range.
     pub fn validate(&self) -> Result<(), SceneError> {
-        check_positive("bvp.tolerance", self.tolerance)?;
-        if self.tolerance >= 1.0 {
-            return Err(SceneError::OutOfRange {
-                path: "bvp.tolerance".into(),
-                value: self.tolerance,
-                range: "a relative tolerance, 0 < tolerance < 1".into(),
-            });
-        }
+        check_relative_tolerance("bvp.tolerance", self.tolerance)?;
         if self.scheme.trim().is_empty() {
             return Err(SceneError::Invalid {
                 path: "bvp.scheme".into(),
@@ -1482,8 +1487,34 @@ impl GateSettings {
         if let Some(p) = self.min_order {
             check_positive("gate.min_order", p)?;
         }
+        if let Some(t) = self.reference_tolerance {
+            check_relative_tolerance("gate.reference_tolerance", t)?;
+        }
+        if let Some(t) = self.bvp_tolerance {
+            check_relative_tolerance("gate.bvp_tolerance", t)?;
+            if let Some(r) = self.reference_tolerance.filter(|&r| r >= t) {
+                return Err(SceneError::OutOfRange {
+                    path: "gate.bvp_tolerance".into(),
+                    value: t,
+                    range: format!("above gate.reference_tolerance = {r:e} (the reference must be the tighter run)"),
+                });
+            }
+        }
         Ok(())
     }
+}
+
+/// A relative tolerance at `path`: 0 < tolerance < 1.
+fn check_relative_tolerance(path: &str, value: f64) -> Result<(), SceneError> {
+    check_positive(path, value)?;
+    if value >= 1.0 {
+        return Err(SceneError::OutOfRange {
+            path: path.into(),
+            value,
+            range: "a relative tolerance, 0 < tolerance < 1".into(),
+        });
+    }
+    Ok(())
 }
 
 /// `value` must pass `holds`, else the error `variant` builds from the path and value.

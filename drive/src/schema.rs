@@ -273,6 +273,8 @@ pub(crate) const GATE: &[Field] = &[
         "relative tolerance per quantity for the BVP methods",
     ),
     opt("min_order", Kind::Number, "minimum observed order"),
+    opt("reference_tolerance", Kind::Number, "tolerance of the gate's BVP reference"),
+    opt("bvp_tolerance", Kind::Number, "tolerance of the gated BVP runs"),
 ];
 
 pub(crate) const PEER: &[Field] = &[
@@ -703,6 +705,8 @@ mod tests {
         let gate = serde_json::to_value(GateSettings {
             min_order: Some(2.0),
             bvp_tolerances: [("y_upper_mid".to_string(), 1e-6)].into(),
+            reference_tolerance: Some(1e-9),
+            bvp_tolerance: Some(1e-7),
             ..Default::default()
         })
         .unwrap();

@@ -19,7 +19,7 @@
 //! - `edge_pressure_*`: contact pressure per unit reference length just inside the
 //!   zone at its first/last point (Cosserat rods: finite, no edge forces), N/m;
 //! - `tension_tight`/`tension_slack`: the axial force in the driver's / the driven
-//!   pulley's stick zone in steady motion, N;
+//!   pulley's stick zone in steady motion, at the middle of the stick arc, N;
 //! - one-pulley scenes (open ends, Paper C): the pulley as `pulley.*`, and
 //!   `pulley_speed` (ω, rad/s, clockwise positive), `tension_in`/`tension_out` (axial
 //!   force at the inflow/outflow end, N), `y_in`/`y_out` (y of the centreline at the
@@ -47,9 +47,9 @@ pub enum Global {
     MomentUpperMid,
     /// Bending moment at x = 0 on the lower span, N·m.
     MomentLowerMid,
-    /// Axial force in the driver's stick zone, N.
+    /// Axial force in the driver's stick zone (middle of the stick arc), N.
     TensionTight,
-    /// Axial force in the driven pulley's stick zone, N.
+    /// Axial force in the driven pulley's stick zone (middle of the stick arc), N.
     TensionSlack,
     /// ω₂, rad/s.
     DrivenSpeed,
@@ -180,10 +180,10 @@ impl Global {
             Global::MomentUpperMid => "bending moment at x = 0 on the upper span",
             Global::MomentLowerMid => "bending moment at x = 0 on the lower span",
             Global::TensionTight => {
-                "axial force in the driver's stick zone in steady motion: the tight side while the driver drives (either sense of rotation), the slack side when the load drives"
+                "axial force in the driver's stick zone in steady motion, at the middle of the stick arc: the tight side while the driver drives (either sense of rotation), the slack side when the load drives"
             }
             Global::TensionSlack => {
-                "axial force in the driven pulley's stick zone in steady motion: the slack side while the driver drives, the tight side when the load drives"
+                "axial force in the driven pulley's stick zone in steady motion, at the middle of the stick arc: the slack side while the driver drives, the tight side when the load drives"
             }
             Global::DrivenSpeed => "angular speed ω₂ of the driven pulley, clockwise positive",
             Global::TransportRate => "transport rate c = mass flux / ρ (unstretched length per unit time), positive along σ (clockwise), negative for a counter-clockwise driver",
@@ -475,10 +475,12 @@ pub struct Summary {
     /// Bending moment at x = 0 on the lower span, N·m (rods and shells).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub moment_lower_mid: Option<f64>,
-    /// Axial force in the driver's stick zone in steady motion, N.
+    /// Axial force in the driver's stick zone in steady motion, at the middle of the
+    /// stick arc, N.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tension_tight: Option<f64>,
-    /// Axial force in the driven pulley's stick zone in steady motion, N.
+    /// Axial force in the driven pulley's stick zone in steady motion, at the middle of
+    /// the stick arc, N.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tension_slack: Option<f64>,
     /// ω₂, rad/s.

@@ -477,6 +477,13 @@ fn settings_ranges() {
     rejected("gate", json!({"tolerances": {"y_uper_mid": 1e-3}}), "gate.tolerances.y_uper_mid", &["did you mean `y_upper_mid`?"]);
     rejected("gate", json!({"tolerances": {"driver.torque": 0}}), "gate.tolerances.driver.torque", &["must be positive"]);
     rejected("gate", json!({"min_order": -2}), "gate.min_order", &["must be positive"]);
+    rejected("gate", json!({"reference_tolerance": 1.0}), "gate.reference_tolerance", &["0 < tolerance < 1"]);
+    rejected("gate", json!({"bvp_tolerance": 0}), "gate.bvp_tolerance", &["must be positive"]);
+    // the reference must be the tighter run
+    rejected("gate", json!({"reference_tolerance": 1e-7, "bvp_tolerance": 1e-7}), "gate.bvp_tolerance", &["above gate.reference_tolerance = 1e-7"]);
+    let ok = parse(&set(base(), "gate", json!({"tolerances": {"y_upper_mid": 1e-6}, "reference_tolerance": 1e-8, "bvp_tolerance": 1e-7}))).unwrap();
+    let gate = ok.gate_settings();
+    assert_eq!((gate.reference_tolerance, gate.bvp_tolerance), (Some(1e-8), Some(1e-7)));
 }
 
 #[test]

@@ -67,7 +67,7 @@ pub fn check(scene: &Scene, inputs: &[PathBuf], exclude: &[PathBuf], choice: Ref
     let files = outside::result_files(inputs, exclude)?;
     let runs = files.iter().map(|f| outside::read_result(f, scene)).collect::<Result<Vec<_>, _>>()?;
     let (methods, mut skipped) = outside::group(scene, runs)?;
-    let mut plan = gate::gate_plan_with(scene, gate::GATE_BVP_TOLERANCE, None, Some(Formulations::Named(Vec::new())));
+    let mut plan = gate::gate_plan_with(scene, None, None, Some(Formulations::Named(Vec::new())));
     plan.bvp.clear();
     plan.samples = samples;
     let mut meshes: Vec<usize> = methods.iter().flat_map(|m| m.runs.iter().filter_map(|r| r.discretisation.elements_along())).collect();

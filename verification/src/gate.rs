@@ -2,7 +2,9 @@
 //! block ([`drive::scene::GateSettings`]).
 //!
 //! For each scene, [`gate_plan`] runs the reference (collocation gauss6 at
-//! [`GATE_REFERENCE_TOLERANCE`]), each other BVP variant at one tolerance, and every FE
+//! [`GATE_REFERENCE_TOLERANCE`] or the scene's `gate.reference_tolerance`), each other
+//! BVP variant at one tolerance (`--tolerance`, else the scene's `gate.bvp_tolerance`,
+//! else [`GATE_BVP_TOLERANCE`]), and every FE
 //! formulation — discovered from the `fem` registry, so a newly registered
 //! formulation is gated with no change here — over the scene's mesh sequence. Then
 //! [`evaluate`] checks, for every studied method at its finest discretisation:
@@ -27,7 +29,8 @@ use crate::run::{BvpVariant, Discretisation, Family};
 use crate::study::{BvpSweep, Formulations, SeriesStatus, Study, StudyPlan, DEFAULT_SAMPLES, STUDY_MAX_NODES};
 use crate::table::{fmt_disc, fmt_error, fmt_order, fmt_seconds, Table, NONE};
 
-/// Reference tolerance of the gate (one decade looser than `converge`, for CI time).
+/// Reference tolerance of the gate (one decade looser than `converge`, for CI time),
+/// unless the scene's `gate.reference_tolerance` sets its own.
 pub const GATE_REFERENCE_TOLERANCE: f64 = 1e-10;
 
 /// Order checks are skipped where the errors at both of the two finest meshes are below
@@ -40,20 +43,26 @@ pub const ORDER_FLOOR: f64 = 1e-3;
 /// Default tolerance of the gated BVP runs (gauss4 and shooting).
 pub const GATE_BVP_TOLERANCE: f64 = 1e-8;
 
-/// The CI-sized study of a scene: reference gauss6 at 1e-10; gauss4 and shooting at
-/// `bvp_tolerance`; FE: the scene's `fem.formulations` (else every registered one) over
-/// `meshes` (else the scene's `fem.meshes()`). The collocation mesh cap is
+/// The CI-sized study of a scene: reference gauss6 at the scene's
+/// `gate.reference_tolerance` (default [`GATE_REFERENCE_TOLERANCE`]); gauss4 and shooting
+/// at `bvp_tolerance`; FE: the scene's `fem.formulations` (else every registered one)
+/// over `meshes` (else the scene's `fem.meshes()`). The collocation mesh cap is
 /// [`STUDY_MAX_NODES`].
 pub fn gate_plan(scene: &Scene, bvp_tolerance: f64, meshes: Option<&[usize]>) -> StudyPlan {
-    gate_plan_with(scene, bvp_tolerance, meshes, None)
+    gate_plan_with(scene, Some(bvp_tolerance), meshes, None)
 }
 
-/// [`gate_plan`] with the FE formulations overridden (`Some(Named(vec![]))` = BVP only).
-pub fn gate_plan_with(scene: &Scene, bvp_tolerance: f64, meshes: Option<&[usize]>, formulations: Option<Formulations>) -> StudyPlan {
+/// [`gate_plan`] with the FE formulations overridden (`Some(Named(vec![]))` = BVP only)
+/// and the tolerance of the gauss4 and shooting runs `bvp_tolerance`, else the scene's
+/// `gate.bvp_tolerance`, else [`GATE_BVP_TOLERANCE`].
+pub fn gate_plan_with(scene: &Scene, bvp_tolerance: Option<f64>, meshes: Option<&[usize]>, formulations: Option<Formulations>) -> StudyPlan {
     let fem = scene.fem_settings();
+    let gate = scene.gate_settings();
+    let bvp_tolerance = bvp_tolerance.or(gate.bvp_tolerance).unwrap_or(GATE_BVP_TOLERANCE);
+    let reference_tolerance = gate.reference_tolerance.unwrap_or(GATE_REFERENCE_TOLERANCE);
     let discovered = if fem.formulations.is_empty() { Formulations::Discovered } else { Formulations::Named(fem.formulations.clone()) };
     StudyPlan {
-        reference: crate::reference::Reference::Bvp { variant: BvpVariant::Collocation(Scheme::Gauss6), tolerance: GATE_REFERENCE_TOLERANCE },
+        reference: crate::reference::Reference::Bvp { variant: BvpVariant::Collocation(Scheme::Gauss6), tolerance: reference_tolerance },
         bvp: vec![
             BvpSweep { variant: BvpVariant::Collocation(Scheme::Gauss4), tolerances: vec![bvp_tolerance] },
             BvpSweep { variant: BvpVariant::Shooting, tolerances: vec![bvp_tolerance] },

@@ -412,7 +412,7 @@ impl Study {
         }
         let meshes: Vec<Discretisation> = self.plan.meshes.iter().map(|&n| Discretisation::Elements(n)).collect();
         let mut plan = self.plan.clone();
-        plan.formulations = crate::gate::gate_plan_with(scene, crate::gate::GATE_BVP_TOLERANCE, None, None).formulations;
+        plan.formulations = crate::gate::gate_plan_with(scene, None, None, None).formulations;
         let mut built_in = Vec::new();
         for f in plan.fem_methods() {
             let series = study_series(scene, &f, &meshes, self.plan.samples, false, &self.reference, &self.quantities, &mut |_| {});

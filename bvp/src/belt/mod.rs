@@ -17,6 +17,7 @@ pub mod problem;
 pub mod run;
 pub mod solution;
 pub mod topology;
+pub mod view;
 
 pub use error::BeltError;
 pub use law::{BeltPoint, Scales, SectionLaw};

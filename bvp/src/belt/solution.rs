@@ -10,7 +10,7 @@ use std::time::Instant;
 
 use drive::contour::{Contour, Path};
 use drive::summary::{PulleySummary, Summary};
-use drive::view::{ContactState, SolutionView};
+use drive::view::SolutionView;
 
 use crate::sigma_map::SigmaMap;
 use crate::solution::{Solution, Stats};
@@ -406,57 +406,16 @@ impl<L: SectionLaw> SolutionView for BeltSolution<L> {
         self.sigma_map.path()
     }
 
-    fn position(&self, sigma: f64) -> [f64; 2] {
-        let (_, pt) = self.at_sigma(sigma);
-        [pt.x, pt.y]
-    }
-
-    fn axial_force(&self, sigma: f64) -> f64 {
-        self.at_sigma(sigma).1.tension
-    }
-
-    fn bending_moment(&self, sigma: f64) -> Option<f64> {
-        self.at_sigma(sigma).1.moment
-    }
-
-    fn transverse_force(&self, sigma: f64) -> Option<f64> {
-        self.at_sigma(sigma).1.shear
-    }
-
-    fn contact_pressure(&self, sigma: f64) -> Option<f64> {
-        // Per unit contour length on the arc: p / λ (belt centreline on the contour); the
-        // Kirchhoff rod's edge forces are concentrated and reported in the summary.
-        let (_, pt) = self.at_sigma(sigma);
-        Some(pt.pressure.map_or(0.0, |p| p / pt.stretch))
-    }
-
-    fn friction_traction(&self, sigma: f64) -> Option<f64> {
-        // f_t per unstretched length, + in the direction of travel = +σ (ω₁ ≥ 0,
-        // validated); per unit contour length f_t/λ, as the pressure.
-        if !self.topology().has_friction() {
-            return None;
-        }
-        let (_, pt) = self.at_sigma(sigma);
-        Some(pt.friction.map_or(0.0, |f| f / pt.stretch))
-    }
-
-    fn contact_state(&self, sigma: f64) -> ContactState {
-        match self.topology().segment(self.at_sigma(sigma).0).kind {
-            SegmentKind::Span => ContactState::Free,
-            SegmentKind::Arc(ArcKind::Frictionless) => ContactState::Contact,
-            SegmentKind::Arc(ArcKind::Stick) => ContactState::Stick,
-            SegmentKind::Arc(ArcKind::Slip) => ContactState::Slip,
-        }
-    }
-
-    fn material_coordinate(&self, sigma: f64) -> f64 {
-        self.at_sigma(sigma).1.material
-    }
+    super::view::sampled_view_methods!();
 
     fn summary(&self) -> Summary {
         let topo = self.topology();
         let (upper, lower) = self.mid_span();
-        let stick_start = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
+        // N at the middle of the pulley's stick arc (ξ = ½: φ is linear in ξ on an arc),
+        // spec §3.7 and the FE's definition (docs/fem-drive.md §8); for the string and the
+        // Kirchhoff rod N is constant in a stick zone, for the Cosserat belt it varies in
+        // the edge layers at its ends.
+        let stick_middle = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.5).tension);
         let edges = self.edge_forces();
         Summary {
             y_upper_mid: Some(upper.y),
@@ -465,8 +424,8 @@ impl<L: SectionLaw> SolutionView for BeltSolution<L> {
             tension_lower_mid: Some(lower.tension),
             moment_upper_mid: upper.moment,
             moment_lower_mid: lower.moment,
-            tension_tight: stick_start(Pulley::Driver),
-            tension_slack: stick_start(Pulley::Driven),
+            tension_tight: stick_middle(Pulley::Driver),
+            tension_slack: stick_middle(Pulley::Driven),
             driven_speed: self.driven_speed(),
             transport_rate: self.transport_rate(),
             driver: Some(self.pulley_summary(Pulley::Driver, edges)),

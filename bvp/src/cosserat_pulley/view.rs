@@ -5,9 +5,9 @@
 
 use drive::contour::Path;
 use drive::summary::Summary;
-use drive::view::{ContactState, SolutionView};
+use drive::view::SolutionView;
 
-use crate::belt::{ArcKind, BeltPoint, SegmentKind};
+use crate::belt::{BeltPoint, Topology};
 use crate::sigma_map::SigmaMap;
 
 use super::CosseratPulleySolution;
@@ -19,6 +19,11 @@ impl CosseratPulleySolution {
             let p = self.point(k, xi);
             [p.x, p.y]
         })
+    }
+
+    /// The open one-pulley topology.
+    pub fn topology(&self) -> &Topology {
+        &self.problem.topology
     }
 
     /// Segment and the belt point on the contour normal at σ (clamped to the ends).
@@ -36,42 +41,7 @@ impl SolutionView for CosseratPulleySolution {
         self.sigma_map.path()
     }
 
-    fn position(&self, sigma: f64) -> [f64; 2] {
-        let (_, pt) = self.at_sigma(sigma);
-        [pt.x, pt.y]
-    }
-
-    fn axial_force(&self, sigma: f64) -> f64 {
-        self.at_sigma(sigma).1.tension
-    }
-
-    fn bending_moment(&self, sigma: f64) -> Option<f64> {
-        self.at_sigma(sigma).1.moment
-    }
-
-    fn transverse_force(&self, sigma: f64) -> Option<f64> {
-        self.at_sigma(sigma).1.shear
-    }
-
-    fn contact_pressure(&self, sigma: f64) -> Option<f64> {
-        // per unit contour length on the arc: p/λ (dσ = R dφ = λ ds)
-        let (_, pt) = self.at_sigma(sigma);
-        Some(pt.pressure.map_or(0.0, |p| p / pt.stretch))
-    }
-
-    fn friction_traction(&self, sigma: f64) -> Option<f64> {
-        let (_, pt) = self.at_sigma(sigma);
-        Some(pt.friction.map_or(0.0, |f| f / pt.stretch))
-    }
-
-    fn contact_state(&self, sigma: f64) -> ContactState {
-        match self.problem.topology.segment(self.at_sigma(sigma).0).kind {
-            SegmentKind::Span => ContactState::Free,
-            SegmentKind::Arc(ArcKind::Frictionless) => ContactState::Contact,
-            SegmentKind::Arc(ArcKind::Stick) => ContactState::Stick,
-            SegmentKind::Arc(ArcKind::Slip) => ContactState::Slip,
-        }
-    }
+    crate::belt::view::sampled_view_methods!();
 
     fn rotation(&self, sigma: f64) -> Option<f64> {
         self.at_sigma(sigma).1.theta
@@ -79,10 +49,6 @@ impl SolutionView for CosseratPulleySolution {
 
     fn shear_strain(&self, sigma: f64) -> Option<f64> {
         Some(self.at_sigma(sigma).1.shear? / self.data.shear_stiffness)
-    }
-
-    fn material_coordinate(&self, sigma: f64) -> f64 {
-        self.at_sigma(sigma).1.material
     }
 
     fn summary(&self) -> Summary {
