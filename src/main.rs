@@ -576,6 +576,30 @@ fn deg(rad: f64) -> f64 {
     rad.to_degrees()
 }
 
+/// The quantities of a one-pulley scene (open ends, the single `pulley`), those present.
+fn print_one_pulley(s: &drive::Summary) {
+    let line = |label: &str, v: Option<f64>| {
+        if let Some(v) = v {
+            println!("  {label:<25}  {v:>13.8}");
+        }
+    };
+    line("pulley speed ω  [rad/s]", s.pulley_speed);
+    line("tension in / out    [N]", s.tension_in);
+    line("                    [N]", s.tension_out);
+    line("y at the inflow end [m]", s.y_in);
+    line("y at the outflow end [m]", s.y_out);
+    if let Some(p) = &s.pulley {
+        line("contact arc       [deg]", p.contact_arc.map(deg));
+        line("first contact     [deg]", p.contact_start.map(deg));
+        line("last contact      [deg]", p.contact_end.map(deg));
+        line("stick arc         [deg]", p.stick_arc.map(deg));
+        line("slip arc          [deg]", p.slip_arc.map(deg));
+        line("torque on pulley  [N·m]", p.torque);
+        line("edge pressure, first [N/m]", p.edge_pressure_start);
+        line("edge pressure, last [N/m]", p.edge_pressure_end);
+    }
+}
+
 fn print_run(scene: &Scene, label: &str, run: &Solved) {
     let s = &run.summary;
     println!("scene   {} — {}", scene.name, scene.description);
@@ -627,6 +651,7 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         force("edge force, first   [N]", d1.edge_force_start, d2.edge_force_start);
         force("edge force, last    [N]", d1.edge_force_end, d2.edge_force_end);
     }
+    print_one_pulley(s);
     for note in &run.notes {
         println!("  {note}");
     }

@@ -148,8 +148,8 @@ struct Scaled {
 }
 
 impl SolutionView for Scaled {
-    fn contour(&self) -> &drive::contour::Contour {
-        self.inner.contour()
+    fn path(&self) -> drive::contour::Path {
+        self.inner.path()
     }
     fn position(&self, sigma: f64) -> [f64; 2] {
         self.inner.position(sigma)

@@ -36,6 +36,7 @@ pub mod string_drive;
 pub mod rod_hanging;
 pub mod cosserat_hanging;
 pub mod cosserat_pulley;
+pub mod cosserat_drive;
 
 pub use error::BvpError;
 pub use problem::{JacobianMode, Problem, Scalar};

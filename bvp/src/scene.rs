@@ -1,7 +1,7 @@
 //! From a validated scene to a BVP run: which belt problem the scene is, which method and
 //! tolerance solve it, and the outcome as a [`SolutionView`] with its summary and cost.
 
-use drive::scene::{Analysis, Contact, Layout, OnePulleyLoad, Scene, Theory};
+use drive::scene::{Analysis, Contact, End, Layout, OnePulleyLoad, Scene, Theory};
 use drive::summary::Summary;
 use drive::view::SolutionView;
 use thiserror::Error;
@@ -9,7 +9,7 @@ use thiserror::Error;
 use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
 use crate::cosserat_hanging::{self, CosseratHanging};
-use crate::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution};
+use crate::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution, Mode};
 use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
 use crate::string_drive::{self, StringDrive};
@@ -37,6 +37,15 @@ pub enum SceneSolveError {
     /// The belt problem failed (or has no solution of its kind).
     #[error(transparent)]
     Belt(#[from] BeltError),
+    /// A one-pulley prescription the contract allows but that does not determine the
+    /// solution (spec §2.3).
+    #[error("one-pulley prescription `{given}` does not determine the solution: {reason}")]
+    IllPosedPrescription {
+        /// The prescribed pair, e.g. `pulley_speed + tension_in`.
+        given: &'static str,
+        /// Why.
+        reason: &'static str,
+    },
 }
 
 impl BeltOptions {
@@ -132,13 +141,15 @@ pub fn string_drive_data(scene: &Scene, mu: f64) -> StringDrive {
 }
 
 /// The physical data of a one-pulley Cosserat scene (`drive.layout: "one-pulley"`,
-/// theory `cosserat`, analysis `steady`, Coulomb contact) in mode `tensions`
-/// (docs/cosserat-pulley.md).
+/// theory `cosserat`, analysis `steady`, Coulomb contact) in its prescription mode
+/// (docs/cosserat-pulley.md, "Modes"): `tensions`, `transition` (φ_B and one tension;
+/// the sense is the pulley driving the belt) or `pulley_speed` (ω and N_out).
 ///
 /// # Errors
-/// [`SceneSolveError::Unsupported`] for another layout, theory, analysis or contact, and
-/// for the prescription modes `transition` and `pulley_speed` (not built yet; the mode
-/// and its values are named).
+/// [`SceneSolveError::Unsupported`] for another layout, theory, analysis or contact;
+/// [`SceneSolveError::IllPosedPrescription`] for `pulley_speed` with `tension_in`;
+/// [`SceneSolveError::Belt`] for a prescription without a start (no positive effective
+/// tension, no slip arc).
 pub fn cosserat_pulley_data(scene: &Scene) -> Result<CosseratPulley, SceneSolveError> {
     let d = &scene.drive;
     let unsupported = |what: String| Err(SceneSolveError::Unsupported(what));
@@ -151,11 +162,19 @@ pub fn cosserat_pulley_data(scene: &Scene) -> Result<CosseratPulley, SceneSolveE
     let Contact::Coulomb(friction) = scene.effects.contact else {
         return unsupported(format!("contact {:?}: the one-pulley BVP has Coulomb friction (stick and slip)", scene.effects.contact));
     };
-    let (tension_in, tension_out) = match d.one_pulley_load() {
-        Some(OnePulleyLoad::Tensions { tension_in, tension_out }) => (tension_in, tension_out),
-        other => return unsupported(format!("one-pulley prescription {other:?}: the BVP solves mode `tensions` (N_in and N_out given) only")),
+    let (tension_in, tension_out, mode) = match d.one_pulley_load() {
+        Some(OnePulleyLoad::Tensions { tension_in, tension_out }) => (tension_in, tension_out, Mode::Tensions),
+        Some(OnePulleyLoad::Transition { stick_slip_angle, tension: (given, n) }) => {
+            let (tin, tout) = if given == End::In { (n, f64::NAN) } else { (f64::NAN, n) };
+            (tin, tout, Mode::Transition { stick_slip_angle, given, driving: true })
+        }
+        Some(OnePulleyLoad::PulleySpeed { pulley_speed, tension: (End::Out, n) }) => (f64::NAN, n, Mode::PulleySpeed { pulley_speed }),
+        Some(OnePulleyLoad::PulleySpeed { tension: (End::In, _), .. }) => {
+            return Err(SceneSolveError::IllPosedPrescription { given: "pulley_speed + tension_in", reason: cosserat_pulley::PULLEY_SPEED_WITH_TENSION_IN });
+        }
+        None => return unsupported("a one-pulley scene without a valid prescription (validate the scene first)".to_string()),
     };
-    Ok(CosseratPulley {
+    let data = CosseratPulley {
         radius: d.pulley_radius,
         end_distance: d.end_distance.unwrap_or(f64::NAN),
         transport_rate: d.transport_rate.unwrap_or(f64::NAN),
@@ -167,26 +186,56 @@ pub fn cosserat_pulley_data(scene: &Scene) -> Result<CosseratPulley, SceneSolveE
         mass_per_length: scene.belt.mass_per_length,
         friction,
         inertia: scene.effects.inertia == Some(true),
-    })
+        mode: Mode::Tensions,
+    };
+    Ok(data.with_mode(mode)?)
 }
 
-/// Solve a one-pulley Cosserat scene in mode `tensions` by the BVP method of `opts`
-/// ([`cosserat_pulley_data`], [`cosserat_pulley::solve`]). Not reached from
-/// [`solve_scene`] yet: the common [`SolutionView`] is typed on the two-pulley contour,
-/// so [`drive::not_yet_solvable`] still refuses the layout for both solvers.
+/// Solve a one-pulley Cosserat scene by the BVP method of `opts`
+/// ([`cosserat_pulley_data`], [`cosserat_pulley::solve`]); [`solve_scene`] runs it for
+/// `drive.layout: "one-pulley"`.
 pub fn solve_one_pulley(scene: &Scene, opts: &BvpRunOptions) -> Result<CosseratPulleySolution, SceneSolveError> {
     Ok(cosserat_pulley::solve(&cosserat_pulley_data(scene)?, opts)?)
 }
 
+/// The run of a solved one-pulley scene, with its balances in `notes`.
+fn one_pulley_run(sol: CosseratPulleySolution, opts: &BvpRunOptions, options: serde_json::Value) -> BvpRun {
+    let [a, b, c] = sol.contact_angles();
+    let d = &sol.data;
+    let notes = vec![
+        if sol.homotopy_steps > 1 {
+            format!("homotopy: {} continuation steps in log a from the string creep solution with bending layers", sol.homotopy_steps)
+        } else {
+            "start: the string creep solution with bending layers at the scene's a (no homotopy needed)".to_string()
+        },
+        format!(
+            "moment balance about the pulley centre: imbalance {:.3e} N·m (0 for the exact solution)",
+            cosserat_pulley::moment_imbalance(d, |k, xi| sol.point(k, xi))
+        ),
+        format!("contact angles φ_A = {a:.9}, φ_B = {b:.9}, φ_C = {c:.9} rad; slip dissipation {:.6e} W", sol.dissipation()),
+        format!("shear layer √(a/(b₂ − ρc²)) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(d.shear_layer())),
+    ];
+    BvpRun {
+        summary: sol.summary(),
+        stats: sol.stats.clone(),
+        method: opts.method.name().to_string(),
+        method_detail: opts.detail(),
+        view: Box::new(sol),
+        options,
+        notes,
+    }
+}
+
 /// Solve a scene by the BVP method of `opts`: the static string (`string-hanging`), the
 /// static Kirchhoff rod (`rod-hanging`) or the static Cosserat rod (`cosserat-hanging`)
-/// on frictionless pulleys, or the string in
-/// steady motion with Coulomb friction (`string-drive`).
+/// on frictionless pulleys, the string in steady motion with Coulomb friction
+/// (`string-drive`), or the Cosserat belt in steady motion over one pulley
+/// (`cosserat-pulley`, the open layout).
 ///
 /// # Errors
-/// [`SceneSolveError::NotYetSolvable`] for a one-pulley, Cosserat or shell scene (before
-/// anything else), [`SceneSolveError::Unsupported`] for another model it does not have,
-/// else the belt problem's failure.
+/// [`SceneSolveError::NotYetSolvable`] for a layout or theory the BVP does not solve yet
+/// (before anything else), [`SceneSolveError::Unsupported`] for another model it does not
+/// have, else the belt problem's failure.
 pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneSolveError> {
     if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Bvp) {
         return Err(e.into());
@@ -196,6 +245,9 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
         && scene.drive.driver_speed == 0.0
         && scene.drive.driven_torque == 0.0;
     let options = serde_json::to_value(opts).unwrap_or(serde_json::Value::Null);
+    if scene.drive.layout == Layout::OnePulley {
+        return Ok(one_pulley_run(solve_one_pulley(scene, opts)?, opts, options));
+    }
     match scene.belt.theory {
         Theory::String if static_frictionless => {
             let data = string_hanging_data(scene);

@@ -7,7 +7,9 @@
 
 use bvp::belt::{BeltError, BeltOptions, BeltPoint};
 use bvp::collocation::Scheme;
-use bvp::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution};
+use bvp::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution, Mode};
+use drive::scene::End;
+use drive::view::ContactState;
 
 /// The catalogue scene `cosserat-pulley` (issue 13).
 fn catalogue() -> CosseratPulley {
@@ -23,6 +25,7 @@ fn catalogue() -> CosseratPulley {
         mass_per_length: 0.1,
         friction: 0.3,
         inertia: true,
+        mode: Mode::Tensions,
     }
 }
 
@@ -296,25 +299,90 @@ fn hard_cases_fail_by_name() {
     assert!(matches!(e, BeltError::HomotopyStalled { .. } | BeltError::Inadmissible(_) | BeltError::Solver { .. }), "{e}");
 }
 
-/// The scene file of issue 13 (`bvp/tests/data/cosserat-pulley.json`, exactly the
-/// issue's format; kept out of `scenes/` while the FE refuses it, so that `gate` stays
-/// green) solves from the file alone to the catalogue data's answer; a prescription
-/// mode other than `tensions` is refused by name, and `solve_scene` still refuses the
-/// layout naming issue 13 (no common view of the open contour yet).
+/// The catalogue scene file (`scenes/cosserat-pulley.json`, exactly the issue's format
+/// plus its gate block) solves from the file alone through `solve_scene` to the catalogue
+/// data's answer, and its common view runs along the open contour: σ from the inflow end
+/// (x = −D, upper side) to the outflow end (x = −D, lower side), free → stick → slip →
+/// free in that order, the summary's end offsets and tensions at the ends of σ, pressure
+/// and friction zero on the spans. `pulley_speed` with `tension_in` is refused by name.
 #[test]
 fn scene_file_solves_from_the_file_alone() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/cosserat-pulley.json");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cosserat-pulley.json");
     let scene = drive::scene::Scene::from_path(&path).expect("the issue's scene parses");
     let opts = bvp::scene::BvpRunOptions::from_scene(&scene).unwrap();
     let data = bvp::scene::cosserat_pulley_data(&scene).unwrap();
     let d = catalogue();
     assert_eq!(format!("{data:?}"), format!("{d:?}"));
-    let s = bvp::scene::solve_one_pulley(&scene, &opts).unwrap();
-    assert!(rel(s.pulley_speed(), 20.02931) < 1e-6 && s.summary().pulley.unwrap().slip_arc.is_some());
+    let run = bvp::scene::solve_scene(&scene, &opts).expect("solve_scene runs the one-pulley layout");
+    let v = &*run.view;
+    assert!(rel(run.summary.pulley_speed.unwrap(), 20.02931) < 1e-6 && run.summary.pulley.as_ref().unwrap().slip_arc.is_some());
+    assert!(run.summary.driver.is_none() && run.summary.y_upper_mid.is_none(), "no two-pulley quantities");
+    let path = v.path();
+    assert!(path.is_open() && v.contour().is_none());
+    let l = path.length();
+    assert!((l - (2.0 * d.end_distance + std::f64::consts::PI * d.radius)).abs() < 1e-14);
+    let (p0, p1) = (v.position(0.0), v.position(l));
+    assert!((p0[0] + d.end_distance).abs() < 1e-12 && (p1[0] + d.end_distance).abs() < 1e-12, "{p0:?} {p1:?}");
+    assert!((p0[1] - run.summary.y_in.unwrap()).abs() < 1e-12 && (p1[1] - run.summary.y_out.unwrap()).abs() < 1e-12);
+    assert!((v.axial_force(0.0) - 15.0).abs() < 1e-9 && (v.axial_force(l) - 10.0).abs() < 1e-9);
+    assert!((v.rotation(0.0).unwrap()).abs() < 1e-12 && (v.rotation(l).unwrap() + std::f64::consts::PI).abs() < 1e-12);
+    let mut states = vec![];
+    for i in 0..=400 {
+        let sigma = l * i as f64 / 400.0;
+        let st = v.contact_state(sigma);
+        if states.last() != Some(&st) {
+            states.push(st);
+        }
+        if st == ContactState::Free {
+            assert_eq!((v.contact_pressure(sigma), v.friction_traction(sigma)), (Some(0.0), Some(0.0)));
+        } else {
+            assert!(v.contact_pressure(sigma).unwrap() > 0.0);
+        }
+        // the belt point at σ lies on the contour normal at σ
+        let q = v.position(sigma);
+        assert!((path.sigma_nu(q).0 - sigma).abs() < 1e-9, "σ = {sigma}");
+    }
+    assert_eq!(states, [ContactState::Free, ContactState::Stick, ContactState::Slip, ContactState::Free]);
+    let fields = drive::view::sample_fields(v, 64);
+    fields.check().unwrap();
+    assert!(fields.rotation.is_some() && fields.shear_strain.is_some() && fields.pressure.is_some() && fields.state.is_some());
     let mut speed = scene.clone();
-    (speed.drive.tension_in, speed.drive.pulley_speed) = (None, Some(20.0));
+    (speed.drive.tension_out, speed.drive.pulley_speed) = (None, Some(20.0));
     let e = bvp::scene::cosserat_pulley_data(&speed).unwrap_err();
-    assert!(e.to_string().contains("PulleySpeed") && e.to_string().contains("`tensions`"), "{e}");
-    let e = bvp::scene::solve_scene(&scene, &opts).err().expect("refused");
-    assert!(e.to_string().contains("issue 13"), "{e}");
+    assert!(matches!(e, bvp::scene::SceneSolveError::IllPosedPrescription { given: "pulley_speed + tension_in", .. }), "{e}");
+}
+
+/// Spec C-11, the round trip of the prescription modes: given the `tensions` solution's
+/// ω (mode `pulley_speed`, with N_out) or φ_B (mode `transition`, with either tension),
+/// each mode returns the other tension and every output of that solution. Driving
+/// (N_in > N_out) and braking (N_in < N_out). Tolerance: the three solves meet the same
+/// collocation tolerance 1e-10 on the same problem, so their outputs agree to a few
+/// times it (1e-8 relative; measured ≤ 1e-9).
+#[test]
+fn prescription_modes_round_trip() {
+    let opts = BeltOptions::collocation(Scheme::default(), 1e-10);
+    for base in [catalogue(), CosseratPulley { tension_in: 10.0, tension_out: 15.0, ..catalogue() }] {
+        let reference = cosserat_pulley::solve(&base, &opts).unwrap();
+        let (omega, phi_b) = (reference.pulley_speed(), reference.contact_angles()[1]);
+        let driving = base.tension_in > base.tension_out;
+        let modes = [
+            (Mode::PulleySpeed { pulley_speed: omega }, CosseratPulley { tension_in: f64::NAN, ..base }),
+            (Mode::Transition { stick_slip_angle: phi_b, given: End::Out, driving }, CosseratPulley { tension_in: f64::NAN, ..base }),
+            (Mode::Transition { stick_slip_angle: phi_b, given: End::In, driving }, CosseratPulley { tension_out: f64::NAN, ..base }),
+        ];
+        for (mode, data) in modes {
+            let d = data.with_mode(mode).unwrap();
+            assert!(d.tension_in.is_finite() && d.tension_out.is_finite(), "{mode:?}: the start estimate fills the free tension");
+            let s = cosserat_pulley::solve(&d, &opts).unwrap_or_else(|e| panic!("{mode:?}: {e}"));
+            let (a, b) = (s.summary(), reference.summary());
+            for ((name, x), (_, y)) in a.scalars().iter().zip(b.scalars().iter()) {
+                assert!((x - y).abs() <= 1e-8 * y.abs().max(1.0), "{mode:?} ({} → {}): {name} {x} vs {y}", base.tension_in, base.tension_out);
+            }
+            assert_eq!(a.scalars().len(), b.scalars().len());
+            assert!((s.data.tension_in - base.tension_in).abs() < 1e-8 * base.tension_in, "{mode:?}: N_in {}", s.data.tension_in);
+        }
+    }
+    // a transition angle below the contact end has no slip arc: named before the solve
+    let e = catalogue().with_mode(Mode::Transition { stick_slip_angle: -1.6, given: End::Out, driving: true }).unwrap_err();
+    assert!(matches!(e, BeltError::InvalidInput { name: "stick_slip_angle", .. }), "{e}");
 }

@@ -158,7 +158,7 @@ fn torque_and_power_balance() {
 #[test]
 fn view_shows_stick_then_slip() {
     let sol = solve(&scene(), &colloc(1e-8)).expect("solves");
-    let l = sol.contour().length();
+    let l = sol.path().length();
     let states: Vec<ContactState> = (0..2000).map(|i| sol.contact_state(l * i as f64 / 2000.0)).collect();
     let mut runs = vec![states[0]];
     for s in &states {
@@ -270,7 +270,7 @@ fn exudyn_peer_within_model_differences() {
 fn friction_traction_along_sigma() {
     let sol = solve(&scene(), &colloc(1e-10)).unwrap();
     let s = sol.summary();
-    let contour = *sol.contour();
+    let contour = sol.contour().expect("a two-pulley loop");
     let mu = sol.data.friction;
     for (region, summary) in [
         (drive::contour::Region::DrivenArc, s.driven.as_ref().unwrap()),

@@ -485,6 +485,132 @@ impl OpenContour {
     }
 }
 
+/// The reference line g(σ) a solution is parametrised on: the closed loop of a two-pulley
+/// scene ([`Contour`], σ periodic) or the open contour of a one-pulley scene
+/// ([`OpenContour`], σ ∈ [0, 2D + πR], not wrapped). The common solution view
+/// ([`crate::SolutionView::path`]) and the harness read a solution through it, whatever the
+/// layout.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Path {
+    /// The closed two-pulley loop.
+    Loop(Contour),
+    /// The open one-pulley contour.
+    Open(OpenContour),
+}
+
+impl From<Contour> for Path {
+    fn from(c: Contour) -> Path {
+        Path::Loop(c)
+    }
+}
+
+impl From<OpenContour> for Path {
+    fn from(c: OpenContour) -> Path {
+        Path::Open(c)
+    }
+}
+
+impl Path {
+    /// Length of the σ domain, m: the period L_geom = 2H + 2πR of the loop, or 2D + πR.
+    pub fn length(&self) -> f64 {
+        match self {
+            Path::Loop(c) => c.length(),
+            Path::Open(c) => c.length(),
+        }
+    }
+
+    /// Pulley radius R to the belt centreline, m.
+    pub fn radius(&self) -> f64 {
+        match self {
+            Path::Loop(c) => c.radius(),
+            Path::Open(c) => c.radius(),
+        }
+    }
+
+    /// The loop's contour; `None` for the open contour.
+    pub fn as_loop(&self) -> Option<&Contour> {
+        match self {
+            Path::Loop(c) => Some(c),
+            Path::Open(_) => None,
+        }
+    }
+
+    /// True for an open contour (one-pulley scenes).
+    pub fn is_open(&self) -> bool {
+        matches!(self, Path::Open(_))
+    }
+
+    /// σ in the domain: wrapped into [0, L_geom) on the loop, unchanged on the open
+    /// contour (its σ beyond an end continues the end's straight line).
+    pub fn wrap(&self, sigma: f64) -> f64 {
+        match self {
+            Path::Loop(c) => c.wrap(sigma),
+            Path::Open(_) => sigma,
+        }
+    }
+
+    /// r = g(σ) + ν n_g(σ), m (eq. 27, planar).
+    pub fn position(&self, sigma: f64, nu: f64) -> [f64; 2] {
+        match self {
+            Path::Loop(c) => c.position(sigma, nu),
+            Path::Open(c) => c.position(sigma, nu),
+        }
+    }
+
+    /// The inverse map point → (σ, ν) of [`Path::position`].
+    pub fn sigma_nu(&self, point: [f64; 2]) -> (f64, f64) {
+        match self {
+            Path::Loop(c) => c.sigma_nu(point),
+            Path::Open(c) => c.sigma_nu(point),
+        }
+    }
+
+    /// α(σ): 0 on the spans, 1/R on the arcs, 1/m.
+    pub fn alpha(&self, sigma: f64) -> f64 {
+        match self {
+            Path::Loop(c) => c.alpha(sigma),
+            Path::Open(c) => c.alpha(sigma),
+        }
+    }
+
+    /// True on an arc (polar region).
+    pub fn is_polar(&self, sigma: f64) -> bool {
+        self.alpha(sigma) > 0.0
+    }
+
+    /// The regions in the order σ meets them: (σ₀, σ₁, short name).
+    pub fn regions(&self) -> Vec<(f64, f64, &'static str)> {
+        match self {
+            Path::Loop(c) => Region::ALL
+                .iter()
+                .map(|&r| {
+                    let (a, b) = c.region_bounds(r);
+                    let name = match r {
+                        Region::UpperSpan => "upper span",
+                        Region::DrivenArc => "driven arc",
+                        Region::LowerSpan => "lower span",
+                        Region::DriverArc => "driver arc",
+                    };
+                    (a, b, name)
+                })
+                .collect(),
+            Path::Open(c) => {
+                let t = c.transitions();
+                vec![(t[0], t[1], "inflow span"), (t[1], t[2], "pulley arc"), (t[2], c.length(), "outflow span")]
+            }
+        }
+    }
+
+    /// The centres of the pulleys, m: driver then driven on the loop, the origin for the
+    /// open contour.
+    pub fn pulley_centres(&self) -> Vec<[f64; 2]> {
+        match self {
+            Path::Loop(c) => Pulley::ALL.iter().map(|&p| c.pulley_centre(p)).collect(),
+            Path::Open(_) => vec![[0.0, 0.0]],
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     //! Eq. (38) by central finite differences, continuity at the transitions,

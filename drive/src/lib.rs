@@ -56,7 +56,7 @@ mod suggest;
 pub mod summary;
 pub mod view;
 
-pub use contour::{Contour, OpenContour, OpenRegion, Pulley, Region};
+pub use contour::{Contour, OpenContour, OpenRegion, Path, Pulley, Region};
 pub use pending::{not_yet_solvable, NotYetSolvable, Solver, Unsolved};
 pub use error::{ResultError, SceneError};
 pub use result::{Cost, Discretisation, Fields, Frame, History, RunResult, SurfaceFields, TimeSeries, FIELD_NORM_NAMES, SURFACE_FIELD_NAMES};

@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::ResultError;
 use crate::summary::Summary;
+use crate::view::ContactState;
 
 /// Names of the field norms the harness computes over σ and a gate may name (see
 /// [`crate::GateSettings::tolerances`]): max and L2 norms of the error in the
@@ -32,10 +33,13 @@ pub const FIELD_NORM_NAMES: [&str; 6] = [
 ];
 
 /// Fields sampled at points σ of the contour (`fields`); all vectors have the
-/// length of `sigma`.
+/// length of `sigma`. The five of every result are `sigma`, `x`, `y`, `tension` and (rods)
+/// `moment`; a one-pulley scene (open belt) also writes `rotation`, `transverse_force`,
+/// `shear_strain`, `pressure`, `friction` and `state`, each where its model has it.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
 pub struct Fields {
-    /// Contour coordinate σ, m, in [0, 2H + 2πR).
+    /// Contour coordinate σ, m: in [0, 2H + 2πR) round the two-pulley loop, in
+    /// [0, 2D + πR] from the inflow end of a one-pulley scene.
     pub sigma: Vec<f64>,
     /// x of the belt point r(σ), m.
     pub x: Vec<f64>,
@@ -46,6 +50,28 @@ pub struct Fields {
     /// Bending moment M(σ), N·m; absent for a string.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub moment: Option<Vec<f64>>,
+    /// Section rotation θ(σ), rad: angle of the director e₁ from +x, counter-clockwise,
+    /// continuous (0 at the inflow end, −π at the outflow end of a one-pulley scene);
+    /// open belts of rods only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rotation: Option<Vec<f64>>,
+    /// Transverse (shear) force Q(σ), N; open belts of rods only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transverse_force: Option<Vec<f64>>,
+    /// Shear strain Γ₂(σ) = Q/b₂; open belts of Cosserat rods only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_strain: Option<Vec<f64>>,
+    /// Contact pressure p(σ) ≥ 0 per unit contour length, N/m, 0 on the spans; open belts
+    /// only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure: Option<Vec<f64>>,
+    /// Friction traction f_t(σ) of the pulley on the belt per unit contour length, N/m,
+    /// + along σ, 0 on the spans; open belts with friction only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<Vec<f64>>,
+    /// Contact state at σ (`free`, `contact`, `stick`, `slip`); open belts only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub state: Option<Vec<ContactState>>,
 }
 
 impl Fields {
@@ -72,8 +98,22 @@ impl Fields {
             ("y", &self.y),
             ("tension", &self.tension),
         ];
-        if let Some(m) = &self.moment {
-            all.push(("moment", m));
+        for (name, v) in [
+            ("moment", &self.moment),
+            ("rotation", &self.rotation),
+            ("transverse_force", &self.transverse_force),
+            ("shear_strain", &self.shear_strain),
+            ("pressure", &self.pressure),
+            ("friction", &self.friction),
+        ] {
+            if let Some(v) = v {
+                all.push((name, v));
+            }
+        }
+        if let Some(state) = &self.state {
+            if state.len() != n {
+                return Err(ResultError::FieldLength { field: "state".into(), len: state.len(), expected: n });
+            }
         }
         for (name, v) in &all {
             if v.len() != n {

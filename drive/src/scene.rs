@@ -202,8 +202,8 @@ pub struct DriveGeometry {
     pub centre_distance: f64,
     /// ω₁, rad/s, finite, clockwise positive (the upper span moves in +x); negative:
     /// the driver turns counter-clockwise, the belt runs onto the driver from the upper
-    /// span, which is then the tight one when the driver drives (steady analysis only;
-    /// ≥ 0 in a transient one); must be 0 in a static analysis. Required for
+    /// span, which is then the tight one when the driver drives (steady and transient
+    /// analyses); must be 0 in a static analysis. Required for
     /// `two-pulley`; 0 for `one-pulley`.
     #[serde(default)]
     pub driver_speed: f64,
@@ -1201,17 +1201,8 @@ impl Scene {
     fn validate_analysis(&self) -> Result<(), SceneError> {
         let e = &self.effects;
         // Both rotation senses and both power flows are solved by both methods in steady
-        // motion (docs/string-drive.md, docs/fem-drive.md; issue 12, "four quadrants"); the
-        // FE transient's windowed slip is written for a belt running along σ only.
-        if self.analysis == Analysis::Transient && self.drive.driver_speed < 0.0 {
-            return Err(SceneError::NotAllowed {
-                path: "drive.driver_speed".into(),
-                reason: format!(
-                    "must be ≥ 0 in a transient analysis (got {} rad/s): the FE transient runs the driver clockwise only; analysis `steady` solves a counter-clockwise driver by both methods",
-                    crate::error::num(&self.drive.driver_speed)
-                ),
-            });
-        }
+        // motion and by the FE transient (docs/string-drive.md, docs/fem-drive.md §13;
+        // issue 12, "four quadrants").
         match self.analysis {
             Analysis::Static => {
                 if e.inertia == Some(true) {
@@ -1291,6 +1282,15 @@ impl Scene {
         match self.drive.layout {
             Layout::OnePulley => crate::contour::OpenContour::new(self.drive.pulley_radius, self.drive.end_distance?).ok(),
             Layout::TwoPulley => None,
+        }
+    }
+
+    /// The reference line of this scene's layout: the two-pulley loop ([`Scene::contour`])
+    /// or the open one-pulley contour ([`Scene::open_contour`]); assumes a validated scene.
+    pub fn path(&self) -> crate::contour::Path {
+        match self.open_contour() {
+            Some(open) => crate::contour::Path::Open(open),
+            None => crate::contour::Path::Loop(self.contour()),
         }
     }
 

@@ -2,19 +2,20 @@
 //! harness reads a BVP solution and an FE solution (DESIGN.md "The common solution
 //! view"), so that neither method can borrow the other's answer.
 //!
-//! Every field is a function of the contour coordinate σ (m, any real: implementors
-//! wrap it periodically with [`Contour::wrap`]). "At σ" means *the belt point on the
-//! contour normal at σ*: r(σ) = g(σ) + ν(σ) n_g(σ) (eq. 27), whatever material point
-//! happens to be there. Units SI.
+//! Every field is a function of the contour coordinate σ along the solution's [`Path`]:
+//! the closed two-pulley loop (σ any real, wrapped periodically with [`Contour::wrap`]) or
+//! the open contour of a one-pulley scene (σ ∈ [0, 2D + πR] from the inflow end). "At σ"
+//! means *the belt point on the contour normal at σ*: r(σ) = g(σ) + ν(σ) n_g(σ) (eq. 27),
+//! whatever material point happens to be there. Units SI.
 
 use serde::{Deserialize, Serialize};
 
-use crate::contour::Contour;
+use crate::contour::{Contour, Path};
 use crate::result::Fields;
 use crate::summary::Summary;
 
 /// Contact state of the belt point at σ.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactState {
     /// Not touching a pulley (free span).
@@ -33,8 +34,15 @@ pub enum ContactState {
 /// Methods returning `Option` give `None` for a quantity the model does not have
 /// (e.g. the bending moment of a string) — never a made-up zero.
 pub trait SolutionView {
-    /// The contour the solution is parametrised on.
-    fn contour(&self) -> &Contour;
+    /// The contour the solution is parametrised on: the two-pulley loop or the open
+    /// one-pulley contour.
+    fn path(&self) -> Path;
+
+    /// The two-pulley loop the solution lies on; `None` on the open contour of a
+    /// one-pulley scene.
+    fn contour(&self) -> Option<Contour> {
+        self.path().as_loop().copied()
+    }
 
     /// r(σ) = g(σ) + ν(σ) n_g(σ), m (eq. 27).
     fn position(&self, sigma: f64) -> [f64; 2];
@@ -63,6 +71,19 @@ pub trait SolutionView {
     /// Contact state at σ.
     fn contact_state(&self, sigma: f64) -> ContactState;
 
+    /// Cross-section rotation θ(σ), rad: the angle of the director e₁ from +x,
+    /// counter-clockwise, continuous along the belt; `None` for a model without a section
+    /// rotation of its own (the default; a string).
+    fn rotation(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
+    /// Shear strain Γ₂(σ) = Q/b₂ (dimensionless) of a shear-deformable rod; `None` for an
+    /// unshearable model (the default).
+    fn shear_strain(&self, _sigma: f64) -> Option<f64> {
+        None
+    }
+
     /// Material coordinate s(σ), m: the unstretched arc length, from the material
     /// origin of the method, of the particle at σ (at the instant of the snapshot
     /// for moving belts); increases with σ by the belt length L per loop.
@@ -71,19 +92,20 @@ pub trait SolutionView {
     /// Transverse deflection ν(σ), m (positive away from the pulleys). Default: the
     /// inverse map of [`Contour::sigma_nu`] applied to [`SolutionView::position`].
     fn deflection(&self, sigma: f64) -> f64 {
-        self.contour().sigma_nu(self.position(sigma)).1
+        self.path().sigma_nu(self.position(sigma)).1
     }
 
     /// Named scalars of the solution.
     fn summary(&self) -> Summary;
 }
 
-/// Samples a view at `n` equally spaced points σ_i = i·L_geom/n, i = 0..n.
+/// Samples a view at `n` equally spaced points σ_i = i·L/n, i = 0..n, L the length of
+/// its [`Path`].
 ///
 /// `moment` is present only if the view returns a moment at every sample (absent
 /// for a string). `n = 0` gives empty fields.
 pub fn sample_fields<V: SolutionView + ?Sized>(view: &V, n: usize) -> Fields {
-    let l = view.contour().length();
+    let l = view.path().length();
     let sigma: Vec<f64> = (0..n).map(|i| l * i as f64 / n as f64).collect();
     fields_at(view, sigma)
 }
@@ -91,15 +113,30 @@ pub fn sample_fields<V: SolutionView + ?Sized>(view: &V, n: usize) -> Fields {
 /// Samples a view at the given σ, in their order (`beltcheck reference --sigma`).
 ///
 /// `moment` is present only if the view returns a moment at every σ (absent for a
-/// string, and for no σ at all).
+/// string, and for no σ at all). On an open path (one-pulley scenes) the fields of an
+/// open belt are written too — θ, Q, Γ₂, p, f_t and the contact state, each where the
+/// view has it at every σ; the two-pulley result format keeps its five fields.
 pub fn fields_at<V: SolutionView + ?Sized>(view: &V, sigma: Vec<f64>) -> Fields {
     let pos: Vec<[f64; 2]> = sigma.iter().map(|&s| view.position(s)).collect();
-    let moment: Option<Vec<f64>> = sigma.iter().map(|&s| view.bending_moment(s)).collect();
+    let every = |f: &dyn Fn(f64) -> Option<f64>| -> Option<Vec<f64>> {
+        if sigma.is_empty() {
+            return None;
+        }
+        sigma.iter().map(|&s| f(s)).collect()
+    };
+    let open = view.path().is_open();
+    let extra = |f: &dyn Fn(f64) -> Option<f64>| if open { every(f) } else { None };
     Fields {
         x: pos.iter().map(|p| p[0]).collect(),
         y: pos.iter().map(|p| p[1]).collect(),
         tension: sigma.iter().map(|&s| view.axial_force(s)).collect(),
-        moment: if sigma.is_empty() { None } else { moment },
+        moment: every(&|s| view.bending_moment(s)),
+        rotation: extra(&|s| view.rotation(s)),
+        transverse_force: extra(&|s| view.transverse_force(s)),
+        shear_strain: extra(&|s| view.shear_strain(s)),
+        pressure: extra(&|s| view.contact_pressure(s)),
+        friction: extra(&|s| view.friction_traction(s)),
+        state: (open && !sigma.is_empty()).then(|| sigma.iter().map(|&s| view.contact_state(s)).collect()),
         sigma,
     }
 }
@@ -117,8 +154,8 @@ mod tests {
     }
 
     impl SolutionView for Tight {
-        fn contour(&self) -> &Contour {
-            &self.contour
+        fn path(&self) -> Path {
+            Path::Loop(self.contour)
         }
         fn position(&self, sigma: f64) -> [f64; 2] {
             self.contour.position(sigma, 0.0)

@@ -52,6 +52,7 @@ fn keys_and_nesting_exactly_as_design() {
         y: vec![0.08, 0.07],
         tension: vec![10.0, 10.5],
         moment: Some(vec![0.0, 0.01]),
+        ..Fields::default()
     };
     let v: Value = serde_json::from_str(
         &result(full_summary(), Some(fields))
@@ -155,6 +156,7 @@ fn absent_quantities_are_absent_not_zero_or_null() {
         y: vec![0.0],
         tension: vec![1.0],
         moment: None,
+        ..Fields::default()
     };
     let text = result(summary, Some(fields)).to_json_pretty().unwrap();
     assert!(!text.contains("null"), "{text}");
@@ -219,6 +221,7 @@ fn nan_is_never_written() {
         y: vec![0.0, 0.0],
         tension: vec![1.0, f64::INFINITY],
         moment: None,
+        ..Fields::default()
     };
     let e = result(Summary::default(), Some(fields))
         .to_json_pretty()
@@ -234,6 +237,7 @@ fn nan_is_never_written() {
         y: vec![0.0, 0.0],
         tension: vec![1.0, 1.0],
         moment: None,
+        ..Fields::default()
     };
     let e = result(Summary::default(), Some(fields))
         .to_json_pretty()
@@ -272,7 +276,7 @@ fn surface_and_time_fields_round_trip() {
         ]
         .into(),
     };
-    let along = Fields { sigma: vec![0.0, 1.0], x: vec![-0.2, 0.2], y: vec![0.08, 0.07], tension: vec![12.0, 11.5], moment: None };
+    let along = Fields { sigma: vec![0.0, 1.0], x: vec![-0.2, 0.2], y: vec![0.08, 0.07], tension: vec![12.0, 11.5], moment: None, ..Fields::default() };
     let mut history = TimeSeries::default();
     history.push(0.1, &[("runoff_velocity", 1e-4), ("lateral_position", 0.0)]);
     history.push(0.2, &[("runoff_velocity", 2e-4), ("lateral_position", 1e-5)]);
@@ -338,6 +342,6 @@ fn ragged_or_unknown_surface_and_time_fields_are_refused() {
     assert!(matches!(t.check(), Err(ResultError::UnknownField { .. })));
     let mut t = TimeSeries::default();
     t.push(0.0, &[("a", 1.0)]);
-    t.frames = vec![Frame { time: 0.0, fields: Some(Fields { sigma: vec![0.0], x: vec![f64::INFINITY], y: vec![0.0], tension: vec![0.0], moment: None }), surface: None }];
+    t.frames = vec![Frame { time: 0.0, fields: Some(Fields { sigma: vec![0.0], x: vec![f64::INFINITY], y: vec![0.0], tension: vec![0.0], moment: None, ..Fields::default() }), surface: None }];
     assert!(matches!(t.check(), Err(ResultError::NotFinite { quantity, .. }) if quantity == "history.frames[0].fields.x[0]"));
 }

@@ -59,7 +59,7 @@ fn main() {
                 s.elements, s.unknowns, s.homotopy_steps, s.newton_iterations, s.wall_seconds
             );
             println!("options: {}", run.options);
-            let _ = run.view.contour();
+            let _ = run.view.path();
         }
         Err(e) => {
             eprintln!("error: {e}");

@@ -29,7 +29,7 @@
 use drive::contour::Contour;
 
 use crate::error::FemError;
-use crate::mesh::Mesh;
+use crate::mesh::{Grading, Mesh};
 
 /// A solution whose mesh is fitted to points it locates on itself.
 pub trait Fitted {
@@ -53,6 +53,11 @@ pub trait Fitted {
     fn snapshot(&self) -> Self::Snapshot;
     /// Make a copy the accepted solution again.
     fn restore(&mut self, snapshot: Self::Snapshot);
+    /// The grading of the fitted meshes towards the points ([`Mesh::graded`]); `None`
+    /// (the default): uniform pieces between them.
+    fn grading(&self) -> Option<Grading> {
+        None
+    }
 }
 
 /// What the fitting measures after each pass.
@@ -245,7 +250,7 @@ pub fn fit<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Failur
         previous = residual.map(|f| (std::mem::take(&mut fitted_to), f));
 
         // refit and accept
-        let mesh = match Mesh::fitted(contour, rules.elements, rules.arc_weight, &next) {
+        let mesh = match Mesh::graded(contour, rules.elements, rules.arc_weight, &next, problem.grading()) {
             Ok((mesh, _)) => mesh,
             Err(e) => {
                 out.end = FitEnd::Mesh(e);

@@ -97,6 +97,17 @@ impl Mesh {
     /// # Errors
     /// As [`Mesh::new`].
     pub fn fitted(contour: Contour, elements: usize, arc_weight: f64, breakpoints: &[f64]) -> Result<(Mesh, Vec<f64>), FemError> {
+        Mesh::graded(contour, elements, arc_weight, breakpoints, None)
+    }
+
+    /// [`Mesh::fitted`], with the elements graded towards the breakpoints by `grading`
+    /// (`None`: uniform pieces, exactly [`Mesh::fitted`]): the element counts of the
+    /// pieces of a region are in proportion to ∫ρ dσ over them instead of their lengths,
+    /// and inside a piece the nodes equidistribute ∫ρ dσ ([`Grading`]).
+    ///
+    /// # Errors
+    /// As [`Mesh::new`].
+    pub fn graded(contour: Contour, elements: usize, arc_weight: f64, breakpoints: &[f64], grading: Option<Grading>) -> Result<(Mesh, Vec<f64>), FemError> {
         let base = Mesh::new(contour, elements, arc_weight)?;
         let mut nodes = Vec::with_capacity(elements + 1);
         let mut els = Vec::with_capacity(elements);
@@ -124,9 +135,12 @@ impl Mesh {
             edges.push(b);
             used.extend(kept);
             let pieces = edges.len() - 1;
-            let lengths: Vec<f64> = edges.windows(2).map(|w| w[1] - w[0]).collect();
+            // the measure of a piece: its length, or ∫ρ over it when graded
+            let measure = |x: f64| grading.map_or(x, |g| g.cumulative(x, breakpoints, &contour));
+            let lengths: Vec<f64> = edges.windows(2).map(|w| measure(w[1]) - measure(w[0])).collect();
+            let total = measure(b) - measure(a);
             let spare = (m - pieces) as f64;
-            let ideal: Vec<f64> = lengths.iter().map(|l| spare * l / (b - a)).collect();
+            let ideal: Vec<f64> = lengths.iter().map(|l| spare * l / total).collect();
             let mut counts: Vec<usize> = ideal.iter().map(|x| 1 + x.floor() as usize).collect();
             let mut order: Vec<usize> = (0..pieces).collect();
             order.sort_by(|&i, &j| (ideal[j] - ideal[j].floor()).total_cmp(&(ideal[i] - ideal[i].floor())));
@@ -139,9 +153,15 @@ impl Mesh {
                 let (pa, pb) = (edges[p], edges[p + 1]);
                 let n = counts[p];
                 let h = (pb - pa) / n as f64;
+                // node j of the piece: uniform, or where ∫ρ reaches j/n of the piece's
+                let (ma, mb) = (measure(pa), measure(pb));
+                let node = |j: usize| match grading {
+                    None => pa + j as f64 * h,
+                    Some(_) => invert(&measure, ma + (mb - ma) * j as f64 / n as f64, pa, pb),
+                };
                 for j in 0..n {
-                    let sa = if j == 0 { pa } else { pa + j as f64 * h };
-                    let sb = if j + 1 == n { pb } else { pa + (j + 1) as f64 * h };
+                    let sa = if j == 0 { pa } else { node(j) };
+                    let sb = if j + 1 == n { pb } else { node(j + 1) };
                     nodes.push(sa);
                     els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
                 }
@@ -231,6 +251,58 @@ impl Mesh {
     }
 }
 
+/// A mesh density graded towards points c_k (the contact edges of a Cosserat rod, whose
+/// shear layer of width √(a/b₂) a uniform mesh does not resolve, docs/fem-cosserat.md
+/// §9): ρ(σ) = 1 + `ratio` Σ_k exp(−|σ − c_k|/`width`) (periodic in σ), so that the
+/// elements next to a point are about 1 + `ratio` times shorter than far from it. The
+/// density is fixed (it does not depend on the element count): a sequence of graded
+/// meshes refines one smooth map, and shows the discretisation's order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Grading {
+    /// Decay length of the refinement, m (> 0).
+    pub width: f64,
+    /// Peak refinement (≥ 0; 0 is uniform).
+    pub ratio: f64,
+}
+
+impl Grading {
+    /// C(σ) = ∫₀^σ ρ dσ′ up to a constant (σ unwrapped, in the region's range), with the
+    /// points wrapped and taken with their neighbours one contour length either side.
+    fn cumulative(&self, sigma: f64, points: &[f64], contour: &Contour) -> f64 {
+        let l = contour.length();
+        let w = self.width;
+        let mut c = sigma;
+        for &p in points {
+            let p = contour.wrap(p);
+            if !p.is_finite() {
+                continue;
+            }
+            for off in [-l, 0.0, l] {
+                let d = sigma - (p + off);
+                // ∫ exp(−|x|/w) dx = w sign(x) (1 − exp(−|x|/w))
+                c += self.ratio * w * d.signum() * (1.0 - (-d.abs() / w).exp());
+            }
+        }
+        c
+    }
+}
+
+/// σ in [a, b] where the increasing `measure` takes `target` (bisection to 1e-15 m).
+fn invert(measure: &dyn Fn(f64) -> f64, target: f64, mut a: f64, mut b: f64) -> f64 {
+    for _ in 0..100 {
+        let m = 0.5 * (a + b);
+        if measure(m) < target {
+            a = m;
+        } else {
+            b = m;
+        }
+        if b - a < 1e-15 {
+            break;
+        }
+    }
+    0.5 * (a + b)
+}
+
 /// Elements per region: proportional to the weighted lengths, ≥ 1 each, sum = `n`,
 /// symmetric (upper = lower span, driven = driver arc) — the left–right symmetry of the
 /// drive is kept by the mesh. For odd `n` the upper span gets the extra element.
@@ -305,6 +377,40 @@ mod tests {
         assert!(xi > 0.99);
         assert_eq!(m.locate(-1e-300).0, 0);
         assert!(m.locate(f64::NAN).1.is_nan());
+    }
+
+    /// A graded fitted mesh keeps the topology and the breakpoints as nodes, and its
+    /// elements next to a breakpoint are shorter than the uniform ones by about
+    /// 1 + ratio (corrected for the density's mean over the piece); no grading is the
+    /// uniform fitted mesh exactly.
+    #[test]
+    fn graded_towards_the_breakpoints() {
+        let c = contour();
+        let (a, b) = c.region_bounds(Region::DriverArc);
+        let points = [a + 0.035, b - 0.035];
+        let (uniform, _) = Mesh::fitted(c, 512, 1.0, &points).unwrap();
+        assert_eq!(Mesh::graded(c, 512, 1.0, &points, None).unwrap().0, uniform);
+        let g = Grading { width: 0.0045, ratio: 8.0 };
+        let (m, used) = Mesh::graded(c, 512, 1.0, &points, Some(g)).unwrap();
+        assert_eq!(used.len(), 2);
+        assert_eq!(m.elements_per_region(), uniform.elements_per_region());
+        for p in points {
+            assert!(m.node_sigmas().iter().any(|&n| (n - p).abs() < 1e-12), "breakpoint {p} is no node");
+        }
+        for (k, e) in m.elements().iter().enumerate() {
+            assert!(e.h > 0.0);
+            assert!((m.node_sigmas()[k + 1] - (e.sigma_a + e.h)).abs() < 1e-15);
+        }
+        // the arc's mean element, and the density's mean over it: ∫ρ/(b − a)
+        let n_arc = m.elements_per_region()[3] as f64;
+        let mean = (b - a) / n_arc;
+        let density = 1.0 + g.ratio * 2.0 * 2.0 * g.width / (b - a);
+        let at = |s: f64| m.elements()[m.locate(s).0].h;
+        let edge = at(points[0] + 1e-6);
+        let expected = mean * density / (1.0 + g.ratio);
+        assert!((edge / expected - 1.0).abs() < 0.15, "edge element {edge} against {expected}");
+        let middle = at(0.5 * (a + b));
+        assert!((middle / (mean * density) - 1.0).abs() < 0.05, "far element {middle} against {}", mean * density);
     }
 
     #[test]

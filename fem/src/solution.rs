@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-use drive::contour::{Contour, Pulley, Region};
+use drive::contour::{Pulley, Region};
 use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
 
@@ -506,12 +506,16 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
 
     /// σ (wrapped to [0, L_c)) of the contact boundaries: driver start, driver end,
     /// driven start, driven end (those that exist).
+    /// For a Cosserat rod these are the zero crossings of the gap — the kinks of the
+    /// discrete penalty solution the mesh is fitted to — not the edges of its zone,
+    /// which lie the penalty layer inside them ([`Self::loaded_zone`]).
     pub fn contact_boundaries(&self) -> Vec<f64> {
         let c = self.mesh.contour();
+        let shift = if self.kernel.theory() == drive::scene::Theory::Cosserat { self.penalty_layer().unwrap_or(0.0) } else { 0.0 };
         let mut out = Vec::with_capacity(4);
         for z in self.zones.iter().flatten() {
-            out.push(c.wrap(z.sigma_start));
-            out.push(c.wrap(z.sigma_end));
+            out.push(c.wrap(z.sigma_start - shift));
+            out.push(c.wrap(z.sigma_end + shift));
         }
         out
     }
@@ -660,14 +664,30 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         (force.is_finite() && sigma_b.is_finite()).then_some((sigma_b, force))
     }
 
-    /// The contact zone of a Cosserat rod (docs/fem-cosserat.md): from the first to the
-    /// last point of the contact rule the penalty loads — the finite pressure peak of
-    /// width √(a/b₂) is the edge, there is no concentrated edge force to locate.
+    /// The contact zone of a Cosserat rod (docs/fem-cosserat.md §9): the zero crossings
+    /// of the gap ([`Self::contact_zone`]), each moved into the zone by the penalty
+    /// layer ℓ_P of [`Self::penalty_layer`] — the true edge (pressure step, tangent
+    /// departure) lies ℓ_P inside the crossing of the penalty-regularised solution.
+    /// There is no concentrated edge force.
     pub fn loaded_zone(&self, pulley: Pulley) -> Option<ContactZone> {
-        let forces = self.contact_forces(pulley);
-        let sigma_start = forces.iter().find(|f| f.1 > 0.0)?.0;
-        let sigma_end = forces.iter().rev().find(|f| f.1 > 0.0)?.0;
-        self.zone_between(pulley, sigma_start, sigma_end, false, [None, None])
+        let z = self.contact_zone(pulley)?;
+        let shift = self.penalty_layer().unwrap_or(0.0);
+        self.zone_between(pulley, z.sigma_start + shift, z.sigma_end - shift, false, [None, None])
+    }
+
+    /// The decay length ℓ_P = 1/k of the penalty's own mode at a contact edge of a
+    /// Cosserat rod on the penalty foundation P (docs/fem-cosserat.md §9): the section
+    /// rotation φ and the gap w of a ∝ e^{kx} solve a φ″ + b₂(w′ − φ) = 0,
+    /// b₂(w″ − φ′) = P w, so a b₂ k⁴ − P a k² + P b₂ = 0 and
+    /// k² = (P a + √(P²a² − 4 a b₂² P))/(2 a b₂) (≈ P/b₂ for ℓ_P ≪ √(a/b₂)). With a
+    /// constant curvature jump at the edge the gap crosses zero ℓ_P outside the edge of
+    /// the limit P → ∞. `None` without a penalty, a, b₂, or where the roots are complex
+    /// (P a < 4 b₂²: the bending-dominated regime, the shear rod's Kirchhoff limit,
+    /// where this shift does not apply).
+    pub fn penalty_layer(&self) -> Option<f64> {
+        let (p, a, b2) = (self.params.penalty?, self.params.bending_stiffness?, self.kernel.shear_stiffness()?);
+        let disc = p * p * a * a - 4.0 * a * b2 * b2 * p;
+        (disc > 0.0).then(|| ((2.0 * a * b2) / (p * a + disc.sqrt())).sqrt())
     }
 
     /// The one-interval contact zone on `pulley` from σ_start to σ_end (`None` if empty),
@@ -762,10 +782,31 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         (m.re, -dm_dsigma / speed)
     }
 
+    /// The Cosserat section moment M = a κ, κ = (∂σψ − α)/∂σs (docs/fem-cosserat.md C2:
+    /// the rate of the director angle θ = ϑ_g + ψ, not of the centreline's tangent,
+    /// which differs by the rate of the shear angle), and V = −∂σM/|∂σr| from it, in
+    /// element e at ξ.
+    fn section_moment_and_shear(&self, e: usize, xi: f64, a: f64) -> (f64, f64) {
+        let el = self.context(e);
+        let [s, psi] = [Field::S, Field::Theta].map(|f| self.layout.position(f).map(|k| el.field(self.layout, &self.local[e], k, xi)));
+        let (Some([_, ds, d2s]), Some([_, dpsi, d2psi])) = (s, psi) else {
+            return (f64::NAN, f64::NAN);
+        };
+        let rate = dpsi - el.alpha();
+        let m = a * rate / ds;
+        let dm_dsigma = a * (d2psi / ds - rate * d2s / (ds * ds));
+        (m, -dm_dsigma / el.tangent_length(&self.point(e, xi)))
+    }
+
     /// M and V at σ: inside an element from its interpolant, at a node the mean of the
-    /// two one-sided values (∂²σν of the Hermite cubics jumps between elements).
+    /// two one-sided values (∂²σν of the Hermite cubics jumps between elements; for the
+    /// Cosserat rod [`Self::section_moment_and_shear`], whose M is continuous).
     fn rod_resultants(&self, sigma: f64) -> Option<(f64, f64)> {
         let ei = self.params.bending_stiffness?;
+        if self.kernel.theory() == drive::scene::Theory::Cosserat {
+            let (e, xi) = self.mesh.locate(sigma);
+            return Some(self.section_moment_and_shear(e, xi, ei));
+        }
         let (e, xi) = self.mesh.locate(sigma);
         let (m, v) = self.moment_and_shear(e, xi, ei);
         if xi == -1.0 {
@@ -832,8 +873,8 @@ fn bisect(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
 }
 
 impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<N, K> {
-    fn contour(&self) -> &Contour {
-        self.mesh.contour()
+    fn path(&self) -> drive::contour::Path {
+        drive::contour::Path::Loop(*self.mesh.contour())
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {

@@ -18,11 +18,17 @@ use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{TermParams, NDOF};
 use crate::linear::SparseLu;
-use crate::mesh::Mesh;
+use crate::mesh::{Grading, Mesh};
 use crate::newton::{self, NewtonFailure, NewtonSettings, Scales};
 use crate::options::SolverSettings;
 use crate::problem::{BeltSection, Geometry};
 use crate::solution::FemSolution;
+
+/// Decay length of the Cosserat mesh grading, in shear layers √(a/b₂) (docs/fem-cosserat.md §9).
+pub const GRADING_WIDTH: f64 = 2.0;
+/// Peak refinement of the Cosserat mesh grading: elements at a contact edge are about
+/// 1 + this times shorter than far from it (docs/fem-cosserat.md §9).
+pub const GRADING_RATIO: f64 = 8.0;
 
 /// The static frictionless problem of a string or Kirchhoff rod on two pulleys: the
 /// typed data of [`crate::FemProblem`] it needs (SI) with the penalty resolved.
@@ -146,6 +152,15 @@ impl StringHanging {
     }
 
     /// ρ g, N/m (0 without gravity).
+    /// The fitted meshes of a Cosserat rod are graded towards its contact edges over its
+    /// shear layer ℓ = √(a/b₂) (docs/fem-cosserat.md §9): density
+    /// 1 + [`GRADING_RATIO`]·exp(−d/([`GRADING_WIDTH`]·ℓ)) at the distance d from an
+    /// edge. `None` (uniform pieces) for a string and a Kirchhoff rod.
+    fn grading(&self) -> Option<Grading> {
+        let layer = (self.belt.bending_stiffness? / self.belt.shear_stiffness?).sqrt();
+        Some(Grading { width: GRADING_WIDTH * layer, ratio: GRADING_RATIO })
+    }
+
     fn weight(&self) -> f64 {
         self.gravity.map_or(0.0, |g| self.belt.mass_per_length * g)
     }
@@ -225,7 +240,7 @@ impl StringHanging {
 
         // contact fitting with the soft penalty (docs/fem-string.md §5)
         if fitting {
-            sol = fit(sol, &soft_params, length, &kernel, &mut lu, &scales, &fit_newton, settings, &mut report);
+            sol = fit(sol, &soft_params, length, &kernel, &mut lu, &scales, &fit_newton, settings, self.grading(), &mut report);
         }
         // penalty continuation to the final P on the (fitted) mesh, then refit
         if let (Some(target), Some(mut current)) = (self.penalty, soft.penalty) {
@@ -243,7 +258,7 @@ impl StringHanging {
                 }
                 sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, params, length, kernel.clone());
                 if fitting {
-                    sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &fit_newton, settings, &mut report);
+                    sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &fit_newton, settings, self.grading(), &mut report);
                 }
             }
         }
@@ -422,6 +437,7 @@ fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
     scales: &Scales,
     newton_settings: &NewtonSettings,
     settings: &SolverSettings,
+    grading: Option<Grading>,
     report: &mut HomotopyReport,
 ) -> FemSolution<N, K> {
     let contour = *sol.mesh().contour();
@@ -439,7 +455,7 @@ fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
         stall: None,
         keep_best: true,
     };
-    let mut problem = StaticFit { sol, params, length, kernel, lu, scales, newton_settings, tolerance: settings.update_tolerance, report };
+    let mut problem = StaticFit { sol, params, length, kernel, lu, scales, newton_settings, tolerance: settings.update_tolerance, grading, report };
     let out = fitting::fit(&mut problem, &rules);
     let report = problem.report;
     report.fits += out.passes;
@@ -464,6 +480,7 @@ struct StaticFit<'a, const N: usize, K: LayoutElement<N> + ?Sized> {
     scales: &'a Scales,
     newton_settings: &'a NewtonSettings,
     tolerance: f64,
+    grading: Option<Grading>,
     report: &'a mut HomotopyReport,
 }
 
@@ -505,6 +522,10 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> Fitted for StaticFit<'_, N, K
 
     fn restore(&mut self, snapshot: FemSolution<N, K>) {
         self.sol = snapshot;
+    }
+
+    fn grading(&self) -> Option<Grading> {
+        self.grading
     }
 }
 

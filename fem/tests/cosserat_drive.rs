@@ -1,9 +1,9 @@
 //! The two-pulley Cosserat drive in steady motion by the FE's direct steady solve
-//! (docs/fem-cosserat.md §9, §10): the `string-drive` geometry with `"theory": "cosserat"`
+//! (docs/fem-cosserat.md §10, §11): the `string-drive` geometry with `"theory": "cosserat"`
 //! (a, b₂ given), solved through `solve_scene` with the Cosserat element — the power
 //! balance P_in = P_out + D and the driven pulley's torque balance to round-off, creep
 //! (ω₂ < ω₁), stick and slip on both pulleys. (The gravity-free variant, and finer
-//! meshes, stall in the contact fitting — docs/fem-cosserat.md §10.)
+//! meshes, stall in the contact fitting — docs/fem-cosserat.md §11.)
 
 use drive::Scene;
 use fem::{FemOptions, FemRun, SolverSettings};

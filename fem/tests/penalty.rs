@@ -31,7 +31,7 @@ const QUANTITIES: [&str; 5] = ["y_upper_mid", "y_lower_mid", "tension_upper_mid"
 /// penalised state exactly; near the coordinate transitions the cubic also dips between
 /// integration points, an O(h⁴/R³) ≈ 1e-8 m discretisation effect independent of P), m.
 fn max_penetration(view: &dyn SolutionView, penalty: f64) -> f64 {
-    let c = *view.contour();
+    let c = view.contour().expect("a two-pulley loop");
     let mut worst: f64 = 0.0;
     for region in [Region::DrivenArc, Region::DriverArc] {
         let (a, b) = c.region_bounds(region);

@@ -58,7 +58,7 @@ fn closed_form_relations_of_the_rod() {
     let scene = scene("rod-hanging");
     let r = run(&scene, 128, "rod-simpson");
     let v = r.view.as_ref();
-    let c = *v.contour();
+    let c = v.contour().expect("a two-pulley loop");
     let (ea, ei) = (scene.belt.axial_stiffness, scene.belt.bending_stiffness.unwrap());
     let w = scene.belt.mass_per_length * scene.effects.gravity.unwrap();
     let mut worst_m: f64 = 0.0;

@@ -74,7 +74,7 @@ fn belt_creep_theory_with_shrinking_error() {
         let s = &r.summary;
         let (slip_err, speed_err) = creep_errors(&scene, &r);
         // elements per arc: ⌊N/2⌋ split between a span and an arc by length (fem-string.md §5)
-        let c = r.view.contour();
+        let c = r.view.contour().expect("a two-pulley loop");
         let pr = std::f64::consts::PI * c.radius();
         let arc_element = std::f64::consts::PI / ((n / 2) as f64 * pr / (c.centre_distance() + pr)).round();
         eprintln!("n {n}: T_t {:?} T_s {:?} ω₂ {:?} slip err {slip_err:?} (arc element {arc_element:.4} rad) speed err {speed_err:.3e} steps {}", s.tension_tight, s.tension_slack, s.driven_speed, drive_option(&r, "steps"));
@@ -93,7 +93,7 @@ fn belt_creep_theory_with_shrinking_error() {
         assert!((dt - 2.0 / 0.08).abs() < 0.02 * 25.0, "T_t − T_s = {dt}");
         // stick zone of the driver at entry: the incoming (tight) tension, no traction;
         // the driven stick zone at the slack tension (σ a quarter into each arc)
-        let c = r.view.contour();
+        let c = r.view.contour().expect("a two-pulley loop");
         let (h, rad) = (c.centre_distance(), c.radius());
         let sigma_driver = 2.0 * h + std::f64::consts::PI * rad + 0.25 * std::f64::consts::PI * rad;
         let sigma_driven = h + 0.25 * std::f64::consts::PI * rad;
@@ -300,7 +300,7 @@ fn transport_inertia_acts_through_the_effective_tension() {
     let slip = s.driven.as_ref().unwrap().slip_arc.unwrap();
     let speed_err = ((s.driven_speed.unwrap() / 100.0) - ls / lt).abs();
     if std::env::var("DRIVE_TEST_VERBOSE").is_ok() {
-        let c = r.view.contour();
+        let c = r.view.contour().expect("a two-pulley loop");
         for f in [0.1, 0.3, 0.5, 0.7, 0.9] {
             let sigma = c.centre_distance() + f * std::f64::consts::PI * c.radius();
             let n = r.view.axial_force(sigma);
@@ -313,7 +313,7 @@ fn transport_inertia_acts_through_the_effective_tension() {
     // the contact pressure is the effective tension over R in the stick zones (normal
     // balance with the centripetal term, docs/fem-drive.md §6): the AL pressure at the
     // points against (N − ρc²λ)/R, to the interpolation error of p between points
-    let c = r.view.contour();
+    let c = r.view.contour().expect("a two-pulley loop");
     for f in [0.1, 0.3] {
         for sigma in [c.centre_distance() + f * std::f64::consts::PI * c.radius(), 2.0 * c.centre_distance() + (1.0 + f) * std::f64::consts::PI * c.radius()] {
             let n = r.view.axial_force(sigma);
@@ -365,7 +365,7 @@ fn friction_traction_along_sigma() {
     let scene = creep_scene();
     let ds = DriveSettings::from_scene(&scene);
     let r = run(&scene, 64, None, &ds).unwrap();
-    let c = *r.view.contour();
+    let c = r.view.contour().expect("a two-pulley loop");
     let (h, rad) = (c.centre_distance(), c.radius());
     let mu = 0.3;
     // (first σ, pulley summary, sign of τ in the slip zone); each arc with R beyond both

@@ -63,6 +63,7 @@ pub fn gate_plan_with(scene: &Scene, bvp_tolerance: f64, meshes: Option<&[usize]
         samples: DEFAULT_SAMPLES,
         max_nodes: Some(STUDY_MAX_NODES),
     }
+    .without_unsolvable_fem(scene)
 }
 
 /// What a check compares.

@@ -431,6 +431,7 @@ fn csv_fields(file: &Path, text: &str, first_line: usize) -> Result<Fields, Outs
         y: take("y").unwrap_or_default(),
         tension: take("tension").unwrap_or_default(),
         moment: take("moment"),
+        ..Fields::default()
     })
 }
 

@@ -16,7 +16,6 @@ use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::CoordTranslate;
 use plotters::prelude::*;
 
-use drive::contour::Region;
 use drive::scene::Scene;
 use drive::view::ContactState;
 
@@ -187,22 +186,10 @@ fn log_label(v: &f64) -> String {
     }
 }
 
-/// The σ bounds of the four regions with short names.
+/// The σ bounds of the regions of the scene's path (four round the loop, three along
+/// the open contour) with short names.
 fn regions(scene: &Scene) -> Vec<(f64, f64, &'static str)> {
-    let c = scene.contour();
-    Region::ALL
-        .iter()
-        .map(|&r| {
-            let (a, b) = c.region_bounds(r);
-            let name = match r {
-                Region::UpperSpan => "upper span",
-                Region::DrivenArc => "driven arc",
-                Region::LowerSpan => "lower span",
-                Region::DriverArc => "driver arc",
-            };
-            (a, b, name)
-        })
-        .collect()
+    scene.path().regions()
 }
 
 // ---------------------------------------------------------------------------
@@ -217,13 +204,15 @@ pub fn shape_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
         return message_svg("shape", "belt shape", "the reference could not be computed: no shape to draw");
     };
     let s = &reference.samples;
-    let c = scene.contour();
-    let (r, h) = (c.radius(), c.centre_distance());
+    let path = scene.path();
+    let r = path.radius();
+    let centres = path.pulley_centres();
     let fe = finest_fe(study);
     // Equal aspect ratio: choose the shape panel's height from its data ranges.
     let xs = s.x.iter().chain(fe.iter().flat_map(|f| f.1.x.iter()));
     let ys = s.y.iter().chain(fe.iter().flat_map(|f| f.1.y.iter()));
-    let (mut x0, mut x1) = range_of(xs.chain([-h / 2.0 - r, h / 2.0 + r].iter()));
+    let extent: Vec<f64> = centres.iter().flat_map(|c| [c[0] - r, c[0] + r]).collect();
+    let (mut x0, mut x1) = range_of(xs.chain(extent.iter()));
     let (mut y0, mut y1) = range_of(ys.chain([-r, r].iter()));
     let pad = 0.08 * (x1 - x0).max(y1 - y0);
     x0 -= pad;
@@ -272,7 +261,7 @@ pub fn shape_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
             .draw()
             .map_err(err)?;
         // Pulleys: discs of radius R (to the belt centreline) and their centres.
-        for centre in [[-h / 2.0, 0.0], [h / 2.0, 0.0]] {
+        for &centre in &centres {
             let circle: Vec<(f64, f64)> = (0..=180)
                 .map(|k| {
                     let a = k as f64 / 180.0 * std::f64::consts::TAU;

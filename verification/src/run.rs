@@ -494,7 +494,7 @@ impl Samples {
     /// # Errors
     /// The first non-finite sample, e.g. `non-finite tension (NaN) at σ = 0.3 m`.
     pub fn of_view(view: &dyn SolutionView, n: usize) -> Result<Samples, NonFiniteSample> {
-        let l = view.contour().length();
+        let l = view.path().length();
         let mut s = Samples::default();
         let mut moment = Vec::with_capacity(n);
         let mut has_moment = n > 0;

@@ -155,6 +155,18 @@ impl StudyPlan {
             samples: DEFAULT_SAMPLES,
             max_nodes: Some(STUDY_MAX_NODES),
         }
+        .without_unsolvable_fem(scene)
+    }
+
+    /// No FE runs for a scene the FE does not solve yet ([`drive::not_yet_solvable`], e.g.
+    /// the one-pulley layout): a BVP-only plan (the study notes why), so that neither
+    /// `converge` nor `gate` asks for runs that can only be refused.
+    pub fn without_unsolvable_fem(mut self, scene: &Scene) -> StudyPlan {
+        if drive::not_yet_solvable(scene, drive::Solver::Fem).is_some() {
+            self.formulations = Formulations::Named(Vec::new());
+            self.meshes = Vec::new();
+        }
+        self
     }
 
     /// The same tolerance sequence for every BVP variant.
@@ -453,7 +465,9 @@ impl Study {
         }
         let fem_studied = series.iter().any(|s| s.family == Family::Fem && s.status == SeriesStatus::Studied);
         if !series.iter().any(|s| s.family == Family::Fem) {
-            if registered.is_empty() {
+            if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
+                notes.push(format!("BVP-only study: {e}"));
+            } else if registered.is_empty() {
                 notes.push("no FE formulation registered: BVP-only study (no FE rows, no mutual convergence)".to_string());
             } else {
                 notes.push("no FE formulation selected: BVP-only study".to_string());

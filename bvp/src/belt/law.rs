@@ -303,6 +303,14 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
     /// rod: jumps of the transverse force), or a finite edge pressure (the Cosserat rod).
     const CONTACT_EDGES: ContactEdges = ContactEdges::Forces;
 
+    /// The force the slip-direction check of [`BeltSolution::check_contact`] compares
+    /// through a slip zone with its value where the stick zone begins (N): by default the
+    /// axial force; a law whose axial force varies in the edge layers of a contact zone
+    /// (the Cosserat drive: N = b₁(λ cos γ − 1)) gives one that follows the stretch.
+    fn slip_force(&self, _data: &Self::Data, point: &BeltPoint) -> f64 {
+        point.tension
+    }
+
     /// The point-wise force condition of the contact check: which force must stay
     /// positive on this kind of segment (name, value in N), if any.
     fn positive_force(kind: SegmentKind, point: &BeltPoint) -> Option<(&'static str, f64)>;

@@ -188,7 +188,11 @@ mod tests {
             end_forces: [0.97, 0.64],
             mu: 0.3,
             slip_sign: 1.0,
+            free_end: None,
+            closing: crate::cosserat_pulley::Closing::None,
         };
-        declared_params_are_complete(&BeltProblem::new(Topology::one_pulley(), pulley), 0.6);
+        declared_params_are_complete(&BeltProblem::new(Topology::one_pulley(), pulley.clone()), 0.6);
+        let speed = crate::cosserat_pulley::ScaledCosseratPulley { free_end: Some(0), closing: crate::cosserat_pulley::Closing::StickStretch(1.01), ..pulley };
+        declared_params_are_complete(&BeltProblem::new(Topology::one_pulley(), speed), 0.6);
     }
 }

@@ -8,7 +8,7 @@ use std::cell::RefCell;
 use std::f64::consts::PI;
 use std::time::Instant;
 
-use drive::contour::Contour;
+use drive::contour::{Contour, Path};
 use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
 
@@ -273,7 +273,8 @@ impl<L: SectionLaw> BeltSolution<L> {
         let pressure_floor = -1e-9 * (weight + fr / radius);
         let inside = radius * (1.0 - 1e-6);
         let mu = L::friction(&self.data);
-        let stick_tension = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.0).tension);
+        let law = &self.problem.law;
+        let stick_tension = |pulley| topo.arc(pulley, ArcKind::Stick).map(|k| law.slip_force(&self.data, &self.point(k, 0.0)));
         // the pulley that puts power in drags the belt along its travel: the tension falls
         // from the stick zone through the slip zone; on the other it rises
         let flow = self.problem.law.power_flow();
@@ -324,17 +325,16 @@ impl<L: SectionLaw> BeltSolution<L> {
             }
             let tol = 1e-9 * fr;
             if kind == SegmentKind::Arc(ArcKind::Slip) {
+                let tension = law.slip_force(&self.data, &pt);
                 match (puts_power_in(pulley), stick_tension(pulley)) {
-                    (true, Some(t)) if pt.tension > t + tol => {
+                    (true, Some(t)) if tension > t + tol => {
                         return Err(v(format!(
-                            "slip direction: tension {:.6e} N above the stick tension {t:.6e} N in the {name} pulley's slip zone (it puts power in)",
-                            pt.tension
+                            "slip direction: tension {tension:.6e} N above the stick tension {t:.6e} N in the {name} pulley's slip zone (it puts power in)"
                         )));
                     }
-                    (false, Some(t)) if pt.tension < t - tol => {
+                    (false, Some(t)) if tension < t - tol => {
                         return Err(v(format!(
-                            "slip direction: tension {:.6e} N below the stick tension {t:.6e} N in the {name} pulley's slip zone (it takes power out)",
-                            pt.tension
+                            "slip direction: tension {tension:.6e} N below the stick tension {t:.6e} N in the {name} pulley's slip zone (it takes power out)"
                         )));
                     }
                     _ => {}
@@ -402,8 +402,8 @@ impl<L: SectionLaw> BeltSolution<L> {
 }
 
 impl<L: SectionLaw> SolutionView for BeltSolution<L> {
-    fn contour(&self) -> &Contour {
-        self.sigma_map.contour()
+    fn path(&self) -> Path {
+        self.sigma_map.path()
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {

@@ -123,8 +123,15 @@ pub fn contact_rows<D: Scalar>(radius: f64, pulley: Pulley, phi: D, span: &[D], 
 /// Γ₁ = (F̃·e₁ + χ)/(b₁ − χ), Γ₂ = F̃·e₂/(b₂ − χ) (χ = 0 at rest), weight ρg per length.
 #[allow(clippy::too_many_arguments)]
 pub fn span_rhs<D: Scalar>(b1: f64, b2: f64, chi: f64, weight: f64, a: D, l: D, y: &[D], f: &mut [D]) {
+    moving_span_rhs(b1, b2, D::from(chi), D::from(weight), a, l, y, f);
+}
+
+/// [`span_rhs`] with χ and the weight as scalars of the solve: the drive's χ = ρc² reads
+/// the unknown transport rate c (docs/cosserat-drive.md, (CD1)).
+#[allow(clippy::too_many_arguments)]
+pub fn moving_span_rhs<D: Scalar>(b1: f64, b2: f64, chi: D, weight: D, a: D, l: D, y: &[D], f: &mut [D]) {
     let (n, q) = ScaledCosseratHanging::span_nq(y);
-    let (g1, g2) = ((n + chi) / (b1 - chi), q / (b2 - chi));
+    let (g1, g2) = ((n + chi) / (-chi + b1), q / (-chi + b2));
     let (c, s) = (y[2].cos(), y[2].sin());
     let dx = (g1 + 1.0) * c - g2 * s;
     let dy = (g1 + 1.0) * s + g2 * c;

@@ -30,6 +30,22 @@ const TORQUE: usize = 3;
 const LAMBDA: usize = 4;
 /// Parameter index of the stick stretch λ_B (after the topology's five).
 pub(crate) const LAMBDA_B: usize = 5;
+/// Parameter index of the free end's effective force (modes other than `tensions`).
+const END_FORCE: usize = 6;
+/// Parameter index of the stick → slip angle φ_B (the topology's `phi_t`).
+const PHI_B: usize = 3;
+
+/// The condition that closes a mode other than `tensions` (spec §2.3), in place of the
+/// free end's force.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Closing {
+    /// Mode `tensions`: both end forces given, nothing to add.
+    None,
+    /// Mode `transition`: φ_B = the given angle (rad).
+    StickSlipAngle(f64),
+    /// Mode `pulley_speed`: λ_B = ωR/c.
+    StickStretch(f64),
+}
 
 /// The scaled one-pulley problem. Its homotopy path η interpolates the bending
 /// stiffness in log, a(η) = a₀^(1−η) a^η, from the start a₀ (= a unless a continuation
@@ -55,6 +71,11 @@ pub struct ScaledCosseratPulley {
     /// Slip sign σ: +1 when the pulley drives the belt (N_in > N_out: the belt is slower
     /// than the surface in the slip zone), −1 when it brakes.
     pub slip_sign: f64,
+    /// The end (0 inflow, 1 outflow) whose effective force is the unknown parameter
+    /// `end_force` instead of `end_forces[e]` (its start value); `None` in mode `tensions`.
+    pub free_end: Option<usize>,
+    /// The condition that replaces the free end's force.
+    pub closing: Closing,
 }
 
 /// One arc point in d/ds: slopes and the contact loads of (C3).
@@ -133,7 +154,10 @@ impl SectionLaw for ScaledCosseratPulley {
     }
 
     fn extra_params(&self) -> &'static [&'static str] {
-        &["lambda_b"]
+        match self.free_end {
+            None => &["lambda_b"],
+            Some(_) => &["lambda_b", "end_force"],
+        }
     }
 
     /// The stick arc reads λ_B; nothing else besides each segment's own parameters.
@@ -183,10 +207,13 @@ impl SectionLaw for ScaledCosseratPulley {
         contact_rows(1.0, pulley, phi, span, arc, &f, Edge::End { closes_loop: false }, rows);
     }
 
-    fn open_ends<D: Scalar>(&self, inflow: &[D], outflow: &[D], _: &[D], _: D, rows: &mut Rows<D>) {
+    fn open_ends<D: Scalar>(&self, inflow: &[D], outflow: &[D], p: &[D], _: D, rows: &mut Rows<D>) {
         // (CP6) inflow: x = −D, θ = 0, F̃ = (F̃_in, 0) (Q = 0), s = 0;
-        // outflow: x = −D, θ = −π, M = 0, F̃·e₁ = F̃_out.
-        let [f_in, f_out] = self.end_forces;
+        // outflow: x = −D, θ = −π, M = 0, F̃·e₁ = F̃_out; the free end's force (modes
+        // `transition`, `pulley_speed`) is the parameter `end_force`, closed by the mode's
+        // prescription (spec §2.3).
+        let force = |e: usize| if self.free_end == Some(e) { p[END_FORCE] } else { D::from(self.end_forces[e]) };
+        let (f_in, f_out) = (force(0), force(1));
         rows.push(inflow[0] + self.end_distance);
         rows.push(inflow[2]);
         rows.push(inflow[4] - f_in);
@@ -197,6 +224,11 @@ impl SectionLaw for ScaledCosseratPulley {
         rows.push(outflow[2] + PI);
         rows.push(outflow[3]);
         rows.push(n - f_out);
+        match self.closing {
+            Closing::None => {}
+            Closing::StickSlipAngle(phi) => rows.push(p[PHI_B] - phi),
+            Closing::StickStretch(stretch) => rows.push(p[LAMBDA_B] - stretch),
+        }
     }
 
     fn loop_conditions<D: Scalar>(&self, _: &Topology, _: &[&[D]], _: &[&[D]], _: &[D], _: D, _: &mut Rows<D>) {

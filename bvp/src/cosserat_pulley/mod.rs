@@ -13,6 +13,7 @@
 //! ([`CosseratPulleySolution::check_admissible`]).
 
 pub mod law;
+mod view;
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::time::Instant;
@@ -20,14 +21,17 @@ use std::time::Instant;
 use serde::Serialize;
 
 use drive::summary::{PulleySummary, Summary};
+use drive::scene::End;
+use drive::OpenContour;
 
 use crate::belt::balance::Balance;
 use crate::belt::run::{self, StageError};
 use crate::belt::solution::wrap_angle;
 use crate::belt::topology::Scaling;
 use crate::belt::{check_positive, ArcKind, BeltError, BeltOptions, BeltPoint, BeltProblem, Scales, SectionLaw, SegmentKind, Topology};
+use crate::sigma_map::SigmaMap;
 use crate::solution::{Solution, Stats};
-pub use law::ScaledCosseratPulley;
+pub use law::{Closing, ScaledCosseratPulley};
 use law::LAMBDA_B;
 
 /// Relative tolerance of the moment balance (C-2) against F_ref·R (as the other belt
@@ -38,7 +42,42 @@ pub const MOMENT_TOLERANCE: f64 = 1e-4;
 /// with a thinner layer starts at a₀ with this layer and continues in log a.
 pub const START_LAYER: f64 = 0.05;
 
-/// Physical data of a one-pulley scene in mode `tensions` (SI units).
+/// Which two of the four global quantities {N_in, N_out, ω, φ_B} a one-pulley scene
+/// prescribes besides c (spec §2.3; the scene's `drive.tension_in`, `tension_out`,
+/// `pulley_speed`, `stick_slip_angle`). A mode other than `Tensions` adds one unknown, the
+/// free end's effective force, and one condition, its prescription.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum Mode {
+    /// N_in and N_out given (the data's `tension_in`, `tension_out`): ω and φ_B computed.
+    Tensions,
+    /// The stick → slip angle φ_B (rad) and the tension of the end `given`: ω and the
+    /// other tension computed. φ_B fixes the slip arc, not its sense: `driving` chooses
+    /// the pulley driving the belt (N_in > N_out) or braking it (N_in < N_out).
+    Transition {
+        /// φ_B, rad.
+        stick_slip_angle: f64,
+        /// The end whose tension is given.
+        given: End,
+        /// The pulley drives the belt (σ = +1) or brakes it (σ = −1).
+        driving: bool,
+    },
+    /// ω (rad/s, clockwise positive) and N_out given: the stick stretch λ_B = ωR/c is
+    /// known, N_in and φ_B computed. (With N_in given instead, ω carries no information
+    /// about N_out: the stick zone sits on the inflow side and λ_B = λ(N_in) up to terms
+    /// exponentially small in the stick arc over the edge layer — refused by the scene
+    /// dispatch, `bvp::scene::cosserat_pulley_data`.)
+    PulleySpeed {
+        /// ω, rad/s.
+        pulley_speed: f64,
+    },
+}
+
+/// The pulley speed ω given with N_in does not determine N_out (see [`Mode::PulleySpeed`]).
+pub const PULLEY_SPEED_WITH_TENSION_IN: &str = "ω fixes the stick stretch λ_B = ωR/c, and the stick zone sits on the inflow side, so λ_B ≈ λ(N_in): ω and N_in together leave N_out undetermined (up to exponentially small terms); prescribe `pulley_speed` with `tension_out`";
+
+/// Physical data of a one-pulley scene (SI units). In a mode other than
+/// [`Mode::Tensions`] the free end's tension holds the string estimate of the start
+/// ([`CosseratPulley::with_mode`]) until the solve replaces it by the solved value.
 #[derive(Debug, Clone, Copy, Serialize)]
 pub struct CosseratPulley {
     /// Pulley radius R to the belt centreline (m).
@@ -63,6 +102,8 @@ pub struct CosseratPulley {
     pub friction: f64,
     /// Persistent transport inertia on (χ = ρc²) or off (χ = 0).
     pub inertia: bool,
+    /// The prescription mode.
+    pub mode: Mode,
 }
 
 impl CosseratPulley {
@@ -94,6 +135,75 @@ impl CosseratPulley {
     /// The shear layer ℓ_s = √(a/(b₂ − χ)) (m) of the edge pressure peaks (spec §1.8).
     pub fn shear_layer(&self) -> f64 {
         (self.bending_stiffness / (self.shear_stiffness - self.chi())).sqrt()
+    }
+
+    /// N of an end section with T̃ (Q = 0): the inverse of [`CosseratPulley::effective`].
+    pub fn tension_of(&self, effective: f64) -> f64 {
+        (effective + self.chi()) / (1.0 - self.chi() / self.axial_stiffness)
+    }
+
+    /// The end whose tension the solve computes: 0 inflow, 1 outflow; `None` in mode
+    /// `tensions`.
+    pub fn free_end(&self) -> Option<usize> {
+        match self.mode {
+            Mode::Tensions => None,
+            Mode::Transition { given: End::In, .. } => Some(1),
+            Mode::Transition { given: End::Out, .. } | Mode::PulleySpeed { .. } => Some(0),
+        }
+    }
+
+    /// The data in `mode`, the free end's tension set to the string estimate of the start
+    /// (spec §2.4): mode `pulley_speed` the stick section's T̃ at λ_B = ωR/c; mode
+    /// `transition` the capstan T̃_high = T̃_low e^{μ(φ_B − φ_C)} over the slip arc from φ_B
+    /// to the string contact end φ_C = −π/2 + √(a/T̃_out)/R. The given tension is read
+    /// from its field.
+    ///
+    /// # Errors
+    /// [`BeltError::InvalidInput`] when the prescription has no positive effective
+    /// tension or no slip arc (φ_B below the contact end).
+    pub fn with_mode(self, mode: Mode) -> Result<CosseratPulley, BeltError> {
+        let mut d = CosseratPulley { mode, ..self };
+        let contact_end = |t_out: f64| -FRAC_PI_2 + (d.bending_stiffness / t_out).sqrt() / d.radius;
+        match mode {
+            Mode::Tensions => {}
+            Mode::PulleySpeed { pulley_speed } => {
+                check_positive(&[("pulley_speed", pulley_speed), ("transport_rate", d.transport_rate)])?;
+                let stretch = pulley_speed * d.radius / d.transport_rate;
+                let effective = (d.axial_stiffness - d.chi()) * stretch - d.axial_stiffness;
+                if effective.is_nan() || effective <= 0.0 {
+                    return Err(BeltError::InvalidInput { name: "pulley_speed", value: pulley_speed, reason: "the stick stretch ωR/c leaves no positive effective tension at the inflow end" });
+                }
+                d.tension_in = d.tension_of(effective);
+            }
+            Mode::Transition { stick_slip_angle, given, driving } => {
+                let sm = if driving { d.friction } else { -d.friction };
+                let known = d.effective(match given {
+                    End::In => d.tension_in,
+                    End::Out => d.tension_out,
+                });
+                if !(known > 0.0 && sm.is_finite()) {
+                    return Err(BeltError::InvalidInput { name: "tension", value: known, reason: "the given end has no positive effective tension" });
+                }
+                // T̃_in = T̃_out e^{σμ(φ_B − φ_C)}; with T̃_in given, φ_C depends on T̃_out: a
+                // fixed point (a contraction: ∂φ_C/∂T̃_out ≪ 1/(μT̃))
+                let mut t_out = known;
+                for _ in 0..30 {
+                    let arc = stick_slip_angle - contact_end(t_out);
+                    if arc.is_nan() || arc < 0.0 {
+                        return Err(BeltError::InvalidInput { name: "stick_slip_angle", value: stick_slip_angle, reason: "the stick → slip angle lies below the contact end φ_C ≈ −π/2 + √(a/T̃_out)/R: no slip arc" });
+                    }
+                    if given == End::Out {
+                        d.tension_in = d.tension_of(known * (sm * arc).exp());
+                        break;
+                    }
+                    t_out = known * (-sm * arc).exp();
+                }
+                if given == End::In {
+                    d.tension_out = d.tension_of(t_out);
+                }
+            }
+        }
+        Ok(d)
     }
 }
 
@@ -151,6 +261,8 @@ pub struct CosseratPulleySolution {
     pub stats: Stats,
     /// Accepted homotopy points (start included).
     pub homotopy_steps: usize,
+    /// σ on the open contour at dense samples (the common view's lookup).
+    sigma_map: SigmaMap,
 }
 
 /// The scaled law of the data at the homotopy start a₀ (spec §2.4).
@@ -172,6 +284,12 @@ fn scaled(d: &CosseratPulley) -> (ScaledCosseratPulley, Scales) {
         end_forces: [d.effective(d.tension_in) / fr, d.effective(d.tension_out) / fr],
         mu: d.friction,
         slip_sign: d.slip_sign(),
+        free_end: d.free_end(),
+        closing: match d.mode {
+            Mode::Tensions => Closing::None,
+            Mode::Transition { stick_slip_angle, .. } => Closing::StickSlipAngle(stick_slip_angle),
+            Mode::PulleySpeed { pulley_speed } => Closing::StickStretch(pulley_speed * d.radius / d.transport_rate),
+        },
     };
     (law, scales)
 }
@@ -202,7 +320,8 @@ pub fn creep_guess(d: &CosseratPulley, law: &ScaledCosseratPulley, nodes: usize)
         (0..n).map(|i| 0.5 * h * (1.0 / lam(t_slip(phi_b - i as f64 * h)) + 1.0 / lam(t_slip(phi_b - (i + 1) as f64 * h)))).sum::<f64>()
     };
     let s_c = s_b + s_slip(phi_c);
-    let params = vec![l0, l3, phi_a, phi_b, phi_c, lam_b];
+    let mut params = vec![l0, l3, phi_a, phi_b, phi_c, lam_b];
+    params.extend(law.free_end.map(|e| law.end_forces[e]));
     Solution::from_fn(4, nodes, params, 0.0, |k, xi| match k {
         0 => {
             let x = -dd + (xa + dd) * xi;
@@ -260,6 +379,8 @@ pub fn effective_force(d: &CosseratPulley, p: &BeltPoint) -> [f64; 2] {
 pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulleySolution, BeltError> {
     let clock = Instant::now();
     validate(data, opts)?;
+    let contour = OpenContour::new(data.radius, data.end_distance)
+        .map_err(|_| BeltError::InvalidInput { name: "end_distance", value: data.end_distance, reason: "R and D must be finite and > 0" })?;
     let (law, scales) = scaled(data);
     let guess = creep_guess(data, &law, 41);
     let problem = BeltProblem::new(Topology::one_pulley(), law);
@@ -285,7 +406,7 @@ pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulley
         },
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
     })?;
-    let sol = CosseratPulleySolution {
+    let mut sol = CosseratPulleySolution {
         data: *data,
         problem,
         solution: solved.solution,
@@ -293,9 +414,17 @@ pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulley
         options: opts.clone(),
         stats: solved.stats,
         homotopy_steps: solved.homotopy_steps,
+        sigma_map: SigmaMap::empty(contour),
     };
     check_moment_balance(&sol.data, |k, xi| sol.point(k, xi))?;
     sol.check_admissible()?;
+    // the free end's tension: its start estimate replaced by the solved value
+    match sol.data.free_end() {
+        Some(0) => sol.data.tension_in = sol.point(0, 0.0).tension,
+        Some(_) => sol.data.tension_out = sol.point(3, 1.0).tension,
+        None => {}
+    }
+    sol.sigma_map = sol.build_sigma_map();
     Ok(sol)
 }
 

@@ -19,9 +19,10 @@ use numerics::Sig;
 use serde::Serialize;
 
 use crate::analytical::belt_creep::{CreepData, CreepError, CreepSolution};
+use crate::belt::balance;
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, tight_guess, Run};
-use crate::belt::topology::{ArcKind, ContactModel, Direction, PowerFlow, Pulley, Scaling, Topology};
+use crate::belt::topology::{ContactModel, Direction, PowerFlow, Topology};
 use crate::belt::{BeltError, BeltOptions, BeltProblem, BeltSolution, Scales};
 use crate::error::BvpError;
 use crate::solution::Solution;
@@ -234,40 +235,14 @@ impl StringDriveSolution {
     /// scene's transmitted power |(M₂ + d₂ω₁) ω₁|, or F_ref |ω₁|R for a drive without
     /// load.
     pub fn power_scale(&self) -> f64 {
-        let d = &self.data;
-        let resisting = (d.net_load() * d.driver_speed).abs();
-        if resisting > 0.0 { resisting } else { self.scales.force * d.driver_speed.abs() * d.radius }
+        balance::drive_power_scale(&self.data, self.scales.force)
     }
 
     /// Power balance (W): (input M_in ω₁, output (M₂ + d₂ω₂) ω₂, slip dissipation
-    /// D = Σ ∫_slip τ (ωR − cλ) ds), the dissipation by 5-point Gauss–Legendre quadrature
-    /// on each mesh interval of the dense output (docs/string-drive.md, "Torques, power").
+    /// D = Σ ∫_slip τ (ωR − cλ) ds) ([`balance::drive_power`]; docs/string-drive.md,
+    /// "Torques, power").
     pub fn power_balance(&self) -> (f64, f64, f64) {
-        let d = &self.data;
-        let input = -self.torque(Pulley::Driver).expect("the drive integrates the torque") * d.driver_speed;
-        let omega2 = self.driven_speed().expect("a drive has its motion");
-        let output = (d.driven_torque + d.driven_damping * omega2) * omega2;
-        let c = self.transport_rate().expect("a drive has its motion");
-        const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
-        const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
-        let mut dissipation = 0.0;
-        let topo = self.topology();
-        for pulley in [Pulley::Driven, Pulley::Driver] {
-            let k = topo.arc(pulley, ArcKind::Slip).expect("a drive has slip arcs");
-            let omega = if pulley == Pulley::Driver { d.driver_speed } else { omega2 };
-            let Scaling::Arc { start: ia, end: ib, .. } = topo.segment(k).scaling else { unreachable!("an arc") };
-            let dphi = (self.solution.params[ib] - self.solution.params[ia]).abs();
-            for w in self.solution.segments[k].mesh.windows(2) {
-                let (a, b) = (w[0], w[1]);
-                for (gx, gw) in GX.iter().zip(GW) {
-                    let xi = 0.5 * (a + b) + 0.5 * (b - a) * gx;
-                    let pt = self.point(k, xi);
-                    let ds = d.radius / pt.stretch * dphi * 0.5 * (b - a) * gw;
-                    dissipation += pt.friction.unwrap_or(0.0) * (omega * d.radius - c * pt.stretch) * ds;
-                }
-            }
-        }
-        (input, output, dissipation)
+        balance::drive_power(self, &self.data)
     }
 }
 

@@ -491,6 +491,10 @@ impl LayoutElement<NC> for CosseratElement {
         let b2 = belt.shear_stiffness?;
         Some(Arc::new(CosseratElement { shear_stiffness: Some(b2), ..*self }))
     }
+
+    fn shear_stiffness(&self) -> Option<f64> {
+        self.shear_stiffness
+    }
 }
 
 #[cfg(test)]

@@ -59,6 +59,11 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn for_belt(&self, _belt: &crate::problem::BeltSection) -> Option<std::sync::Arc<dyn LayoutElement<N>>> {
         None
     }
+    /// The shear stiffness b₂ (N) the element holds (a bound Cosserat element), for the
+    /// recovery of its contact edges; `None` (the default) for an unshearable element.
+    fn shear_stiffness(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// A registered formulation of the string layout is a [`LayoutElement`] with 8 unknowns:

@@ -192,21 +192,18 @@ struct PulleyOut {
 /// Solve a friction-drive scene (see [`applies`]).
 ///
 /// # Errors
-/// [`FemError::Unsupported`] (ω₁ ≤ 0: the transient runs clockwise only),
-/// [`FemError::InvalidOption`], the static start's
+/// [`FemError::Unsupported`] (ω₁ = 0), [`FemError::InvalidOption`], the static start's
 /// errors, [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
 pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
-    // the transient's windowed slip and drum advance are written for a belt running
-    // along σ; the steady solve (`steady::solve`) runs both ways
-    let omega1 = problem.drive.driver_speed;
-    if omega1 < 0.0 {
-        return Err(FemError::Unsupported(format!(
-            "driver_speed ω₁ = {omega1} rad/s: the FE transient runs the driver clockwise only (ω₁ > 0); the steady analysis solves a counter-clockwise driver"
-        )));
-    }
     let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
+    // the belt runs along σ (ω₁ > 0) or against it (ω₁ < 0; docs/fem-drive.md §13): the
+    // signed quantities (drum advance Rω₁Δt, the upstream reference σ − d_ref, a, φ)
+    // carry the sense themselves; the step, the rate (D9) and the capacity take |ω₁|,
+    // the stick/slip order on a pulley and the arcs follow the travel
+    let direction = Direction::of_speed(omega1);
+    let speed = omega1.abs();
     let b = &problem.belt;
     let r = problem.geometry.radius;
     let contour = *start.mesh().contour();
@@ -224,7 +221,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
 
     // 2. time step, point states
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1);
-    let dt = drive_settings.time_step.unwrap_or(PI * r / arc_elements as f64 / (r * omega1));
+    let dt = drive_settings.time_step.unwrap_or(PI * r / arc_elements as f64 / (r * speed));
     let dt_first = dt;
     // P_⊥ = κ_⊥ EA/R², capped at P_γ (a tangential penalty above the normal one makes
     // the tangent singular at soft normal penalties)
@@ -326,10 +323,11 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         let mut rec = StepRecord::default();
         for _ in 0..drive_settings.max_al_iterations {
             // capacity with the frozen bounds (docs/fem-drive.md §5)
+            // (either sense: the load drives when M₂ + d₂ω₂ opposes ω₁)
             let demand = load_torque + damping * omega2_prev;
             for pulley in [Pulley::Driven, Pulley::Driver] {
                 let cap = r * points.iter().flatten().filter(|p| p.pulley == Some(pulley)).map(|p| p.friction_weight * p.bound).sum::<f64>();
-                if demand > cap {
+                if demand.abs() > cap {
                     return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time: Some(time) });
                 }
             }
@@ -386,7 +384,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         let c = a / dt;
         // steady-state rate (§7)
         let dz: Vec<f64> = x[..nz].iter().zip(&z).map(|(n, o)| n - o).collect();
-        let rate = (system::scaled_norm(&dz, &w_steady[..nz]).max((omega2 - omega2_prev).abs() / omega1).max((c - c_prev).abs() / c.abs().max(1e-300))) / (omega1 * dt);
+        let rate = (system::scaled_norm(&dz, &w_steady[..nz]).max((omega2 - omega2_prev).abs() / speed).max((c - c_prev).abs() / c.abs().max(1e-300))) / (speed * dt);
         z_old.copy_from_slice(&z);
         z.copy_from_slice(&x[..nz]);
         // the new state becomes the previous one of the points (S̃_n)
@@ -402,8 +400,8 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
             }
         }
         set_references(&mut points, &asm, &z, &params, length, &contour);
-        outs = [pulley_out(&points, Pulley::Driver, r, &contour), pulley_out(&points, Pulley::Driven, r, &contour)];
-        record(&mut history, time, omega2, c, &asm, &z, &params, length, &kernel, &contour, &points, &outs, rate);
+        outs = [pulley_out(&points, Pulley::Driver, r, &contour, direction), pulley_out(&points, Pulley::Driven, r, &contour, direction)];
+        record(&mut history, time, omega2, c, &asm, &z, &params, length, &kernel, &contour, &points, &outs, rate, direction);
         records.push(rec);
         a_prev = a;
         phi_prev = phi;
@@ -444,14 +442,14 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
     let c = a_prev / dt;
     let mut summary = base.summary();
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
-    summary.tension_tight = Some(stick_zone_force(&base, Pulley::Driver, outs[0].slip_start, Direction::Clockwise).unwrap_or(tu.max(tl)));
-    summary.tension_slack = Some(stick_zone_force(&base, Pulley::Driven, outs[1].slip_start, Direction::Clockwise).unwrap_or(tu.min(tl)));
+    summary.tension_tight = Some(stick_zone_force(&base, Pulley::Driver, outs[0].slip_start, direction).unwrap_or(tu.max(tl)));
+    summary.tension_slack = Some(stick_zone_force(&base, Pulley::Driven, outs[1].slip_start, direction).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
     summary.transport_rate = Some(c);
     for (k, pulley) in [Pulley::Driver, Pulley::Driven].into_iter().enumerate() {
         let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };
         let ps = block.get_or_insert_with(PulleySummary::default);
-        let (arc, slip) = arcs(&base, &points, pulley, &contour, &outs[k]);
+        let (arc, slip) = arcs(&base, &points, pulley, &contour, &outs[k], direction);
         ps.contact_arc = ps.contact_arc.or(Some(arc));
         ps.slip_arc = Some(slip);
         ps.stick_arc = Some((ps.contact_arc.unwrap_or(arc) - slip).max(0.0));
@@ -609,16 +607,21 @@ fn unwrap(contour: &Contour, pulley: Pulley, sigma: f64) -> f64 {
     }
 }
 
-/// Torque and stick→slip transition of a pulley from its points (docs/fem-drive.md §8).
-fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: &Contour) -> PulleyOut {
+/// Torque and stick→slip transition of a pulley from its points (docs/fem-drive.md §8,
+/// §13): the points in the order of the belt's travel — along σ clockwise, against it
+/// counter-clockwise — so the belt runs onto the pulley at the first one.
+fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: &Contour, direction: Direction) -> PulleyOut {
     let mut pts: Vec<&PointState> = points.iter().flatten().filter(|p| p.pulley == Some(pulley)).collect();
     let torque = radius * pts.iter().map(|p| p.friction_weight * p.tangential).sum::<f64>();
     pts.retain(|p| p.friction_weight > 0.0);
     pts.retain(|p| p.normal > 0.0);
     pts.sort_by(|a, b| unwrap(contour, pulley, a.sigma).total_cmp(&unwrap(contour, pulley, b.sigma)));
+    if direction == Direction::CounterClockwise {
+        pts.reverse();
+    }
     let all_slip = !pts.is_empty() && pts.iter().all(|p| p.slip);
     let no_slip = pts.iter().all(|p| !p.slip);
-    // the trailing run of slip points (slip zone before exit)
+    // the trailing run of slip points in the travel (slip zone before exit)
     let last_stick = pts.iter().rposition(|p| !p.slip);
     let slip_start = match last_stick {
         Some(i) if i + 1 < pts.len() => Some(0.5 * (unwrap(contour, pulley, pts[i].sigma) + unwrap(contour, pulley, pts[i + 1].sigma))),
@@ -633,8 +636,28 @@ fn pulley_out(points: &[Vec<PointState>], pulley: Pulley, radius: f64, contour: 
     PulleyOut { torque, slip_start, all_slip, no_slip, entry_slip }
 }
 
+/// The slip arc of a pulley, rad (docs/fem-drive.md §8, §13): none without slip, the
+/// contact arc `arc` in full slip, else from the stick→slip transition (σ, polar angle by
+/// `angle`) to where the belt leaves the contact — its σ-end (polar angle `end`)
+/// clockwise, its σ-start (`start`) counter-clockwise — at most `arc`.
+fn slip_arc(out: &PulleyOut, arc: f64, [start, end]: [f64; 2], angle: impl Fn(f64) -> f64, direction: Direction) -> f64 {
+    if out.no_slip {
+        return 0.0;
+    }
+    if out.all_slip {
+        return arc;
+    }
+    out.slip_start.map_or(0.0, |s| {
+        let from = match direction {
+            Direction::Clockwise => angle(s) - end,
+            Direction::CounterClockwise => start - angle(s),
+        };
+        from.rem_euclid(2.0 * PI).min(arc)
+    })
+}
+
 /// Contact arc (point-based fallback) and slip arc of a pulley, rad.
-fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour: &Contour, out: &PulleyOut) -> (f64, f64) {
+fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour: &Contour, out: &PulleyOut, direction: Direction) -> (f64, f64) {
     let mut pts: Vec<f64> = points.iter().flatten().filter(|p| p.pulley == Some(pulley) && p.normal > 0.0).map(|p| unwrap(contour, pulley, p.sigma)).collect();
     pts.sort_by(f64::total_cmp);
     let angle = |sigma: f64| contour.polar_angle(pulley, base.position(contour.wrap(sigma)));
@@ -644,14 +667,7 @@ fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour:
     let end_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(last), |z| z.angle_end);
     let start_angle = base.zone(pulley).filter(|z| z.recovered).map_or(angle(first), |z| z.angle_start);
     let arc = (start_angle - end_angle).rem_euclid(2.0 * PI);
-    let slip = if out.no_slip {
-        0.0
-    } else if out.all_slip {
-        arc
-    } else {
-        out.slip_start.map_or(0.0, |s| (angle(s) - end_angle).rem_euclid(2.0 * PI).min(arc))
-    };
-    (arc, slip)
+    (arc, slip_arc(out, arc, [start_angle, end_angle], angle, direction))
 }
 
 /// Axial force and stretch of the state z at σ.
@@ -667,7 +683,7 @@ fn span_force(asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kern
 /// per pulley the torque and the stick/slip arcs from the point states (contact
 /// boundaries at the first/last point carrying normal traction, O(h)).
 #[allow(clippy::too_many_arguments)]
-fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, points: &[Vec<PointState>], outs: &[PulleyOut; 2], rate: f64) {
+fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, points: &[Vec<PointState>], outs: &[PulleyOut; 2], rate: f64, direction: Direction) {
     let h = contour.centre_distance();
     let at = |sigma: f64| {
         let (e, xi) = asm.mesh().locate(contour.wrap(sigma));
@@ -688,14 +704,7 @@ fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler
         let (contact, slip) = match (pts.first(), pts.last()) {
             (Some(&a), Some(&b)) => {
                 let arc = (angle(a) - angle(b)).rem_euclid(2.0 * PI);
-                let slip = if outs[k].no_slip {
-                    0.0
-                } else if outs[k].all_slip {
-                    arc
-                } else {
-                    outs[k].slip_start.map_or(0.0, |s| (angle(s) - angle(b)).rem_euclid(2.0 * PI).min(arc))
-                };
-                (arc, slip)
+                (arc, slip_arc(&outs[k], arc, [angle(a), angle(b)], angle, direction))
             }
             _ => (0.0, 0.0),
         };

@@ -3,7 +3,7 @@
 //! Stick/Slip, the normal traction and the friction traction from the integration-point
 //! states.
 
-use drive::contour::{Contour, Pulley};
+use drive::contour::Pulley;
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
 
@@ -116,8 +116,8 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> DriveSolution<N, K> {
 }
 
 impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for DriveSolution<N, K> {
-    fn contour(&self) -> &Contour {
-        self.base.contour()
+    fn path(&self) -> drive::contour::Path {
+        self.base.path()
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {

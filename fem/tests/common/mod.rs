@@ -35,7 +35,7 @@ pub fn order(e_coarse: f64, e_fine: f64) -> f64 {
 pub fn invariant_drift(scene: &Scene, view: &dyn SolutionView, n: usize) -> f64 {
     let ea = scene.belt.axial_stiffness;
     let w = scene.belt.mass_per_length * scene.effects.gravity.unwrap_or(0.0);
-    let l = view.contour().length();
+    let l = view.path().length();
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..n {
         let s = l * k as f64 / n as f64;
@@ -79,7 +79,7 @@ pub fn catenary_distance(scene: &Scene, view: &dyn SolutionView, half_width: f64
 pub fn invariant_drift_spans(scene: &Scene, view: &dyn SolutionView, half_width: f64, n: usize) -> f64 {
     let ea = scene.belt.axial_stiffness;
     let w = scene.belt.mass_per_length * scene.effects.gravity.unwrap_or(0.0);
-    let c = view.contour();
+    let c = view.contour().expect("a two-pulley loop");
     let h = c.centre_distance();
     let lower_mid = h + std::f64::consts::PI * c.radius() + 0.5 * h;
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);

@@ -98,7 +98,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
 
 /// [`solve`] for an element of any 1-D layout with N unknowns (P = 2N + 4, E = N + 4:
 /// [`point_size`], [`element_size`]): the string's formulations (N = 8, [`solve`]) and
-/// the Cosserat rod's elements (N = 12, docs/fem-cosserat.md §9). The friction and
+/// the Cosserat rod's elements (N = 12, docs/fem-cosserat.md §10). The friction and
 /// contact rows act on the element's centreline {s, ν}; further fields (the Cosserat
 /// rotation ψ) enter through the element's energy only.
 ///
@@ -248,7 +248,7 @@ mod tests {
     //! differences of the residual F, at a converged drive state with gravity and
     //! inertia perturbed off equilibrium, for every column whose perturbation keeps the
     //! active set (stick/slip of every point and the sign of every gap) unchanged — for
-    //! the string and for the Cosserat element (docs/fem-cosserat.md §9: its transport
+    //! the string and for the Cosserat element (docs/fem-cosserat.md §10: its transport
     //! inertia (C11) and gravity (C12) through the augmented map (C3), the friction load
     //! (C14) with ∂²S/∂q² at the flagged nodes).
     use super::*;
