@@ -1,5 +1,5 @@
 //! End to end: a scene the contract describes but no solver solves yet (spec §2.2's
-//! `cosserat-pulley`, a Cosserat drive, a shell) is refused by every method of `solve`
+//! `cosserat-pulley`, a Cosserat drive by the BVP, a shell) is refused by every such method of `solve`
 //! and by `converge` with exit status 2, a message naming the scene, the layout or theory
 //! and the issue that brings it, and no result file — never solved as something else.
 
@@ -29,9 +29,14 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
     cosserat["belt"]["theory"] = json!("cosserat");
     cosserat["belt"]["bending_stiffness"] = json!(0.005);
     cosserat["belt"]["shear_stiffness"] = json!(1e3);
-    let cases = [(write("pulley.json", &pulley), "layout `one-pulley`", "issue 13"), (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14")];
-    for (scene, what, issue) in &cases {
-        for method in ["bvp-collocation", "bvp-shooting", "fem"] {
+    // the steady Cosserat drive: the FE's direct steady solve has it
+    // (fem/tests/cosserat_drive.rs), the BVP's dispatch through `solve` not yet
+    let cases = [
+        (write("pulley.json", &pulley), "layout `one-pulley`", "issue 13", &["bvp-collocation", "bvp-shooting", "fem"][..]),
+        (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14", &["bvp-collocation", "bvp-shooting"][..]),
+    ];
+    for (scene, what, issue, methods) in &cases {
+        for method in methods.iter().copied() {
             let out = temp("cli-layouts", &format!("{method}.json"));
             let _ = std::fs::remove_file(&out);
             let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", method, "--json", out.to_str().unwrap()]);

@@ -88,6 +88,8 @@ pub fn not_yet_solvable(scene: &Scene, solver: Solver) -> Option<NotYetSolvable>
         (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) => (Unsolved::Layout(Layout::OnePulley), ONE_PULLEY_FE),
         (Layout::OnePulley, _, _) => (Unsolved::Layout(Layout::OnePulley), PAPER_C),
         (Layout::TwoPulley, Theory::Cosserat, Analysis::Static) => return None,
+        // the FE's direct steady solve runs the Cosserat element (docs/fem-cosserat.md §10–§11)
+        (Layout::TwoPulley, Theory::Cosserat, Analysis::Steady) if solver == Solver::Fem => return None,
         (_, Theory::Cosserat, a) => (Unsolved::Theory(Theory::Cosserat, a), PAPER_D),
         (_, Theory::Shell, a) => (Unsolved::Theory(Theory::Shell, a), PAPER_E),
         (Layout::TwoPulley, Theory::String | Theory::Kirchhoff, _) => return None,

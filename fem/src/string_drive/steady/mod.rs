@@ -198,7 +198,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fits = out.passes;
