@@ -1,5 +1,5 @@
 //! End to end: a scene the contract describes but no solver solves yet (spec §2.2's
-//! `cosserat-pulley` as a string, the Cosserat drive by the FE, a shell) is refused by `solve`
+//! `cosserat-pulley` as a string, a shell) is refused by every such method of `solve`
 //! and by `converge` with exit status 2, a message naming the scene, the layout or theory
 //! and the issue that brings it, and no result file — never solved as something else.
 
@@ -24,19 +24,13 @@ fn scenes_no_solver_has_yet_are_refused_with_their_issue() {
       "effects": {"inertia": true, "contact": {"coulomb": 0.3}},
       "analysis": "steady"
     });
-    let mut cosserat: serde_json::Value = serde_json::from_str(&std::fs::read_to_string("scenes/string-drive.json").unwrap()).unwrap();
-    cosserat["name"] = json!("cosserat-drive");
-    cosserat["belt"]["theory"] = json!("cosserat");
-    cosserat["belt"]["bending_stiffness"] = json!(0.005);
-    cosserat["belt"]["shear_stiffness"] = json!(1e3);
-    // the one-pulley string by every method; the Cosserat drive, which the BVP solves
-    // (`cosserat_drive_is_solved_by_both_bvp_methods`), by the FE
+    // the one-pulley string by every method (the steady Cosserat drive is solved by both:
+    // `cosserat_drive_is_solved_by_both_bvp_methods`, fem/tests/cosserat_drive.rs)
     let cases = [
         (write("pulley.json", &pulley), "layout `one-pulley`", "issue 13", &["bvp-collocation", "bvp-shooting", "fem"][..]),
-        (write("cosserat.json", &cosserat), "theory `cosserat`", "issue 14", &["fem"][..]),
     ];
     for (scene, what, issue, methods) in &cases {
-        for &method in *methods {
+        for method in methods.iter().copied() {
             let out = temp("cli-layouts", &format!("{method}.json"));
             let _ = std::fs::remove_file(&out);
             let o = beltcheck(&["solve", scene.to_str().unwrap(), "--method", method, "--json", out.to_str().unwrap()]);

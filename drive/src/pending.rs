@@ -73,8 +73,6 @@ const PAPER_C: (u32, &str) = (13, "Cosserat rod, static and on one pulley, Paper
 /// issue 13's rest.
 const ONE_PULLEY_FE: (u32, &str) = (13, "no FE for the one-pulley layout yet: the MEL direct steady solve of Paper C");
 const PAPER_D: (u32, &str) = (14, "Cosserat two-pulley drive in steady motion, Paper D");
-/// The Cosserat two-pulley drive in steady motion has its BVP; its FE is issue 14's rest.
-const COSSERAT_DRIVE_FE: (u32, &str) = (14, "no FE for the Cosserat two-pulley drive yet: the MEL steady solve of Paper D");
 const PAPER_E: (u32, &str) = (15, "Kirchhoff–Love shell, lateral run-off, Paper E");
 
 /// Why `solver` cannot solve `scene` yet, or `None` if the scene's layout and theory are
@@ -82,17 +80,18 @@ const PAPER_E: (u32, &str) = (15, "Kirchhoff–Love shell, lateral run-off, Pape
 /// own error). The BVP solves the static Cosserat rod on the two-pulley loop
 /// (`cosserat-hanging`) and so does the FE (the Cosserat elements, fem/src/formulation/cosserat.rs);
 /// the BVP solves the Cosserat belt in steady motion over one pulley (`cosserat-pulley`),
-/// whose FE is issue 13's rest ("no FE for the one-pulley layout yet"), and the Cosserat
-/// two-pulley drive in steady motion (`cosserat-drive`), whose FE is issue 14's rest ("no
-/// FE for the Cosserat two-pulley drive yet"); the Cosserat transient is issue 14's.
+/// whose FE is issue 13's rest ("no FE for the one-pulley layout yet"); both solve the
+/// Cosserat two-pulley drive in steady motion (`cosserat-drive`); the Cosserat transient
+/// is issue 14's.
 pub fn not_yet_solvable(scene: &Scene, solver: Solver) -> Option<NotYetSolvable> {
     let (unsolved, (issue, title)) = match (scene.drive.layout, scene.belt.theory, scene.analysis) {
         (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) if solver == Solver::Bvp => return None,
         (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) => (Unsolved::Layout(Layout::OnePulley), ONE_PULLEY_FE),
         (Layout::OnePulley, _, _) => (Unsolved::Layout(Layout::OnePulley), PAPER_C),
         (Layout::TwoPulley, Theory::Cosserat, Analysis::Static) => return None,
-        (Layout::TwoPulley, Theory::Cosserat, Analysis::Steady) if solver == Solver::Bvp => return None,
-        (Layout::TwoPulley, Theory::Cosserat, Analysis::Steady) => (Unsolved::Theory(Theory::Cosserat, Analysis::Steady), COSSERAT_DRIVE_FE),
+        // both solve the steady Cosserat drive: the BVP (bvp::cosserat_drive) and the FE's
+        // direct steady solve (docs/fem-cosserat.md §10–§11)
+        (Layout::TwoPulley, Theory::Cosserat, Analysis::Steady) => return None,
         (_, Theory::Cosserat, a) => (Unsolved::Theory(Theory::Cosserat, a), PAPER_D),
         (_, Theory::Shell, a) => (Unsolved::Theory(Theory::Shell, a), PAPER_E),
         (Layout::TwoPulley, Theory::String | Theory::Kirchhoff, _) => return None,

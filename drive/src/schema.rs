@@ -275,6 +275,7 @@ pub(crate) const GATE: &[Field] = &[
     opt("min_order", Kind::Number, "minimum observed order"),
     opt("reference_tolerance", Kind::Number, "tolerance of the gate's BVP reference"),
     opt("bvp_tolerance", Kind::Number, "tolerance of the gated BVP runs"),
+    opt("fem", Kind::Bool, "whether the gate runs the FE studies (default true)"),
 ];
 
 pub(crate) const PEER: &[Field] = &[
@@ -707,6 +708,7 @@ mod tests {
             bvp_tolerances: [("y_upper_mid".to_string(), 1e-6)].into(),
             reference_tolerance: Some(1e-9),
             bvp_tolerance: Some(1e-7),
+            fem: Some(false),
             ..Default::default()
         })
         .unwrap();

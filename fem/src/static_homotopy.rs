@@ -30,6 +30,16 @@ pub const GRADING_WIDTH: f64 = 2.0;
 /// 1 + this times shorter than far from it (docs/fem-cosserat.md §9).
 pub const GRADING_RATIO: f64 = 8.0;
 
+/// The grading of a Cosserat rod's fitted meshes towards its contact edges over its
+/// shear layer ℓ = √(a/b₂) (docs/fem-cosserat.md §9): density
+/// 1 + [`GRADING_RATIO`]·exp(−d/([`GRADING_WIDTH`]·ℓ)) at the distance d from an edge.
+/// `None` (uniform pieces) without a (a string) or without b₂ (a Kirchhoff rod). The
+/// static fit and the steady drive's fit (fem-cosserat.md §11) grade alike.
+pub fn shear_layer_grading(bending_stiffness: Option<f64>, shear_stiffness: Option<f64>) -> Option<Grading> {
+    let layer = (bending_stiffness? / shear_stiffness?).sqrt();
+    Some(Grading { width: GRADING_WIDTH * layer, ratio: GRADING_RATIO })
+}
+
 /// The static frictionless problem of a string or Kirchhoff rod on two pulleys: the
 /// typed data of [`crate::FemProblem`] it needs (SI) with the penalty resolved.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -151,16 +161,12 @@ impl StringHanging {
         Contour::new(self.geometry.radius, self.geometry.centre_distance).map_err(|e| FemError::Unsupported(e.to_string()))
     }
 
-    /// ρ g, N/m (0 without gravity).
-    /// The fitted meshes of a Cosserat rod are graded towards its contact edges over its
-    /// shear layer ℓ = √(a/b₂) (docs/fem-cosserat.md §9): density
-    /// 1 + [`GRADING_RATIO`]·exp(−d/([`GRADING_WIDTH`]·ℓ)) at the distance d from an
-    /// edge. `None` (uniform pieces) for a string and a Kirchhoff rod.
+    /// The grading of the fitted meshes: [`shear_layer_grading`] of the belt.
     fn grading(&self) -> Option<Grading> {
-        let layer = (self.belt.bending_stiffness? / self.belt.shear_stiffness?).sqrt();
-        Some(Grading { width: GRADING_WIDTH * layer, ratio: GRADING_RATIO })
+        shear_layer_grading(self.belt.bending_stiffness, self.belt.shear_stiffness)
     }
 
+    /// ρ g, N/m (0 without gravity).
     fn weight(&self) -> f64 {
         self.gravity.map_or(0.0, |g| self.belt.mass_per_length * g)
     }

@@ -73,6 +73,7 @@ pub fn gate_plan_with(scene: &Scene, bvp_tolerance: Option<f64>, meshes: Option<
         max_nodes: Some(STUDY_MAX_NODES),
     }
     .without_unsolvable_fem(scene)
+    .without_fem_unless(gate.fem.unwrap_or(true))
 }
 
 /// What a check compares.
@@ -187,6 +188,9 @@ pub fn failed_outcome(scene: &str, reason: String) -> GateOutcome {
 pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
     let mut checks = Vec::new();
     let mut notes = study.notes.clone();
+    if settings.fem == Some(false) {
+        notes.push("FE not gated: the scene's gate.fem is false (`converge` and `report` still study it)".into());
+    }
     let setup_fail = |quantity: &str, reason: String| Check {
         method: NONE.into(),
         discretisation: None,

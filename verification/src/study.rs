@@ -169,6 +169,16 @@ impl StudyPlan {
         self
     }
 
+    /// A BVP-only plan unless `fem` (the scene's `gate.fem = false`: the gate holds the
+    /// BVP methods only).
+    pub fn without_fem_unless(mut self, fem: bool) -> StudyPlan {
+        if !fem {
+            self.formulations = Formulations::Named(Vec::new());
+            self.meshes = Vec::new();
+        }
+        self
+    }
+
     /// The same tolerance sequence for every BVP variant.
     pub fn with_tolerances(mut self, tolerances: &[f64]) -> StudyPlan {
         for s in &mut self.bvp {

@@ -128,6 +128,9 @@ pub(super) struct SteadyFitData<'a, K: ?Sized> {
     /// Newton tolerance and iteration limit.
     pub tolerance: f64,
     pub max_iterations: usize,
+    /// The grading of the refitted meshes towards the breakpoints (a Cosserat rod's
+    /// shear layer, docs/fem-cosserat.md §11; `None`: uniform pieces).
+    pub grading: Option<crate::mesh::Grading>,
 }
 
 /// The steady state as a [`Fitted`]: the breakpoints are the contact boundaries and the
@@ -225,5 +228,9 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     fn restore(&mut self, (mesh, x, results): Self::Snapshot) {
         self.state = State { asm: Assembler::with_kernel(mesh, self.data.kernel.clone()), x, results, rho: self.state.rho };
         self.sol = solution(&self.state, &self.data);
+    }
+
+    fn grading(&self) -> Option<crate::mesh::Grading> {
+        self.data.grading
     }
 }

@@ -98,7 +98,7 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
 
 /// [`solve`] for an element of any 1-D layout with N unknowns (P = 2N + 4, E = N + 4:
 /// [`point_size`], [`element_size`]): the string's formulations (N = 8, [`solve`]) and
-/// the Cosserat rod's elements (N = 12, docs/fem-cosserat.md §9). The friction and
+/// the Cosserat rod's elements (N = 12, docs/fem-cosserat.md §10). The friction and
 /// contact rows act on the element's centreline {s, ν}; further fields (the Cosserat
 /// rotation ψ) enter through the element's energy only.
 ///
@@ -198,7 +198,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fits = out.passes;
@@ -247,8 +247,12 @@ mod tests {
     //! The generalised Jacobian of (DS1)–(DS4) and of the inertia term against central
     //! differences of the residual F, at a converged drive state with gravity and
     //! inertia perturbed off equilibrium, for every column whose perturbation keeps the
-    //! active set (stick/slip of every point and the sign of every gap) unchanged.
+    //! active set (stick/slip of every point and the sign of every gap) unchanged — for
+    //! the string and for the Cosserat element (docs/fem-cosserat.md §10: its transport
+    //! inertia (C11) and gravity (C12) through the augmented map (C3), the friction load
+    //! (C14) with ∂²S/∂q² at the flagged nodes).
     use super::*;
+    use crate::formulation::cosserat::{CosseratElement, CosseratRules, NC};
 
     const SCENE: &str = r#"{
       "name": "jacobian",
@@ -259,21 +263,19 @@ mod tests {
       "fem": {"elements": 24}
     }"#;
 
-    #[test]
-    fn jacobian_matches_finite_differences() {
-        let scene = drive::Scene::from_json_str(SCENE).unwrap();
-        let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
+    /// The check on `scene` with the element `kernel` and the bending stiffness `bending`
+    /// of its term parameters.
+    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>) {
+        let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
-        let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(&scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
-        let asm = Assembler::new(start.mesh().clone(), kernel.clone());
+        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
+        let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[], Direction::Clockwise);
         let b = &scene.belt;
-        let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(penalty), bending_stiffness: None };
         // a soft penalty keeps the FD of the normal term well conditioned
-        let params = TermParams { penalty: Some(1e-3 * penalty), ..params };
+        let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
-        let prob: SteadyProblem = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
+        let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)
@@ -281,9 +283,14 @@ mod tests {
         for (i, v) in x.iter_mut().enumerate().take(asm.len()) {
             *v += 1e-7 * ((i as f64) * 0.37).cos();
         }
-        // pressed into the drums by 10 µm: a bound μP⟨−γ⟩ ≈ 900 N/m at the contact nodes
+        // pressed into the drums by 10 µm: a bound μP⟨−γ⟩ ≈ 900 N/m at the contact nodes;
+        // a rotation ψ of 10⁻³ rad off the contour tangent where the layout has one
         for k in 0..asm.mesh().len() {
-            x[asm.dofs().node(k).nu] -= 1e-5;
+            let node = asm.dofs().node_unknowns(k);
+            x[node.values[1].expect("ν at every node")] -= 1e-5;
+            if let Some(psi) = node.values.get(2).copied().flatten().filter(|_| N > NDOF) {
+                x[psi] += 1e-3 * ((k as f64) * 0.9).sin();
+            }
         }
         let n = x.len();
         let ev = prob.evaluate(&x, true).unwrap();
@@ -296,8 +303,13 @@ mod tests {
         let base = signature(&ev);
         let fmax = dense.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let (mut checked, mut worst) = (0, 0.0f64);
+        // the step: 10⁻⁷ of the unknown or of its scale in the Newton update norm (the
+        // variable weights: H for node values, 1 for slopes) — a fixed floor of 10⁻¹¹
+        // drowns the near-zero ν, ψ and slope columns in round-off on graded meshes,
+        // whose shortest elements (1.3 mm next to 124 mm) carry residuals of 3·10⁷
+        let scale = variable_weights(&asm, 0.45, 0.08, 10.0, 1.0, points.len());
         for j in 0..n {
-            let d = 1e-7 * x[j].abs().max(1e-4);
+            let d = 1e-7 * x[j].abs().max(if j < asm.len() { scale[j] } else { 1e-4 });
             let (mut xp, mut xm) = (x.clone(), x.clone());
             xp[j] += d;
             xm[j] -= d;
@@ -316,5 +328,125 @@ mod tests {
         assert!(checked > n / 2, "only {checked} of {n} columns kept the active set");
         assert!(base.iter().any(|p| p.0) && base.iter().any(|p| !p.0 && p.1), "both stick and slip points are exercised");
         assert!(worst < 1e-6);
+    }
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let scene = drive::Scene::from_json_str(SCENE).unwrap();
+        let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
+        let kernel = crate::formulation::find(&opts.formulation).unwrap();
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None);
+    }
+
+    /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
+    /// drive: the terms it adds to the steady equations — transport inertia and gravity
+    /// on its centreline through the map (C3), the friction load's ∂²S/∂q² at the flagged
+    /// nodes — against central differences.
+    #[test]
+    fn cosserat_jacobian_matches_finite_differences() {
+        let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
+        let scene = drive::Scene::from_json_str(&json).unwrap();
+        let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+        let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
+        assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3));
+    }
+
+    /// The kernels the steady equations add for an element of the Cosserat layout,
+    /// element by element against central differences on a wavy state (ψ ≠ 0, ν ≠ 0)
+    /// and in every element whose nodes carry the augmented map (C3): the transport
+    /// inertia −T (C11) in q and c (gradient, ∂²/∂q², ∂²/∂q∂c), the friction load (C14)
+    /// with its Jacobian in (q, c, ω₂, τ_a, τ_b) — through the map S is quadratic in q —,
+    /// and the gradients of the upwind stretch (DS0) and of the gap.
+    #[test]
+    fn cosserat_steady_kernels_match_central_differences() {
+        let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
+        let scene = drive::Scene::from_json_str(&json).unwrap();
+        let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+        let layout = kernel.layout();
+        let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
+        let asm = Assembler::with_kernel(mesh, kernel.clone());
+        let z = crate::assembly::tests::wave_state(&asm, 0.99);
+        let points = friction_points(&asm, &[], Direction::Clockwise);
+        let params = TermParams { axial_stiffness: 2e4, weight: Some(1.1772), penalty: None, bending_stiffness: Some(1e-3) };
+        let sp = SteadyParams { mu: 0.3, penalty: 1e8, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
+        let prob: SteadyProblem<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>> = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
+        let owners = prob.edge_owners();
+        let close = |a: f64, fd: f64, scale: f64, what: &str| assert!((a - fd).abs() <= 1e-6 * scale + 1e-7 * fd.abs(), "{what}: analytic {a}, central difference {fd}");
+        let (mut mapped, mut loaded) = (0, 0);
+        for e in 0..asm.mesh().len() {
+            let el = asm.context(e, &params);
+            if !el.augmented.iter().any(|&a| a) && e % 5 != 0 {
+                continue;
+            }
+            mapped += usize::from(el.augmented.iter().any(|&a| a));
+            let q = asm.dofs().gather(e, &z, prob.length);
+            let bump = |i: usize, d: f64| {
+                let mut p = q;
+                p[i] += d;
+                p
+            };
+            let step = |i: usize| 1e-6 * q[i].abs().max(1e-3);
+            // −T (C11) and its derivatives
+            let c = 0.8;
+            let energy = |qq: &[f64; NC], cc: f64| crate::formulation::TransportInertia { rule: prob.strain_rule, rho: 0.12 }.element_energy(&el, &centreline(layout, &el, qq), cc);
+            let (gq, gc, h) = inertia_derivatives(layout, &el, &q, c, 0.12, prob.strain_rule);
+            let gscale = gq.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let hscale = h.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+            for i in 0..NC {
+                let d = step(i);
+                close(gq[i], (energy(&bump(i, d), c) - energy(&bump(i, -d), c)) / (2.0 * d), gscale, "∂(−T)/∂q");
+                let (gp, _, _) = inertia_derivatives(layout, &el, &bump(i, d), c, 0.12, prob.strain_rule);
+                let (gm, _, _) = inertia_derivatives(layout, &el, &bump(i, -d), c, 0.12, prob.strain_rule);
+                for j in 0..NC {
+                    close(h[j][i], (gp[j] - gm[j]) / (2.0 * d), hscale, "∂²(−T)/∂q²");
+                }
+                let (gcp, _, _) = inertia_derivatives(layout, &el, &q, c + 1e-6, 0.12, prob.strain_rule);
+                let (gcm, _, _) = inertia_derivatives(layout, &el, &q, c - 1e-6, 0.12, prob.strain_rule);
+                close(gc[i], (gcp[i] - gcm[i]) / 2e-6, gscale, "∂²(−T)/∂q∂c");
+            }
+            // the upwind stretch and the gap at both edges
+            let (_, dl) = element_stretch(layout, &el, &q);
+            for i in 0..NC {
+                let d = step(i);
+                close(dl[i], (element_stretch(layout, &el, &bump(i, d)).0 - element_stretch(layout, &el, &bump(i, -d)).0) / (2.0 * d), 1.0 / el.geometry.h, "∂λ̄/∂q");
+                for xi in [-1.0, 1.0] {
+                    if let Some((_, dg)) = point_gap(layout, &el, &q, xi) {
+                        let gap = |qq: &[f64; NC]| point_gap(layout, &el, qq, xi).unwrap().0;
+                        close(dg[i], (gap(&bump(i, d)) - gap(&bump(i, -d))) / (2.0 * d), 1.0, "∂γ/∂q");
+                    }
+                }
+            }
+            // the friction load (C14) in the element's global unknowns, c, ω₂ and τ
+            if owners[e] == [None, None] {
+                continue;
+            }
+            loaded += usize::from(el.augmented.iter().any(|&a| a));
+            let tau = [3000.0, -2000.0];
+            let load = |zz: &[f64], t: [f64; 2]| prob.element_friction(e, zz, t, true).0;
+            let (_, jac) = prob.element_friction(e, &z, tau, true);
+            let jscale = jac.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (k, gi) in asm.dofs().element(e).iter().enumerate() {
+                let Some(gi) = *gi else { continue };
+                let d = 1e-6 * z[gi].abs().max(1e-3);
+                let (mut zp, mut zm) = (z.clone(), z.clone());
+                zp[gi] += d;
+                zm[gi] -= d;
+                let (rp, rm) = (load(&zp, tau), load(&zm, tau));
+                for a in 0..NC + 2 {
+                    close(jac[a][k], (rp[a] - rm[a]) / (2.0 * d), jscale, "∂(friction load)/∂q");
+                }
+            }
+            for side in 0..2 {
+                let (mut tp, mut tm) = (tau, tau);
+                tp[side] += 1.0;
+                tm[side] -= 1.0;
+                let (rp, rm) = (load(&z, tp), load(&z, tm));
+                for a in 0..NC + 2 {
+                    close(jac[a][NC + 2 + side], (rp[a] - rm[a]) / 2.0, jscale, "∂(friction load)/∂τ");
+                }
+            }
+        }
+        assert!(mapped >= 4 && loaded >= 2, "the map (C3) is exercised: {mapped} mapped elements, {loaded} with friction");
     }
 }
