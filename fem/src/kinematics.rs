@@ -148,6 +148,27 @@ impl ElementContext {
         out
     }
 
+    /// The centreline unknowns {s, ν} of an element of any 1-D `layout` in the string
+    /// order ([`crate::element::STRING`]), after the augmented map of the element's
+    /// flagged nodes ([`Self::effective`], docs/fem-rod.md K9; the Cosserat element's map
+    /// (C3) scales ∂σs and ∂σν the same way) — the identity for the string. The drive's
+    /// contact, friction and transport-inertia terms act on these only
+    /// (docs/fem-cosserat.md §7); generic so that AD differentiates through the map.
+    #[inline]
+    pub fn centreline<D: Scalar, const N: usize>(&self, layout: ElementLayout, q: &[D; N]) -> [D; NDOF] {
+        let mut out = [q[0]; NDOF];
+        for f in 0..2 {
+            for (i, j) in STRING.hermite_indices(f).into_iter().zip(layout.hermite_indices(f)) {
+                out[i] = q[j];
+            }
+        }
+        if self.augmented.iter().any(|&a| a) {
+            self.effective(&out)
+        } else {
+            out
+        }
+    }
+
     /// Rate of the tangent angle per contour length θ_σ = (r′ × r″)/|r′|²
     /// (docs/fem-rod.md K3), 1/m.
     #[inline]

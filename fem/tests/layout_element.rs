@@ -1,12 +1,14 @@
 //! An element of the Cosserat layout {s, ν, θ} (12 unknowns) registered by name from
 //! outside `fem` and run through the static analysis with homotopy (`static_homotopy`)
-//! on the `rod-hanging` scene — the registry face and the analysis generic over the
-//! element layout (issue 11, "one MEL element core").
+//! on the `rod-hanging` scene, and through the quasistatic transient of the friction
+//! drive (`string_drive::solve_layout`) on `string-drive` — the registry face and the
+//! analyses generic over the element layout (issue 11, "one MEL element core").
 //!
-//! The test element `ThetaRod` is the Kirchhoff rod `rod-simpson` on the (s, ν) part of
+//! The test element `ThetaRod` is a string-layout formulation (the Kirchhoff rod
+//! `rod-simpson`, or the string `string-simpson` for the drive) on the (s, ν) part of
 //! its unknowns plus a decoupled θ energy ½ k ∫ (θ − θ*(σ))² dσ with the known target
 //! θ*(σ) = a sin(2πσ/L_c) (periodic on the closed loop): the (s, ν) equilibrium is the
-//! rod's, and θ is the C¹ cubic least-squares fit of θ*. It is not the Cosserat rod of
+//! base formulation's, and θ is the C¹ cubic least-squares fit of θ*. It is not the Cosserat rod of
 //! the spec — it checks the plumbing: numbering with a third field, the homotopy, the
 //! contact fitting and penalty continuation, the refits' transfer of every field, and the
 //! solution view reading S and ν through the layout.
@@ -18,7 +20,7 @@ use std::sync::Arc;
 
 use common::scene;
 use drive::contour::Contour;
-use drive::scene::Theory;
+use drive::scene::{Analysis, Theory};
 use fem::assembly::ElementKernel;
 use fem::element::{ElementLayout, Field, COSSERAT, STRING};
 use fem::formulation::layout::LayoutElement;
@@ -29,8 +31,10 @@ use fem::{FemError, FemOptions, SolverSettings};
 const NAME: &str = "rod-theta-test";
 const NC: usize = NDOF_COSSERAT;
 
-/// `rod-simpson` on (s, ν) plus ½ k ∫ (θ − a sin(2πσ/L_c))² dσ by 3-point Gauss.
+/// A string-layout formulation on (s, ν) plus ½ k ∫ (θ − a sin(2πσ/L_c))² dσ by
+/// 3-point Gauss.
 struct ThetaRod {
+    name: &'static str,
     rod: Arc<dyn Kernel>,
     /// k, N (any positive value: the θ problem is decoupled).
     stiffness: f64,
@@ -39,8 +43,14 @@ struct ThetaRod {
 }
 
 impl ThetaRod {
+    /// On `rod-simpson`, registered as [`NAME`].
     fn new() -> ThetaRod {
-        ThetaRod { rod: formulation::find("rod-simpson").expect("built in"), stiffness: 10.0, amplitude: 0.3 }
+        ThetaRod::on("rod-simpson", NAME)
+    }
+
+    /// On the built-in formulation `base`, named `name`.
+    fn on(base: &str, name: &'static str) -> ThetaRod {
+        ThetaRod { name, rod: formulation::find(base).expect("built in"), stiffness: 10.0, amplitude: 0.3 }
     }
 
     fn target(&self, contour: &Contour, sigma: f64) -> f64 {
@@ -126,13 +136,13 @@ impl ElementKernel<NC> for ThetaRod {
 
 impl LayoutElement<NC> for ThetaRod {
     fn name(&self) -> &'static str {
-        NAME
+        self.name
     }
     fn description(&self) -> &'static str {
-        "test: rod-simpson on (s, ν) and a decoupled least-squares θ on the Cosserat layout"
+        "test: a string-layout formulation on (s, ν) and a decoupled least-squares θ on the Cosserat layout"
     }
     fn theory(&self) -> Theory {
-        Theory::Kirchhoff
+        Kernel::theory(rod8(&self.rod))
     }
     fn rules(&self) -> TermRules {
         Kernel::rules(rod8(&self.rod))
@@ -274,4 +284,43 @@ fn the_drive_analyses_refuse_another_layout() {
         Err(e) => panic!("expected Unsupported, got {e}"),
         Ok(_) => panic!("a drive ran with a Cosserat-layout element"),
     }
+}
+
+/// The quasistatic transient of the friction drive generic over the element
+/// (`string_drive::solve_layout`, N = 12, X = N + 2 = 14 extended unknowns per element):
+/// the test element on `string-simpson` runs `string-drive` (analysis `transient`, 32
+/// elements, to its steady state) with the contact, friction and transport-inertia terms
+/// on the element's centreline. Every summary scalar equals the string transient's
+/// (`string_drive::solve`, N = 8): the (s, ν) problem is the same and θ is decoupled;
+/// tolerance 1e-9 relative (of max(|v|, 1e-3)), as for the static analysis above — the
+/// θ unknowns enter the update norm and the Levenberg–Marquardt shifts only. The run adds
+/// θ and one ∂σθ per node, and a second ∂σθ at each of the four region transitions (the
+/// string's separate transition slopes), and takes as many time steps.
+#[test]
+fn the_transient_runs_a_cosserat_layout_element() {
+    let scene = scene("string-drive");
+    let mut problem = fem::FemProblem::from_scene(&scene);
+    problem.analysis = Analysis::Transient;
+    let o = FemOptions { elements: 32, ..opts(&scene, "string-simpson") };
+    let settings = SolverSettings::default();
+    let ds = fem::string_drive::DriveSettings::from_scene(&scene);
+    let string = fem::string_drive::solve(&problem, &o, &settings, &ds, formulation::find("string-simpson").unwrap()).expect("string transient");
+    let element = Arc::new(ThetaRod::on("string-simpson", "string-theta-test"));
+    let run = fem::string_drive::solve_layout::<NC, { NC + 2 }, ThetaRod>(&problem, &o, &settings, &ds, element).expect("the Cosserat-layout transient");
+    let (hs, hr) = (string.history.as_ref().unwrap(), run.history.as_ref().unwrap());
+    assert_eq!(hs.len(), hr.len(), "time steps");
+    assert!(hs.len() > 10, "{} steps", hs.len());
+    assert_eq!(run.stats.unknowns, string.stats.unknowns + 2 * o.elements + 4);
+    assert!(run.terms.iter().any(|t| t.starts_with("θ least squares")));
+    assert!(run.terms.iter().any(|t| t.starts_with("Coulomb contact")));
+    let (a, b) = (string.summary.scalars(), run.summary.scalars());
+    assert_eq!(a.iter().map(|x| &x.0).collect::<Vec<_>>(), b.iter().map(|x| &x.0).collect::<Vec<_>>());
+    assert!(a.len() >= 16, "{} scalars", a.len());
+    let mut worst: f64 = 0.0;
+    for ((name, x), (_, y)) in a.iter().zip(&b) {
+        let rel = (x - y).abs() / x.abs().max(1e-3);
+        worst = worst.max(rel);
+        assert!(rel <= 1e-9, "{name}: string-simpson {x} vs the Cosserat layout {y} ({rel:e})");
+    }
+    println!("{} steps; largest relative difference of {} summary scalars: {worst:e}", hs.len(), a.len());
 }

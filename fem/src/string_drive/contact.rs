@@ -5,20 +5,29 @@
 //! solve ([`commit`]) — and the element energy of the drive's extra terms with the
 //! transport inertia (D8), with exact derivatives by AD (docs/fem-drive.md §2, §5, §6).
 //!
-//! The extra terms of an element depend on its 8 string unknowns q and on the two
-//! global step unknowns a (material advance at σ = 0, D1) and φ (driven rotation
-//! increment, §4): 10 variables, differentiated together by `Dual2SVec64<10>`.
+//! The extra terms of an element depend on its N unknowns q — of any 1-D layout: the
+//! terms read the element's centreline {s, ν} ([`ElementContext::centreline`], through
+//! the augmented map where the element has one) — and on the two global step unknowns
+//! a (material advance at σ = 0, D1) and φ (driven rotation increment, §4): N + 2
+//! variables ([`extended_size`]; 10 for the string), differentiated together by
+//! `Dual2SVec64<N + 2>`.
 
 use drive::contour::{Contour, Pulley, Region};
 use nalgebra::SVector;
 use num_dual::{gradient, hessian};
 
+use crate::element::ElementLayout;
 use crate::formulation::terms::MappedTerm;
 use crate::kinematics::{ElementContext, PointFields, Scalar, NDOF};
 use crate::quadrature::Rule;
 
-/// Variables of the extra element terms: q (8), a, φ.
-pub const NEXT: usize = NDOF + 2;
+/// Variables of the extra element terms of an element with N unknowns: q (N), a, φ.
+pub const fn extended_size(n: usize) -> usize {
+    n + 2
+}
+
+/// Variables of the extra element terms of a string element: q (8), a, φ.
+pub const NEXT: usize = extended_size(NDOF);
 
 /// Per-step parameters of the contact and inertia terms.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -278,17 +287,21 @@ pub fn active(points: &[PointState], sp: &StepParams) -> bool {
     sp.inertia.is_some() || points.iter().any(|p| p.pulley.is_some())
 }
 
-/// The extra energy of one element, J: Σ over its contact points of w ψ (D6, D7), minus
-/// the transport kinetic energy (D8) integrated with the strain rule `strain_rule`.
-pub fn element_energy<D: Scalar>(
+/// The extra energy of one element of `layout` with unknowns q, J: Σ over its contact
+/// points of w ψ (D6, D7), minus the transport kinetic energy (D8) integrated with the
+/// strain rule `strain_rule` — all on the element's centreline {s, ν}.
+#[allow(clippy::too_many_arguments)]
+pub fn element_energy<D: Scalar, const N: usize>(
+    layout: ElementLayout,
     el: &ElementContext,
-    q: &[D; NDOF],
+    q: &[D; N],
     a: D,
     phi: D,
     points: &[PointState],
     sp: &StepParams,
     strain_rule: Rule,
 ) -> D {
+    let q = &el.centreline(layout, q);
     let terms = DriveTerms::new(sp);
     let globals = [a, phi];
     let mut total = a * 0.0;
@@ -310,20 +323,24 @@ pub fn element_energy<D: Scalar>(
     total
 }
 
-fn pack(q: &[f64; NDOF], a: f64, phi: f64) -> SVector<f64, NEXT> {
-    SVector::<f64, NEXT>::from_fn(|i, _| if i < NDOF { q[i] } else if i == NDOF { a } else { phi })
+/// (q, a, φ) of an element with N unknowns as one vector of X = N + 2.
+fn pack<const N: usize, const X: usize>(q: &[f64; N], a: f64, phi: f64) -> SVector<f64, X> {
+    debug_assert_eq!(X, extended_size(N));
+    SVector::<f64, X>::from_fn(|i, _| if i < N { q[i] } else if i == N { a } else { phi })
 }
 
-/// Energy, gradient and Hessian of the extra terms of an element in (q, a, φ), exact
-/// (forward-mode AD over all 10 variables).
-pub fn element_derivatives(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; NEXT], [[f64; NEXT]; NEXT]) {
-    let (e, g, h) = hessian(|v| element_energy(el, &std::array::from_fn(|i| v[i]), v[NDOF], v[NDOF + 1], points, sp, strain_rule), &pack(q, a, phi));
+/// Energy, gradient and Hessian of the extra terms of an element of `layout` in
+/// (q, a, φ), exact (forward-mode AD over all X = N + 2 variables).
+#[allow(clippy::too_many_arguments)]
+pub fn element_derivatives<const N: usize, const X: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; X], [[f64; X]; X]) {
+    let (e, g, h) = hessian(|v| element_energy(layout, el, &std::array::from_fn::<_, N, _>(|i| v[i]), v[N], v[N + 1], points, sp, strain_rule), &pack::<N, X>(q, a, phi));
     (e, std::array::from_fn(|i| g[i]), std::array::from_fn(|i| std::array::from_fn(|j| h[(i, j)])))
 }
 
 /// Energy and gradient of the extra terms (AD, first order).
-pub fn element_gradient(el: &ElementContext, q: &[f64; NDOF], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; NEXT]) {
-    let (e, g) = gradient(|v| element_energy(el, &std::array::from_fn(|i| v[i]), v[NDOF], v[NDOF + 1], points, sp, strain_rule), &pack(q, a, phi));
+#[allow(clippy::too_many_arguments)]
+pub fn element_gradient<const N: usize, const X: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], a: f64, phi: f64, points: &[PointState], sp: &StepParams, strain_rule: Rule) -> (f64, [f64; X]) {
+    let (e, g) = gradient(|v| element_energy(layout, el, &std::array::from_fn::<_, N, _>(|i| v[i]), v[N], v[N + 1], points, sp, strain_rule), &pack::<N, X>(q, a, phi));
     (e, std::array::from_fn(|i| g[i]))
 }
 
@@ -375,6 +392,7 @@ mod tests {
     //! (docs/fem-drive.md §5, §6), at random states of every region with penetrated
     //! contact, both stick and slip points, and inertia.
     use super::*;
+    use crate::element::STRING;
     use crate::kinematics::TermParams;
     use crate::mesh::ElementGeometry;
 
@@ -451,11 +469,11 @@ mod tests {
                         random_point(&el, &q, (xi, w, wf), reachable_pulley(&contour, region, sigma), &mut rng, trial % 2 == 0)
                     })
                     .collect();
-                let (_, g, hm) = element_derivatives(&el, &q, a, phi, &points, &sp, Rule::Simpson);
-                let x0 = pack(&q, a, phi);
+                let (_, g, hm) = element_derivatives::<NDOF, NEXT>(STRING, &el, &q, a, phi, &points, &sp, Rule::Simpson);
+                let x0 = pack::<NDOF, NEXT>(&q, a, phi);
                 let f = |x: &SVector<f64, NEXT>| {
                     let qq: [f64; NDOF] = std::array::from_fn(|i| x[i]);
-                    element_energy(&el, &qq, x[NDOF], x[NDOF + 1], &points, &sp, Rule::Simpson)
+                    element_energy(STRING, &el, &qq, x[NDOF], x[NDOF + 1], &points, &sp, Rule::Simpson)
                 };
                 let gmax = g.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
                 let hmax = hm.iter().flatten().fold(1e-300f64, |m, v| m.max(v.abs()));
@@ -474,8 +492,8 @@ mod tests {
                     assert!((fd - g[i]).abs() <= 1e-5 * gmax, "{region:?} grad {i}: AD {} FD {fd}", g[i]);
                     let qp: [f64; NDOF] = std::array::from_fn(|k| xp[k]);
                     let qm: [f64; NDOF] = std::array::from_fn(|k| xm[k]);
-                    let (_, gp) = element_gradient(&el, &qp, xp[NDOF], xp[NDOF + 1], &points, &sp, Rule::Simpson);
-                    let (_, gm) = element_gradient(&el, &qm, xm[NDOF], xm[NDOF + 1], &points, &sp, Rule::Simpson);
+                    let (_, gp) = element_gradient::<NDOF, NEXT>(STRING, &el, &qp, xp[NDOF], xp[NDOF + 1], &points, &sp, Rule::Simpson);
+                    let (_, gm) = element_gradient::<NDOF, NEXT>(STRING, &el, &qm, xm[NDOF], xm[NDOF + 1], &points, &sp, Rule::Simpson);
                     for j in 0..NEXT {
                         let fd = (gp[j] - gm[j]) / (2.0 * d);
                         assert!((fd - hm[j][i]).abs() <= 1e-5 * hmax, "{region:?} hess ({j},{i}): AD {} FD {fd}", hm[j][i]);

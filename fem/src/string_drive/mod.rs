@@ -44,7 +44,7 @@ pub mod steady;
 pub mod system;
 pub mod view;
 
-use contact::{PointState, StepParams};
+use contact::{PointState, StepParams, NEXT};
 use system::{Load, Pattern, StepSystem};
 pub use view::{DriveSolution, ViewPoint};
 
@@ -196,6 +196,20 @@ struct PulleyOut {
 /// errors, [`FemError::FrictionCapacityExceeded`], [`FemError::DriveStepFailed`],
 /// [`FemError::SteadyStateNotReached`], [`FemError::NonFinite`].
 pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<dyn Kernel>) -> Result<FemRun, FemError> {
+    solve_layout::<NDOF, NEXT, dyn Kernel>(problem, opts, settings, drive_settings, kernel)
+}
+
+/// [`solve`] for an element of any 1-D layout with N unknowns (X = N + 2:
+/// [`contact::extended_size`]): the string's formulations (N = 8, [`solve`]) or an
+/// element of another field set (the Cosserat rod's {s, ν, θ}, N = 12). The analysis
+/// reads the element only through [`LayoutElement`]: its energy by the [`Assembler`],
+/// its axial force, rules and term labels; the contact, friction and transport-inertia
+/// terms, the point states, the upstream references and the outputs act on the
+/// element's centreline {s, ν} ([`crate::kinematics::ElementContext::centreline`]).
+///
+/// # Errors
+/// As [`solve`].
+pub fn solve_layout<const N: usize, const X: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<K>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
     let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
     // the belt runs along σ (ω₁ > 0) or against it (ω₁ < 0; docs/fem-drive.md §13): the
@@ -212,9 +226,11 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
     let load_torque = problem.drive.driven_torque;
     let damping = problem.drive.driven_damping;
 
-    let asm = Assembler::new(start.mesh().clone(), kernel.clone());
+    let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
+    let layout = kernel.layout();
     let mut z = crate::static_homotopy::transfer(&start, &asm);
-    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: problem.weight(), penalty: None, bending_stiffness: None };
+    // the belt's bending stiffness as the static start has it (none for the string)
+    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: problem.weight(), penalty: None, bending_stiffness: start.params().bending_stiffness };
     let length = b.length;
     let strain_rule = kernel.rules().strain;
     let contact_rule = kernel.rules().contact;
@@ -230,7 +246,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
     let mut points: Vec<Vec<PointState>> = (0..asm.mesh().len())
         .map(|e| {
             let el = asm.context(e, &params);
-            let q = asm.dofs().gather(e, &z, length);
+            let q = el.centreline(layout, &asm.dofs().gather(e, &z, length));
             // the contact rule's points for the normal term and the element edges
             // ξ = ±1 (trapezoidal weights) for friction: the mixed rule of §7.3
             contact::mixed_rule(contact_rule)
@@ -267,7 +283,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         .collect();
 
     set_references(&mut points, &asm, &z, &params, length, &contour);
-    let pattern = Pattern::new(&asm);
+    let pattern = Pattern::new::<N, X, K>(&asm);
     let mut lu = BorderedLu::new(&pattern.rows, &pattern.cols, asm.len() + 2, [asm.len(), asm.len() + 1])
         .map_err(|detail| FemError::SingularTangent { eta: 1.0, iteration: 0, detail })?;
     let w_newton = system::weights(&asm, h, r, 1.0);
@@ -302,7 +318,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         // spans (at their midpoints, with c of the last step) must stay positive
         if let Some(rc2) = step_params.inertia {
             for (span, sigma) in [("upper", 0.5 * h), ("lower", 1.5 * h + PI * r)] {
-                let (n, stretch) = span_force(&asm, &z, &params, length, &kernel, &contour, sigma);
+                let (n, stretch, _) = state_at(&asm, &z, &params, length, sigma);
                 if n - rc2 * stretch <= 0.0 {
                     return Err(FemError::SpeedAtOrAboveCritical { span: span.into(), tension: n, inertia_force: rc2 * stretch, time: Some(time) });
                 }
@@ -331,7 +347,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
                     return Err(FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity: cap, time: Some(time) });
                 }
             }
-            let sys = StepSystem { asm: &asm, params, length, points: &points, step: step_params, load, strain_rule };
+            let sys = StepSystem::<N, X, K> { asm: &asm, params, length, points: &points, step: step_params, load, strain_rule };
             let mut res = system::newton(&sys, &pattern, &mut lu, &mut x, &w_newton, settings.update_tolerance, drive_settings.max_newton_iterations, f_ref * h);
             if res.is_err() {
                 // retry once from the last state itself (no secant predictor)
@@ -362,7 +378,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
             let terms = contact::DriveTerms::new(&step_params);
             for (e, pts) in points.iter_mut().enumerate() {
                 let el = asm.context(e, &params);
-                let q = asm.dofs().gather(e, &x[..nz], length);
+                let q = el.centreline(layout, &asm.dofs().gather(e, &x[..nz], length));
                 for pt in pts.iter_mut() {
                     if pt.pulley.is_none() {
                         continue;
@@ -390,7 +406,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         // the new state becomes the previous one of the points (S̃_n)
         for (e, pts) in points.iter_mut().enumerate() {
             let el = asm.context(e, &params);
-            let q = asm.dofs().gather(e, &z, length);
+            let q = el.centreline(layout, &asm.dofs().gather(e, &z, length));
             for pt in pts.iter_mut() {
                 // the travel of this step becomes the reference of the next (D2)
                 if pt.pulley.is_some() && pt.bound > 0.0 {
@@ -401,7 +417,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
         }
         set_references(&mut points, &asm, &z, &params, length, &contour);
         outs = [pulley_out(&points, Pulley::Driver, r, &contour, direction), pulley_out(&points, Pulley::Driven, r, &contour, direction)];
-        record(&mut history, time, omega2, c, &asm, &z, &params, length, &kernel, &contour, &points, &outs, rate, direction);
+        record(&mut history, time, omega2, c, &asm, &z, &params, length, &contour, &points, &outs, rate, direction);
         records.push(rec);
         a_prev = a;
         phi_prev = phi;
@@ -580,7 +596,7 @@ fn drum_advance(pt: &PointState, driver: f64, driven: f64) -> f64 {
 
 /// The upstream references of (D2) from the state z_n: S̃_n and ∂σS̃_n at σ − d_ref
 /// (unwrapped across σ = 0 with the closure S(σ + L_c) = S(σ) + L, F5).
-fn set_references(points: &mut [Vec<PointState>], asm: &Assembler, z: &[f64], params: &TermParams, length: f64, contour: &Contour) {
+fn set_references<const N: usize, K: LayoutElement<N> + ?Sized>(points: &mut [Vec<PointState>], asm: &Assembler<N, K>, z: &[f64], params: &TermParams, length: f64, contour: &Contour) {
     let lc = contour.length();
     for pt in points.iter_mut().flatten() {
         if pt.pulley.is_none() {
@@ -590,7 +606,7 @@ fn set_references(points: &mut [Vec<PointState>], asm: &Assembler, z: &[f64], pa
         let loops = (at / lc).floor();
         let (e, xi) = asm.mesh().locate(at - loops * lc);
         let el = asm.context(e, params);
-        let q = asm.dofs().gather(e, z, length);
+        let q = el.centreline(asm.kernel().layout(), &asm.dofs().gather(e, z, length));
         let f = el.fields(&q, xi);
         pt.s_ref = f.s + loops * length;
         pt.slope_ref = f.ds;
@@ -657,7 +673,7 @@ fn slip_arc(out: &PulleyOut, arc: f64, [start, end]: [f64; 2], angle: impl Fn(f6
 }
 
 /// Contact arc (point-based fallback) and slip arc of a pulley, rad.
-fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour: &Contour, out: &PulleyOut, direction: Direction) -> (f64, f64) {
+fn arcs<const N: usize, K: LayoutElement<N> + ?Sized>(base: &FemSolution<N, K>, points: &[Vec<PointState>], pulley: Pulley, contour: &Contour, out: &PulleyOut, direction: Direction) -> (f64, f64) {
     let mut pts: Vec<f64> = points.iter().flatten().filter(|p| p.pulley == Some(pulley) && p.normal > 0.0).map(|p| unwrap(contour, pulley, p.sigma)).collect();
     pts.sort_by(f64::total_cmp);
     let angle = |sigma: f64| contour.polar_angle(pulley, base.position(contour.wrap(sigma)));
@@ -670,27 +686,25 @@ fn arcs(base: &FemSolution, points: &[Vec<PointState>], pulley: Pulley, contour:
     (arc, slip_arc(out, arc, [start_angle, end_angle], angle, direction))
 }
 
-/// Axial force and stretch of the state z at σ.
-fn span_force(asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, sigma: f64) -> (f64, f64) {
-    let (e, xi) = asm.mesh().locate(contour.wrap(sigma));
+/// Axial force (the element's, [`LayoutElement::axial_force_at`]), stretch of the
+/// centreline and position of the state z at σ.
+fn state_at<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, z: &[f64], params: &TermParams, length: f64, sigma: f64) -> (f64, f64, [f64; 2]) {
+    let (e, xi) = asm.mesh().locate(asm.mesh().contour().wrap(sigma));
     let el = asm.context(e, params);
-    let q: [f64; NDOF] = asm.dofs().gather(e, z, length);
-    let stretch = el.stretch(&el.fields(&q, xi));
-    (kernel.axial_force(stretch, params.axial_stiffness), stretch)
+    let q = asm.dofs().gather(e, z, length);
+    let p = el.fields(&el.centreline(asm.kernel().layout(), &q), xi);
+    (asm.kernel().axial_force_at(&el, &q, xi), el.stretch(&p), el.position(&p))
 }
 
 /// Append one step to the history: raw axial force EA(λ − 1) at the span midpoints,
 /// per pulley the torque and the stick/slip arcs from the point states (contact
 /// boundaries at the first/last point carrying normal traction, O(h)).
 #[allow(clippy::too_many_arguments)]
-fn record(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler, z: &[f64], params: &TermParams, length: f64, kernel: &Arc<dyn Kernel>, contour: &Contour, points: &[Vec<PointState>], outs: &[PulleyOut; 2], rate: f64, direction: Direction) {
+fn record<const N: usize, K: LayoutElement<N> + ?Sized>(history: &mut History, time: f64, omega2: f64, c: f64, asm: &Assembler<N, K>, z: &[f64], params: &TermParams, length: f64, contour: &Contour, points: &[Vec<PointState>], outs: &[PulleyOut; 2], rate: f64, direction: Direction) {
     let h = contour.centre_distance();
     let at = |sigma: f64| {
-        let (e, xi) = asm.mesh().locate(contour.wrap(sigma));
-        let el = asm.context(e, params);
-        let q: [f64; NDOF] = asm.dofs().gather(e, z, length);
-        let p = el.fields(&q, xi);
-        (kernel.axial_force(el.stretch(&p), params.axial_stiffness), el.position(&p))
+        let (n, _, position) = state_at(asm, z, params, length, sigma);
+        (n, position)
     };
     history.time.push(time);
     history.driven_speed.push(omega2);

@@ -7,25 +7,10 @@ use super::*;
 use crate::element::ElementLayout;
 use crate::formulation::terms::TransportInertia;
 
-/// The centreline unknowns {s, ν} of an element of `layout` in the string order
-/// ([`crate::element::STRING`]), after the augmented map of the element's flagged nodes
-/// ([`ElementContext::effective`], docs/fem-rod.md K9; the Cosserat element's map (C3)
-/// scales ∂σs and ∂σν the same way) — the identity for the string. The friction and
-/// contact rows act on these only (docs/fem-cosserat.md §7); generic so that AD
-/// differentiates through the map.
+/// The centreline {s, ν} of an element of `layout` ([`ElementContext::centreline`]).
 #[inline]
 pub(super) fn centreline<D: Scalar, const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[D; N]) -> [D; NDOF] {
-    let mut out = [q[0]; NDOF];
-    for f in 0..2 {
-        for (i, j) in crate::element::STRING.hermite_indices(f).into_iter().zip(layout.hermite_indices(f)) {
-            out[i] = q[j];
-        }
-    }
-    if el.augmented.iter().any(|&a| a) {
-        el.effective(&out)
-    } else {
-        out
-    }
+    el.centreline(layout, q)
 }
 
 /// The gap γ at a point of an element and its gradient in the element's q; `None`
