@@ -248,6 +248,16 @@ mod tests {
         data
     }
 
+    /// The contour, a mesh of `per_region` elements per region, its columns and random
+    /// nodal data from `seed`.
+    fn setup(per_region: [usize; 4], seed: u64) -> (Contour, SurfaceMesh, TransitionSides, Nodal) {
+        let contour = contour();
+        let mesh = mesh(&contour, per_region);
+        let sides = TransitionSides::new(&contour, &mesh).unwrap();
+        let data = nodal(&mesh, &mut Rng(seed));
+        (contour, mesh, sides, data)
+    }
+
     /// Element e's unknowns in module order.
     fn gather(mesh: &SurfaceMesh, data: &Nodal, e: usize) -> [f64; SHELL_DOFS] {
         let nodes = mesh.element_nodes(e);
@@ -323,54 +333,8 @@ mod tests {
     }
 
     #[test]
-    fn nodal_slope_scaling_is_continuous_at_the_nodes_only() {
-        // the 1-D map (K9) applied per node — polar slopes = (1 + ν/R) × Cartesian slopes
-        // and their ζ-derivative — in plain BFS polar elements: exact at the nodes, not
-        // between them (the product of two cubics is a sextic, docs/fem-shell.md §5)
-        let contour = contour();
-        let mesh = mesh(&contour, [4, 3, 4, 3]);
-        let sides = TransitionSides::new(&contour, &mesh).unwrap();
-        let data = nodal(&mesh, &mut Rng(0x0dd_5eed));
-        let r = contour.radius();
-        let m = mesh.zeta_elements();
-        let element = |e: usize| ShellElement { augmented: Augmented::default(), ..sides.element(&mesh, e) };
-        let q_of = |e: usize| {
-            let mut q = gather(&mesh, &data, e);
-            let augmented = sides.column(e / m).augmented;
-            for (on, nodes) in [(augmented.start, [0, 2]), (augmented.end, [1, 3])] {
-                for node in nodes.into_iter().filter(|_| on) {
-                    let (nu, nu_zeta) = (q[NU * PER_FIELD + 4 * node], q[NU * PER_FIELD + 4 * node + 2]);
-                    for field in 0..3 {
-                        let (slope, cross) = (q[field * PER_FIELD + 4 * node + 1], q[field * PER_FIELD + 4 * node + 3]);
-                        q[field * PER_FIELD + 4 * node + 1] = (1.0 + nu / r) * slope;
-                        q[field * PER_FIELD + 4 * node + 3] = nu_zeta / r * slope + (1.0 + nu / r) * cross;
-                    }
-                }
-            }
-            q
-        };
-        let mut at_nodes = 0.0_f64;
-        for i in (0..mesh.sigma_elements()).filter(|&i| sides.column(i).augmented.start) {
-            for j in 0..m {
-                let (e_c, e_p) = ((i - 1) * m + j, i * m + j);
-                for eta in [-1.0, 1.0] {
-                    let dl = global_derivatives(&contour, &element(e_c), &q_of(e_c), 1.0, eta);
-                    let dr = global_derivatives(&contour, &element(e_p), &q_of(e_p), -1.0, eta);
-                    at_nodes = dl.iter().flatten().zip(dr.iter().flatten()).fold(at_nodes, |acc, (a, b)| acc.max((a - b).abs()));
-                }
-            }
-        }
-        assert!(at_nodes < 1e-12, "nodal scaling: jump {at_nodes:e} at the nodes");
-        let (jump, scale) = transition_jump(&contour, &mesh, &element, &q_of);
-        assert!(jump > 1e-2 * scale, "nodal scaling: jump {jump:e} between the nodes should be visible");
-    }
-
-    #[test]
     fn augmented_fields_stay_c1_across_lateral_and_far_edges() {
-        let contour = contour();
-        let mesh = mesh(&contour, [4, 3, 4, 3]);
-        let sides = TransitionSides::new(&contour, &mesh).unwrap();
-        let data = nodal(&mesh, &mut Rng(0xfa2_ed9e));
+        let (_, mesh, sides, data) = setup([4, 3, 4, 3], 0xfa2_ed9e);
         let m = mesh.zeta_elements();
         let (mut lateral, mut far, mut scale) = (0.0_f64, 0.0_f64, 0.0_f64);
         let mut compare = |a: [[f64; 6]; 3], b: [[f64; 6]; 3], worst: &mut f64| {
@@ -411,10 +375,7 @@ mod tests {
 
     #[test]
     fn derivative_rows_match_central_differences_of_the_augmented_value() {
-        let contour = contour();
-        let mesh = mesh(&contour, [3, 1, 2, 1]);
-        let sides = TransitionSides::new(&contour, &mesh).unwrap();
-        let data = nodal(&mesh, &mut Rng(0x00c0_ffee));
+        let (_, mesh, sides, data) = setup([3, 1, 2, 1], 0x00c0_ffee);
         // an arc of one element: both corrections present
         let e = (0..mesh.len()).find(|&e| sides.element(&mesh, e).augmented == Augmented { start: true, end: true }).unwrap();
         let (el, q) = (sides.element(&mesh, e), gather(&mesh, &data, e));
@@ -444,11 +405,8 @@ mod tests {
 
     #[test]
     fn augmented_fields_are_quadratic_in_the_unknowns() {
-        let contour = contour();
-        let mesh = mesh(&contour, [3, 2, 3, 2]);
-        let sides = TransitionSides::new(&contour, &mesh).unwrap();
-        let mut rng = Rng(0x9a_d1ff);
-        let data = nodal(&mesh, &mut rng);
+        let (_, mesh, sides, data) = setup([3, 2, 3, 2], 0x9a_d1ff);
+        let mut rng = Rng(0x1d_1ec7);
         let e = (0..mesh.len()).find(|&e| sides.element(&mesh, e).augmented.end).unwrap();
         let el = sides.element(&mesh, e);
         let q = gather(&mesh, &data, e);
@@ -498,5 +456,45 @@ mod tests {
         assert!(matches!(TransitionSides::new(&contour, &uniform), Err(ShellError::TransitionNotANode { sigma, .. }) if sigma == 1.1));
         let short = SurfaceMesh::new(contour.length() - 0.01, mesh.sigma_nodes().to_vec(), vec![0.0, 1.0]).unwrap();
         assert!(matches!(TransitionSides::new(&contour, &short), Err(ShellError::LengthMismatch { .. })));
+    }
+
+    #[test]
+    fn nodal_slope_scaling_is_continuous_at_the_nodes_only() {
+        // the 1-D map (K9) applied per node — polar slopes = (1 + ν/R) × Cartesian slopes
+        // and their ζ-derivative — in plain BFS polar elements: exact at the nodes, not
+        // between them (the product of two cubics is a sextic, docs/fem-shell.md §5)
+        let (contour, mesh, sides, data) = setup([4, 3, 4, 3], 0x0dd_5eed);
+        let r = contour.radius();
+        let m = mesh.zeta_elements();
+        let element = |e: usize| ShellElement { augmented: Augmented::default(), ..sides.element(&mesh, e) };
+        let q_of = |e: usize| {
+            let mut q = gather(&mesh, &data, e);
+            let augmented = sides.column(e / m).augmented;
+            for (on, nodes) in [(augmented.start, [0, 2]), (augmented.end, [1, 3])] {
+                for node in nodes.into_iter().filter(|_| on) {
+                    let (nu, nu_zeta) = (q[NU * PER_FIELD + 4 * node], q[NU * PER_FIELD + 4 * node + 2]);
+                    for field in 0..3 {
+                        let (slope, cross) = (q[field * PER_FIELD + 4 * node + 1], q[field * PER_FIELD + 4 * node + 3]);
+                        q[field * PER_FIELD + 4 * node + 1] = (1.0 + nu / r) * slope;
+                        q[field * PER_FIELD + 4 * node + 3] = nu_zeta / r * slope + (1.0 + nu / r) * cross;
+                    }
+                }
+            }
+            q
+        };
+        let mut at_nodes = 0.0_f64;
+        for i in (0..mesh.sigma_elements()).filter(|&i| sides.column(i).augmented.start) {
+            for j in 0..m {
+                let (e_c, e_p) = ((i - 1) * m + j, i * m + j);
+                for eta in [-1.0, 1.0] {
+                    let dl = global_derivatives(&contour, &element(e_c), &q_of(e_c), 1.0, eta);
+                    let dr = global_derivatives(&contour, &element(e_p), &q_of(e_p), -1.0, eta);
+                    at_nodes = dl.iter().flatten().zip(dr.iter().flatten()).fold(at_nodes, |acc, (a, b)| acc.max((a - b).abs()));
+                }
+            }
+        }
+        assert!(at_nodes < 1e-12, "nodal scaling: jump {at_nodes:e} at the nodes");
+        let (jump, scale) = transition_jump(&contour, &mesh, &element, &q_of);
+        assert!(jump > 1e-2 * scale, "nodal scaling: jump {jump:e} between the nodes should be visible");
     }
 }
