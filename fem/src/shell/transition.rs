@@ -86,7 +86,7 @@ impl TransitionSides {
         let nodes = mesh.sigma_nodes();
         for sigma in contour.transitions() {
             let nearest = nodes.iter().copied().min_by(|a, b| (a - sigma).abs().total_cmp(&(b - sigma).abs())).unwrap_or(f64::NAN);
-            if !((nearest - sigma).abs() <= tolerance) {
+            if (nearest - sigma).abs().is_nan() || (nearest - sigma).abs() > tolerance {
                 return Err(ShellError::TransitionNotANode { sigma, nearest });
             }
         }
