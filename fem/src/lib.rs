@@ -101,6 +101,7 @@ pub mod newton;
 mod options;
 pub mod problem;
 pub mod quadrature;
+pub mod shell;
 pub mod solution;
 pub mod stamp;
 pub mod string_drive;

@@ -1,0 +1,29 @@
+//! The Kirchhoff–Love shell of Paper E in MEL description (issue 15; docs/fem-shell.md):
+//! unknowns {S, ν, z} over (σ, ζ) on the Bogner–Fox–Schmit elements of
+//! [`crate::surface`].
+//!
+//! - [`transition`]: the geometry of the element columns (α, which σ-edges are
+//!   Cartesian/polar transitions), the augmented C¹ construction at the transitions
+//!   (docs/fem-shell.md (S11)–(S12)) and the material derivatives (37) of the position;
+//! - [`membrane`]: the stiffness coefficients of (19) and the membrane energy with camber
+//!   as a [`crate::surface::assembly::SurfaceKernel`] (Simpson × Gauss 3).
+
+pub mod membrane;
+pub mod transition;
+
+use thiserror::Error;
+
+/// Why a shell mesh or element cannot be built.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum ShellError {
+    /// The surface mesh's loop length differs from the contour's L_geom.
+    #[error("the mesh's loop length {mesh} m differs from the contour's L_geom = {contour} m")]
+    LengthMismatch { mesh: f64, contour: f64 },
+    /// A Cartesian/polar transition of the contour that is no σ-node of the mesh (α must
+    /// be constant on every element, docs/fem-shell.md §4).
+    #[error("the transition at σ = {sigma} m is no σ-node of the mesh (nearest node at {nearest} m)")]
+    TransitionNotANode { sigma: f64, nearest: f64 },
+    /// A material or model parameter out of its range.
+    #[error("{what} = {value} is out of range")]
+    BadParameter { what: &'static str, value: f64 },
+}
