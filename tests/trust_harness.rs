@@ -110,3 +110,19 @@ fn gate_plan_takes_the_scene_tolerances() {
     let hanging = catalogue_scene("string-hanging");
     assert_eq!(tolerances(&gate::gate_plan_with(&hanging, None, None, None)), (gate::GATE_REFERENCE_TOLERANCE, vec![vec![gate::GATE_BVP_TOLERANCE]; 2]));
 }
+
+/// `gate.fem: false` (the catalogue's `cosserat-drive`, whose FE the gate cannot yet hold
+/// to the BVP limits) plans no FE run even where the FE solves the scene; a scene without
+/// it keeps its FE studies.
+#[test]
+fn gate_fem_false_plans_the_bvp_only() {
+    let drive = catalogue_scene("cosserat-drive");
+    assert_eq!(drive.gate_settings().fem, Some(false));
+    assert!(drive::not_yet_solvable(&drive, drive::Solver::Fem).is_none(), "the FE solves cosserat-drive");
+    let plan = gate::gate_plan_with(&drive, None, None, None);
+    assert!(plan.meshes.is_empty() && plan.fem_methods().is_empty(), "gate.fem = false must plan no FE run");
+    let mut with_fem = drive.clone();
+    with_fem.gate.as_mut().expect("a gate block").fem = None;
+    let plan = gate::gate_plan_with(&with_fem, None, None, None);
+    assert!(!plan.meshes.is_empty() && !plan.fem_methods().is_empty(), "without gate.fem the gate studies the FE");
+}

@@ -189,7 +189,7 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
     let mut checks = Vec::new();
     let mut notes = study.notes.clone();
     if settings.fem == Some(false) {
-        notes.push("FE not gated: the scene's gate.fem is false (`converge` and `report` still study it)".into());
+        notes.push("FE not gated: the scene's gate block sets `fem` to false (`converge` and `report` still study the FE)".into());
     }
     let setup_fail = |quantity: &str, reason: String| Check {
         method: NONE.into(),
