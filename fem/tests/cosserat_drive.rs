@@ -134,3 +134,55 @@ fn issue_scene_converges_to_the_bvp() {
         }
     }
 }
+
+/// The issue's scene counter-clockwise (ω₁ = −20 rad/s, M₂ = −0.1 N·m: with gravity the
+/// upper span is the tight one, a different problem from the mirror image) at 128
+/// elements against the BVP's counter-clockwise solution (collocation, tolerance 1e-8).
+/// Measured relative errors: c 2.6e-6, ω₂ 4.5e-7, mid-span tensions 5.4e-4 / 6.2e-4,
+/// heights 6.1e-6 / 5.2e-5, moments 5.5e-4 / 6.5e-4, contact arcs 9.7e-4 / 9.5e-4,
+/// T_tight / T_slack (both read midway along the stick arc) 5.1e-3 / 4.9e-3, driver
+/// torque 1.6e-6, slip arcs 0.72 / 1.46 (longer than the BVP's, as clockwise at 128:
+/// 1.16 / 3.0). Bounds 2× the measured; the slip arcs only within 3× the BVP's.
+#[test]
+fn issue_scene_counter_clockwise_against_the_bvp() {
+    let mut v: Value = serde_json::from_str(include_str!("../../scenes/cosserat-drive.json")).unwrap();
+    v["name"] = json!("cosserat-drive-ccw");
+    v["drive"]["driver_speed"] = json!(-20.0);
+    v["drive"]["driven_torque"] = json!(-0.1);
+    let sc = Scene::from_json_str(&v.to_string()).unwrap();
+    let data = bvp::cosserat_drive::CosseratDrive::from_scene(&sc).unwrap();
+    let bvp_opts = bvp::belt::BeltOptions::from_scene(&sc).unwrap();
+    let reference = drive::view::SolutionView::summary(&bvp::cosserat_drive::solve(&data, &bvp_opts).unwrap());
+    let r = solve(&sc, 128, &SolverSettings::default());
+    let (pin, pout, d) = (drive_option(&r, "power_in"), drive_option(&r, "power_out"), drive_option(&r, "dissipation"));
+    assert!((pin - pout - d).abs() < 1e-9 * pin.abs() && d > 0.0, "P_in {pin} − P_out {pout} − D {d}");
+    let w2 = r.summary.driven_speed.unwrap();
+    assert!(w2 < 0.0 && w2 > sc.drive.driver_speed, "counter-clockwise creep, ω₂ = {w2}");
+    assert!(
+        r.summary.tension_upper_mid.unwrap() > r.summary.tension_lower_mid.unwrap(),
+        "counter-clockwise the upper span is the tight one"
+    );
+    for (q, bound) in [
+        ("transport_rate", 5.2e-6),
+        ("driven_speed", 9e-7),
+        ("tension_upper_mid", 1.1e-3),
+        ("tension_lower_mid", 1.3e-3),
+        ("y_upper_mid", 1.3e-5),
+        ("y_lower_mid", 1.1e-4),
+        ("moment_upper_mid", 1.1e-3),
+        ("moment_lower_mid", 1.3e-3),
+        ("driver.contact_arc", 2e-3),
+        ("driven.contact_arc", 2e-3),
+        ("tension_tight", 1.1e-2),
+        ("tension_slack", 1e-2),
+        ("driver.torque", 3.3e-6),
+    ] {
+        let e = relative_error(&r.summary, &reference, q);
+        println!("ccw 128 {q}: FE {:?} BVP {:?} relative error {e:.2e}", r.summary.get(q), reference.get(q));
+        assert!(e <= bound, "counter-clockwise, {q}: relative error {e:e} above {bound:e}");
+    }
+    for q in ["driver.slip_arc", "driven.slip_arc"] {
+        let (f, b) = (r.summary.get(q).unwrap(), reference.get(q).unwrap());
+        assert!(f > 0.0 && b > 0.0 && f < 3.0 * b, "counter-clockwise {q}: FE {f} against BVP {b}");
+    }
+}
