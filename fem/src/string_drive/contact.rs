@@ -387,7 +387,7 @@ pub fn commit(pt: &mut PointState, ev: &Evaluation, mu: f64, augmented: bool) ->
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     //! The extra terms' AD gradient and Hessian against central finite differences
     //! (docs/fem-drive.md §5, §6), at random states of every region with penetrated
     //! contact, both stick and slip points, and inertia.
@@ -411,7 +411,7 @@ mod tests {
     /// A contact point at ξ of `el` (rule weights w, w_f) with references and multipliers
     /// drawn around the state `q`, and a slip bound that makes it slip (1e-3 N/m) or
     /// stick (1e6 N/m).
-    fn random_point(el: &ElementContext, q: &[f64; NDOF], (xi, w, wf): (f64, f64, f64), pulley: Option<Pulley>, rng: &mut Rng, slipping: bool) -> PointState {
+    pub(crate) fn random_point(el: &ElementContext, q: &[f64; NDOF], (xi, w, wf): (f64, f64, f64), pulley: Option<Pulley>, rng: &mut Rng, slipping: bool) -> PointState {
         let p = el.fields(q, xi);
         PointState {
             xi,

@@ -497,26 +497,9 @@ mod tests {
                 let q = el.centreline(layout, &dofs.gather(e, &z, length));
                 contact::mixed_rule(Rule::Simpson)
                     .into_iter()
-                    .map(|(xi, w, wf)| {
-                        let p = el.fields(&q, xi);
-                        PointState {
-                            xi,
-                            weight: w * el.jacobian(),
-                            friction_weight: wf * el.jacobian(),
-                            sigma: el.sigma(xi),
-                            pulley: contact::reachable_pulley(&contour, el.geometry.region, el.sigma(xi)),
-                            travel_ref: 1.0e-3 * (1.0 + 0.1 * rng.next()),
-                            s_ref: p.s - 1.0e-3 * (1.0 + 0.1 * rng.next()),
-                            slope_ref: p.ds * (1.0 + 1e-3 * rng.next()),
-                            metric: el.tangent_length(&p),
-                            lambda_n: 50.0 * rng.next(),
-                            lambda_t: 20.0 * (rng.next() - 0.5),
-                            bound: if e % 2 == 0 { 1e-3 } else { 1e6 },
-                            slip: false,
-                            normal: 0.0,
-                            tangential: 0.0,
-                            displacement: 0.0,
-                        }
+                    .map(|rule_point| {
+                        let pulley = contact::reachable_pulley(&contour, el.geometry.region, el.sigma(rule_point.0));
+                        contact::tests::random_point(&el, &q, rule_point, pulley, &mut rng, e % 2 == 0)
                     })
                     .collect()
             })
