@@ -540,6 +540,7 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
         surface: None,
         history: run.history.clone(),
         discretisation: Some(disc),
+        warnings: run.warnings.clone(),
     }
 }
 
@@ -655,6 +656,9 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     print_one_pulley(s);
     for note in &run.notes {
         println!("  {note}");
+    }
+    for w in &run.warnings {
+        println!("  warning: {w}");
     }
     if let Some(n) = &run.not_steady {
         println!("  NOT CONVERGED: {n}; the numbers above are the last state of the transient");

@@ -529,6 +529,11 @@ pub struct RunResult {
     /// orders the runs of one code and measures their observed orders by it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub discretisation: Option<Discretisation>,
+    /// Stated warnings of the solver about this result (optional; absent or empty for
+    /// a clean result): e.g. an unresolved bending layer or slip zone. A reader that
+    /// treats results as trusted numbers should treat a warned one as not trusted.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 impl RunResult {

@@ -29,6 +29,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         surface: None,
         history: None,
         discretisation: None,
+        warnings: Vec::new(),
     }
 }
 

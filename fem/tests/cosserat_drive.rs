@@ -122,6 +122,17 @@ fn issue_scene_converges_to_the_bvp() {
         assert!((pin - pout - d).abs() < 1e-9 * pin && d > 0.0, "{n}: P_in {pin} − P_out {pout} − D {d}");
         let w2 = r.summary.driven_speed.unwrap();
         assert!(w2 > 0.0 && w2 < sc.drive.driver_speed, "{n}: creep, ω₂ = {w2}");
+        // a slip arc more than 10 % off is never a clean result: the run states that
+        // its slip zone is unresolved (fem::string_drive::steady::SLIP_ELEMENTS; it is
+        // at every mesh here: the zones span 2.9–6.5 arc elements), and at 128 also
+        // that the fitting stopped at its pass limit (30 passes, 0.44 mm = 4 % of an
+        // arc element from a node)
+        for pulley in ["driver", "driven"] {
+            let error = relative_error(&r.summary, &reference, &format!("{pulley}.slip_arc"));
+            let warned = r.notes.iter().any(|w| w.starts_with(&format!("unresolved slip zone on the {pulley} pulley")));
+            assert!(warned || error <= 0.1, "{n} elements, {pulley}: slip arc {error:.2} off and no warning in {:?}", r.notes);
+        }
+        assert_eq!(r.notes.iter().any(|w| w.contains("pass limit")), n == 128, "{n}: {:?}", r.notes);
         for (k, (q, bounds, _)) in table.iter().enumerate() {
             errors[k][m] = relative_error(&r.summary, &reference, q);
             println!("{n} {q}: FE {:?} BVP {:?} relative error {:.2e}", r.summary.get(q), reference.get(q), errors[k][m]);

@@ -545,6 +545,9 @@ fn direct_steady_solve_matches_creep_theory_and_balances_power() {
         assert!((m1 + 2.0).abs() < 1e-7, "{n}: driver torque {m1} (−M₂ without gravity)");
         assert!(r.history.is_none());
         assert_eq!(r.options["drive"]["report"]["fit_converged"], true, "{n}: fitted");
+        // a string's slip zone is a front in a smooth field, resolved at these meshes:
+        // no stated warning (fem::string_drive::steady::slip_resolution_warning)
+        assert!(r.notes.is_empty(), "{n}: {:?}", r.notes);
     }
     assert!(slip[1] < 0.3 * slip[0] && slip[1] < 0.1f64.to_radians(), "slip-arc errors {slip:?} rad");
     // the transient's steady state (64 elements) agrees to its own O(h) front error

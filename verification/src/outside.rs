@@ -577,6 +577,7 @@ fn harness_run(label: &str, family: Family, r: &OutsideRun, scene: &Scene, n: us
         options: r.result.options.clone().unwrap_or(Value::Null),
         terms: Vec::new(),
         notes: vec![format!("read from {}", r.file.display())],
+        warnings: r.result.warnings.clone(),
         samples,
     };
     Run { method: label.to_string(), family, discretisation: r.discretisation, wall_seconds: c.wall_seconds, outcome: Ok(data) }

@@ -218,6 +218,7 @@ impl Reference {
                     options: serde_json::json!({"closed_form": "elastic catenary loop", "tolerance": CATENARY_TOLERANCE}),
                     terms: Vec::new(),
                     notes: vec!["summary scalars only: the closed form gives no fields, so no field norms are measured against it".into()],
+                    warnings: Vec::new(),
                     samples: Samples::default(),
                 });
                 let run = Run { method: self.label(), family: Family::ClosedForm, discretisation: Discretisation::Tolerance(CATENARY_TOLERANCE), wall_seconds: wall, outcome };
@@ -316,7 +317,7 @@ fn richardson_data(runs: &[Run], estimates: &mut Vec<Estimate>, notes: &mut Vec<
         mesh_nodes: finest.cost.mesh_nodes,
         elements: finest.cost.elements,
     };
-    Ok(RunData { summary, cost, options: finest.options.clone(), terms: finest.terms.clone(), notes: finest.notes.clone(), samples })
+    Ok(RunData { summary, cost, options: finest.options.clone(), terms: finest.terms.clone(), notes: finest.notes.clone(), warnings: finest.warnings.clone(), samples })
 }
 
 /// Pointwise extrapolation of the sampled fields; a field whose levels do not converge in

@@ -105,14 +105,14 @@ fn fields_out(d: &RunData, every: usize) -> FieldsOut {
 #[derive(Serialize)]
 #[serde(tag = "status", rename_all = "snake_case")]
 enum RunOut<'a> {
-    Solved { method: &'a str, discretisation: crate::run::Discretisation, summary: &'a drive::summary::Summary, cost: &'a crate::run::RunCost, options: &'a serde_json::Value, terms: &'a [String], notes: &'a [String] },
+    Solved { method: &'a str, discretisation: crate::run::Discretisation, summary: &'a drive::summary::Summary, cost: &'a crate::run::RunCost, options: &'a serde_json::Value, terms: &'a [String], notes: &'a [String], #[serde(skip_serializing_if = "<[String]>::is_empty")] warnings: &'a [String] },
     NotApplicable { method: &'a str, discretisation: crate::run::Discretisation, wall_seconds: f64, reason: String },
     Failed { method: &'a str, discretisation: crate::run::Discretisation, wall_seconds: f64, reason: String },
 }
 
 fn run_out(r: &Run) -> RunOut<'_> {
     match &r.outcome {
-        Ok(d) => RunOut::Solved { method: &r.method, discretisation: r.discretisation, summary: &d.summary, cost: &d.cost, options: &d.options, terms: &d.terms, notes: &d.notes },
+        Ok(d) => RunOut::Solved { method: &r.method, discretisation: r.discretisation, summary: &d.summary, cost: &d.cost, options: &d.options, terms: &d.terms, notes: &d.notes, warnings: &d.warnings },
         Err(crate::run::RunError::NotApplicable(m)) => RunOut::NotApplicable { method: &r.method, discretisation: r.discretisation, wall_seconds: r.wall_seconds, reason: m.clone() },
         Err(e) => RunOut::Failed { method: &r.method, discretisation: r.discretisation, wall_seconds: r.wall_seconds, reason: e.to_string() },
     }

@@ -78,6 +78,9 @@ pub struct Solved {
     pub terms: Vec<String>,
     /// Diagnostics worth keeping (homotopy steps, closure defects, …).
     pub notes: Vec<String>,
+    /// Stated warnings about the result (an unresolved layer or slip zone, a fitting
+    /// stopped at its pass limit): a result with warnings is not a clean one.
+    pub warnings: Vec<String>,
     /// Quantities in time of a transient FE run (docs/fem-drive.md §8); `None` otherwise.
     pub history: Option<drive::result::TimeSeries>,
     /// `Some` for a transient FE run that stopped at `fem.max_steps` before its steady
@@ -314,6 +317,7 @@ impl Method for BvpSolver {
             options: run.options,
             terms: Vec::new(),
             notes: run.notes,
+            warnings: Vec::new(),
             history: None,
             not_steady: None,
         })
@@ -381,10 +385,9 @@ impl Method for FemFormulation {
             summary: run.summary,
             cost,
             options: run.options,
-            // the FE's stated warnings (e.g. an unresolved bending layer) follow the work note
-            notes: std::iter::once(format!("homotopy: {} steps", run.stats.homotopy_steps))
-                .chain(run.notes.iter().map(|w| format!("warning: {w}")))
-                .collect(),
+            notes: vec![format!("homotopy: {} steps", run.stats.homotopy_steps)],
+            // the FE's notes are its stated warnings (an unresolved bending layer or slip zone)
+            warnings: run.notes,
             terms: run.terms,
             history: run.history.map(Into::into),
             not_steady,
@@ -577,6 +580,9 @@ pub struct RunData {
     pub terms: Vec<String>,
     /// Diagnostics of the method.
     pub notes: Vec<String>,
+    /// Stated warnings about the result ([`Solved::warnings`]).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
     /// The solution on the harness's σ grid (not serialised: reports write the fields
     /// they plot).
     #[serde(skip)]
@@ -626,7 +632,7 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
         let samples = Samples::of_view(s.view.as_ref(), samples)?;
         let mut cost = s.cost;
         cost.wall_seconds = wall;
-        Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, samples })
+        Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, warnings: s.warnings, samples })
     });
     Run { method: method.label(), family: method.family(), discretisation: disc, wall_seconds: wall, outcome }
 }

@@ -190,12 +190,16 @@ pub fn convergence_table(study: &Study, series: &Series) -> Table {
     t
 }
 
-/// One line per failed run of a series: `tol 1e-9: failed: <reason>`.
+/// One line per failed run of a series (`tol 1e-9: failed: <reason>`) and per stated
+/// warning of a solved one (`128 el.: warning: <what>`): the runs whose numbers are not clean.
 pub fn failures(series: &Series) -> Vec<String> {
     series
         .rows
         .iter()
-        .filter_map(|r| r.run.outcome.as_ref().err().map(|e| format!("{}: failed: {e}", r.run.discretisation)))
+        .flat_map(|r| match &r.run.outcome {
+            Err(e) => vec![format!("{}: failed: {e}", r.run.discretisation)],
+            Ok(d) => d.warnings.iter().map(|w| format!("{}: warning: {w}", r.run.discretisation)).collect(),
+        })
         .collect()
 }
 

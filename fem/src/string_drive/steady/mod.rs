@@ -72,6 +72,9 @@ pub struct SteadyReport {
     pub continuation_seconds: f64,
     /// Wall time of the fitting passes, s.
     pub fitting_seconds: f64,
+    /// Stated warnings of the solve (the run's notes; [`slip_resolution_warnings`]).
+    #[serde(skip)]
+    pub warnings: Vec<String>,
 }
 
 /// A converged steady state on one mesh.
@@ -208,7 +211,19 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
         match out.end {
             FitEnd::Mesh(_) => report.fit_failure = Some("the fitted mesh could not be built".into()),
             FitEnd::Refit(reason) => report.fit_failure = Some(reason.to_string()),
-            FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
+            FitEnd::PassLimit => {
+                // within the 5 % the error below allows, but not fitted: the arcs of the
+                // result carry the offset (stated, never a clean result)
+                if let Some(m) = out.last_move.filter(|m| *m > rules.tolerance) {
+                    report.warnings.push(format!(
+                        "the mesh fitting stopped at its pass limit ({} passes, `fem.max_fits`) with a contact boundary or stick→slip transition {} m ({:.1} % of an arc element) from its node: the arcs carry that offset",
+                        out.passes + out.rejected,
+                        numerics::Sig(m),
+                        100.0 * m / element
+                    ));
+                }
+            }
+            FitEnd::Converged | FitEnd::Stalled => {}
         }
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
