@@ -315,13 +315,13 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let (input, output, dissipation) = sol.power_balance();
             let (lambda_driver, lambda_driven) = sol.stick_stretches();
             let c = sol.transport_rate().unwrap_or(f64::NAN);
+            let path = if sol.problem.law.starts_at_scene() {
+                format!("the scene's a = {} N·m² directly (its bending layer is at least the start layer)", numerics::Sig(data.bending_stiffness))
+            } else {
+                format!("{} in log a from a₀ = {} N·m²", sol.homotopy_steps, numerics::Sig(sol.bending_start()))
+            };
             let notes = vec![
-                format!(
-                    "homotopy: the string drive ({} continuation steps), then {} in log a from a₀ = {} N·m²",
-                    sol.start.homotopy_steps,
-                    sol.homotopy_steps,
-                    numerics::Sig(sol.bending_start())
-                ),
+                format!("homotopy: the string drive ({} continuation steps), then {path}", sol.start.homotopy_steps),
                 format!(
                     "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
                     input - output - dissipation

@@ -299,6 +299,14 @@ pub trait SectionLaw: Clone + std::fmt::Debug + Send + Sync + Sized {
         arc_state[0]
     }
 
+    /// The homotopy start is the scene itself (its path η: 0 → 1 is the identity), so the
+    /// run goes straight to one collocation solve at the path tolerance and the final
+    /// solve ([`super::run::direct_and_final_solve`]). By default false: every law
+    /// continues from a simpler start.
+    fn starts_at_scene(&self) -> bool {
+        false
+    }
+
     /// What the law has at a contact boundary: concentrated edge forces (the unshearable
     /// rod: jumps of the transverse force), or a finite edge pressure (the Cosserat rod).
     const CONTACT_EDGES: ContactEdges = ContactEdges::Forces;

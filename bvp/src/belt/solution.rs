@@ -117,7 +117,8 @@ pub struct Run<'a, L: SectionLaw> {
 }
 
 /// Solve a belt problem: homotopy η: 0 → 1 from the guess with [`on_branch`] as the
-/// acceptance test, the final solve, then the law's balance check and the contact
+/// acceptance test (or, when the law [`SectionLaw::starts_at_scene`], one path-tolerance
+/// solve from the guess at η = 1), the final solve, then the law's balance check and the contact
 /// checks ([`BeltSolution::check_contact`]). `failure` names a failed stage; it gets the
 /// last rejection of the acceptance test.
 pub fn solve<L: SectionLaw>(
@@ -135,7 +136,12 @@ pub fn solve<L: SectionLaw>(
         }
         verdict
     };
-    let solved = match run::homotopy_and_final_solve(&problem, guess, opts, accept, clock) {
+    let stages = if problem.law.starts_at_scene() {
+        run::direct_and_final_solve(&problem, &Solution { eta: 1.0, ..guess.clone() }, opts, clock)
+    } else {
+        run::homotopy_and_final_solve(&problem, guess, opts, accept, clock)
+    };
+    let solved = match stages {
         Ok(s) => s,
         Err(e) => return Err(failure(e, last_rejection.borrow().as_deref())),
     };

@@ -135,6 +135,13 @@ pub(crate) struct CondensedLu {
     vals: Vec<f64>,
     jeta: Vec<f64>,
     scratch: Vec<f64>,
+    /// Per interval and parameter q: ∂f/∂p_q is non-zero at some stage of the interval
+    /// (interval-major, `n_params` each). W's p-columns and Ψ's columns of the others
+    /// are exactly zero and not computed: a belt segment sees few of its problem's
+    /// parameters (the Cosserat drive's 14: a span its length and c, an arc its contact
+    /// angles, c and a stick stretch), so most of the n + n_p dense solves per interval
+    /// drop out.
+    used: Vec<bool>,
     rhs: Vec<f64>,
     /// f and its derivatives at the s stages of the current interval.
     jac: Vec<RhsJacobian>,
@@ -260,6 +267,8 @@ impl CondensedLu {
         let p = disc.params(z);
         let mut phi = Vec::new();
         let mut psi = Vec::new();
+        self.used.clear();
+        self.used.resize(self.intervals.len() * np, false);
         for iv in 0..self.intervals.len() {
             let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
             let n = disc.dims[k];
@@ -272,6 +281,11 @@ impl CondensedLu {
                 jj.evaluate(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta);
             }
             disc.count(s * per_call(disc.mode, n, np));
+            let used = &mut self.used[iv * np..(iv + 1) * np];
+            for (q, u) in used.iter_mut().enumerate() {
+                *u = jac.iter().any(|jl| (0..n).any(|a| jl.dfdp[a * np + q] != 0.0));
+            }
+            let used = &self.used[iv * np..(iv + 1) * np];
             // K = I − h (a_jl J_l), row-major; W's columns start as [E | G].
             let kk = &mut self.k_lu[lu..lu + sn * sn];
             let ww = &mut self.w[w..w + sn * nw];
@@ -295,7 +309,7 @@ impl CondensedLu {
             if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
                 return true;
             }
-            for col in 0..nw {
+            for col in (0..nw).filter(|&col| col < n || used[col - n]) {
                 dense_solve(kk, sn, &self.piv[piv..piv + sn], &mut ww[col * sn..(col + 1) * sn]);
             }
             // B = h (b_l J_l), then Φ = I + B W_E, Ψ = h Σ b_l P_l + B W_p.
@@ -313,7 +327,7 @@ impl CondensedLu {
             psi.resize(n * np, 0.0);
             for a in 0..n {
                 let brow = &bb[a * sn..(a + 1) * sn];
-                for col in 0..nw {
+                for col in (0..nw).filter(|&col| col < n || used[col - n]) {
                     let wc = &ww[col * sn..(col + 1) * sn];
                     let v: f64 = brow.iter().zip(wc).map(|(x, y)| x * y).sum();
                     if col < n {
@@ -335,6 +349,9 @@ impl CondensedLu {
                 self.rows.push(r0 + a);
                 self.cols.push(c0 + n + a);
                 self.vals.push(1.0);
+                // every p-column keeps its entry (exact zeros where unused): the pattern,
+                // and with it the sparse LU's ordering and round-off, is that of every
+                // Newton matrix before (catalogue results unchanged to the bit)
                 for q in 0..np {
                     self.rows.push(r0 + a);
                     self.cols.push(pofs + q);

@@ -276,6 +276,12 @@ impl SectionLaw for ScaledCosseratDrive {
         (FRAC_PI_2, 1e-9)
     }
 
+    /// a₀ = a when the scene's bending layer is at least the start layer
+    /// (`cosserat_drive::scaled_law`): no path in a.
+    fn starts_at_scene(&self) -> bool {
+        self.bending_start == self.bending
+    }
+
     fn arc_force_name(&self) -> &'static str {
         "slip-zone stretch force b₁(λ − 1)"
     }

@@ -7,8 +7,9 @@
 //! loop's and the one-pulley belt's equations with the transport term and the weight.
 //! [`solve`] solves the `string-drive` BVP of the same scene (its homotopy in load,
 //! gravity, length and speed), builds the Cosserat guess from it and continues in log a
-//! from a₀ to the scene's a, then solves by collocation or shooting and checks the
-//! balances and the admissibility of the stick/slip topology.
+//! from a₀ to the scene's a (no path when a₀ = a: the scene's bending layer is at least
+//! the start layer), then solves by collocation or shooting and checks the balances and
+//! the admissibility of the stick/slip topology.
 
 pub mod law;
 
@@ -23,7 +24,7 @@ use drive::scene::{Analysis, Contact, Layout, Scene, Theory};
 use crate::belt::run::StageError;
 use crate::belt::solution::{self, Run};
 use crate::belt::topology::{ArcKind, Pulley, Scaling, SegmentKind};
-use crate::belt::{check_positive, BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod};
+use crate::belt::{check_positive, BeltError, BeltOptions, BeltProblem, BeltSolution, BvpMethod, SectionLaw};
 use crate::collocation::Scheme;
 use crate::error::BvpError;
 use crate::rod_hanging::{self, ScaledRodHanging};
@@ -104,20 +105,29 @@ pub fn string_start(d: &CosseratDrive, opts: &BeltOptions) -> Result<StringDrive
     string_drive::solve(&d.drive, &sopts)
 }
 
-/// The scaled law: the string drive's scaled scene and a₀ from the bending layer
-/// √(a₀/T̃) = `start_layer`·H at the string's upper mid-span effective tension.
+/// The scaled law: the string drive's scaled scene and a₀ = max(a, a_layer), a_layer
+/// from the bending layer √(a_layer/T̃) = `start_layer`·H at the string's upper mid-span
+/// effective tension: a scene whose layer is at least the start layer starts at its own
+/// a (no path in a, as the one-pulley belt's `cosserat_pulley`), a thinner one
+/// continues from the start layer down to its a.
 fn scaled_law(d: &CosseratDrive, string: &StringDriveSolution, opts: &BeltOptions) -> ScaledCosseratDrive {
     let (h, fr) = (string.scales.length, string.scales.force);
     let (upper_mid, _) = string.topology().mid_spans();
     let mid = string.solution.segments[upper_mid].end();
     let t_mid = mid[2].hypot(mid[3]);
+    let bending = d.bending_stiffness / (fr * h * h);
     ScaledCosseratDrive {
         string: string.problem.law.clone(),
         shear: d.shear_stiffness / fr,
-        bending_start: opts.start_layer * opts.start_layer * t_mid,
-        bending: d.bending_stiffness / (fr * h * h),
+        bending_start: bending.max(opts.start_layer * opts.start_layer * t_mid),
+        bending,
     }
 }
+
+/// Nodes per segment of the Cosserat guess: 20 intervals, two per start layer on the
+/// longest segment (a half span ≈ H/2 against a layer of 5 % of H); the first
+/// collocation solve refines where the layers need it.
+const GUESS_NODES: usize = 21;
 
 /// The Cosserat guess at a₀ from the string drive solution (scaled; spec §3.3 [P]): on
 /// the spans the Kirchhoff rod's guess ([`rod_hanging::rod_guess`]: θ from the force
@@ -164,11 +174,13 @@ pub fn solve(data: &CosseratDrive, opts: &BeltOptions) -> Result<CosseratDriveSo
     let string = string_start(data, opts)?;
     let law = scaled_law(data, &string, opts);
     let problem = BeltProblem::new(string.topology().clone(), law);
-    let guess = cosserat_guess(&string, &problem, 81);
+    let guess = cosserat_guess(&string, &problem, GUESS_NODES);
     let (scales, pulleys) = (string.scales, string.pulleys);
     let a0 = problem.law.bending_start * scales.force * scales.length * scales.length;
     let run = Run { data: *data, problem, scales, pulleys, guess: &guess, start: string };
+    let direct = run.problem.law.starts_at_scene();
     let sol = solution::solve(run, opts, clock, |e, last_rejection| match e {
+        StageError::Homotopy(cause) if direct => BeltError::Solver { stage: "the first solve at the scene's a from the string drive", cause },
         StageError::Homotopy(cause) => homotopy_failure(data, a0, cause, last_rejection),
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
     })?;
