@@ -200,14 +200,17 @@ pub(crate) trait Corrector<P: Problem> {
         z: &mut Vec<f64>,
         eta: &mut f64,
     ) -> Result<NewtonReport, BvpError>;
-    /// The mesh changes from `old` (converged point `old_z`, `old_eta`) to `new`.
+    /// The mesh changes from `old` (converged point `old_z`, `old_eta`) to `new`; by
+    /// default the corrector carries no data of its own over.
     fn transfer(
         &mut self,
-        old: &Discretisation<'_, P>,
-        old_z: &[f64],
-        old_eta: f64,
-        new: &Discretisation<'_, P>,
-    ) -> Result<(), BvpError>;
+        _old: &Discretisation<'_, P>,
+        _old_z: &[f64],
+        _old_eta: f64,
+        _new: &Discretisation<'_, P>,
+    ) -> Result<(), BvpError> {
+        Ok(())
+    }
 }
 
 /// The plain solve: Newton on F(z; η) = 0 with η fixed, each Newton matrix condensed
@@ -283,15 +286,6 @@ impl<P: Problem> Corrector<P> for FixedEta {
     ) -> Result<NewtonReport, BvpError> {
         let mut system = FixedEtaSystem { disc, eta: *eta, lu: &mut self.lu };
         newton::solve(&mut system, z, &self.newton)
-    }
-    fn transfer(
-        &mut self,
-        _old: &Discretisation<'_, P>,
-        _old_z: &[f64],
-        _old_eta: f64,
-        _new: &Discretisation<'_, P>,
-    ) -> Result<(), BvpError> {
-        Ok(())
     }
 }
 
