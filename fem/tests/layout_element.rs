@@ -252,7 +252,7 @@ fn the_theta_field_is_read_through_the_layout() {
     let (sol, report, _) = data.solve(mesh(), element.clone(), &settings).expect("solves");
     let (rod, _, _) = data.solve(mesh(), formulation::find("rod-simpson").unwrap(), &settings).unwrap();
     assert_eq!(sol.layout(), COSSERAT);
-    assert!(report.fits > 0 && report.penalty_steps > 0, "fitting and penalty continuation ran: {report:?}");
+    assert!(report.fit.fits > 0 && report.penalty_steps > 0, "fitting and penalty continuation ran: {report:?}");
     assert!(rod.field(Field::Theta, 0.1).is_none());
     let h = sol.mesh().elements().iter().fold(0.0f64, |m, e| m.max(e.h));
     let k = 2.0 * PI / contour.length();
