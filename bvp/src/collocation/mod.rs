@@ -29,7 +29,7 @@ pub mod scheme;
 
 pub use scheme::Scheme;
 
-use crate::error::BvpError;
+use crate::error::{check_fraction, BvpError};
 use crate::newton::{self, NewtonOptions, NewtonReport, NewtonSystem};
 use crate::problem::{JacobianMode, Problem};
 use crate::solution::{Solution, Stats};
@@ -117,12 +117,8 @@ impl CollocationOptions {
         if !(1..=10_000).contains(&self.max_newton_iterations) {
             return bad(format!("max_newton_iterations {} outside 1..=10000", self.max_newton_iterations));
         }
-        if !(self.newton_tolerance_factor > 0.0 && self.newton_tolerance_factor <= 1.0) {
-            return bad(format!("newton_tolerance_factor {} outside (0, 1]", self.newton_tolerance_factor));
-        }
-        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
-            return bad(format!("min_damping {} outside (0, 1]", self.min_damping));
-        }
+        check_fraction("newton_tolerance_factor", self.newton_tolerance_factor)?;
+        check_fraction("min_damping", self.min_damping)?;
         if self.max_refinements == 0 {
             return bad("max_refinements must be ≥ 1".into());
         }
