@@ -478,12 +478,7 @@ impl LayoutElement<NC> for CosseratElement {
         if let Some(a) = params.bending_stiffness {
             out.push(format!("bending energy ({}, a = {:.6e} N·m², augmented transitions for ∂σs, ∂σν, ∂σψ)", r.bending, a));
         }
-        if let Some(w) = params.weight {
-            out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", r.gravity, w));
-        }
-        if let Some(p) = params.penalty {
-            out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
-        }
+        out.extend(super::centreline_term_labels(params, r.gravity, r.contact));
         out
     }
 
