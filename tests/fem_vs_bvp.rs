@@ -182,6 +182,23 @@ fn rod_hanging_converges_to_the_bvp() {
     }
 }
 
+/// Bounds of the direct steady FE at 128 elements against the BVP on `string-drive`,
+/// relative: about 5× the errors measured there (next test).
+const STRING_DRIVE_128: [(&str, f64); 12] = [
+    ("tension_tight", 1e-5),
+    ("tension_slack", 1e-4),
+    ("tension_upper_mid", 3e-5),
+    ("tension_lower_mid", 3e-5),
+    ("driven_speed", 5e-7),
+    ("transport_rate", 5e-7),
+    ("driver.contact_arc", 5e-7),
+    ("driven.contact_arc", 5e-7),
+    ("driver.stick_arc", 2e-3),
+    ("driven.stick_arc", 5e-3),
+    ("driver.torque", 2e-7),
+    ("driven.torque", 2e-7),
+];
+
 /// `string-drive` (steady friction drive with gravity and transport inertia, Paper B):
 /// the direct steady FE solve (docs/fem-drive.md §12) against the steady BVP
 /// (docs/string-drive.md), string-simpson at 32, 64, 128 elements.
@@ -200,24 +217,7 @@ fn string_drive_converges_to_the_bvp() {
     let (e32, e128) = (relative_error(&runs[0], &reference, "tension_tight"), relative_error(&runs[2], &reference, "tension_tight"));
     assert!(e128 < 1e-5 && e128 < 0.1 * e32, "tight tension errors {e32:e} (32) → {e128:e} (128)");
     let fine = &runs[2];
-    assert_within(
-        fine,
-        &reference,
-        &[
-            ("tension_tight", 1e-5),
-            ("tension_slack", 1e-4),
-            ("tension_upper_mid", 3e-5),
-            ("tension_lower_mid", 3e-5),
-            ("driven_speed", 5e-7),
-            ("transport_rate", 5e-7),
-            ("driver.contact_arc", 5e-7),
-            ("driven.contact_arc", 5e-7),
-            ("driver.stick_arc", 2e-3),
-            ("driven.stick_arc", 5e-3),
-            ("driver.torque", 2e-7),
-            ("driven.torque", 2e-7),
-        ],
-    );
+    assert_within(fine, &reference, &STRING_DRIVE_128);
     // Same conventions on both sides: the belt's moment on each pulley, clockwise positive.
     for q in ["driver.torque", "driven.torque"] {
         assert_eq!(fine.get(q).unwrap().signum(), reference.get(q).unwrap().signum(), "{q} sign");
@@ -243,24 +243,13 @@ fn counter_clockwise_string_drive_matches_the_bvp() {
     assert!(reference.tension_upper_mid.unwrap() > reference.tension_lower_mid.unwrap(), "upper span tight");
     let fine = fem_summary(&sc, 128, "string-simpson");
     assert!(fine.tension_upper_mid.unwrap() > fine.tension_lower_mid.unwrap(), "upper span tight (FE)");
-    assert_within(
-        &fine,
-        &reference,
-        &[
-            ("tension_tight", 1e-4),
-            ("tension_slack", 1e-4),
-            ("tension_upper_mid", 1e-4),
-            ("tension_lower_mid", 1e-4),
-            ("driven_speed", 5e-7),
-            ("transport_rate", 2e-6),
-            ("driver.contact_arc", 5e-7),
-            ("driven.contact_arc", 5e-7),
-            ("driver.stick_arc", 2e-3),
-            ("driven.stick_arc", 5e-3),
-            ("driver.torque", 2e-7),
-            ("driven.torque", 2e-7),
-        ],
-    );
+    // the clockwise bounds but 1e-4 on every tension and 2e-6 on c (the offset above)
+    let bounds = STRING_DRIVE_128.map(|(q, bound)| match q {
+        "transport_rate" => (q, 2e-6),
+        _ if q.starts_with("tension_") => (q, 1e-4),
+        _ => (q, bound),
+    });
+    assert_within(&fine, &reference, &bounds);
 }
 
 /// The hard case of issue 6: a very slack belt with gravity driven (fem/tests/scenes/

@@ -433,6 +433,44 @@ impl<P: Problem> Corrector<P> for PalCorrector {
     }
 }
 
+/// The corrector run of one continuation step (natural or pseudo-arclength): the
+/// adapted point and what its statistics need ([`Adapted::solution`]).
+struct StepSolve<'p, P: Problem> {
+    adapted: Adapted<'p, P>,
+    stats: Stats,
+    start: Instant,
+    rhs_baseline: usize,
+}
+
+/// Adaptive solve of a step from the predictor (`z0`, `eta0`) on a copy of the mesh of
+/// the accepted point `cur`, with `corrector`; its Newton work is added to `total`
+/// whether it converges or not. `Ok(Err(cause))`: a failure a smaller step may mend
+/// ([`retryable`]); `Err`: one it may not.
+fn step_solve<'p, P: Problem, C: Corrector<P>>(
+    cur: &Adapted<'p, P>,
+    z0: Vec<f64>,
+    eta0: f64,
+    corrector: &mut C,
+    opts: &CollocationOptions,
+    total: &mut Stats,
+) -> Result<Result<StepSolve<'p, P>, String>, BvpError> {
+    let disc = cur.disc.with_meshes(cur.disc.meshes.clone())?;
+    let rhs_baseline = cur.disc.rhs_evals.get();
+    let start = Instant::now();
+    let mut stats = Stats::default();
+    match adapt(disc, z0, eta0, corrector, opts, &mut stats) {
+        Ok(adapted) => {
+            total.add_iterations(&stats);
+            Ok(Ok(StepSolve { adapted, stats, start, rhs_baseline }))
+        }
+        Err(e) if retryable(&e) => {
+            total.add_iterations(&stats);
+            Ok(Err(e.to_string()))
+        }
+        Err(e) => Err(e),
+    }
+}
+
 /// Whether a failed step should be retried with a smaller step.
 fn retryable(e: &BvpError) -> bool {
     matches!(e, BvpError::NewtonDiverged { .. } | BvpError::SingularJacobian { .. } | BvpError::NonFinite { .. })
@@ -579,28 +617,19 @@ impl<'p, P: Problem, A: Fn(&Solution) -> Result<(), String>> Homotopy for Natura
                 *zi = zc + ratio * (zc - zq);
             }
         }
-        let disc = cur.disc.with_meshes(cur.disc.meshes.clone())?;
-        let baseline = cur.disc.rhs_evals.get();
-        let t0 = Instant::now();
-        let mut st = Stats::default();
-        match adapt(disc, z0, target, &mut self.corrector, self.opts, &mut st) {
-            Ok(a) => {
-                self.total.add_iterations(&st);
-                let iterations = st.newton_iterations;
-                let sol = a.solution(st, t0, baseline);
-                if let Err(reason) = (self.accept)(&sol) {
-                    return Ok(Step::Rejected(format!("step to eta = {target:.6e} rejected: {reason}")));
-                }
-                self.points.push(BranchPoint { solution: sol, eta: target, step: (target - eta).abs(), tangent_eta: None });
-                self.cur = a;
-                Ok(Step::Accepted { iterations })
-            }
-            Err(e) if retryable(&e) => {
-                self.total.add_iterations(&st);
-                Ok(Step::Rejected(e.to_string()))
-            }
-            Err(e) => Err(e),
+        let StepSolve { adapted: a, stats: st, start: t0, rhs_baseline: baseline } =
+            match step_solve(cur, z0, target, &mut self.corrector, self.opts, &mut self.total)? {
+                Ok(step) => step,
+                Err(reason) => return Ok(Step::Rejected(reason)),
+            };
+        let iterations = st.newton_iterations;
+        let sol = a.solution(st, t0, baseline);
+        if let Err(reason) = (self.accept)(&sol) {
+            return Ok(Step::Rejected(format!("step to eta = {target:.6e} rejected: {reason}")));
         }
+        self.points.push(BranchPoint { solution: sol, eta: target, step: (target - eta).abs(), tangent_eta: None });
+        self.cur = a;
+        Ok(Step::Accepted { iterations })
     }
 }
 
@@ -706,42 +735,33 @@ impl<P: Problem> numerics::continuation::Branch for ArclengthPath<'_, '_, P> {
         let eta0 = cur.eta + ds * t[n];
         let mut corrector =
             PalCorrector { base: pack(&cur.z, cur.eta), tangent: t.clone(), ds, lu: SparseLu::new(), newton: self.opts.newton() };
-        let disc = cur.disc.with_meshes(cur.disc.meshes.clone())?;
-        let baseline = cur.disc.rhs_evals.get();
-        let t0 = Instant::now();
-        let mut st = Stats::default();
-        match adapt(disc, z0, eta0, &mut corrector, self.opts, &mut st) {
-            Ok(a) => {
-                self.total.add_iterations(&st);
-                let iterations = st.newton_iterations;
-                let prev = &self.points[self.points.len() - 1].solution;
-                let zp = a.disc.sample(prev)?;
-                let mut secant: Vec<f64> = a.z.iter().zip(&zp).map(|(x, y)| x - y).collect();
-                secant.push(a.eta - prev.eta);
-                let m = argmax_abs(&secant);
-                let mut t_new = tangent(&a.disc, &a.z, a.eta, m)?;
-                if wdot(&t_new, &secant) < 0.0 {
-                    t_new.iter_mut().for_each(|v| *v = -*v);
-                }
-                let n_new = a.disc.n;
-                let sol = a.solution(st, t0, baseline);
-                let fold_here = t[n] * t_new[n_new] < 0.0;
-                self.points.push(BranchPoint { solution: sol, eta: a.eta, step: ds, tangent_eta: Some(t_new[n_new]) });
-                if fold_here && self.copts.locate_folds {
-                    let i = self.points.len() - 2;
-                    let fold = locate_fold(&self.points[i].solution, &a, i, self.copts, self.opts, &mut self.total)?;
-                    self.folds.push(fold);
-                }
-                self.cur = a;
-                self.t = t_new;
-                Ok(Step::Accepted { iterations })
-            }
-            Err(e) if retryable(&e) => {
-                self.total.add_iterations(&st);
-                Ok(Step::Rejected(e.to_string()))
-            }
-            Err(e) => Err(e),
+        let StepSolve { adapted: a, stats: st, start: t0, rhs_baseline: baseline } =
+            match step_solve(cur, z0, eta0, &mut corrector, self.opts, &mut self.total)? {
+                Ok(step) => step,
+                Err(reason) => return Ok(Step::Rejected(reason)),
+            };
+        let iterations = st.newton_iterations;
+        let prev = &self.points[self.points.len() - 1].solution;
+        let zp = a.disc.sample(prev)?;
+        let mut secant: Vec<f64> = a.z.iter().zip(&zp).map(|(x, y)| x - y).collect();
+        secant.push(a.eta - prev.eta);
+        let m = argmax_abs(&secant);
+        let mut t_new = tangent(&a.disc, &a.z, a.eta, m)?;
+        if wdot(&t_new, &secant) < 0.0 {
+            t_new.iter_mut().for_each(|v| *v = -*v);
         }
+        let n_new = a.disc.n;
+        let sol = a.solution(st, t0, baseline);
+        let fold_here = t[n] * t_new[n_new] < 0.0;
+        self.points.push(BranchPoint { solution: sol, eta: a.eta, step: ds, tangent_eta: Some(t_new[n_new]) });
+        if fold_here && self.copts.locate_folds {
+            let i = self.points.len() - 2;
+            let fold = locate_fold(&self.points[i].solution, &a, i, self.copts, self.opts, &mut self.total)?;
+            self.folds.push(fold);
+        }
+        self.cur = a;
+        self.t = t_new;
+        Ok(Step::Accepted { iterations })
     }
 }
 

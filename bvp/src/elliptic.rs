@@ -251,26 +251,31 @@ fn reduce_amplitude(phi: f64) -> (f64, f64) {
     (phi - n * PI, n)
 }
 
-/// Incomplete elliptic integral of the first kind F(φ, k) = ∫_0^φ dθ / √(1 − k² sin²θ)
-/// for any real φ (F(φ + nπ) = F(φ) + 2nK), DLMF 19.25.5:
-/// F(φ_r, k) = sin φ_r · R_F(cos²φ_r, 1 − k² sin²φ_r, 1). `NaN` for k ∉ [0, 1] and for
-/// k = 1, |φ| ≥ π/2.
-pub fn incomplete_f(phi: f64, k: f64) -> f64 {
+/// An incomplete integral I(φ, k) = ∫_0^φ g(sin²θ) dθ of any real amplitude by the
+/// reduction φ = φ_r + nπ ([`reduce_amplitude`]): I(φ) = I(φ_r) + 2n I(π/2), with
+/// `reduced(s, c)` = I(φ_r) from s = sin φ_r ≠ 0, c = cos φ_r (I = 0 at s = 0) and
+/// `complete(k)` = I(π/2) (evaluated only for n ≠ 0). `NaN` for k ∉ [0, 1] or a
+/// non-finite φ.
+fn by_reduction(phi: f64, k: f64, complete: fn(f64) -> f64, reduced: impl Fn(f64, f64) -> f64) -> f64 {
     if !valid_modulus(k) || !phi.is_finite() {
         return f64::NAN;
     }
     let (pr, n) = reduce_amplitude(phi);
     let (s, c) = pr.sin_cos();
-    let fr = if s == 0.0 {
-        0.0
-    } else {
-        s * carlson_rf(c * c, 1.0 - k * k * s * s, 1.0)
-    };
+    let ir = if s == 0.0 { 0.0 } else { reduced(s, c) };
     if n == 0.0 {
-        fr
+        ir
     } else {
-        fr + 2.0 * n * complete_k(k)
+        ir + 2.0 * n * complete(k)
     }
+}
+
+/// Incomplete elliptic integral of the first kind F(φ, k) = ∫_0^φ dθ / √(1 − k² sin²θ)
+/// for any real φ (F(φ + nπ) = F(φ) + 2nK), DLMF 19.25.5:
+/// F(φ_r, k) = sin φ_r · R_F(cos²φ_r, 1 − k² sin²φ_r, 1). `NaN` for k ∉ [0, 1] and for
+/// k = 1, |φ| ≥ π/2.
+pub fn incomplete_f(phi: f64, k: f64) -> f64 {
+    by_reduction(phi, k, complete_k, |s, c| s * carlson_rf(c * c, 1.0 - k * k * s * s, 1.0))
 }
 
 /// Incomplete elliptic integral of the second kind E(φ, k) = ∫_0^φ √(1 − k² sin²θ) dθ for
@@ -283,14 +288,7 @@ pub fn incomplete_f(phi: f64, k: f64) -> f64 {
 ///
 /// `NaN` for k ∉ [0, 1].
 pub fn incomplete_e(phi: f64, k: f64) -> f64 {
-    if !valid_modulus(k) || !phi.is_finite() {
-        return f64::NAN;
-    }
-    let (pr, n) = reduce_amplitude(phi);
-    let (s, c) = pr.sin_cos();
-    let er = if s == 0.0 {
-        0.0
-    } else {
+    by_reduction(phi, k, complete_e, |s, c| {
         let (x, y) = (c * c, 1.0 - k * k * s * s);
         // At k = 1, φ_r = ±π/2 both x and y vanish; E(±π/2, 1) = ±1 (R_D term finite).
         if x + y == 0.0 {
@@ -298,12 +296,7 @@ pub fn incomplete_e(phi: f64, k: f64) -> f64 {
         } else {
             s * carlson_rf(x, y, 1.0) - k * k / 3.0 * s * s * s * carlson_rd(x, y, 1.0)
         }
-    };
-    if n == 0.0 {
-        er
-    } else {
-        er + 2.0 * n * complete_e(k)
-    }
+    })
 }
 
 /// Jacobi's epsilon function ε(u, k) = ∫_0^u dn²(t, k) dt = E(am u, k) (DLMF 22.16.14).

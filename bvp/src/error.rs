@@ -80,3 +80,13 @@ impl From<numerics::newton::NewtonError<BvpError>> for BvpError {
         }
     }
 }
+
+/// `Ok` if `value` lies in (0, 1] (the range of the options' fractions: damping floors,
+/// tolerance ratios), else [`BvpError::InvalidInput`] naming the option `name`.
+pub(crate) fn check_fraction(name: &str, value: f64) -> Result<(), BvpError> {
+    if value > 0.0 && value <= 1.0 {
+        Ok(())
+    } else {
+        Err(BvpError::InvalidInput(format!("{name} {value:e} outside (0, 1]")))
+    }
+}

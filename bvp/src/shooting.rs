@@ -77,7 +77,7 @@ use diffsol::{OdeBuilder, OdeSolverMethod, OdeSolverStopReason};
 use nalgebra::{DMatrix, DVector};
 use numerics::newton::scaled_norm;
 
-use crate::error::BvpError;
+use crate::error::{check_fraction, BvpError};
 use crate::jacobian::{bc_jacobian, rhs_jacobian};
 use crate::problem::{JacobianMode, Problem};
 use crate::solution::{SegmentSolution, Solution, Stats};
@@ -145,15 +145,8 @@ impl ShootingOptions {
         if self.max_newton_iterations == 0 {
             return bad("max_newton_iterations must be at least 1".into());
         }
-        if !(self.integrator_tolerance_ratio > 0.0 && self.integrator_tolerance_ratio <= 1.0) {
-            return bad(format!(
-                "integrator_tolerance_ratio {:e} outside (0, 1]",
-                self.integrator_tolerance_ratio
-            ));
-        }
-        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
-            return bad(format!("min_damping {:e} outside (0, 1]", self.min_damping));
-        }
+        check_fraction("integrator_tolerance_ratio", self.integrator_tolerance_ratio)?;
+        check_fraction("min_damping", self.min_damping)?;
         if self.max_steps_per_interval == 0 {
             return bad("max_steps_per_interval must be at least 1".into());
         }

@@ -43,24 +43,24 @@ impl SegmentSolution {
         }
     }
 
-    /// Dense output y(x), x ∈ [0, 1].
-    pub fn eval(&self, x: f64) -> Vec<f64> {
+    /// The interval of x ([`Self::interval`]) as (its polynomial coefficients, its
+    /// length h, the local coordinate t = (x − x_i)/h).
+    fn local(&self, x: f64) -> (&[Vec<f64>], f64, f64) {
         let i = self.interval(x);
         let h = self.mesh[i + 1] - self.mesh[i];
-        let t = (x - self.mesh[i]) / h;
-        self.poly[i]
-            .iter()
-            .map(|c| c.iter().rev().fold(0.0, |acc, &cl| acc * t + cl))
-            .collect()
+        (&self.poly[i], h, (x - self.mesh[i]) / h)
+    }
+
+    /// Dense output y(x), x ∈ [0, 1].
+    pub fn eval(&self, x: f64) -> Vec<f64> {
+        let (poly, _, t) = self.local(x);
+        poly.iter().map(|c| c.iter().rev().fold(0.0, |acc, &cl| acc * t + cl)).collect()
     }
 
     /// Dense output of the derivative y'(x), x ∈ [0, 1].
     pub fn eval_derivative(&self, x: f64) -> Vec<f64> {
-        let i = self.interval(x);
-        let h = self.mesh[i + 1] - self.mesh[i];
-        let t = (x - self.mesh[i]) / h;
-        self.poly[i]
-            .iter()
+        let (poly, h, t) = self.local(x);
+        poly.iter()
             .map(|c| {
                 c.iter()
                     .enumerate()

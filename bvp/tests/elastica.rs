@@ -18,10 +18,23 @@
 use bvp::analytical::elastica::{guess, ClampedElastica, Exact};
 use bvp::collocation::{self, CollocationOptions, Scheme};
 use bvp::shooting::{self, ShootingOptions};
-use bvp::{JacobianMode, Problem};
+use bvp::{JacobianMode, Problem, Solution};
 
 fn mode() -> Exact {
     Exact::new(std::f64::consts::FRAC_1_SQRT_2).unwrap()
+}
+
+/// One log line of a solve by `method` at tolerance `tol`: the error against the exact
+/// mode (and its ratio to the tolerance), the load P, the end force Q and the work.
+fn log_run(method: &str, tol: f64, err: f64, sol: &Solution) {
+    eprintln!(
+        "{method} tol {tol:.0e}: err {err:.2e} ({:.3}), P {:.10}, Q {:.1e}, newton {}, nodes {}",
+        err / tol,
+        sol.params[0],
+        sol.params[1],
+        sol.stats.newton_iterations,
+        sol.stats.mesh_nodes
+    );
 }
 
 #[test]
@@ -76,14 +89,7 @@ fn shooting_recovers_the_exact_mode_with_both_jacobians() {
             };
             let sol = shooting::solve(&problem, &g, &opts).expect("elastica by shooting");
             let err = ex.max_error(&sol, 2000);
-            eprintln!(
-                "shooting {jacobian:?} tol {tol:.0e}: err {err:.2e} ({:.3}), P {:.10}, Q {:.1e}, newton {}, nodes {}",
-                err / tol,
-                sol.params[0],
-                sol.params[1],
-                sol.stats.newton_iterations,
-                sol.stats.mesh_nodes
-            );
+            log_run(&format!("shooting {jacobian:?}"), tol, err, &sol);
             assert!(err <= 10.0 * tol, "{jacobian:?} tol {tol:e}: error {err:e}");
             assert!(
                 sol.params[1].abs() <= 10.0 * tol * sol.params[0],
@@ -129,14 +135,7 @@ fn collocation_recovers_the_exact_mode_at_orders_four_and_six() {
                 };
                 let sol = collocation::solve(&problem, &g, &opts).expect("elastica by collocation");
                 let err = ex.max_error(&sol, 2000);
-                eprintln!(
-                    "collocation {scheme:?} {jacobian:?} tol {tol:.0e}: err {err:.2e} ({:.3}), P {:.10}, Q {:.1e}, newton {}, nodes {}",
-                    err / tol,
-                    sol.params[0],
-                    sol.params[1],
-                    sol.stats.newton_iterations,
-                    sol.stats.mesh_nodes
-                );
+                log_run(&format!("collocation {scheme:?} {jacobian:?}"), tol, err, &sol);
                 assert!(
                     err <= 10.0 * tol,
                     "{scheme:?} {jacobian:?} tol {tol:e}: error {err:e}"

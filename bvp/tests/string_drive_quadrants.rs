@@ -6,7 +6,7 @@
 //! belt-creep theory in every quadrant, and by the power balance and the tight span with
 //! gravity, which breaks the symmetry.
 
-use std::f64::consts::PI;
+mod common;
 
 use bvp::belt::{ArcKind, BeltOptions, Pulley};
 use bvp::collocation::Scheme;
@@ -89,19 +89,7 @@ fn matches_belt_creep_in_every_quadrant() {
         let d = StringDrive { driver_speed: omega1, driven_torque: torque, ..base() };
         let sol = solve(&d, &colloc()).expect("solves");
         let e = d.creep().expect("closed form");
-        let s = sol.summary();
-        let (r, n) = (s.driver.as_ref().unwrap(), s.driven.as_ref().unwrap());
-        for (name, got, want) in [
-            ("tension_tight", s.tension_tight.unwrap(), e.tension_tight),
-            ("tension_slack", s.tension_slack.unwrap(), e.tension_slack),
-            ("driven_speed", s.driven_speed.unwrap(), e.driven_speed),
-            ("transport_rate", s.transport_rate.unwrap(), e.transport_rate),
-            ("driver slip arc", r.slip_arc.unwrap(), e.slip_arc),
-            ("driven slip arc", n.slip_arc.unwrap(), e.slip_arc),
-            ("driven stick arc", n.stick_arc.unwrap(), PI - e.slip_arc),
-            ("driven torque", n.torque.unwrap(), e.driven_torque),
-            ("driver torque", r.torque.unwrap(), e.driver_torque),
-        ] {
+        for (name, got, want) in common::creep_checks(&sol.summary(), &e) {
             close(&format!("ω₁ {omega1}, M₂ {torque}: {name}"), got, want, 1e-8);
         }
         power_balances(&sol);

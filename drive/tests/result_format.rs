@@ -216,33 +216,18 @@ fn nan_is_never_written() {
     );
     assert!(e.to_string().contains("`tension_slack`"));
 
-    let fields = Fields {
-        sigma: vec![0.0, 1.0],
-        x: vec![0.0, 0.0],
-        y: vec![0.0, 0.0],
-        tension: vec![1.0, f64::INFINITY],
-        moment: None,
-        ..Fields::default()
+    // Two samples at σ = 0, 1 with y = 0 and the given x and tension: the error of writing them.
+    let written = |x: Vec<f64>, tension: Vec<f64>| {
+        let fields = Fields { sigma: vec![0.0, 1.0], x, y: vec![0.0, 0.0], tension, moment: None, ..Fields::default() };
+        result(Summary::default(), Some(fields)).to_json_pretty().unwrap_err()
     };
-    let e = result(Summary::default(), Some(fields))
-        .to_json_pretty()
-        .unwrap_err();
+    let e = written(vec![0.0, 0.0], vec![1.0, f64::INFINITY]);
     assert_eq!(
         e.to_string(),
         "result quantity `fields.tension[1]` is not finite (inf)"
     );
 
-    let fields = Fields {
-        sigma: vec![0.0, 1.0],
-        x: vec![0.0],
-        y: vec![0.0, 0.0],
-        tension: vec![1.0, 1.0],
-        moment: None,
-        ..Fields::default()
-    };
-    let e = result(Summary::default(), Some(fields))
-        .to_json_pretty()
-        .unwrap_err();
+    let e = written(vec![0.0], vec![1.0, 1.0]);
     assert!(
         matches!(
             e,

@@ -183,6 +183,38 @@ impl<F> FitOutcome<F> {
     }
 }
 
+/// What a contact fitting did, as a run reports it (flattened into the static
+/// [`crate::HomotopyReport`] and the steady drive's report: the field names are the
+/// report's keys).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct FitReport {
+    /// Fitting passes done (each a Newton solve on a refitted mesh).
+    pub fits: usize,
+    /// True if the fitting converged ([`FitRules::tolerance`] met by its measure).
+    pub fit_converged: bool,
+    /// The measure of the returned solution after the last pass ([`FitOutcome::last_move`]),
+    /// m: the largest boundary move (static), the largest distance of a located point
+    /// from its node (steady).
+    pub fit_last_move: Option<f64>,
+    /// Why a fitting pass failed (the solution is then the last converged one).
+    pub fit_failure: Option<String>,
+}
+
+impl FitReport {
+    /// Adds the passes of `out` and takes its end (a failure is kept from an earlier
+    /// fitting unless this one fails too).
+    pub fn record<F: std::fmt::Display>(&mut self, out: &FitOutcome<F>) {
+        self.fits += out.passes;
+        self.fit_converged = out.converged();
+        self.fit_last_move = out.last_move;
+        match &out.end {
+            FitEnd::Refit(e) => self.fit_failure = Some(e.to_string()),
+            FitEnd::Mesh(e) => self.fit_failure = Some(format!("the fitted mesh could not be built: {e}")),
+            FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
+        }
+    }
+}
+
 /// a − b on a periodic contour of length `period`, in (−period/2, period/2].
 pub fn periodic_diff(a: f64, b: f64, period: f64) -> f64 {
     let d = (a - b).rem_euclid(period);

@@ -13,7 +13,7 @@ use drive::contour::Contour;
 use crate::assembly::{Assembler, ElementKernel};
 use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, StepControl, StepLimit, StepOptions};
 use crate::error::FemError;
-use crate::fitting::{self, Beyond, FitEnd, FitRules, Fallback, Fitted, Measure, MoveLimit, Secant};
+use crate::fitting::{self, Beyond, FitReport, FitRules, Fallback, Fitted, Measure, MoveLimit, Secant};
 use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{TermParams, NDOF};
@@ -71,14 +71,9 @@ pub struct HomotopyReport {
     pub start_tension: f64,
     /// Penalty-continuation solves after the homotopy (raising P ×10 per solve).
     pub penalty_steps: usize,
-    /// Contact-fitting passes done (each a Newton solve on a refitted mesh).
-    pub fits: usize,
-    /// True if the fitting converged (boundaries moved less than the tolerance).
-    pub fit_converged: bool,
-    /// Largest boundary move of the last fitting pass, m (∞ before the first).
-    pub fit_last_move: Option<f64>,
-    /// Why a fitting pass failed (the solution is then the last converged one).
-    pub fit_failure: Option<String>,
+    /// The contact fitting (converged: the boundaries moved less than the tolerance).
+    #[serde(flatten)]
+    pub fit: FitReport,
     /// Smallest axial force at the integration points and nodes, N (negative: the
     /// discrete string is locally compressed — under-resolution near a contact edge).
     pub min_axial_force: f64,
@@ -429,7 +424,7 @@ impl<const N: usize, K: ElementKernel<N> + ?Sized> Homotopy for StaticPath<'_, N
 /// a node onto every recovered contact boundary of `sol` and re-solve, until the
 /// boundaries move less than the tolerance or `max_fits` passes are done — a secant per
 /// boundary on the positions fitted to, limited to 50 |F| and h_min/4. A pass whose
-/// Newton solve fails ends the fitting (recorded in `report.fit_failure`); a fitting
+/// Newton solve fails ends the fitting (recorded in `report.fit`); a fitting
 /// that does not converge returns the best fitted solution (smallest largest |F|: the
 /// passes stagnate at the noise level of the recovery, ≈ 1e-6 m at 64 elements, 5e-8 m
 /// at 256).
@@ -464,14 +459,7 @@ fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
     let mut problem = StaticFit { sol, params, length, kernel, lu, scales, newton_settings, tolerance: settings.update_tolerance, grading, report };
     let out = fitting::fit(&mut problem, &rules);
     let report = problem.report;
-    report.fits += out.passes;
-    report.fit_converged = out.converged();
-    report.fit_last_move = out.last_move;
-    match out.end {
-        FitEnd::Refit(e) => report.fit_failure = Some(e.to_string()),
-        FitEnd::Mesh(e) => report.fit_failure = Some(format!("the fitted mesh could not be built: {e}")),
-        FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
-    }
+    report.fit.record(&out);
     problem.sol
 }
 

@@ -177,6 +177,22 @@ fn registered() {
 
 /// The registry lists the element with its layout and theory; the string-layout face
 /// (`find`, `registry`) does not, and a second registration of the name is refused.
+/// The summaries `a` (of element `a_name`) and `b` have the same scalars, each within
+/// 1e-9 relative to max(|a|, 1e-3) (values below 1e-3 compared absolutely)
+/// — the layout element computes the same discrete problem as the element it wraps, so
+/// only rounding may differ. Returns (the number of scalars, the largest difference).
+fn same_scalars(a: &drive::Summary, a_name: &str, b: &drive::Summary, b_name: &str) -> (usize, f64) {
+    let (a, b) = (a.scalars(), b.scalars());
+    assert_eq!(a.iter().map(|x| &x.0).collect::<Vec<_>>(), b.iter().map(|x| &x.0).collect::<Vec<_>>());
+    let mut worst: f64 = 0.0;
+    for ((name, x), (_, y)) in a.iter().zip(&b) {
+        let rel = (x - y).abs() / x.abs().max(1e-3);
+        worst = worst.max(rel);
+        assert!(rel <= 1e-9, "{name}: {a_name} {x} vs {b_name} {y} ({rel:e})");
+    }
+    (a.len(), worst)
+}
+
 #[test]
 fn a_cosserat_layout_element_is_registered_by_name() {
     registered();
@@ -211,16 +227,9 @@ fn the_static_analysis_runs_a_cosserat_layout_element_by_name() {
     assert_eq!(run.stats.unknowns, rod.stats.unknowns + 2 * elements);
     assert!(run.terms.iter().any(|t| t.starts_with("θ least squares")));
     assert!(run.terms.iter().any(|t| t.starts_with("bending energy")));
-    let (a, b) = (rod.summary.scalars(), run.summary.scalars());
-    assert_eq!(a.iter().map(|x| &x.0).collect::<Vec<_>>(), b.iter().map(|x| &x.0).collect::<Vec<_>>());
-    assert!(a.len() >= 14, "{} scalars", a.len());
-    let mut worst: f64 = 0.0;
-    for ((name, x), (_, y)) in a.iter().zip(&b) {
-        let rel = (x - y).abs() / x.abs().max(1e-3);
-        worst = worst.max(rel);
-        assert!(rel <= 1e-9, "{name}: rod-simpson {x} vs {NAME} {y} ({rel:e})");
-    }
-    println!("largest relative difference of {} summary scalars: {worst:e}", a.len());
+    let (count, worst) = same_scalars(&rod.summary, "rod-simpson", &run.summary, NAME);
+    assert!(count >= 14, "{count} scalars");
+    println!("largest relative difference of {count} summary scalars: {worst:e}");
     // the fields along σ through the common view
     for k in 0..50 {
         let sigma = scene.drive.centre_distance * 4.0 * k as f64 / 50.0;
@@ -252,7 +261,7 @@ fn the_theta_field_is_read_through_the_layout() {
     let (sol, report, _) = data.solve(mesh(), element.clone(), &settings).expect("solves");
     let (rod, _, _) = data.solve(mesh(), formulation::find("rod-simpson").unwrap(), &settings).unwrap();
     assert_eq!(sol.layout(), COSSERAT);
-    assert!(report.fits > 0 && report.penalty_steps > 0, "fitting and penalty continuation ran: {report:?}");
+    assert!(report.fit.fits > 0 && report.penalty_steps > 0, "fitting and penalty continuation ran: {report:?}");
     assert!(rod.field(Field::Theta, 0.1).is_none());
     let h = sol.mesh().elements().iter().fold(0.0f64, |m, e| m.max(e.h));
     let k = 2.0 * PI / contour.length();
@@ -313,14 +322,7 @@ fn the_transient_runs_a_cosserat_layout_element() {
     assert_eq!(run.stats.unknowns, string.stats.unknowns + 2 * o.elements + 4);
     assert!(run.terms.iter().any(|t| t.starts_with("θ least squares")));
     assert!(run.terms.iter().any(|t| t.starts_with("Coulomb contact")));
-    let (a, b) = (string.summary.scalars(), run.summary.scalars());
-    assert_eq!(a.iter().map(|x| &x.0).collect::<Vec<_>>(), b.iter().map(|x| &x.0).collect::<Vec<_>>());
-    assert!(a.len() >= 16, "{} scalars", a.len());
-    let mut worst: f64 = 0.0;
-    for ((name, x), (_, y)) in a.iter().zip(&b) {
-        let rel = (x - y).abs() / x.abs().max(1e-3);
-        worst = worst.max(rel);
-        assert!(rel <= 1e-9, "{name}: string-simpson {x} vs the Cosserat layout {y} ({rel:e})");
-    }
-    println!("{} steps; largest relative difference of {} summary scalars: {worst:e}", hs.len(), a.len());
+    let (count, worst) = same_scalars(&string.summary, "string-simpson", &run.summary, "the Cosserat layout");
+    assert!(count >= 16, "{count} scalars");
+    println!("{} steps; largest relative difference of {count} summary scalars: {worst:e}", hs.len());
 }

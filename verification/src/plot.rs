@@ -830,22 +830,21 @@ fn marked_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
         chart.draw_series(LineSeries::new(pts.to_vec(), col.stroke_width(2))).map_err(err)?;
     }
     let line = move |(x, y): (i32, i32)| EmptyElement::at((x, y)) + PathElement::new(vec![(0, 0), (24, 0)], col.stroke_width(2));
-    match marker {
-        Marker::Circle => {
+    // The markers of shape `$shape` at the points (size `$size` px) and in the legend
+    // (`$legend` px): the element types differ, the drawing does not.
+    macro_rules! marked {
+        ($shape:ident, $size:expr, $legend:expr) => {
             chart
-                .draw_series(PointSeries::of_element(pts.to_vec(), 5, col.filled(), &|p, sz, st| Circle::new(p, sz, st)))
+                .draw_series(PointSeries::of_element(pts.to_vec(), $size, col.filled(), &|p, sz, st| $shape::new(p, sz, st)))
                 .map_err(err)?
                 .label(label)
-                .legend(move |p| line(p) + Circle::new((12, 0), 4, col.filled()));
-        }
-        Marker::Triangle => {
-            chart
-                .draw_series(PointSeries::of_element(pts.to_vec(), 6, col.filled(), &|p, sz, st| TriangleMarker::new(p, sz, st)))
-                .map_err(err)?
-                .label(label)
-                .legend(move |p| line(p) + TriangleMarker::new((12, 0), 5, col.filled()));
-        }
+                .legend(move |p| line(p) + $shape::new((12, 0), $legend, col.filled()))
+        };
     }
+    match marker {
+        Marker::Circle => marked!(Circle, 5, 4),
+        Marker::Triangle => marked!(TriangleMarker, 6, 5),
+    };
     Ok(())
 }
 

@@ -29,7 +29,7 @@ pub mod scheme;
 
 pub use scheme::Scheme;
 
-use crate::error::BvpError;
+use crate::error::{check_fraction, BvpError};
 use crate::newton::{self, NewtonOptions, NewtonReport, NewtonSystem};
 use crate::problem::{JacobianMode, Problem};
 use crate::solution::{Solution, Stats};
@@ -117,12 +117,8 @@ impl CollocationOptions {
         if !(1..=10_000).contains(&self.max_newton_iterations) {
             return bad(format!("max_newton_iterations {} outside 1..=10000", self.max_newton_iterations));
         }
-        if !(self.newton_tolerance_factor > 0.0 && self.newton_tolerance_factor <= 1.0) {
-            return bad(format!("newton_tolerance_factor {} outside (0, 1]", self.newton_tolerance_factor));
-        }
-        if !(self.min_damping > 0.0 && self.min_damping <= 1.0) {
-            return bad(format!("min_damping {} outside (0, 1]", self.min_damping));
-        }
+        check_fraction("newton_tolerance_factor", self.newton_tolerance_factor)?;
+        check_fraction("min_damping", self.min_damping)?;
         if self.max_refinements == 0 {
             return bad("max_refinements must be ≥ 1".into());
         }
@@ -200,14 +196,17 @@ pub(crate) trait Corrector<P: Problem> {
         z: &mut Vec<f64>,
         eta: &mut f64,
     ) -> Result<NewtonReport, BvpError>;
-    /// The mesh changes from `old` (converged point `old_z`, `old_eta`) to `new`.
+    /// The mesh changes from `old` (converged point `old_z`, `old_eta`) to `new`; by
+    /// default the corrector carries no data of its own over.
     fn transfer(
         &mut self,
-        old: &Discretisation<'_, P>,
-        old_z: &[f64],
-        old_eta: f64,
-        new: &Discretisation<'_, P>,
-    ) -> Result<(), BvpError>;
+        _old: &Discretisation<'_, P>,
+        _old_z: &[f64],
+        _old_eta: f64,
+        _new: &Discretisation<'_, P>,
+    ) -> Result<(), BvpError> {
+        Ok(())
+    }
 }
 
 /// The plain solve: Newton on F(z; η) = 0 with η fixed, each Newton matrix condensed
@@ -283,15 +282,6 @@ impl<P: Problem> Corrector<P> for FixedEta {
     ) -> Result<NewtonReport, BvpError> {
         let mut system = FixedEtaSystem { disc, eta: *eta, lu: &mut self.lu };
         newton::solve(&mut system, z, &self.newton)
-    }
-    fn transfer(
-        &mut self,
-        _old: &Discretisation<'_, P>,
-        _old_z: &[f64],
-        _old_eta: f64,
-        _new: &Discretisation<'_, P>,
-    ) -> Result<(), BvpError> {
-        Ok(())
     }
 }
 

@@ -6,7 +6,7 @@
 //! θ = ϑ_g(σ) + ψ (C0), so ψ is periodic round the loop. Strains (C2):
 //! Γ₁ = (A cos ψ + B sin ψ)/∂σs − 1, Γ₂ = (B cos ψ − A sin ψ)/∂σs, κ = (∂σψ − α)/∂σs with
 //! ∂σr = A t_g + B n_g = (1 + αν) t_g + ∂σν n_g. Energy terms as units: the new
-//! [`Stretch`], [`Shear`] and [`SectionBending`] (densities of the rotation ψ, docs §3),
+//! [`StrainEnergy`] (stretch and shear) and [`SectionBending`] (densities of the rotation ψ, docs §3),
 //! and the string's [`Gravity`] and [`PenaltyContact`] unchanged (they act on the
 //! centreline only). At a Cartesian/polar transition the polar element's slopes follow
 //! from the shared Cartesian ones by the augmented map (C3) — the rod's (K9) for ∂σs, ∂σν
@@ -141,25 +141,33 @@ pub trait CosseratDensity<D: Scalar> {
     fn density(&self, el: &ElementContext, p: &CosseratPoint<D>) -> D;
 }
 
-/// Stretch energy U₁: ½ b₁ Γ₁² ∂σs (eq. 13), b₁ in N.
+/// The energy of one strain of (C2) with its stiffness b: ½ b Γ² ∂σs (eq. 13) — the
+/// stretch energy U₁ (Γ₁, b₁ in N, [`StrainEnergy::stretch`]) and the shear energy U₂
+/// (Γ₂, b₂ in N, [`StrainEnergy::shear`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Stretch(pub f64);
+pub struct StrainEnergy {
+    /// Index of the strain in [`CosseratPoint::strains`]: 0 = Γ₁, 1 = Γ₂.
+    pub component: usize,
+    /// Its stiffness b, N.
+    pub stiffness: f64,
+}
 
-impl<D: Scalar> CosseratDensity<D> for Stretch {
-    fn density(&self, el: &ElementContext, p: &CosseratPoint<D>) -> D {
-        let g = p.strains(el)[0];
-        g * g * p.ds * (0.5 * self.0)
+impl StrainEnergy {
+    /// Stretch energy U₁ = ½ b₁ Γ₁² ∂σs, b₁ in N.
+    pub const fn stretch(b1: f64) -> StrainEnergy {
+        StrainEnergy { component: 0, stiffness: b1 }
+    }
+
+    /// Shear energy U₂ = ½ b₂ Γ₂² ∂σs, b₂ in N.
+    pub const fn shear(b2: f64) -> StrainEnergy {
+        StrainEnergy { component: 1, stiffness: b2 }
     }
 }
 
-/// Shear energy U₂: ½ b₂ Γ₂² ∂σs (eq. 13), b₂ in N.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Shear(pub f64);
-
-impl<D: Scalar> CosseratDensity<D> for Shear {
+impl<D: Scalar> CosseratDensity<D> for StrainEnergy {
     fn density(&self, el: &ElementContext, p: &CosseratPoint<D>) -> D {
-        let g = p.strains(el)[1];
-        g * g * p.ds * (0.5 * self.0)
+        let g = p.strains(el)[self.component];
+        g * g * p.ds * (0.5 * self.stiffness)
     }
 }
 
@@ -222,8 +230,8 @@ impl CosseratElement {
     /// `params.penalty`).
     pub fn visit<D: Scalar, V: CosseratVisitor<D>>(&self, params: &TermParams, v: &mut V) {
         let r = &self.rules;
-        v.visit(r.stretch, &Stretch(params.axial_stiffness));
-        v.visit(r.shear, &Shear(self.shear_stiffness.unwrap_or(f64::NAN)));
+        v.visit(r.stretch, &StrainEnergy::stretch(params.axial_stiffness));
+        v.visit(r.shear, &StrainEnergy::shear(self.shear_stiffness.unwrap_or(f64::NAN)));
         if let Some(a) = params.bending_stiffness {
             v.visit(r.bending, &SectionBending(a));
         }
@@ -470,12 +478,7 @@ impl LayoutElement<NC> for CosseratElement {
         if let Some(a) = params.bending_stiffness {
             out.push(format!("bending energy ({}, a = {:.6e} N·m², augmented transitions for ∂σs, ∂σν, ∂σψ)", r.bending, a));
         }
-        if let Some(w) = params.weight {
-            out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", r.gravity, w));
-        }
-        if let Some(p) = params.penalty {
-            out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
-        }
+        out.extend(super::centreline_term_labels(params, r.gravity, r.contact));
         out
     }
 
@@ -655,8 +658,8 @@ mod tests {
                 let rod = Strain(|l| biot_density(l, B1)).density(&el, &p) + Bending(EI).density(&el, &p);
                 let psi = p.dnu.atan2(p.nu * el.alpha() + 1.0);
                 let cp = CosseratPoint { sigma: p.sigma, s: p.s, ds: p.ds, nu: p.nu, dnu: p.dnu, psi, dpsi: el.angle_rate(&p) + el.alpha() };
-                let shear = Shear(B2).density(&el, &cp);
-                let cos = Stretch(B1).density(&el, &cp) + SectionBending(EI).density(&el, &cp);
+                let shear = StrainEnergy::shear(B2).density(&el, &cp);
+                let cos = StrainEnergy::stretch(B1).density(&el, &cp) + SectionBending(EI).density(&el, &cp);
                 assert!((cos - rod).abs() <= 1e-13 * rod.abs(), "{cos} vs {rod}");
                 assert!(shear.abs() <= 1e-12 * rod.abs(), "shear {shear}");
             }

@@ -381,6 +381,20 @@ fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermR
     out
 }
 
+/// The labels of the centreline terms every formulation shares, in assembly order:
+/// gravity (if `params.weight`) and penalty contact (if `params.penalty`), with their
+/// integration rules.
+pub(crate) fn centreline_term_labels(params: &TermParams, gravity: Rule, contact: Rule) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(w) = params.weight {
+        out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", gravity, w));
+    }
+    if let Some(p) = params.penalty {
+        out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", contact, p));
+    }
+    out
+}
+
 /// The Biot strain energy density ½ EA (λ − 1)², J/m (eq. 17; N = EA(λ − 1), (S1)).
 pub fn biot_density<D: Scalar>(stretch: D, axial_stiffness: f64) -> D {
     let e = stretch - 1.0;
@@ -514,12 +528,7 @@ impl<F: Formulation> Kernel for F {
             r.strain,
             params.axial_stiffness
         )];
-        if let Some(w) = params.weight {
-            out.push(format!("gravity potential ({}, ρg = {:.6e} N/m)", r.gravity, w));
-        }
-        if let Some(p) = params.penalty {
-            out.push(format!("penalty normal contact ({}, P = {:.6e} N/m²)", r.contact, p));
-        }
+        out.extend(centreline_term_labels(params, r.gravity, r.contact));
         if let Some(ei) = params.bending_stiffness {
             out.push(format!("bending energy ({}, EI = {:.6e} N·m², C¹ augmented transitions)", r.bending, ei));
         }

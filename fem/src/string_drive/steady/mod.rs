@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::assembly::Assembler;
 use crate::error::{FemError, NewtonFailure};
-use crate::fitting::{Beyond, FitEnd, FitRules, Fallback, Measure, MoveLimit, Secant, Stall};
+use crate::fitting::{Beyond, FitEnd, FitReport, FitRules, Fallback, Measure, MoveLimit, Secant, Stall};
 use crate::formulation::layout::LayoutElement;
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
@@ -53,17 +53,12 @@ pub struct SteadyReport {
     pub rejected: usize,
     /// Newton iterations over all solves.
     pub newton_iterations: usize,
-    /// Fitting passes (each a Newton solve on a refitted mesh).
-    pub fits: usize,
+    /// The contact fitting (converged: every boundary and transition within the
+    /// tolerance of a node; the last move: their largest distance from their nodes).
+    #[serde(flatten)]
+    pub fit: FitReport,
     /// Fitting passes whose Newton solve failed and were retried with a smaller move.
     pub rejected_fits: usize,
-    /// True if the fitting converged (every boundary within the tolerance of a node).
-    pub fit_converged: bool,
-    /// Largest distance of a recovered boundary or transition from its node after the
-    /// last pass, m.
-    pub fit_last_move: Option<f64>,
-    /// Why a fitting pass failed (the solution is then the last converged one).
-    pub fit_failure: Option<String>,
     /// Friction points (one per node within reach of a pulley; two at a split node).
     pub friction_points: usize,
     /// Wall time of the static start (homotopy of fem-string.md §9), s.
@@ -204,35 +199,26 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
         let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
-        report.fits = out.passes;
+        report.fit.record(&out);
         report.rejected_fits = out.rejected;
-        report.fit_converged = out.converged();
-        report.fit_last_move = out.last_move;
-        match out.end {
-            FitEnd::Mesh(_) => report.fit_failure = Some("the fitted mesh could not be built".into()),
-            FitEnd::Refit(reason) => report.fit_failure = Some(reason.to_string()),
-            FitEnd::PassLimit => {
-                // within the 5 % the error below allows, but not fitted: the arcs of the
-                // result carry the offset (stated, never a clean result)
-                if let Some(m) = out.last_move.filter(|m| *m > rules.tolerance) {
-                    report.warnings.push(format!(
-                        "the mesh fitting stopped at its pass limit ({} passes, `fem.max_fits`) with a contact boundary or stick→slip transition {} m ({:.1} % of an arc element) from its node: the arcs carry that offset",
-                        out.passes + out.rejected,
-                        numerics::Sig(m),
-                        100.0 * m / element
-                    ));
-                }
-            }
-            FitEnd::Converged | FitEnd::Stalled => {}
+        // within the 5 % the error below allows, but not fitted: the arcs of the result
+        // carry the offset (stated, never a clean result)
+        if let (FitEnd::PassLimit, Some(m)) = (&out.end, out.last_move.filter(|m| *m > rules.tolerance)) {
+            report.warnings.push(format!(
+                "the mesh fitting stopped at its pass limit ({} passes, `fem.max_fits`) with a contact boundary or stick→slip transition {} m ({:.1} % of an arc element) from its node: the arcs carry that offset",
+                out.passes + out.rejected,
+                numerics::Sig(m),
+                100.0 * m / element
+            ));
         }
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
     // an unresolved fit leaves the stick/slip arcs wrong by a fraction of an element or
     // more: a named error above 5 % of an arc element (§12; the unresolved cases
     // measured sit at 10–50 %, the stalled but resolved ones at ≤ 1 %)
-    if let Some(m) = report.fit_last_move.filter(|m| settings.contact_fitting && !report.fit_converged && *m > 0.05 * element) {
-        let reason = report.fit_failure.clone().unwrap_or_else(|| "the passes did not converge".into());
-        return Err(FemError::SteadyFitFailed { passes: report.fits + report.rejected_fits, last_move: m, element, reason });
+    if let Some(m) = report.fit.fit_last_move.filter(|m| settings.contact_fitting && !report.fit.fit_converged && *m > 0.05 * element) {
+        let reason = report.fit.fit_failure.clone().unwrap_or_else(|| "the passes did not converge".into());
+        return Err(FemError::SteadyFitFailed { passes: report.fit.fits + report.rejected_fits, last_move: m, element, reason });
     }
     finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
 }
