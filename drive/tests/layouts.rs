@@ -4,7 +4,7 @@
 //! message is checked to name the field and the numbers. The solvers' refusal of what
 //! they cannot solve yet names the issue that brings it.
 
-use drive::{not_yet_solvable, Layout, OnePulleyLoad, Scene, SceneError, Solver, Theory, Unsolved};
+use drive::{not_yet_solvable, Layout, OnePulleyLoad, Scene, SceneError, Solver, Theory};
 use serde_json::{json, Value};
 
 /// spec §2.2: the catalogue scene `cosserat-pulley`.

@@ -68,21 +68,7 @@ impl Mesh {
             });
         }
         let per_region = distribute(&contour, elements, arc_weight);
-        let mut nodes = Vec::with_capacity(elements + 1);
-        let mut els = Vec::with_capacity(elements);
-        let mut transition_nodes = [0; 4];
-        for (k, region) in Region::ALL.iter().enumerate() {
-            let (a, b) = contour.region_bounds(*region);
-            let n = per_region[k];
-            transition_nodes[k] = nodes.len();
-            let h = (b - a) / n as f64;
-            for i in 0..n {
-                let sa = if i == 0 { a } else { a + i as f64 * h };
-                nodes.push(sa);
-                let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
-                els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
-            }
-        }
+        let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
         nodes.push(contour.length());
         Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes, open: false })
     }
@@ -104,20 +90,7 @@ impl Mesh {
         let arcs = ((elements as f64 * arc / (2.0 * span + arc)).round() as usize).clamp(1, elements - 2);
         let spans = elements - arcs;
         let per_region = [spans - spans / 2, arcs, spans / 2, 0];
-        let mut nodes = Vec::with_capacity(elements + 1);
-        let mut els = Vec::with_capacity(elements);
-        let mut transition_nodes = [0; 4];
-        for (k, region) in Region::ALL.iter().enumerate() {
-            let (a, b) = contour.region_bounds(*region);
-            let n = per_region[k];
-            transition_nodes[k] = nodes.len();
-            for i in 0..n {
-                let sa = a + i as f64 * (b - a) / n as f64;
-                let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * (b - a) / n as f64 };
-                nodes.push(sa);
-                els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
-            }
-        }
+        let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
         nodes.push(contour.region_bounds(Region::LowerSpan).1);
         Ok(Mesh { nodes, elements: els, per_region, transition_nodes, open: true, ..closed })
     }
@@ -362,6 +335,29 @@ impl Grading {
         }
         c
     }
+}
+
+/// Uniform elements in each region of [`Region::ALL`], `per_region[k]` of them in region k
+/// (0: none): the node σ (without the end node), the elements and each region's first
+/// node.
+fn uniform_regions(contour: &Contour, per_region: [usize; 4]) -> (Vec<f64>, Vec<ElementGeometry>, [usize; 4]) {
+    let elements = per_region.iter().sum::<usize>();
+    let mut nodes = Vec::with_capacity(elements + 1);
+    let mut els = Vec::with_capacity(elements);
+    let mut transition_nodes = [0; 4];
+    for (k, region) in Region::ALL.iter().enumerate() {
+        let (a, b) = contour.region_bounds(*region);
+        let n = per_region[k];
+        transition_nodes[k] = nodes.len();
+        let h = (b - a) / n as f64;
+        for i in 0..n {
+            let sa = if i == 0 { a } else { a + i as f64 * h };
+            nodes.push(sa);
+            let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
+            els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
+        }
+    }
+    (nodes, els, transition_nodes)
 }
 
 /// σ in [a, b] where the increasing `measure` takes `target` (bisection to 1e-15 m).

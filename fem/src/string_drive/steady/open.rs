@@ -181,7 +181,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
         Some(z) => (z.angle_start, z.angle_end),
         None => {
             let first = contact.clone().next().map_or(0.0, |p| angle(p.point.sigma));
-            (first, contact.last().map_or(0.0, |p| angle(p.point.sigma)))
+            (first, contact.clone().next_back().map_or(0.0, |p| angle(p.point.sigma)))
         }
     };
     let arc = (start - end).rem_euclid(2.0 * PI);
