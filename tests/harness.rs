@@ -114,6 +114,18 @@ fn bvp_tolerances_apply_to_the_bvp_methods_only() {
     assert!(failing.iter().any(|l| l.contains("bvp-shooting")), "{out}");
     assert!(failing.iter().any(|l| l.contains("bvp-collocation gauss4")), "{out}");
     assert!(!failing.iter().any(|l| l.contains("fem ")), "FE rows keep the shared limit: {out}");
+    // A quantity named in `bvp_tolerances` only (one the FE may not produce, like the
+    // Cosserat edge pressures) is gated for the BVP methods alone.
+    let only = scene_with_gate(
+        "bvp-limits-only.json",
+        serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"tension_upper_mid": 1e-300}}),
+    );
+    let o = beltcheck(&["gate", only.to_str().unwrap(), "--elements", "32,64"]);
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}\n{}", stderr(&o));
+    let failing: Vec<&str> = out.lines().filter(|l| l.contains("tension_upper_mid") && l.contains("exceeds")).collect();
+    assert!(failing.iter().any(|l| l.contains("bvp-shooting")) && failing.iter().any(|l| l.contains("bvp-collocation gauss4")), "{out}");
+    assert!(!out.lines().any(|l| l.contains("tension_upper_mid") && l.contains("fem ")), "not gated for the FE: {out}");
     // An unknown quantity name in the block is a scene error naming the path.
     let bad = scene_with_gate("bvp-limits-typo.json", serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"y_uper_mid": 1e-6}}));
     let o = beltcheck(&["solve", bad.to_str().unwrap()]);

@@ -69,9 +69,6 @@ pub struct NotYetSolvable {
 }
 
 const PAPER_C: (u32, &str) = (13, "Cosserat rod, static and on one pulley, Paper C");
-/// The one-pulley Cosserat scene has its BVP; its FE (the MEL direct steady solve) is
-/// issue 13's rest.
-const ONE_PULLEY_FE: (u32, &str) = (13, "no FE for the one-pulley layout yet: the MEL direct steady solve of Paper C");
 const PAPER_D: (u32, &str) = (14, "Cosserat two-pulley drive in steady motion, Paper D");
 const PAPER_E: (u32, &str) = (15, "Kirchhoff–Love shell, lateral run-off, Paper E");
 
@@ -79,14 +76,14 @@ const PAPER_E: (u32, &str) = (15, "Kirchhoff–Love shell, lateral run-off, Pape
 /// ones it has (it may still refuse an analysis or effect it has no model for, with its
 /// own error). The BVP solves the static Cosserat rod on the two-pulley loop
 /// (`cosserat-hanging`) and so does the FE (the Cosserat elements, fem/src/formulation/cosserat.rs);
-/// the BVP solves the Cosserat belt in steady motion over one pulley (`cosserat-pulley`),
-/// whose FE is issue 13's rest ("no FE for the one-pulley layout yet"); both solve the
+/// both solve the Cosserat belt in steady motion over one pulley (`cosserat-pulley`) and the
 /// Cosserat two-pulley drive in steady motion (`cosserat-drive`); the Cosserat transient
 /// is issue 14's.
 pub fn not_yet_solvable(scene: &Scene, solver: Solver) -> Option<NotYetSolvable> {
     let (unsolved, (issue, title)) = match (scene.drive.layout, scene.belt.theory, scene.analysis) {
-        (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) if solver == Solver::Bvp => return None,
-        (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) => (Unsolved::Layout(Layout::OnePulley), ONE_PULLEY_FE),
+        // both solve it: the BVP (bvp::cosserat_pulley) and the FE's direct steady solve
+        // on the open mesh (docs/fem-cosserat.md §12)
+        (Layout::OnePulley, Theory::Cosserat, Analysis::Steady) => return None,
         (Layout::OnePulley, _, _) => (Unsolved::Layout(Layout::OnePulley), PAPER_C),
         (Layout::TwoPulley, Theory::Cosserat, Analysis::Static) => return None,
         // both solve the steady Cosserat drive: the BVP (bvp::cosserat_drive) and the FE's

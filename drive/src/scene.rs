@@ -843,8 +843,10 @@ pub struct GateSettings {
     /// Limits for the BVP methods (collocation and shooting at the gate's tolerance)
     /// where they should be held tighter than the FE: quantity name → admissible
     /// relative error, same names and ranges as `tolerances`. A quantity listed here
-    /// replaces its `tolerances` limit for the BVP methods only; absent = the BVP methods
-    /// are held to `tolerances`. Default empty.
+    /// replaces its `tolerances` limit for the BVP methods only; a quantity listed here
+    /// and not in `tolerances` is gated for the BVP methods alone (one the FE does not
+    /// produce, e.g. the Cosserat edge pressures); absent = the BVP methods are held to
+    /// `tolerances`. Default empty.
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub bvp_tolerances: BTreeMap<String, f64>,
     /// Minimum observed order of convergence p of the FE studies, > 0. Default

@@ -12,7 +12,7 @@ use fem::assembly::Assembler;
 use fem::kinematics::TermParams;
 use fem::linear::SparseLu;
 use fem::mesh::Mesh;
-use fem::string_drive::steady::{friction_points, newton, SteadyParams, SteadyProblem};
+use fem::string_drive::steady::{friction_points, newton, Ends, SteadyParams, SteadyProblem};
 use drive::scene::Theory;
 use fem::problem::{BeltSection, Geometry};
 use fem::{SolverSettings, StringHanging};
@@ -32,7 +32,7 @@ fn main() {
         let asm = Assembler::new(start.mesh().clone(), kernel.clone());
         let points = friction_points(&asm, &[], drive::contour::Direction::Clockwise);
         let params = TermParams { axial_stiffness: ea, weight: Some(9.81 * 0.12), penalty: Some(penalty), bending_stiffness: None };
-        let sp = SteadyParams { mu: 0.3, penalty, kappa: 1e6, radius: r, omega1: 10.0, torque: 2.0, damping: 0.0, inertia: Some(0.12) };
+        let sp = SteadyParams { mu: 0.3, penalty, kappa: 1e6, radius: r, omega1: 10.0, torque: 2.0, damping: 0.0, inertia: Some(0.12), ends: Ends::Loop };
         let prob: SteadyProblem = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = fem::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 10.0]);

@@ -62,6 +62,8 @@ pub struct DofMap<const N: usize = NDOF> {
     /// Node spacing per unknown (for slope residual scaling), m.
     spacing: Vec<f64>,
     elements: Vec<[Option<usize>; N]>,
+    /// The last element ends at node 0 (a loop): its s_b carries the closure offset L.
+    closed: bool,
 }
 
 impl DofMap {
@@ -101,7 +103,9 @@ impl<const N: usize> DofMap<N> {
     pub fn with_layout(mesh: &Mesh, layout: ElementLayout, separate: bool) -> DofMap<N> {
         assert!(layout.dimension == Dimension::One && layout.fields.len() <= MAX_FIELDS && layout.dofs() == N, "DofMap<{N}> with layout {layout:?}");
         let fields = layout.fields.len();
-        let n = mesh.len();
+        // N nodes on a loop, N + 1 on an open mesh (docs/fem-cosserat.md §12.1)
+        let n = mesh.node_count();
+        let open_end = |k: usize| mesh.is_open() && (k == 0 || k + 1 == n);
         let mut nodes = Vec::with_capacity(n);
         let mut kinds = Vec::with_capacity(2 * fields * n + 4 * fields);
         let mut spacing = Vec::with_capacity(2 * fields * n + 4 * fields);
@@ -114,7 +118,9 @@ impl<const N: usize> DofMap<N> {
             let h = mesh.node_spacing(k);
             let mut node = NodeUnknowns { values: [None; MAX_FIELDS], slopes_in: [0; MAX_FIELDS], slopes_out: [0; MAX_FIELDS] };
             for f in 0..fields {
-                node.values[f] = (k > 0 || f > 0).then(|| push(DofKind::Value, h));
+                // s₀ = 0 (the gauge); on an open mesh the fields after s and ν (the
+                // rotation ψ) are essential at both ends (θ prescribed, §12.2)
+                node.values[f] = ((k > 0 || f > 0) && !(f > 1 && open_end(k))).then(|| push(DofKind::Value, h));
             }
             for f in 0..fields {
                 node.slopes_in[f] = push(DofKind::Slope, h);
@@ -127,7 +133,7 @@ impl<const N: usize> DofMap<N> {
             }
             nodes.push(node);
         }
-        let elements = (0..n)
+        let elements = (0..mesh.len())
             .map(|e| {
                 let (a, b) = (&nodes[e], &nodes[(e + 1) % n]);
                 let mut idx = [None; N];
@@ -140,7 +146,7 @@ impl<const N: usize> DofMap<N> {
                 idx
             })
             .collect();
-        DofMap { layout, nodes, kinds, spacing, elements }
+        DofMap { layout, nodes, kinds, spacing, elements, closed: !mesh.is_open() }
     }
 
     /// The element layout.
@@ -180,12 +186,12 @@ impl<const N: usize> DofMap<N> {
     }
 
     /// Element e's local unknowns from the global vector z and the belt length L
-    /// (the closure offset of the last element's s_b, eq. F5).
+    /// (the closure offset of the last element's s_b, eq. F5; not used on an open mesh).
     #[inline]
     pub fn gather(&self, e: usize, z: &[f64], length: f64) -> [f64; N] {
         let idx = &self.elements[e];
         let mut q: [f64; N] = std::array::from_fn(|i| idx[i].map_or(0.0, |g| z[g]));
-        if e + 1 == self.elements.len() {
+        if self.closed && e + 1 == self.elements.len() {
             q[self.layout.index(1, 0, 0)] += length;
         }
         q
@@ -196,13 +202,12 @@ impl<const N: usize> DofMap<N> {
 /// and end node: only with shared transition slopes (`separate = false`), on a polar
 /// element, at a node that is a region transition.
 pub fn augmented_flags(mesh: &Mesh, separate: bool) -> Vec<[bool; 2]> {
-    let n = mesh.len();
     mesh.elements()
         .iter()
         .enumerate()
         .map(|(e, g)| {
             let on = !separate && g.region.is_polar();
-            [on && mesh.is_transition(e), on && mesh.is_transition((e + 1) % n)]
+            [on && mesh.is_transition(e), on && mesh.is_transition((e + 1) % mesh.node_count())]
         })
         .collect()
 }
@@ -283,5 +288,39 @@ mod tests {
         let q = map.gather(n - 1, &vec![0.0; map.len()], 1.5);
         assert_eq!(q[COSSERAT.index(1, 0, 0)], 1.5);
         assert_eq!(q.iter().filter(|v| **v != 0.0).count(), 1);
+    }
+
+    /// The open mesh of the one-pulley layout (docs/fem-cosserat.md §12.1): N + 1 nodes,
+    /// no closure offset, ψ essential at both ends, every unknown used, neighbours
+    /// sharing their node's values and slopes.
+    #[test]
+    fn open_numbering() {
+        use crate::element::COSSERAT;
+        let c = Contour::new(0.1, 0.5).unwrap();
+        for n in [4, 9, 64] {
+            let mesh = Mesh::open(c, n, 1.0).unwrap();
+            assert_eq!(mesh.node_count(), n + 1);
+            assert!((mesh.end_sigma() - (1.0 + std::f64::consts::PI * 0.1)).abs() < 1e-15);
+            let map: DofMap<12> = DofMap::with_layout(&mesh, COSSERAT, false);
+            // 6 per node, less s₀ and the two end values of ψ
+            assert_eq!(map.len(), 6 * (n + 1) - 3);
+            assert!(map.node_unknowns(0).values[2].is_none() && map.node_unknowns(n).values[2].is_none());
+            assert!(map.node_unknowns(n).values[0].is_some());
+            let mut used = vec![false; map.len()];
+            for e in 0..n {
+                map.element(e).iter().flatten().for_each(|g| used[*g] = true);
+            }
+            assert!(used.iter().all(|&u| u));
+            for e in 0..n - 1 {
+                let (a, b) = (map.element(e), map.element(e + 1));
+                for f in 0..3 {
+                    assert_eq!(a[COSSERAT.index(1, f, 0)], b[COSSERAT.index(0, f, 0)]);
+                    assert_eq!(a[COSSERAT.index(1, f, 1)], b[COSSERAT.index(0, f, 1)]);
+                }
+            }
+            // no closure: the last element's s_b is its node's value, whatever L
+            let z: Vec<f64> = (0..map.len()).map(|i| i as f64).collect();
+            assert_eq!(map.gather(n - 1, &z, 7.0), map.gather(n - 1, &z, 0.0));
+        }
     }
 }

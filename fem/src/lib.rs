@@ -273,6 +273,10 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         let kernel = kernel.for_belt(&problem.belt).unwrap_or(kernel);
         const NC: usize = formulation::layout::NDOF_COSSERAT;
         use string_drive::steady::{element_size, point_size};
+        if problem.is_one_pulley() {
+            // the open layout (docs/fem-cosserat.md §12)
+            return string_drive::steady::solve_open::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
+        }
         return string_drive::steady::solve_layout::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
     }
     let data = problem.static_data(opts, settings)?;

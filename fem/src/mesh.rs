@@ -39,6 +39,8 @@ pub struct Mesh {
     per_region: [usize; 4],
     /// Node index of each region's first node (the transitions), order of [`Region::ALL`].
     transition_nodes: [usize; 4],
+    /// An open mesh ([`Mesh::open`]): the first three regions only, N + 1 distinct nodes.
+    open: bool,
 }
 
 impl Mesh {
@@ -66,23 +68,55 @@ impl Mesh {
             });
         }
         let per_region = distribute(&contour, elements, arc_weight);
-        let mut nodes = Vec::with_capacity(elements + 1);
-        let mut els = Vec::with_capacity(elements);
-        let mut transition_nodes = [0; 4];
-        for (k, region) in Region::ALL.iter().enumerate() {
-            let (a, b) = contour.region_bounds(*region);
-            let n = per_region[k];
-            transition_nodes[k] = nodes.len();
-            let h = (b - a) / n as f64;
-            for i in 0..n {
-                let sa = if i == 0 { a } else { a + i as f64 * h };
-                nodes.push(sa);
-                let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
-                els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
-            }
-        }
+        let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
         nodes.push(contour.length());
-        Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes })
+        Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes, open: false })
+    }
+
+    /// An **open** mesh of `elements` elements (≥ 4) on the first three regions of
+    /// `contour` — upper span, driven arc, lower span — for the one-pulley layout
+    /// (docs/fem-cosserat.md §12.1: its open contour is the loop's of H = D without the
+    /// driver arc, shifted by −D/2 in x). Elements per region in proportion to the
+    /// weighted lengths (spans H, arc w·πR; ≥ 1 each; the spans split equally, an odd
+    /// remainder on the upper span), uniform within a region. N + 1 distinct nodes: node 0
+    /// at σ = 0 (the inflow end), node N at σ = 2H + πR (the outflow end); no closure.
+    ///
+    /// # Errors
+    /// As [`Mesh::new`].
+    pub fn open(contour: Contour, elements: usize, arc_weight: f64) -> Result<Mesh, FemError> {
+        let closed = Mesh::new(contour, elements, arc_weight)?;
+        let span = contour.centre_distance();
+        let arc = arc_weight * std::f64::consts::PI * contour.radius();
+        let arcs = ((elements as f64 * arc / (2.0 * span + arc)).round() as usize).clamp(1, elements - 2);
+        let spans = elements - arcs;
+        let per_region = [spans - spans / 2, arcs, spans / 2, 0];
+        let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
+        nodes.push(contour.region_bounds(Region::LowerSpan).1);
+        Ok(Mesh { nodes, elements: els, per_region, transition_nodes, open: true, ..closed })
+    }
+
+    /// True for an open mesh ([`Mesh::open`]).
+    pub fn is_open(&self) -> bool {
+        self.open
+    }
+
+    /// The regions the mesh covers: all four of a loop, the first three of an open mesh.
+    pub fn regions(&self) -> &'static [Region] {
+        if self.open {
+            &Region::ALL[..3]
+        } else {
+            &Region::ALL
+        }
+    }
+
+    /// Number of distinct nodes: N on a loop, N + 1 on an open mesh.
+    pub fn node_count(&self) -> usize {
+        self.elements.len() + usize::from(self.open)
+    }
+
+    /// σ of the domain's end: L_c of a loop, 2H + πR of an open mesh.
+    pub fn end_sigma(&self) -> f64 {
+        self.nodes[self.elements.len()]
     }
 
     /// A mesh with the topology of [`Mesh::new`] (same elements per region, so the same
@@ -108,11 +142,18 @@ impl Mesh {
     /// # Errors
     /// As [`Mesh::new`].
     pub fn graded(contour: Contour, elements: usize, arc_weight: f64, breakpoints: &[f64], grading: Option<Grading>) -> Result<(Mesh, Vec<f64>), FemError> {
-        let base = Mesh::new(contour, elements, arc_weight)?;
+        Ok(Mesh::new(contour, elements, arc_weight)?.regraded(breakpoints, grading))
+    }
+
+    /// [`Mesh::graded`] on this mesh's topology (its regions and elements per region,
+    /// open or closed; the node positions of `self` do not matter).
+    pub fn regraded(&self, breakpoints: &[f64], grading: Option<Grading>) -> (Mesh, Vec<f64>) {
+        let (base, contour) = (self, self.contour);
+        let elements = self.elements.len();
         let mut nodes = Vec::with_capacity(elements + 1);
         let mut els = Vec::with_capacity(elements);
         let mut used = Vec::new();
-        for (k, region) in Region::ALL.iter().enumerate() {
+        for (k, region) in base.regions().iter().enumerate() {
             let (a, b) = contour.region_bounds(*region);
             let m = base.per_region[k];
             let h_uniform = (b - a) / m as f64;
@@ -167,9 +208,9 @@ impl Mesh {
                 }
             }
         }
-        nodes.push(contour.length());
-        let mesh = Mesh { contour, nodes, elements: els, per_region: base.per_region, transition_nodes: base.transition_nodes };
-        Ok((mesh, used))
+        nodes.push(base.end_sigma());
+        let mesh = Mesh { contour, nodes, elements: els, per_region: base.per_region, transition_nodes: base.transition_nodes, open: base.open };
+        (mesh, used)
     }
 
     /// The contour.
@@ -209,13 +250,19 @@ impl Mesh {
 
     /// True if node k is a region transition (where the slopes are doubled).
     pub fn is_transition(&self, node: usize) -> bool {
-        self.transition_nodes.contains(&node)
+        if self.open {
+            // the two interior transitions; the end nodes are no transitions
+            self.transition_nodes[1..3].contains(&node)
+        } else {
+            self.transition_nodes.contains(&node)
+        }
     }
 
     /// The element containing σ (wrapped periodically) and the local ξ ∈ [−1, 1].
     /// A non-finite σ gives element 0 and ξ = NaN (never a panic).
     pub fn locate(&self, sigma: f64) -> (usize, f64) {
-        let w = self.contour.wrap(sigma);
+        // an open mesh does not wrap: σ beyond an end lands in the end element
+        let w = if self.open { sigma.clamp(0.0, self.end_sigma()) } else { self.contour.wrap(sigma) };
         if !w.is_finite() {
             return (0, f64::NAN);
         }
@@ -234,7 +281,7 @@ impl Mesh {
     /// element that *ends* there ([`Mesh::locate`] gives the one that starts there).
     pub fn locate_left(&self, sigma: f64) -> (usize, f64) {
         let (k, xi) = self.locate(sigma);
-        if xi == -1.0 {
+        if xi == -1.0 && !(self.open && k == 0) {
             let n = self.elements.len();
             ((k + n - 1) % n, 1.0)
         } else {
@@ -245,6 +292,9 @@ impl Mesh {
     /// Mean length of the elements that meet at node k (used to scale slope residuals).
     pub fn node_spacing(&self, node: usize) -> f64 {
         let n = self.elements.len();
+        if self.open && (node == 0 || node == n) {
+            return self.elements[node.min(n - 1)].h;
+        }
         let prev = &self.elements[(node + n - 1) % n];
         let next = &self.elements[node % n];
         0.5 * (prev.h + next.h)
@@ -285,6 +335,29 @@ impl Grading {
         }
         c
     }
+}
+
+/// Uniform elements in each region of [`Region::ALL`], `per_region[k]` of them in region k
+/// (0: none): the node σ (without the end node), the elements and each region's first
+/// node.
+fn uniform_regions(contour: &Contour, per_region: [usize; 4]) -> (Vec<f64>, Vec<ElementGeometry>, [usize; 4]) {
+    let elements = per_region.iter().sum::<usize>();
+    let mut nodes = Vec::with_capacity(elements + 1);
+    let mut els = Vec::with_capacity(elements);
+    let mut transition_nodes = [0; 4];
+    for (k, region) in Region::ALL.iter().enumerate() {
+        let (a, b) = contour.region_bounds(*region);
+        let n = per_region[k];
+        transition_nodes[k] = nodes.len();
+        let h = (b - a) / n as f64;
+        for i in 0..n {
+            let sa = if i == 0 { a } else { a + i as f64 * h };
+            nodes.push(sa);
+            let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
+            els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
+        }
+    }
+    (nodes, els, transition_nodes)
 }
 
 /// σ in [a, b] where the increasing `measure` takes `target` (bisection to 1e-15 m).
@@ -420,5 +493,35 @@ mod tests {
         assert!(Mesh::new(contour(), 64, 0.5).is_err());
         assert!(Mesh::new(contour(), 64, f64::NAN).is_err());
         assert!(Mesh::new(contour(), MAX_ELEMENTS + 1, 1.0).is_err());
+    }
+
+    /// The open mesh (docs/fem-cosserat.md §12.1): three regions, ≥ 1 element each,
+    /// nodes increasing from 0 to 2H + πR, transitions interior only, locate without
+    /// wrapping, and a regraded open mesh keeps the topology.
+    #[test]
+    fn open_mesh() {
+        let c = Contour::new(0.1, 0.5).unwrap();
+        for n in [4, 5, 64, 255] {
+            let m = Mesh::open(c, n, 1.0).unwrap();
+            let per = m.elements_per_region();
+            assert_eq!(per.iter().sum::<usize>(), n);
+            assert!(per[..3].iter().all(|&k| k >= 1) && per[3] == 0);
+            assert!(m.node_sigmas().windows(2).all(|w| w[1] > w[0]));
+            assert!(!m.is_transition(0) && !m.is_transition(n));
+            assert!(m.is_transition(per[0]) && m.is_transition(per[0] + per[1]));
+            assert_eq!(m.elements()[per[0]].region, Region::DrivenArc);
+            assert_eq!(m.locate(-1.0), (0, -1.0));
+            assert_eq!(m.locate(5.0), (n - 1, 1.0));
+            assert_eq!(m.locate_left(0.0), (0, -1.0));
+            let b = [0.5 + 0.05, 0.5 + 0.2];
+            let (g, used) = m.regraded(&b, Some(Grading { width: 0.003, ratio: 8.0 }));
+            assert!(g.is_open() && g.elements_per_region() == per && g.end_sigma() == m.end_sigma());
+            if n >= 64 {
+                assert_eq!(used.len(), 2);
+                for p in b {
+                    assert!(g.node_sigmas().iter().any(|s| (s - p).abs() < 1e-12));
+                }
+            }
+        }
     }
 }

@@ -93,14 +93,23 @@ pub struct FemProblem {
     pub drive: DriveLoad,
     /// Analysis kind.
     pub analysis: Analysis,
+    /// The open ends of a one-pulley scene (docs/fem-cosserat.md §12); `None` for the
+    /// loop. The geometry's centre distance is then
+    /// D: the open contour is the loop's of H = D without its second arc.
+    pub open: Option<crate::string_drive::steady::OpenEnds>,
 }
 
 impl FemProblem {
     /// The one place the FE code reads a scene's physical data.
     pub fn from_scene(scene: &Scene) -> FemProblem {
         let b = &scene.belt;
+        let dr = &scene.drive;
+        let open = match (dr.layout, dr.end_distance, dr.transport_rate, dr.tension_in, dr.tension_out) {
+            (drive::scene::Layout::OnePulley, Some(end_distance), Some(transport_rate), tension_in, tension_out) => Some(crate::string_drive::steady::OpenEnds { end_distance, transport_rate, tension_in, tension_out }),
+            _ => None,
+        };
         FemProblem {
-            geometry: Geometry { radius: scene.drive.pulley_radius, centre_distance: scene.drive.centre_distance },
+            geometry: Geometry { radius: scene.drive.pulley_radius, centre_distance: open.map_or(scene.drive.centre_distance, |o| o.end_distance) },
             belt: BeltSection {
                 theory: b.theory,
                 length: b.length,
@@ -130,6 +139,7 @@ impl FemProblem {
                 driven_damping: scene.drive.driven_damping,
             },
             analysis: scene.analysis,
+            open,
         }
     }
 
@@ -157,6 +167,11 @@ impl FemProblem {
     /// element (docs/fem-cosserat.md §7).
     pub fn is_cosserat_steady_drive(&self) -> bool {
         matches!(self.belt.theory, Theory::Cosserat) && matches!(self.analysis, Analysis::Steady) && matches!(self.effects.contact, ContactLaw::Coulomb { .. })
+    }
+
+    /// True for a one-pulley scene (open ends; docs/fem-cosserat.md §12).
+    pub fn is_one_pulley(&self) -> bool {
+        self.open.is_some()
     }
 
     /// True for the static string, Kirchhoff or Cosserat rod on frictionless pulleys.

@@ -10,7 +10,8 @@
 //! [`evaluate`] checks, for every studied method at its finest discretisation:
 //! - every quantity of `gate.tolerances`: relative error (as defined in
 //!   [`crate::measure`]) ≤ its limit — for the BVP methods the limit of
-//!   `gate.bvp_tolerances` where that names the quantity;
+//!   `gate.bvp_tolerances` where that names the quantity, and every quantity named there
+//!   only (one the FE does not produce);
 //! - FE methods only, with `gate.min_order`: the observed order of every gated quantity
 //!   at the last refinement ≥ `min_order`, unless both errors are below
 //!   [`ORDER_FLOOR`] × its limit (at the error floor the order is noise).
@@ -247,12 +248,18 @@ pub fn evaluate(settings: &GateSettings, study: &Study) -> GateOutcome {
         if study.reference.data().is_none() {
             continue;
         }
-        for (name, &shared_limit) in &settings.tolerances {
-            // The BVP methods may be held to their own, tighter, limit.
-            let limit = match s.family {
-                Family::Bvp => settings.bvp_tolerances.get(name).copied().unwrap_or(shared_limit),
-                Family::Fem | Family::ClosedForm => shared_limit,
-            };
+        // The BVP methods may be held to their own, tighter, limit, and to quantities
+        // only they produce (listed in `bvp_tolerances` alone: the Cosserat edge
+        // pressures, which the FE does not write).
+        let gated: Vec<(&String, f64)> = match s.family {
+            Family::Bvp => {
+                let mut all: Vec<(&String, f64)> = settings.tolerances.iter().map(|(n, &l)| (n, settings.bvp_tolerances.get(n).copied().unwrap_or(l))).collect();
+                all.extend(settings.bvp_tolerances.iter().filter(|(n, _)| !settings.tolerances.contains_key(*n)).map(|(n, &l)| (n, l)));
+                all
+            }
+            Family::Fem | Family::ClosedForm => settings.tolerances.iter().map(|(n, &l)| (n, l)).collect(),
+        };
+        for (name, limit) in gated {
             let (value, reason) = match study.quantity_index(name) {
                 None => (None, "not produced by the reference for this scene".to_string()),
                 Some(k) => match row.errors[k] {

@@ -21,6 +21,29 @@ pub struct SteadyParams {
     pub damping: f64,
     /// ρ (scaled) of the transport inertia, kg/m; `None` without inertia.
     pub inertia: Option<f64>,
+    /// What closes the system: the loop's (DS2)/(DS3) or the open layout's ends.
+    pub ends: Ends,
+}
+
+/// The rows of the slots c and ω₂ and the end loads (docs/fem-cosserat.md §12.3).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Ends {
+    /// The closed loop: the c-row is the global material balance (DS2) ∫τλ dσ = 0, the
+    /// ω₂-row the driven pulley's torque balance (DS3).
+    Loop,
+    /// The open one-pulley layout in mode `tensions` (the pulley is the loop's driven
+    /// one, ω its speed in the ω₂ slot): the c-row c − c₀ = 0 (c given), the ω-row the
+    /// global material balance (C21) ∫τλ dσ − (𝓗_out − 𝓗_in) = 0, and 𝓗_out on the
+    /// ξ-row of the outflow node (C18); 𝓗_in would sit on the ξ-row of the gauge node,
+    /// which (C21) replaces.
+    Open {
+        /// c₀, m/s.
+        transport_rate: f64,
+        /// 𝓗(N_in) of (C18), N.
+        flux_in: f64,
+        /// 𝓗(N_out) of (C18), N.
+        flux_out: f64,
+    },
 }
 
 /// The steady problem on one mesh: X = (z, c, ω₂, τ₁ … τ_m), for an element of any
@@ -172,7 +195,8 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
 
     /// (DS1)–(DS3) of one element, the consistent (Galerkin) friction load with τ
     /// linear between its edge values: −∫ τ λ ∂S/∂q dσ on the S-rows (values and
-    /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element;
+    /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element
+    /// (open ends, §12.3 of docs/fem-cosserat.md: +∫ τ λ dσ on the ω-row, nothing else);
     /// with its Jacobian in (q, c, ω₂, τ_a, τ_b).
     pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad<E> {
         let el = self.asm.context(e, &self.params);
@@ -216,14 +240,16 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                     }
                 }
             }
-            r[ic] += w * t * lam;
+            // the material balance (DS2)/(C21): the c-row on a loop, the ω-row open
+            let ib = if self.sp.ends == Ends::Loop { ic } else { iw };
+            r[ib] += w * t * lam;
             for m in 0..N {
-                j[ic][m] += w * t * dl[m];
+                j[ib][m] += w * t * dl[m];
             }
             for a in 0..2 {
-                j[ic][ia + a] += w * shape[a] * lam;
+                j[ib][ia + a] += w * shape[a] * lam;
             }
-            if driven {
+            if driven && self.sp.ends == Ends::Loop {
                 r[iw] -= w * t;
                 for a in 0..2 {
                     j[iw][ia + a] -= w * shape[a];
@@ -387,14 +413,89 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             let Some((r, j)) = load else { continue };
             scatter(&self.element_variables(e, owners[e]), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
         }
-        // the driven pulley's torque balance (DS3) divided by R: + (M₂ + d₂ω₂)/R
-        residual[self.iw()] += (sp.torque + sp.damping * w2) / sp.radius;
-        if with_jacobian {
-            values.push(0.0);
-            values.push(sp.damping / sp.radius);
+        match sp.ends {
+            // the driven pulley's torque balance (DS3) divided by R: + (M₂ + d₂ω₂)/R
+            Ends::Loop => {
+                residual[self.iw()] += (sp.torque + sp.damping * w2) / sp.radius;
+                if with_jacobian {
+                    values.push(0.0);
+                    values.push(sp.damping / sp.radius);
+                }
+            }
+            // c given; (C21) less the end fluxes; 𝓗_out on the outflow node's ξ-row (C18)
+            Ends::Open { transport_rate, flux_in, flux_out } => {
+                residual[self.ic()] = c - transport_rate;
+                residual[self.iw()] -= flux_out - flux_in;
+                if let Some(s_end) = self.asm.dofs().node_unknowns(self.asm.mesh().node_count() - 1).values[0] {
+                    residual[s_end] += flux_out;
+                }
+                if with_jacobian {
+                    // the c-row's only entry (the friction blocks leave it zero when open)
+                    values.push(1.0);
+                    values.push(0.0);
+                }
+            }
         }
         let finite = residual.iter().all(|v| v.is_finite()) && values.iter().all(|v| v.is_finite());
         finite.then_some(Evaluated { residual, values, results })
+    }
+
+    /// The normal traction P⟨−γ̄⟩ of a friction point and its gradient in (q_left,
+    /// q_right): γ̄ the trapezoidal mean of the gaps at the node's two element edges (the
+    /// loop's, docs/fem-drive.md §12).
+    fn nodal_normal(&self, pt: FrictionPoint, z: &[f64]) -> (f64, [f64; P]) {
+        let layout = self.asm.kernel().layout();
+        let mut gap: Option<(f64, [f64; P])> = Some((0.0, [0.0; P]));
+        let node_weight = pt.left.1 + pt.right.1;
+        for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let g = point_gap(layout, &el, &q, xi);
+            let f = we / node_weight;
+            gap = match (gap, g) {
+                (Some((acc, mut dacc)), Some((gv, dg))) => {
+                    for k in 0..N {
+                        dacc[side * N + k] += f * dg[k];
+                    }
+                    Some((acc + f * gv, dacc))
+                }
+                _ => None,
+            };
+        }
+        match gap {
+            Some((g, dg)) if g < 0.0 => (-self.sp.penalty * g, dg.map(|d| -self.sp.penalty * d)),
+            _ => (0.0, [0.0; P]),
+        }
+    }
+
+    /// The normal traction of a friction point of the open layout (docs/fem-cosserat.md
+    /// §12.3): the mean penalty pressure P⟨−γ⟩ of the two elements at the node over the
+    /// contact rule's points, weighted by the elements' halves at the node — the pressure
+    /// the penalty term actually applies. (The nodal gap is no measure of it for the
+    /// Cosserat element at the default penalty: the penalty, sampled at the rule's points
+    /// only, leaves the cubic ν above the pulley at the nodes by ~10 times the
+    /// penetration, measured.)
+    fn tributary_normal(&self, pt: FrictionPoint, z: &[f64]) -> (f64, [f64; P]) {
+        let layout = self.asm.kernel().layout();
+        let rule = self.asm.kernel().rules().contact;
+        let node_weight = pt.left.1 + pt.right.1;
+        let (mut p, mut dp) = (0.0, [0.0; P]);
+        for (side, (e, we)) in [(0, pt.left), (1, pt.right)] {
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let f = we / node_weight;
+            for &(xi, wg) in rule.points() {
+                let Some((g, dg)) = point_gap(layout, &el, &q, xi) else { continue };
+                if g < 0.0 {
+                    // the element mean: Σ w_g ⟨−γ_g⟩ / 2
+                    p -= f * 0.5 * wg * self.sp.penalty * g;
+                    for k in 0..N {
+                        dp[side * N + k] -= f * 0.5 * wg * self.sp.penalty * dg[k];
+                    }
+                }
+            }
+        }
+        (p, dp)
     }
 
     /// The residual entries and Jacobian block of friction point i in its variables
@@ -419,23 +520,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             d[off..off + N].copy_from_slice(&dl);
             (l, d)
         };
-        let mut gap: Option<(f64, [f64; P])> = Some((0.0, [0.0; P]));
-        let node_weight = pt.left.1 + pt.right.1;
-        for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
-            let el = self.asm.context(e, &self.params);
-            let q = self.asm.dofs().gather(e, z, self.length);
-            let g = point_gap(layout, &el, &q, xi);
-            let f = we / node_weight;
-            gap = match (gap, g) {
-                (Some((acc, mut dacc)), Some((gv, dg))) => {
-                    for k in 0..N {
-                        dacc[side * N + k] += f * dg[k];
-                    }
-                    Some((acc + f * gv, dacc))
-                }
-                _ => None,
-            };
-        }
+        let (normal, dnormal) = match sp.ends {
+            Ends::Loop => self.nodal_normal(pt, z),
+            Ends::Open { .. } => self.tributary_normal(pt, z),
+        };
         let (ic, iw, it) = (2 * N, 2 * N + 1, 2 * N + 2);
         let mut r = [0.0; P];
         let mut j = [[0.0; P]; P];
@@ -444,10 +532,6 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // (DS4)
         let omega = if driven { w2 } else { sp.omega1 };
         let v = c * lam - sp.radius * omega;
-        let (normal, dnormal) = match gap {
-            Some((g, dg)) if g < 0.0 => (-sp.penalty * g, dg.map(|d| -sp.penalty * d)),
-            _ => (0.0, [0.0; P]),
-        };
         let b = sp.mu * normal;
         let y = tau + sp.kappa * v;
         let slip = y.abs() >= b && !force_stick;

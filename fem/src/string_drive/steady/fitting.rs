@@ -112,8 +112,6 @@ pub(super) fn interpolate_traction(old: &[PointResult], contour: &Contour, p: &F
 pub(super) struct SteadyFitData<'a, K: ?Sized> {
     pub params: TermParams,
     pub length: f64,
-    /// The final normal penalty P, N/m².
-    pub penalty: f64,
     pub kernel: &'a Arc<K>,
     /// The η-scaled parameters (the refits solve at η = 1).
     pub sp_at: &'a dyn Fn(f64) -> SteadyParams,
@@ -195,25 +193,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // the transferred state is far from equilibrium in the stiff normal penalty
         // where a kink moved between elements: on failure, a penalty ladder
         // P/10⁵ → P from the transferred state
-        let x0 = x.clone();
-        let mut solved = newton(&prob, &mut x, &w, &scales, d.tolerance, d.max_iterations);
-        if solved.is_err() {
-            x.copy_from_slice(&x0);
-            let mut iterations = 0;
-            for f in [1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0] {
-                let soft = TermParams { penalty: Some(f * d.penalty), ..d.params };
-                let sp = SteadyParams { penalty: f * d.penalty, ..(d.sp_at)(1.0) };
-                let p: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params: soft, length: d.length, points: &points, sp, strain_rule: d.strain_rule };
-                solved = newton(&p, &mut x, &w, &scales, d.tolerance, d.max_iterations).map(|n| {
-                    iterations += n.iterations;
-                    SteadyNewton { iterations, ..n }
-                });
-                if solved.is_err() {
-                    break;
-                }
-            }
-        }
-        let n = solved?;
+        let n = newton_or_ladder(&prob, &mut x, &w, &scales, d.tolerance, d.max_iterations, &[1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0])?;
         self.report.newton_iterations += n.iterations;
         let results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
         self.state = State { asm, x, results, rho: self.state.rho };

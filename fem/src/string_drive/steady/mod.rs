@@ -32,12 +32,14 @@ mod equations;
 mod fitting;
 mod kernels;
 mod load_path;
+mod open;
 mod output;
 mod semismooth;
 mod topology;
 
 pub use equations::*;
 pub use fitting::*;
+pub use open::{end_flux, solve_open, OpenEnds};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
@@ -134,6 +136,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
         torque: eta * load_torque,
         damping: eta * damping,
         inertia: inertia.then_some(eta * b.mass_per_length),
+        ends: Ends::Loop,
     };
     let lambda0 = 1.0 + t_static / b.axial_stiffness;
     // critical speed, checked on the start state with c = Rω₁/λ₀ (docs/fem-drive.md §6)
@@ -196,7 +199,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, penalty, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fit.record(&out);
@@ -275,7 +278,7 @@ mod tests {
         let b = &scene.belt;
         // a soft penalty keeps the FD of the normal term well conditioned
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
-        let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
+        let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends: Ends::Loop };
         let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
@@ -370,7 +373,7 @@ mod tests {
         let z = crate::assembly::tests::wave_state(&asm, 0.99);
         let points = friction_points(&asm, &[], Direction::Clockwise);
         let params = TermParams { axial_stiffness: 2e4, weight: Some(1.1772), penalty: None, bending_stiffness: Some(1e-3) };
-        let sp = SteadyParams { mu: 0.3, penalty: 1e8, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12) };
+        let sp = SteadyParams { mu: 0.3, penalty: 1e8, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends: Ends::Loop };
         let prob: SteadyProblem<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>> = SteadyProblem { asm: &asm, params, length: 1.3956749, points: &points, sp, strain_rule: kernel.rules().strain };
         let owners = prob.edge_owners();
         let close = |a: f64, fd: f64, scale: f64, what: &str| assert!((a - fd).abs() <= 1e-6 * scale + 1e-7 * fd.abs(), "{what}: analytic {a}, central difference {fd}");

@@ -90,7 +90,7 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
         return Err(FemError::NonFinite { what: e.to_string() });
     }
     let points: Vec<FrictionPoint> = state.results.iter().map(|p| p.point).collect();
-    let sp = SteadyParams { mu, penalty, kappa, radius: r, omega1, torque: load_torque, damping, inertia: None };
+    let sp = SteadyParams { mu, penalty, kappa, radius: r, omega1, torque: load_torque, damping, inertia: None, ends: Ends::Loop };
     let dissipation = SteadyProblem::<N, P, E, K> { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain }.dissipation(&state.x);
     let power_in = -torques[0] * omega1;
     let power_out = (load_torque + damping * omega2) * omega2;

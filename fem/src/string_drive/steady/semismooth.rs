@@ -229,3 +229,39 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
     }
     Ok(SteadyNewton { iterations: stats.iterations, update_norm: stats.last_correction })
 }
+
+/// [`newton`] on `problem` from `x`; if it fails, [`penalty_ladder`] from the same `x`
+/// (a refit whose kink moved between elements is far from equilibrium in the stiff
+/// normal penalty).
+///
+/// # Errors
+/// The ladder's first failing solve's [`NewtonFailure`].
+pub fn newton_or_ladder<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(problem: &SteadyProblem<N, P, E, K>, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize, ladder: &[f64]) -> Result<SteadyNewton, NewtonFailure> {
+    let x0 = x.to_vec();
+    let solved = newton(problem, x, w, scales, tolerance, max_iterations);
+    if solved.is_ok() {
+        return solved;
+    }
+    x.copy_from_slice(&x0);
+    penalty_ladder(problem, x, w, scales, tolerance, max_iterations, ladder)
+}
+
+/// [`newton`] at the normal penalty P·f for each f of `ladder` in turn (the last 1), each
+/// from the previous one's solution; iterations summed.
+///
+/// # Errors
+/// The first failing solve's [`NewtonFailure`].
+pub fn penalty_ladder<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(problem: &SteadyProblem<N, P, E, K>, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize, ladder: &[f64]) -> Result<SteadyNewton, NewtonFailure> {
+    let mut iterations = 0;
+    let mut last = SteadyNewton::default();
+    let penalty = problem.sp.penalty;
+    for f in ladder {
+        let soft = TermParams { penalty: Some(f * penalty), ..problem.params };
+        let sp = SteadyParams { penalty: f * penalty, ..problem.sp };
+        let p = SteadyProblem { params: soft, sp, ..*problem };
+        let n = newton(&p, x, w, scales, tolerance, max_iterations)?;
+        iterations += n.iterations;
+        last = SteadyNewton { iterations, ..n };
+    }
+    Ok(last)
+}

@@ -106,13 +106,16 @@ pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assem
     let lc = contour.length();
     let n = mesh.len();
     let mut out = Vec::new();
-    for k in 0..n {
+    // an open mesh (docs/fem-cosserat.md §12.1): its interior nodes, and only its one
+    // pulley (the loop's second pulley, at the open ends, does not exist)
+    let nodes = if mesh.is_open() { 1..n } else { 0..n };
+    for k in nodes {
         let left = (k + n - 1) % n;
         let (el_l, el_r) = (mesh.elements()[left], mesh.elements()[k]);
         let sigma = mesh.node_sigmas()[k];
         let reach = |region: Region| reachable_pulley(contour, region, sigma);
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
-        let Some(pulley) = pulley else { continue };
+        let Some(pulley) = pulley.filter(|p| !(mesh.is_open() && *p == Pulley::Driver)) else { continue };
         let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction };
         if splits.iter().any(|&t| crate::fitting::periodic_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
             out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
