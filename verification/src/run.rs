@@ -501,7 +501,7 @@ pub struct Samples {
 /// contact state found on it, the two ends of a bisected bracket of the edge (width
 /// ≤ [`EdgeDetail::BRACKET`]·L) and [`EdgeDetail::CLUSTER`] points on each side at the
 /// distances 2Δ·qʲ, j = 0 … CLUSTER − 1 (Δ = L/n the uniform spacing, q =
-/// [`EdgeDetail::RATIO`]: from 2Δ down to about 1e-7·Δ from the edge).
+/// [`EdgeDetail::RATIO`]: from 2Δ down to about 3e-7·Δ from the edge).
 #[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct EdgeDetail {
     /// σ in [0, L], increasing, m.
