@@ -459,7 +459,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
 fn refined_caption(d: &crate::run::EdgeDetail, uniform: usize) -> String {
     use crate::run::EdgeDetail;
     format!(
-        "The contact pressure p(σ) has finite peaks of width √(a/(b₂ − ρc²)) at the contact edges, about as wide as a few uniform samples, so p and the shear strain Γ₂ = Q/b₂ are plotted on a refined σ grid ({} points): the {uniform} uniform samples plus, at each of the {} changes of the contact state, the two ends of a bracket bisected to {:.0e}·L and {} points on each side at 2Δ·{}ʲ from it (Δ = L/{uniform}; the nearest about 3e-7·Δ away). The close-ups show p within ±{} shear layers of each contact edge with the refined samples as dots and the edge pressure labelled; the FE curves (dashed) are their uniform samples. The error norms use the uniform samples only.",
+        "The contact pressure p(σ) has finite peaks of width √(a/(b₂ − ρc²)) at the contact edges, about as wide as a few uniform samples, so p and the shear strain Γ₂ = Q/b₂ are plotted on a refined σ grid ({} points): the {uniform} uniform samples plus, at each of the {} changes of the contact state, the two ends of a bracket bisected to {:.0e}·L and {} points on each side at 2Δ·{}ʲ from it (Δ = L/{uniform}; the nearest about 3e-7·Δ away). The close-ups show p within ±{} shear layers of each contact edge with the refined samples as dots and the edge pressure labelled; the FE curves (dashed) are on their own refined grid where the FE view gives Γ₂ (the Cosserat elements), else on their uniform samples. The error norms use the uniform samples only.",
         d.sigma.len(),
         d.edges.len(),
         EdgeDetail::BRACKET,
