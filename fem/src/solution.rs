@@ -900,6 +900,13 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<
         self.rod_resultants(sigma).map(|x| x.1)
     }
 
+    /// Γ₂ of a shear-deformable element at σ from its fields ([`LayoutElement::shear_strain_at`]);
+    /// `None` for an unshearable one.
+    fn shear_strain(&self, sigma: f64) -> Option<f64> {
+        let (e, xi) = self.mesh.locate(sigma);
+        self.kernel.shear_strain_at(&self.context(e), &self.local[e], xi)
+    }
+
     /// The penalty pressure P⟨−γ⟩ (N per unit contour length) recovered like the axial
     /// force: evaluated at the contact rule's points of the element (where the
     /// formulation applies it) and interpolated between them, ≥ 0; 0 outside the

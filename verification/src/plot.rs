@@ -4,6 +4,8 @@
 //!   deflection ν(σ) magnified below;
 //! - [`force_svg`]: axial force (and moment) along σ, BVP reference and the finest run
 //!   of each FE formulation overlaid, with |N − N_ref| of every method's finest run;
+//!   for a shear-deformable rod also its contact pressure with close-ups of the edge
+//!   peaks and its shear strain, on a σ grid refined at the contact edges;
 //! - [`convergence_svg`]: FE error vs elements with reference slopes, BVP error vs
 //!   requested tolerance with the line error = tolerance;
 //! - [`work_precision_svg`]: error vs wall time, every method of the scene on one axis.
@@ -19,7 +21,7 @@ use plotters::prelude::*;
 use drive::scene::Scene;
 use drive::view::ContactState;
 
-use crate::run::{fmt_tolerance, Discretisation, Family, Samples};
+use crate::run::{fmt_tolerance, Discretisation, EdgeDetail, Family, Samples};
 use crate::study::{Series, SeriesStatus, Study};
 
 /// Canvas width, px.
@@ -321,7 +323,7 @@ pub fn shape_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
 fn nu_panel(scene: &Scene, study: &Study, area: &Area, fe: &[(usize, &Samples, String)]) -> Result<(), String> {
     let Some(reference) = study.reference.data() else { return Ok(()) };
     let s = &reference.samples;
-    let l = scene.geometric_length();
+    let l = scene.path().length();
     let (y0, y1) = padded_range(s.deflection.iter().chain(fe.iter().flat_map(|f| f.1.deflection.iter())));
     let caption = "deflection ν(σ) from the contour (positive away from the pulleys); shaded: contact".to_string();
     let axes = SigmaAxes { caption, caption_font: 20, l, y: (y0, y1), y_area: 80, ydesc: "ν [m]", y_format: Some(&axis_label), shade: Some(s) };
@@ -477,6 +479,10 @@ fn sigma_chart<'a, 'b>(area: &'a Area<'b>, axes: SigmaAxes<'_>) -> Result<Chart<
 
 /// N(σ) of the reference with the finest run of each FE formulation overlaid (and
 /// M(σ) if the belt has a moment), then |N − N_ref| of the finest run of every method.
+/// A shear-deformable rod (samples with [`crate::run::EdgeDetail`]) adds its contact
+/// pressure p(σ) — static scenes too — on the σ grid refined at the contact edges, a
+/// row of close-ups of p over ±[`EDGE_WINDOW`] shear-layer widths at each contact edge,
+/// and its shear strain Γ₂(σ).
 pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     let Some(reference) = study.reference.data() else {
         return message_svg("force", "axial force", "the reference could not be computed");
@@ -484,12 +490,16 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     let s = &reference.samples;
     let fe = finest_fe(study);
     let with_moment = s.moment.is_some();
+    let detail = s.edges.as_ref();
     // The contact traction along σ for a friction drive: where the stick and slip zones
-    // (shaded) carry the normal load. (Static rods carry concentrated edge forces, which
-    // a sampled curve cannot show: not plotted for them.)
-    let with_pressure = s.pressure.is_some() && scene.analysis != drive::scene::Analysis::Static;
+    // (shaded) carry the normal load. (Static Kirchhoff rods carry concentrated edge
+    // forces, which a sampled curve cannot show: not plotted for them; the Cosserat rod's
+    // edge peaks are finite, and plotted from its refined samples.)
+    let with_pressure = s.pressure.is_some() && (scene.analysis != drive::scene::Analysis::Static || detail.is_some());
     let with_friction = s.friction.is_some();
-    let panels = 2 + usize::from(with_moment) + usize::from(with_pressure) + usize::from(with_friction);
+    let edge_windows = detail.map(contact_edges).unwrap_or_default();
+    let with_zoom = !edge_windows.is_empty();
+    let panels = 2 + usize::from(with_moment) + usize::from(with_pressure) + usize::from(with_friction) + 2 * usize::from(detail.is_some());
     let panel = 420u32;
     let height = panel * panels as u32;
     render("force", height, |root| {
@@ -501,7 +511,23 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
             next += 1;
         }
         if with_pressure {
-            field_panel(scene, study, &areas[next], "pressure", "contact pressure p(σ) [N/m]", "contact pressure (normal traction) along σ, stick and slip zones shaded", &fe)?;
+            if let Some(d) = detail {
+                let title = format!("contact pressure along σ: finite edge peaks of width √(a/b₂); {} uniform σ + {} clustered at each of the {} state changes", s.len(), 2 * EdgeDetail::CLUSTER + 2, d.edges.len());
+                detail_panel(scene, study, &areas[next], DetailField::Pressure, &title, &fe)?;
+            } else {
+                field_panel(scene, study, &areas[next], "pressure", "contact pressure p(σ) [N/m]", "contact pressure (normal traction) along σ, stick and slip zones shaded", &fe)?;
+            }
+            next += 1;
+        }
+        if with_zoom {
+            edge_zoom_row(scene, study, &areas[next], &edge_windows, &fe)?;
+            next += 1;
+        } else if detail.is_some() {
+            area_message(&areas[next], "contact pressure at the contact edges", "no contact edge in the reference")?;
+            next += 1;
+        }
+        if detail.is_some() {
+            detail_panel(scene, study, &areas[next], DetailField::ShearStrain, "shear strain Γ₂ = Q/b₂ along σ (same refined σ grid)", &fe)?;
             next += 1;
         }
         if with_friction {
@@ -511,11 +537,159 @@ pub fn force_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     })
 }
 
+/// Half-width of an edge close-up, in shear-layer widths √(a/(b₂ − ρc²)).
+pub const EDGE_WINDOW: f64 = 8.0;
+
+/// The σ of the reference's contact edges (free ↔ contact, stick or slip; not the
+/// stick ↔ slip changes) with the side the contact is on (+1: contact at larger σ).
+fn contact_edges(d: &EdgeDetail) -> Vec<(f64, f64)> {
+    let state_near = |s: f64, side: f64| {
+        let k = d.sigma.partition_point(|&x| x < s);
+        let i = if side > 0.0 { (k + 1).min(d.sigma.len() - 1) } else { k.saturating_sub(1) };
+        d.state[i]
+    };
+    d.edges
+        .iter()
+        .filter_map(|&e| {
+            let (before, after) = (state_near(e, -1.0), state_near(e, 1.0));
+            match (before == ContactState::Free, after == ContactState::Free) {
+                (true, false) => Some((e, 1.0)),
+                (false, true) => Some((e, -1.0)),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// A field of [`EdgeDetail`].
+#[derive(Clone, Copy)]
+enum DetailField {
+    Pressure,
+    ShearStrain,
+}
+
+impl DetailField {
+    fn of(self, d: &EdgeDetail) -> &[f64] {
+        match self {
+            DetailField::Pressure => &d.pressure,
+            DetailField::ShearStrain => &d.shear_strain,
+        }
+    }
+
+    fn ydesc(self) -> &'static str {
+        match self {
+            DetailField::Pressure => "contact pressure p(σ) [N/m]",
+            DetailField::ShearStrain => "shear strain Γ₂(σ) [–]",
+        }
+    }
+
+    /// A run's curve: its refined samples, else (pressure only) its uniform ones.
+    fn curve(self, s: &Samples) -> Option<Vec<(f64, f64)>> {
+        if let Some(d) = &s.edges {
+            return Some(d.sigma.iter().zip(self.of(d)).map(|(&a, &b)| (a, b)).collect());
+        }
+        match self {
+            DetailField::Pressure => s.pressure.as_ref().map(|p| s.sigma.iter().zip(p).map(|(&a, &b)| (a, b)).collect()),
+            DetailField::ShearStrain => None,
+        }
+    }
+}
+
+/// A field of a shear-deformable rod along σ from the refined samples: the reference
+/// solid, each FE formulation's finest run dashed (its uniform pressure where it has no
+/// shear strain).
+fn detail_panel(scene: &Scene, study: &Study, area: &Area, field: DetailField, title: &str, fe: &[(usize, &Samples, String)]) -> Result<(), String> {
+    let Some(reference) = study.reference.data() else { return Ok(()) };
+    let s = &reference.samples;
+    let Some(pts) = field.curve(s) else { return Ok(()) };
+    let l = scene.path().length();
+    let (y0, y1) = padded_range(pts.iter().map(|p| &p.1));
+    let axes = SigmaAxes { caption: title.to_string(), caption_font: 20, l, y: (y0, y1), y_area: 90, ydesc: field.ydesc(), y_format: None, shade: Some(s) };
+    let mut chart = sigma_chart(area, axes)?;
+    region_labels(&mut chart, scene)?;
+    let reference_label = format!("reference: {} {}", study.reference.method, study.reference.discretisation);
+    labelled_line(&mut chart, pts, REFERENCE, 2, false, reference_label)?;
+    for (i, fs, label) in fe {
+        if let Some(c) = field.curve(fs) {
+            let c = c.into_iter().map(|(a, b)| (a, b.clamp(y0, y1))).collect();
+            labelled_line(&mut chart, c, series_color(study, *i), 2, true, label.clone())?;
+        }
+    }
+    legend(&mut chart, SeriesLabelPosition::UpperRight)
+}
+
+/// One close-up of p(σ) per contact edge of the reference, σ within ±EDGE_WINDOW shear
+/// layers √(a/(b₂ − ρc²)) of the edge (c the transport rate of the reference's summary,
+/// 0 at rest), the refined samples marked.
+fn edge_zoom_row(scene: &Scene, study: &Study, area: &Area, edges: &[(f64, f64)], fe: &[(usize, &Samples, String)]) -> Result<(), String> {
+    let Some(reference) = study.reference.data() else { return Ok(()) };
+    let Some(d) = reference.samples.edges.as_ref() else { return Ok(()) };
+    let a = scene.belt.bending_stiffness.unwrap_or(f64::NAN);
+    let b2 = scene.belt.shear_stiffness.unwrap_or(f64::NAN);
+    let c = reference.summary.transport_rate.unwrap_or(0.0);
+    let layer = (a / (b2 - scene.belt.mass_per_length * c * c)).sqrt();
+    let half = if layer.is_finite() && layer > 0.0 { EDGE_WINDOW * layer } else { 0.01 * scene.path().length() };
+    let (title_area, row) = area.split_vertically(34);
+    title_area
+        .draw(&Text::new(
+            format!("p(σ) at each contact edge: σ within ±{EDGE_WINDOW}·√(a/(b₂ − ρc²)) = ±{:.2} mm of the edge, refined samples as dots, edge pressure labelled", 1e3 * half),
+            (20, 8),
+            ("sans-serif", 20).into_font(),
+        ))
+        .map_err(err)?;
+    let cells = row.split_evenly((1, edges.len()));
+    let path = scene.path();
+    let l = path.length();
+    for (cell, &(edge, side)) in cells.iter().zip(edges) {
+        // σ − σ_edge, mm, across σ = 0 on the loop; the points within the window, in order
+        let near = |pts: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
+            let mut v: Vec<(f64, f64)> = pts
+                .into_iter()
+                .map(|(s, p)| (if path.is_open() { s - edge } else { (s - edge + 0.5 * l).rem_euclid(l) - 0.5 * l }, p))
+                .filter(|(x, _)| x.abs() <= half)
+                .map(|(x, p)| (1e3 * x, p))
+                .collect();
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            v
+        };
+        let inside = near(d.sigma.iter().copied().zip(d.pressure.iter().copied()).collect());
+        let (_, top) = range_of(inside.iter().map(|p| &p.1));
+        let (y0, y1) = (-0.05 * top.max(1e-12), 1.25 * top.max(1e-12));
+        let mut chart = ChartBuilder::on(cell)
+            .caption(format!("σ = {edge:.4} m"), ("sans-serif", 16))
+            .margin(6)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(-1e3 * half..1e3 * half, y0..y1)
+            .map_err(err)?;
+        grid_style(&mut chart.configure_mesh(), 13).x_desc("σ − σ_edge [mm]").x_labels(5).y_labels(6).x_label_formatter(&axis_label).draw().map_err(err)?;
+        chart.draw_series(LineSeries::new(inside.clone(), REFERENCE.stroke_width(2))).map_err(err)?;
+        chart.draw_series(PointSeries::of_element(inside.clone(), 2, REFERENCE.filled(), &|p, sz, st| Circle::new(p, sz, st))).map_err(err)?;
+        for (i, fs, _) in fe {
+            let Some(cv) = DetailField::Pressure.curve(fs) else { continue };
+            let cv: Vec<(f64, f64)> = near(cv).into_iter().map(|(x, p)| (x, p.clamp(y0, y1))).collect();
+            chart.draw_series(DashedLineSeries::new(cv, 6, 4, series_color(study, *i).stroke_width(2))).map_err(err)?;
+        }
+        // The edge pressure: the sample at the edge (its contact-side end, a sample).
+        let k = d.sigma.partition_point(|&x| x < edge).min(d.sigma.len() - 1);
+        {
+            let label = format!("  p = {:.1} N/m  ", d.pressure[k]);
+            let pos = (0.0, d.pressure[k].min(y1));
+            let style = TextStyle::from(("sans-serif", 13).into_font()).color(&BLACK).pos(plotters::style::text_anchor::Pos::new(
+                if side > 0.0 { plotters::style::text_anchor::HPos::Left } else { plotters::style::text_anchor::HPos::Right },
+                plotters::style::text_anchor::VPos::Bottom,
+            ));
+            chart.draw_series(std::iter::once(Text::new(label, pos, style))).map_err(err)?;
+        }
+    }
+    Ok(())
+}
+
 fn field_panel(scene: &Scene, study: &Study, area: &Area, field: &str, ydesc: &str, title: &str, fe: &[(usize, &Samples, String)]) -> Result<(), String> {
     let Some(reference) = study.reference.data() else { return Ok(()) };
     let s = &reference.samples;
     let Some(f) = s.field(field) else { return Ok(()) };
-    let l = scene.geometric_length();
+    let l = scene.path().length();
     let others: Vec<&[f64]> = fe.iter().filter_map(|x| x.1.field(field)).collect();
     // The range follows the reference (widened to at least ±25 % of its span around
     // it); FE curves that leave it are clipped, and the caption says so.
@@ -549,7 +723,7 @@ fn field_panel(scene: &Scene, study: &Study, area: &Area, field: &str, ydesc: &s
 fn difference_panel(scene: &Scene, study: &Study, area: &Area) -> Result<(), String> {
     let Some(reference) = study.reference.data() else { return Ok(()) };
     let s = &reference.samples;
-    let l = scene.geometric_length();
+    let l = scene.path().length();
     let scale = s.tension.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
     let floor = 1e-15 * scale;
     let mut curves = Vec::new();

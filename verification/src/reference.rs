@@ -342,6 +342,8 @@ fn extrapolate_samples(s: [&Samples; 3], ratio: f64, notes: &mut Vec<String>) ->
         state: s[2].state.clone(),
         pressure: field(|s| s.pressure.as_deref()),
         friction: field(|s| s.friction.as_deref()),
+        // refined at each level's own contact edges: no common grid to extrapolate on
+        edges: None,
     }
 }
 

@@ -84,6 +84,10 @@ struct FieldsOut {
     #[serde(skip_serializing_if = "Option::is_none")]
     moment: Option<Vec<f64>>,
     state: Vec<drive::view::ContactState>,
+    /// A shear-deformable rod's p and Γ₂ on the σ grid refined at the contact edges
+    /// (what `force.svg` plots), in full.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    refined: Option<crate::run::EdgeDetail>,
 }
 
 fn fields_out(d: &RunData, every: usize) -> FieldsOut {
@@ -97,6 +101,7 @@ fn fields_out(d: &RunData, every: usize) -> FieldsOut {
         tension: pick(&s.tension),
         moment: s.moment.as_ref().map(pick),
         state: s.state.iter().step_by(every.max(1)).copied().collect(),
+        refined: s.edges.clone(),
     }
 }
 
@@ -119,7 +124,8 @@ fn run_out(r: &Run) -> RunOut<'_> {
 }
 
 /// Every number of a study as pretty JSON: the scene, the plan, the quantities, the
-/// reference (with its fields at 512 points), and per series per run the summary,
+/// reference (with its fields at 512 points, and a shear-deformable rod's p and Γ₂ on
+/// the refined grid as `reference_fields.refined`), and per series per run the summary,
 /// cost, errors and orders, plus Richardson extrapolation and mutual convergence.
 ///
 /// # Errors
@@ -373,8 +379,16 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         ("Convergence", "Left: FE error against elements with reference slopes. Right: BVP error against the requested tolerance (the tolerance bounds a residual, not the error, so points may sit on either side of the dashed line).", "convergence", "convergence.svg"),
         ("Work–precision", "Error against wall time, every method of this scene on one axis (the reference run itself is not plotted).", "work–precision", "work-precision.svg"),
     ];
+    let refined = study.reference.data().and_then(|d| d.samples.edges.as_ref());
     for (title, caption, alt, file) in plots {
-        let _ = writeln!(m, "## {title}\n\n{caption}\n\n![{alt}]({file})\n");
+        match refined {
+            Some(d) if file == "force.svg" => {
+                let _ = writeln!(m, "## {title}, contact pressure and shear strain\n\n{caption} {}\n\n![{alt}]({file})\n", refined_caption(d, study.plan.samples));
+            }
+            _ => {
+                let _ = writeln!(m, "## {title}\n\n{caption}\n\n![{alt}]({file})\n");
+            }
+        }
     }
 
     // Tables.
@@ -438,6 +452,21 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         let _ = writeln!(m, "Options of the reference run:\n\n```json\n{}\n```", serde_json::to_string_pretty(&d.options).unwrap_or_default());
     }
     m
+}
+
+/// How the pressure and shear-strain panels of a shear-deformable rod are sampled, for
+/// the caption of `force.svg`.
+fn refined_caption(d: &crate::run::EdgeDetail, uniform: usize) -> String {
+    use crate::run::EdgeDetail;
+    format!(
+        "The contact pressure p(σ) has finite peaks of width √(a/(b₂ − ρc²)) at the contact edges, about as wide as a few uniform samples, so p and the shear strain Γ₂ = Q/b₂ are plotted on a refined σ grid ({} points): the {uniform} uniform samples plus, at each of the {} changes of the contact state, the two ends of a bracket bisected to {:.0e}·L and {} points on each side at 2Δ·{}ʲ from it (Δ = L/{uniform}; the nearest about 3e-7·Δ away). The close-ups show p within ±{} shear layers of each contact edge with the refined samples as dots and the edge pressure labelled; the FE curves (dashed) are on their own refined grid where the FE view gives Γ₂ (the Cosserat elements), else on their uniform samples. The error norms use the uniform samples only.",
+        d.sigma.len(),
+        d.edges.len(),
+        EdgeDetail::BRACKET,
+        EdgeDetail::CLUSTER,
+        EdgeDetail::RATIO,
+        plot::EDGE_WINDOW
+    )
 }
 
 /// Writes `dir/index.md`: one row per scene with model, methods, FE status, worst

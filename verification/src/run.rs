@@ -183,7 +183,7 @@ impl Serialize for RunError {
 #[error("non-finite {field} ({value}) at σ = {sigma:.6} m")]
 pub struct NonFiniteSample {
     /// Field name: `x`, `y`, `deflection`, `tension`, `moment`, `contact pressure`,
-    /// `friction traction`.
+    /// `friction traction`, `shear strain`.
     pub field: &'static str,
     /// The value.
     pub value: f64,
@@ -488,6 +488,113 @@ pub struct Samples {
     pub pressure: Option<Vec<f64>>,
     /// Friction traction τ(σ) on the belt, N/m, + along σ; `None` without friction.
     pub friction: Option<Vec<f64>>,
+    /// The contact pressure and shear strain of a shear-deformable rod on a σ grid
+    /// refined at the contact edges, for the plots; `None` for a model without a shear
+    /// strain (string, Kirchhoff rod) or with no distributed pressure. Never used by the
+    /// error norms, which stay on the uniform grid.
+    pub edges: Option<EdgeDetail>,
+}
+
+/// The fields of a shear-deformable rod that change over its shear layer √(a/b₂) at the
+/// contact edges (a few mm, about the uniform sample spacing of a study), sampled where
+/// they change: the uniform grid of [`Samples`] merged with, at every change of the
+/// contact state found on it, the two ends of a bisected bracket of the edge (width
+/// ≤ [`EdgeDetail::BRACKET`]·L) and [`EdgeDetail::CLUSTER`] points on each side at the
+/// distances 2Δ·qʲ, j = 0 … CLUSTER − 1 (Δ = L/n the uniform spacing, q =
+/// [`EdgeDetail::RATIO`]: from 2Δ down to about 3e-7·Δ from the edge).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
+pub struct EdgeDetail {
+    /// σ in [0, L], increasing, m.
+    pub sigma: Vec<f64>,
+    /// Contact pressure p(σ), N per metre of contour.
+    pub pressure: Vec<f64>,
+    /// Shear strain Γ₂(σ) (dimensionless).
+    pub shear_strain: Vec<f64>,
+    /// Contact state at σ.
+    pub state: Vec<ContactState>,
+    /// The contact-side σ of every bisected state change, in σ order, m.
+    pub edges: Vec<f64>,
+}
+
+impl EdgeDetail {
+    /// Points on each side of an edge.
+    pub const CLUSTER: usize = 56;
+    /// Ratio of successive distances from the edge.
+    pub const RATIO: f64 = 0.75;
+    /// Width of the bisected bracket of an edge, relative to L.
+    pub const BRACKET: f64 = 1e-13;
+
+    /// Samples `view` on the uniform grid `sigma` (with its contact states `state`)
+    /// refined at the state changes; `None` if the view has no shear strain or no
+    /// pressure at σ = 0.
+    ///
+    /// # Errors
+    /// The first non-finite pressure or shear strain.
+    fn of_view(view: &dyn SolutionView, sigma: &[f64], state: &[ContactState]) -> Result<Option<EdgeDetail>, NonFiniteSample> {
+        let n = sigma.len();
+        if n == 0 || view.shear_strain(sigma[0]).is_none() || view.contact_pressure(sigma[0]).is_none() {
+            return Ok(None);
+        }
+        let path = view.path();
+        let l = path.length();
+        let h = l / n as f64;
+        // (a, b): the last uniform point of one state and the first of the next; on the
+        // loop the pair (σ_(n−1), L) closes it.
+        let mut brackets: Vec<(f64, f64)> = (1..n).filter(|&i| state[i] != state[i - 1]).map(|i| (sigma[i - 1], sigma[i])).collect();
+        if !path.is_open() && state[n - 1] != state[0] {
+            brackets.push((sigma[n - 1], l));
+        }
+        let mut points: Vec<f64> = sigma.to_vec();
+        if path.is_open() {
+            points.push(l);
+        }
+        let mut edges = Vec::with_capacity(brackets.len());
+        for (mut a, mut b) in brackets {
+            let left = view.contact_state(a);
+            while b - a > Self::BRACKET * l {
+                let m = 0.5 * (a + b);
+                if view.contact_state(path.wrap(m)) == left {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            edges.push(if left == ContactState::Free { b } else { a });
+            points.extend([a, b]);
+            let mut d = 2.0 * h;
+            for _ in 0..Self::CLUSTER {
+                points.extend([a - d, b + d]);
+                d *= Self::RATIO;
+            }
+        }
+        // Into the domain: wrapped on the loop (σ = L is σ = 0 there), clipped on the
+        // open contour.
+        let mut points: Vec<f64> = if path.is_open() {
+            points.into_iter().filter(|s| (0.0..=l).contains(s)).collect()
+        } else {
+            points.into_iter().map(|s| path.wrap(s)).filter(|&s| s < l).collect()
+        };
+        points.sort_by(f64::total_cmp);
+        points.dedup();
+        edges.iter_mut().for_each(|s| *s = path.wrap(*s));
+        edges.sort_by(f64::total_cmp);
+        let mut d = EdgeDetail { edges, ..EdgeDetail::default() };
+        for s in points {
+            let p = view.contact_pressure(s).unwrap_or(f64::NAN);
+            if !p.is_finite() {
+                return Err(NonFiniteSample { field: "contact pressure", value: p, sigma: s });
+            }
+            let g = view.shear_strain(s).unwrap_or(f64::NAN);
+            if !g.is_finite() {
+                return Err(NonFiniteSample { field: "shear strain", value: g, sigma: s });
+            }
+            d.sigma.push(s);
+            d.pressure.push(p);
+            d.shear_strain.push(g);
+            d.state.push(view.contact_state(s));
+        }
+        Ok(Some(d))
+    }
 }
 
 impl Samples {
@@ -540,6 +647,7 @@ impl Samples {
         s.moment = has_moment.then_some(moment);
         s.pressure = has_pressure.then_some(pressure);
         s.friction = has_friction.then_some(friction);
+        s.edges = EdgeDetail::of_view(view, &s.sigma, &s.state)?;
         Ok(s)
     }
 

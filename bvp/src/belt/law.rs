@@ -86,6 +86,9 @@ pub struct BeltPoint {
     pub shear: Option<f64>,
     /// Bending moment M (N·m); `None` for a string.
     pub moment: Option<f64>,
+    /// Shear strain Γ₂ = Q/b₂ (dimensionless) of a shear-deformable rod; `None` for an
+    /// unshearable model.
+    pub shear_strain: Option<f64>,
     /// Stretch λ.
     pub stretch: f64,
     /// Material coordinate s (m), 0 where the belt leaves the driver.
@@ -114,6 +117,7 @@ impl BeltPoint {
             effective_tension: None,
             shear: None,
             moment: None,
+            shear_strain: None,
             stretch,
             material,
             pressure: None,

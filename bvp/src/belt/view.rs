@@ -27,8 +27,8 @@ pub fn per_contour_length(value: Option<f64>, point: &BeltPoint) -> f64 {
 }
 
 /// The σ-sampled methods of `SolutionView` (position, axial and transverse force,
-/// bending moment, contact pressure, friction traction, contact state, material
-/// coordinate), expanded inside `impl SolutionView for T` of a belt solution `T` with
+/// bending moment, shear strain, contact pressure, friction traction, contact state,
+/// material coordinate), expanded inside `impl SolutionView for T` of a belt solution `T` with
 /// `fn at_sigma(&self, σ) -> (usize, BeltPoint)` (segment and point at σ) and
 /// `fn topology(&self) -> &Topology`. The friction traction is `None` for a topology
 /// without stick or slip arcs, + in the direction of travel = +σ.
@@ -49,6 +49,10 @@ macro_rules! sampled_view_methods {
 
         fn transverse_force(&self, sigma: f64) -> Option<f64> {
             self.at_sigma(sigma).1.shear
+        }
+
+        fn shear_strain(&self, sigma: f64) -> Option<f64> {
+            self.at_sigma(sigma).1.shear_strain
         }
 
         fn contact_pressure(&self, sigma: f64) -> Option<f64> {

@@ -153,6 +153,7 @@ impl ScaledCosseratDrive {
         let g2 = qe / (b2 - chi);
         let mut pt = BeltPoint::new(position[0] * lh, position[1] * lh, theta, b1 * g1 * fr, (1.0 + g1).hypot(g2), material * lh);
         pt.shear = Some(b2 * g2 * fr);
+        pt.shear_strain = Some(g2);
         pt.moment = Some(moment * fr * lh);
         pt.effective_tension = Some(te * fr);
         pt

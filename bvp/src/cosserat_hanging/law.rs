@@ -238,6 +238,7 @@ impl SectionLaw for ScaledCosseratHanging {
             let (g1, g2) = (n / self.rod.axial_stiffness, q / self.shear_stiffness);
             BeltPoint {
                 shear: Some(q * fr),
+                shear_strain: Some(g2),
                 moment: Some(moment * fr * lh),
                 ..BeltPoint::new(x * lh, yy * lh, theta, n * fr, (1.0 + g1).hypot(g2), material * lh)
             }

@@ -243,6 +243,7 @@ impl SectionLaw for ScaledCosseratPulley {
             let (g1, g2) = ((te + chi) / (b1 - chi), qe / (b2 - chi));
             BeltPoint {
                 shear: Some(b2 * g2 * fr),
+                shear_strain: Some(g2),
                 moment: Some(moment * fr * lr),
                 effective_tension: Some(te * fr),
                 ..BeltPoint::new(x * lr, yy * lr, theta, b1 * g1 * fr, (1.0 + g1).hypot(g2), material * lr)

@@ -47,10 +47,6 @@ impl SolutionView for CosseratPulleySolution {
         self.at_sigma(sigma).1.theta
     }
 
-    fn shear_strain(&self, sigma: f64) -> Option<f64> {
-        Some(self.at_sigma(sigma).1.shear? / self.data.shear_stiffness)
-    }
-
     fn summary(&self) -> Summary {
         CosseratPulleySolution::summary(self)
     }

@@ -498,6 +498,12 @@ impl LayoutElement<NC> for CosseratElement {
     fn shear_stiffness(&self) -> Option<f64> {
         self.shear_stiffness
     }
+
+    /// Γ₂ of (C2) from the element's fields at ξ (continuous across elements: s, ν, ψ and
+    /// their first derivatives are C¹ Hermite fields).
+    fn shear_strain_at(&self, el: &ElementContext, q: &[f64; NC], xi: f64) -> Option<f64> {
+        Some(Self::point(el, q, xi).strains(el)[1])
+    }
 }
 
 #[cfg(test)]

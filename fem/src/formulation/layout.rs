@@ -64,6 +64,11 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn shear_stiffness(&self) -> Option<f64> {
         None
     }
+    /// Shear strain Γ₂ at ξ of an element with the effective local unknowns `q` (as
+    /// [`Self::axial_force_at`]); `None` (the default) for an unshearable element.
+    fn shear_strain_at(&self, _el: &ElementContext, _q: &[f64; N], _xi: f64) -> Option<f64> {
+        None
+    }
 }
 
 /// A registered formulation of the string layout is a [`LayoutElement`] with 8 unknowns:
