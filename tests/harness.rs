@@ -103,27 +103,23 @@ fn gate_fails_on_an_impossible_tolerance() {
 /// the same quantity are still judged by the shared `tolerances` limit (1e-3) and pass.
 #[test]
 fn bvp_tolerances_apply_to_the_bvp_methods_only() {
-    let scene = scene_with_gate(
-        "bvp-limits.json",
-        serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"y_upper_mid": 1e-300}}),
-    );
-    let o = beltcheck(&["gate", scene.to_str().unwrap(), "--elements", "32,64"]);
-    let out = stdout(&o);
-    assert_eq!(o.status.code(), Some(1), "{out}\n{}", stderr(&o));
-    let failing: Vec<&str> = out.lines().filter(|l| l.contains("y_upper_mid") && l.contains("exceeds")).collect();
+    // the gate (exit 1) on string-hanging with the gate block `gate`: its output and the
+    // lines that report `quantity` above its limit
+    let exceeding = |name: &str, gate: serde_json::Value, quantity: &str| -> (String, Vec<String>) {
+        let scene = scene_with_gate(name, gate);
+        let o = beltcheck(&["gate", scene.to_str().unwrap(), "--elements", "32,64"]);
+        let out = stdout(&o);
+        assert_eq!(o.status.code(), Some(1), "{out}\n{}", stderr(&o));
+        let failing = out.lines().filter(|l| l.contains(quantity) && l.contains("exceeds")).map(String::from).collect();
+        (out, failing)
+    };
+    let (out, failing) = exceeding("bvp-limits.json", serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"y_upper_mid": 1e-300}}), "y_upper_mid");
     assert!(failing.iter().any(|l| l.contains("bvp-shooting")), "{out}");
     assert!(failing.iter().any(|l| l.contains("bvp-collocation gauss4")), "{out}");
     assert!(!failing.iter().any(|l| l.contains("fem ")), "FE rows keep the shared limit: {out}");
     // A quantity named in `bvp_tolerances` only (one the FE may not produce, like the
     // Cosserat edge pressures) is gated for the BVP methods alone.
-    let only = scene_with_gate(
-        "bvp-limits-only.json",
-        serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"tension_upper_mid": 1e-300}}),
-    );
-    let o = beltcheck(&["gate", only.to_str().unwrap(), "--elements", "32,64"]);
-    let out = stdout(&o);
-    assert_eq!(o.status.code(), Some(1), "{out}\n{}", stderr(&o));
-    let failing: Vec<&str> = out.lines().filter(|l| l.contains("tension_upper_mid") && l.contains("exceeds")).collect();
+    let (out, failing) = exceeding("bvp-limits-only.json", serde_json::json!({"tolerances": {"y_upper_mid": 1e-3}, "bvp_tolerances": {"tension_upper_mid": 1e-300}}), "tension_upper_mid");
     assert!(failing.iter().any(|l| l.contains("bvp-shooting")) && failing.iter().any(|l| l.contains("bvp-collocation gauss4")), "{out}");
     assert!(!out.lines().any(|l| l.contains("tension_upper_mid") && l.contains("fem ")), "not gated for the FE: {out}");
     // An unknown quantity name in the block is a scene error naming the path.

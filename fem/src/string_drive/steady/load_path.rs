@@ -34,6 +34,25 @@ pub(super) struct LoadPath<'a, const N: usize, const P: usize, const E: usize, K
     pub report: &'a mut SteadyReport,
 }
 
+impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> LoadPath<'a, N, P, E, K> {
+    /// The path of `problem` along η (parameters `at`) from the unknowns `x` converged at
+    /// η = 0, with the semismooth Newton's weights `w`, row `scales`, `tolerance` and
+    /// `max_iterations`; `inertia` as [`LoadPath::inertia`]; its work counted in `report`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        problem: SteadyProblem<'a, N, P, E, K>,
+        at: &'a dyn Fn(f64) -> SteadyParams,
+        (w, scales): (&'a [f64], &'a [f64]),
+        (tolerance, max_iterations): (f64, usize),
+        kernel: &'a Arc<K>,
+        inertia: Option<f64>,
+        x: Vec<f64>,
+        report: &'a mut SteadyReport,
+    ) -> Self {
+        LoadPath { problem, at, w, scales, tolerance, max_iterations, kernel, inertia, x, results: Vec::new(), report }
+    }
+}
+
 impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> Homotopy for LoadPath<'_, N, P, E, K> {
     type Failure = NewtonFailure;
     type Error = FemError;

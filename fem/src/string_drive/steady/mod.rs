@@ -155,19 +155,8 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
     let w = variable_weights(&asm, h, r, omega1.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
-    let mut path = LoadPath {
-        problem: SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule },
-        at: &sp_at,
-        w: &w,
-        scales: &scales,
-        tolerance: tol,
-        max_iterations: max_it,
-        kernel: &kernel,
-        inertia: inertia.then_some(b.mass_per_length),
-        x,
-        results: Vec::new(),
-        report: &mut report,
-    };
+    let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule };
+    let mut path = LoadPath::new(steady, &sp_at, (&w, &scales), (tol, max_it), &kernel, inertia.then_some(b.mass_per_length), x, &mut report);
     path.run()?;
     let (x, last_results) = (path.x, path.results);
     let mut state = State { asm, x, results: last_results, rho: inertia.then_some(b.mass_per_length) };

@@ -105,21 +105,9 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     let max_it = drive_settings.max_newton_iterations;
     let n0 = penalty_ladder(&start, &mut x, &w, &scales, tol, max_it, &[1e-4, 1e-3, 1e-2, 1e-1, 1.0]).map_err(|e| FemError::HomotopyStalled { eta: 0.0, step: 0.0, min_step: 0.0, steps: 0, last_failure: format!("the pure-stick start (N_out = N_in): {e}") })?;
     report.newton_iterations += n0.iterations;
-    let mut path = LoadPath {
-        problem: SteadyProblem::<N, P, E, K> { asm: &asm, params, length: 0.0, points: &points, sp: sp_at(0.0), strain_rule: kernel.rules().strain },
-        at: &sp_at,
-        w: &w,
-        scales: &scales,
-        tolerance: tol,
-        max_iterations: max_it,
-        kernel: &kernel,
-        // the critical speed is checked on the ends above (the loop's check reads its
-        // mid-spans)
-        inertia: None,
-        x,
-        results: Vec::new(),
-        report: &mut report,
-    };
+    // the critical speed is checked on the ends above (the loop's check reads its
+    // mid-spans): no inertia check on the path
+    let mut path = LoadPath::new(start, &sp_at, (&w, &scales), (tol, max_it), &kernel, None, x, &mut report);
     path.run()?;
     let (x, results) = (path.x, path.results);
     report.continuation_seconds = clock.elapsed().as_secs_f64();
