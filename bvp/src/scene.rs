@@ -262,12 +262,13 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
         Theory::Kirchhoff if static_frictionless => {
             let data = rod_hanging_data(scene);
             let sol = rod_hanging::solve(&data, opts)?;
+            let path = if sol.problem.law.starts_at_scene() {
+                direct_start("EI", data.bending_stiffness)
+            } else {
+                format!("{} continuation steps in log EI from EI₀ = {:.3e} N·m²", sol.homotopy_steps, sol.bending_start())
+            };
             let notes = vec![
-                format!(
-                    "homotopy: the string, then {} continuation steps in log EI from EI₀ = {:.3e} N·m²",
-                    sol.homotopy_steps,
-                    sol.bending_start()
-                ),
+                format!("homotopy: the string, then {path}"),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
             ];
             Ok(BvpRun::of(sol, opts, options, notes))
@@ -275,13 +276,13 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
         Theory::Cosserat if static_frictionless => {
             let data = CosseratHanging { rod: rod_hanging_data(scene), shear_stiffness: scene.belt.shear_stiffness.unwrap_or(f64::NAN) };
             let sol = cosserat_hanging::solve(&data, opts)?;
+            let path = if sol.problem.law.starts_at_scene() {
+                direct_start("a", data.rod.bending_stiffness)
+            } else {
+                format!("{} continuation steps in log a from a₀ = {} N·m²", sol.homotopy_steps, numerics::Sig(sol.bending_start()))
+            };
             let notes = vec![
-                format!(
-                    "homotopy: the string, then {} continuation steps in log a from a₀ = {} N·m² at b₂ = {} N",
-                    sol.homotopy_steps,
-                    numerics::Sig(sol.bending_start()),
-                    numerics::Sig(data.shear_stiffness)
-                ),
+                format!("homotopy: the string, then {path} at b₂ = {} N", numerics::Sig(data.shear_stiffness)),
                 format!("closure defect f = {:.3e} N (0 for the exact solution)", sol.closure_defect().unwrap_or(0.0)),
                 format!("shear layer √(a/b₂) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(data.shear_layer())),
             ];
@@ -316,7 +317,7 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             let (lambda_driver, lambda_driven) = sol.stick_stretches();
             let c = sol.transport_rate().unwrap_or(f64::NAN);
             let path = if sol.problem.law.starts_at_scene() {
-                format!("the scene's a = {} N·m² directly (its bending layer is at least the start layer)", numerics::Sig(data.bending_stiffness))
+                direct_start("a", data.bending_stiffness)
             } else {
                 format!("{} in log a from a₀ = {} N·m²", sol.homotopy_steps, numerics::Sig(sol.bending_start()))
             };
@@ -336,4 +337,10 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
             scene.belt.theory, scene.analysis, scene.effects.contact
         ))),
     }
+}
+
+/// The homotopy note of a rod whose bending layer is at least the start layer: no path
+/// in the bending stiffness `name` (N·m²).
+fn direct_start(name: &str, bending: f64) -> String {
+    format!("the scene's {name} = {} N·m² directly (its bending layer is at least the start layer)", numerics::Sig(bending))
 }

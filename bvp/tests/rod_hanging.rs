@@ -227,6 +227,25 @@ fn max_difference(a: &RodHangingSolution, b: &RodHangingSolution) -> f64 {
     d.into_iter().fold(0.0, f64::max)
 }
 
+/// A scene whose bending layer √(EI/T) is at least the start layer (5 % of H: EI₀ =
+/// 6.75e-4 N·m² here) starts at its own EI — no path in EI (`starts_at_scene`, one
+/// homotopy "step") — and lands on the solution the path reaches: with a start layer of
+/// 8 % (EI₀ ≈ 1.7e-3 N·m² > EI) the same scene continues from EI₀ down to EI. Both final
+/// solves run at tol 1e-10, so they differ by two discretisation errors of that order,
+/// amplified by the edge forces' conditioning as in (f): 1e-8.
+#[test]
+fn a_scene_above_the_start_layer_starts_at_its_own_bending_stiffness() {
+    let direct = moderate_1e10();
+    assert!(direct.problem.law.starts_at_scene(), "EI₀ = {:.3e} N·m²", direct.bending_start());
+    assert_eq!(direct.homotopy_steps, 1);
+    assert!((direct.bending_start() - 1e-3).abs() < 1e-15);
+    let path = solve(&scene(1e-3), &BeltOptions { start_layer: 0.08, ..opts(1e-10) }).expect("the path from 8 % solves");
+    assert!(!path.problem.law.starts_at_scene());
+    assert!(path.bending_start() > 1.5e-3, "EI₀ = {:.3e} N·m²", path.bending_start());
+    let d = max_difference(direct, &path);
+    assert!(d < 1e-8, "direct start vs path: {d:.3e}");
+}
+
 /// (f) Shooting as the final method (`BvpMethod::Shooting`) agrees with collocation at
 /// EI = 1e-3 N·m² in mid-span heights, tensions, moments, contact angles and edge forces.
 /// Both final solves run at tol 1e-10 from the same homotopy end point; the two methods
@@ -373,6 +392,8 @@ fn very_slack_loop() {
 /// made it hard: a rod of EI = 1e-3 N·m² on pulleys of R = 0.01 m (bending length
 /// √(EI/T) ≈ 0.045 m, 4.5 R) cannot even leave the string (the string's wrap on the
 /// driven pulley would turn negative), and the error says so with EI, EI₀, √(EI/T) and R.
+/// Its layer is above the start layer, so the solve first tries the scene's EI directly;
+/// that fails, and the retry along the path from the start layer names the stall.
 #[test]
 fn a_stalled_homotopy_names_the_scene_quantity() {
     let h = 0.45;

@@ -189,6 +189,11 @@ impl SectionLaw for ScaledCosseratHanging {
     const ARC_STATES: &'static [&'static str] = &["lambda", "theta", "M", "s"];
     const CONTACT_EDGES: ContactEdges = ContactEdges::Pressures;
 
+    /// No path in a when the scene's bending layer is at least the start layer.
+    fn starts_at_scene(&self) -> bool {
+        self.rod.bending_start == self.rod.bending
+    }
+
     /// The static Cosserat rod reads no parameter besides its own span length or arc
     /// angles.
     fn rhs_reads(&self, _: &Topology) -> Vec<usize> {

@@ -86,14 +86,14 @@ pub fn solve(data: &CosseratHanging, opts: &BeltOptions) -> Result<CosseratHangi
     validate(data, opts)?;
     let (string, path) = rod_hanging::string_start(&data.string(), data.rod.bending_stiffness, opts)?;
     let (h, fr) = (string.scales.length, string.scales.force);
-    let sp = &string.problem.law;
-    let law = ScaledCosseratHanging {
+    let sp = string.problem.law.clone();
+    let law = |bending_start| ScaledCosseratHanging {
         rod: ScaledRodHanging {
             radius: sp.radius,
             axial_stiffness: sp.axial_stiffness,
             weight: sp.weight,
             length: sp.length,
-            bending_start: path.scaled_start,
+            bending_start,
             bending: data.rod.bending_stiffness / (fr * h * h),
         },
         shear_stiffness: data.shear_stiffness / fr,

@@ -109,6 +109,11 @@ impl SectionLaw for ScaledRodHanging {
     const SPAN_STATES: &'static [&'static str] = &["x", "y", "theta", "M", "Q_x", "Q_y", "s"];
     const ARC_STATES: &'static [&'static str] = &["N", "s"];
 
+    /// No path in EI when the scene's bending layer is at least the start layer.
+    fn starts_at_scene(&self) -> bool {
+        self.bending_start == self.bending
+    }
+
     /// The static rod reads no parameter besides its own span length or arc angles.
     fn rhs_reads(&self, _: &Topology) -> Vec<usize> {
         Vec::new()

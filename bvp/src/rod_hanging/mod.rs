@@ -123,48 +123,59 @@ pub fn solve(data: &RodHanging, opts: &BeltOptions) -> Result<RodHangingSolution
     let clock = Instant::now();
     validate(data, opts)?;
     let (string, path) = string_start(&data.string(), data.bending_stiffness, opts)?;
-    let scales = string.scales;
-    let (h, fr) = (scales.length, scales.force);
-    let sp = &string.problem.law;
-    let law = ScaledRodHanging {
+    let (h, fr) = (string.scales.length, string.scales.force);
+    let sp = string.problem.law.clone();
+    let law = |bending_start| ScaledRodHanging {
         radius: sp.radius,
         axial_stiffness: sp.axial_stiffness,
         weight: sp.weight,
         length: sp.length,
-        bending_start: path.scaled_start,
+        bending_start,
         bending: data.bending_stiffness / (fr * h * h),
     };
     solve_from_string(*data, law, string, &path, |s, pb| rod_guess(s, pb, 81), opts, clock)
 }
 
-/// Solve a rod's section law `law` on the frictionless loop from the string start of
-/// [`string_start`]: its guess `guess(string, problem)`, the homotopy in log bending
-/// stiffness along `path`, the final solve and the checks (the Kirchhoff and the
-/// Cosserat rod).
+/// Solve a rod's section law on the frictionless loop from the string start of
+/// [`string_start`]: `law(EI₀)` is the scaled law whose path starts at EI₀ (scaled),
+/// `guess(string, problem)` its guess; the homotopy in log bending stiffness along `path`
+/// (or none, when the scene's layer is at least the start layer), the final solve and
+/// the checks (the Kirchhoff and the Cosserat rod share all of it). A start at the
+/// scene's own EI that fails in any way — its Newton solve from the guess, or a check —
+/// is retried along the path from the start layer, whose stall names the scene quantity.
 pub(crate) fn solve_from_string<L: SectionLaw<Start = StringHangingSolution>>(
     data: L::Data,
-    law: L,
+    law: impl Fn(f64) -> L,
     string: StringHangingSolution,
     path: &RodPath,
-    guess: impl FnOnce(&Solution, &BeltProblem<L>) -> Solution,
+    guess: impl Fn(&Solution, &BeltProblem<L>) -> Solution,
     opts: &BeltOptions,
     clock: Instant,
 ) -> Result<BeltSolution<L>, BeltError> {
-    let (scales, pulleys) = (string.scales, string.pulleys);
-    let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law);
-    let guess = guess(&string.solution, &problem);
-    let run = Run { data, problem, scales, pulleys, guess: &guess, start: string };
-    solution::solve(run, opts, clock, |e, _| match e {
-        StageError::Homotopy(cause) => path.failure(pulleys.radius, cause),
-        StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
-    })
+    let attempt = |start: f64, string: StringHangingSolution| {
+        let (scales, pulleys) = (string.scales, string.pulleys);
+        let problem = BeltProblem::new(Topology::two_pulley(ContactModel::Frictionless), law(start));
+        let guess = guess(&string.solution, &problem);
+        let run = Run { data: data.clone(), problem, scales, pulleys, guess: &guess, start: string };
+        solution::solve(run, opts, clock, |e, _| match e {
+            StageError::Homotopy(cause) => path.failure(pulleys.radius, cause),
+            StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
+        })
+    };
+    if path.scaled_start != path.scaled_layer {
+        if let Ok(direct) = attempt(path.scaled_start, string.clone()) {
+            return Ok(direct);
+        }
+    }
+    attempt(path.scaled_layer, string)
 }
 
 /// The start of a rod's homotopy (the Kirchhoff and the Cosserat rod): the string of the
 /// same data by collocation (gauss6, 1e-8, with the run's mesh cap, Jacobian mode and
 /// homotopy tolerance), and the path in log bending stiffness from EI₀, whose bending
 /// layer √(EI₀/T) is `opts.start_layer` H at the string's mid-span tension T, to the
-/// scene's `bending_stiffness` (N·m²).
+/// scene's `bending_stiffness` (N·m²) — or no path (EI₀ = EI) when the scene's layer is
+/// at least the start layer.
 pub(crate) fn string_start(
     string: &StringHanging,
     bending_stiffness: f64,
@@ -183,9 +194,14 @@ pub(crate) fn string_start(
     let (upper_mid, _) = string.topology().mid_spans();
     let mid = string.solution.segments[upper_mid].end();
     let t_mid = mid[2].hypot(mid[3]);
-    let scaled_start = opts.start_layer * opts.start_layer * t_mid;
+    // A scene whose own layer is at least the start layer starts at its own EI (no path
+    // in EI, as `cosserat_drive`): the path would only stiffen a rod that already
+    // resolves on the start's mesh.
+    let scaled_layer = opts.start_layer * opts.start_layer * t_mid;
+    let scaled_start = (bending_stiffness / (fr * h * h)).max(scaled_layer);
     let path = RodPath {
         scaled_start,
+        scaled_layer,
         bending_start: scaled_start * fr * h * h,
         bending: bending_stiffness,
         tension: t_mid * fr,
@@ -197,8 +213,11 @@ pub(crate) fn string_start(
 /// string's mid-span tension T (N), to name a stall by the scene quantity it was
 /// switching on.
 pub(crate) struct RodPath {
-    /// EI₀ / (F_ref H²), the scaled start.
+    /// EI₀ / (F_ref H²), the scaled start: the larger of the start layer's and the
+    /// scene's.
     pub scaled_start: f64,
+    /// The start layer's EI / (F_ref H²): the path's start when the direct start fails.
+    pub scaled_layer: f64,
     /// EI₀ (N·m²).
     pub bending_start: f64,
     /// The scene's EI (N·m²).
