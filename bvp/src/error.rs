@@ -18,6 +18,17 @@ pub enum BvpError {
     /// tolerance (collocation `max_refinements`).
     #[error("mesh adaptation stopped after {passes} passes with scaled residual {residual:.3e} above tolerance {tolerance:.1e}")]
     RefinementLimit { passes: usize, residual: f64, tolerance: f64 },
+    /// Mesh refinement stopped reducing the residual: [`FLOOR_PASSES`] refinement passes
+    /// in a row added nodes without halving the best residual so far, also after
+    /// [`DAMPING_PASSES`] halvings of the offending segments — a floor of this problem's
+    /// residual above the tolerance.
+    ///
+    /// [`FLOOR_PASSES`]: crate::collocation::FLOOR_PASSES
+    /// [`DAMPING_PASSES`]: crate::collocation::DAMPING_PASSES
+    #[error(
+        "mesh adaptation reached a residual floor: {passes} refinement passes in a row (now {nodes} nodes) left the scaled residual at {residual:.3e}, best {best:.3e}, above tolerance {tolerance:.1e}, also after halving the offending segments — a floor of this problem's residual (round-off, or a fast mode the mesh cannot resolve); a tolerance of {attainable:.0e} or looser is attainable"
+    )]
+    ResidualFloor { passes: usize, nodes: usize, residual: f64, best: f64, tolerance: f64, attainable: f64 },
     /// A fold could not be located between two branch points.
     #[error("fold location between eta = {eta_a:.9e} and eta = {eta_b:.9e} failed: {detail}")]
     FoldLocationFailed { eta_a: f64, eta_b: f64, detail: String },

@@ -32,6 +32,16 @@ pub(crate) fn refine(mesh: &[f64], rho: &[f64], tol: f64, q: usize) -> Vec<f64> 
     out
 }
 
+/// Every interval halved.
+pub(crate) fn halve(mesh: &[f64]) -> Vec<f64> {
+    let mut out = Vec::with_capacity(2 * mesh.len());
+    for w in mesh.windows(2) {
+        out.extend([w[0], 0.5 * (w[0] + w[1])]);
+    }
+    out.push(mesh[mesh.len() - 1]);
+    out
+}
+
 /// Merge pairs of intervals whose residual is far below `tol`; `None` if no pair
 /// qualifies.
 pub(crate) fn coarsen(mesh: &[f64], rho: &[f64], tol: f64, q: usize) -> Option<Vec<f64>> {

@@ -328,6 +328,18 @@ pub(crate) fn remesh<'a, P: Problem>(
     Ok((new, z_new))
 }
 
+/// Refinement passes in a row that may leave the best residual above half its value
+/// before them (a floor, [`BvpError::ResidualFloor`]). A refinement that resolves the
+/// solution reduces the residual by 2^q per halved interval (q ≥ 4 for every scheme), so
+/// eight passes without a factor 2 are no pre-asymptotic phase: on `cosserat-pulley`
+/// with b₂ = 1e6 N at tol 1e-8 (gauss6) the residual wandered between 1.0e-8 and 2.5e-8
+/// over 43 passes while the mesh grew from 1100 to 1215 nodes in the stiff segment,
+/// until the pass limit; with the damping halvings it solves (3079 nodes).
+pub const FLOOR_PASSES: usize = 8;
+
+/// Halvings of the chattering segments before a residual floor is an error.
+pub const DAMPING_PASSES: usize = 2;
+
 /// The adaptive loop: correct, estimate, insert or remove nodes, repeat.
 ///
 /// Removal is tried only on a mesh that meets the tolerance; if the coarser mesh fails
@@ -346,6 +358,9 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
     let tol = opts.tolerance;
     let mut accepted: Option<Adapted<'a, P>> = None;
     let mut passes = 0;
+    // Best residual of the refinement passes, and the best before the last FLOOR_PASSES.
+    let mut history: Vec<f64> = Vec::new();
+    let mut damping = 0;
     loop {
         let report = match corrector.correct(&disc, &mut z, &mut eta) {
             Ok(r) => r,
@@ -405,6 +420,25 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         if passes >= opts.max_refinements {
             return Err(BvpError::RefinementLimit { passes, residual: max_rho, tolerance: tol });
         }
+        history.push(max_rho);
+        let mut meshes = meshes;
+        if let Some(e) = residual_floor(&history, tol, disc.meshes.iter().map(Vec::len).sum()) {
+            // The residual chatters near tol: on a stiff segment whose fast mode is far
+            // from resolved (h·|μ| ≫ 1) the Gauss collocation carries its error from
+            // interval to interval undamped (|R(−∞)| = 1: A- but not L-stable), so a
+            // node inserted anywhere moves the residual of intervals elsewhere. Halving
+            // every interval of the offending segments damps it (|R(hμ)| drops fast as
+            // h|μ| falls); after DAMPING_PASSES such halvings the floor is an error.
+            if damping >= DAMPING_PASSES {
+                return Err(e);
+            }
+            damping += 1;
+            history.clear();
+            meshes = disc.meshes.iter().zip(&rho).map(|(m, r)| if r.iter().any(|&x| x > tol) { mesh::halve(m) } else { m.clone() }).collect();
+            if meshes.iter().map(Vec::len).sum::<usize>() > opts.max_nodes {
+                return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
+            }
+        }
         let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
         corrector.transfer(&disc, &z, eta, &new_disc)?;
         disc = new_disc;
@@ -414,9 +448,49 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
     }
 }
 
+/// [`BvpError::ResidualFloor`] when the last [`FLOOR_PASSES`] refinement passes of
+/// `history` (max scaled residual before each refinement) never fell below half the
+/// best residual before them.
+fn residual_floor(history: &[f64], tolerance: f64, nodes: usize) -> Option<BvpError> {
+    let split = history.len().checked_sub(FLOOR_PASSES + 1)? + 1;
+    let best_before = history[..split].iter().copied().fold(f64::INFINITY, f64::min);
+    let best = history[split..].iter().copied().fold(f64::INFINITY, f64::min);
+    (best >= 0.5 * best_before).then(|| BvpError::ResidualFloor {
+        passes: FLOOR_PASSES,
+        nodes,
+        residual: history[history.len() - 1],
+        best: best.min(best_before),
+        tolerance,
+        // The next power of ten above twice the worst residual of the window.
+        attainable: 10f64.powf((2.0 * history[split..].iter().copied().fold(0.0, f64::max)).log10().ceil()),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A residual that keeps shrinking (even slowly, by 2 in 8 passes) is no floor; one
+    /// that wanders for FLOOR_PASSES passes without halving its best is, and the error
+    /// suggests the next power of ten above twice the window's worst residual.
+    #[test]
+    fn residual_floor_needs_a_whole_window_without_halving() {
+        let converging: Vec<f64> = (0..30).map(|i| 1e-2 * 0.5f64.powf(i as f64 / 7.0)).collect();
+        for n in 1..=converging.len() {
+            assert!(residual_floor(&converging[..n], 1e-12, 100).is_none(), "n = {n}");
+        }
+        // The trace of `cosserat-pulley` with b₂ = 1e6 N at tol 1e-8 (gauss6), shortened.
+        let mut stalled = vec![1e-3, 1e-5, 2.1e-8, 2.09e-8, 2.5e-8, 1.9e-8, 1.6e-8, 1.47e-8, 1.8e-8, 1.8e-8];
+        assert!(residual_floor(&stalled, 1e-8, 100).is_none(), "the window still holds the drop from 1e-5");
+        stalled.push(1.5e-8);
+        let Some(BvpError::ResidualFloor { best, attainable, residual, nodes, .. }) = residual_floor(&stalled, 1e-8, 1234) else {
+            panic!("8 passes without halving 2.1e-8 are a floor")
+        };
+        assert_eq!((best, residual, nodes), (1.47e-8, 1.5e-8, 1234));
+        assert!((attainable - 1e-7).abs() < 1e-22, "twice the worst 2.5e-8, rounded up: {attainable}");
+        *stalled.last_mut().unwrap() = 1.0e-8;
+        assert!(residual_floor(&stalled, 1e-9, 100).is_none(), "1.0e-8 halves the best 2.1e-8 before the window");
+    }
     use crate::newton::SparseLu;
     use crate::problem::Scalar;
 
