@@ -26,9 +26,10 @@ pub enum BvpError {
     /// [`FLOOR_PASSES`]: crate::collocation::FLOOR_PASSES
     /// [`DAMPING_PASSES`]: crate::collocation::DAMPING_PASSES
     #[error(
-        "mesh adaptation reached a residual floor: {passes} refinement passes in a row (now {nodes} nodes) left the scaled residual at {residual:.3e}, best {best:.3e}, above tolerance {tolerance:.1e}, also after halving the offending segments — a floor of this problem's residual (round-off, or a fast mode the mesh cannot resolve); a tolerance of {attainable:.0e} or looser is attainable"
+        "mesh adaptation reached a residual floor: {floor_passes} refinement passes in a row (now {nodes} nodes) left the scaled residual at {residual:.3e}, best {best:.3e}, above tolerance {tolerance:.1e}, also after halving the offending segments — a floor of this problem's residual (round-off, or a fast mode the mesh cannot resolve); a tolerance of {attainable:.0e} or looser is attainable",
+        floor_passes = crate::collocation::FLOOR_PASSES
     )]
-    ResidualFloor { passes: usize, nodes: usize, residual: f64, best: f64, tolerance: f64, attainable: f64 },
+    ResidualFloor { nodes: usize, residual: f64, best: f64, tolerance: f64, attainable: f64 },
     /// A fold could not be located between two branch points.
     #[error("fold location between eta = {eta_a:.9e} and eta = {eta_b:.9e} failed: {detail}")]
     FoldLocationFailed { eta_a: f64, eta_b: f64, detail: String },

@@ -456,7 +456,6 @@ fn residual_floor(history: &[f64], tolerance: f64, nodes: usize) -> Option<BvpEr
     let best_before = history[..split].iter().copied().fold(f64::INFINITY, f64::min);
     let best = history[split..].iter().copied().fold(f64::INFINITY, f64::min);
     (best >= 0.5 * best_before).then(|| BvpError::ResidualFloor {
-        passes: FLOOR_PASSES,
         nodes,
         residual: history[history.len() - 1],
         best: best.min(best_before),
