@@ -136,10 +136,10 @@ fn cosserat_hanging_is_solved_by_the_bvp_and_by_the_fe() {
 }
 
 /// Every exit 0 is a promise: the FE's Cosserat drive at 128 elements solves (exit 0)
-/// but its slip zones span only 3 arc elements (slip arcs 1.2× and 3× too long against
-/// the BVP, docs/fem-cosserat.md §11.1) and its fitting stops at the pass limit — the
-/// run states both in its printout and in the result JSON's `warnings`; the string
-/// drive's resolved FE result carries none (the key is absent).
+/// but its slip zones span only 1.4 and 0.6 arc elements, below `SLIP_ELEMENTS` = 2.5
+/// (slip arcs 5 % and 22 % off against the BVP, docs/fem-cosserat.md §11.1) — the run
+/// states both in its printout and in the result JSON's `warnings`; the string drive's
+/// resolved FE result carries none (the key is absent).
 #[test]
 fn fe_results_state_their_unresolved_slip_zones() {
     let out = temp("cli-layouts", "cosserat-drive-fem-128.json");
@@ -153,7 +153,6 @@ fn fe_results_state_their_unresolved_slip_zones() {
         let w = warnings.iter().find(|w| w.starts_with(&format!("unresolved slip zone on the {pulley} pulley"))).unwrap_or_else(|| panic!("{pulley}: {warnings:?}"));
         assert!(stdout.contains(&format!("warning: {w}")), "{pulley}: not printed:\n{stdout}");
     }
-    assert!(warnings.iter().any(|w| w.contains("pass limit")), "{warnings:?}");
 
     let out = temp("cli-layouts", "string-drive-fem.json");
     let _ = std::fs::remove_file(&out);

@@ -21,7 +21,7 @@ use nalgebra::{Const, SVector, U1};
 use num_dual::Dual2SVec64;
 
 use super::terms::{Gravity, PenaltyContact, PointDensity};
-use super::layout::LayoutElement;
+use super::layout::{FrictionNormal, LayoutElement};
 use super::{ElementContext, ElementDerivatives, PointFields, Rule, Scalar, TermParams, TermRules, Theory, NDOF};
 use crate::assembly::{ElementKernel, ADMISSIBILITY_POINTS};
 use crate::problem::BeltSection;
@@ -503,6 +503,13 @@ impl LayoutElement<NC> for CosseratElement {
     /// their first derivatives are C¹ Hermite fields).
     fn shear_strain_at(&self, el: &ElementContext, q: &[f64; NC], xi: f64) -> Option<f64> {
         Some(Self::point(el, q, xi).strains(el)[1])
+    }
+
+    /// The tributary penalty pressure: at the default penalty the element's cubic ν sits
+    /// above the pulley at the nodes while the penalty presses it in between, at the
+    /// contact rule's points (docs/fem-cosserat.md §11.1, §12.5).
+    fn friction_normal(&self) -> FrictionNormal {
+        FrictionNormal::Tributary
     }
 }
 

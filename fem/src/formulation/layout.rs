@@ -69,6 +69,29 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn shear_strain_at(&self, _el: &ElementContext, _q: &[f64; N], _xi: f64) -> Option<f64> {
         None
     }
+    /// How a friction point of the closed loop's direct steady solve reads its normal
+    /// load (`string_drive::steady`, docs/fem-cosserat.md §11.1): the penalty of the gap
+    /// at the node ([`FrictionNormal::Nodal`], the default: the string's and the
+    /// Kirchhoff rod's cubic ν follows the pulley at the nodes, docs/fem-drive.md §12),
+    /// or the penalty pressure the contact term applies at its rule's points
+    /// ([`FrictionNormal::Tributary`]: the shear-deformable element; the string's
+    /// errors grow with it, 7–250× at 256 elements on `string-drive`, measured). The
+    /// open layout always takes the tributary pressure (docs/fem-cosserat.md §12.5).
+    fn friction_normal(&self) -> FrictionNormal {
+        FrictionNormal::Nodal
+    }
+}
+
+/// The normal load p of a friction point of the steady drive ([`LayoutElement::friction_normal`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FrictionNormal {
+    /// p = P⟨−γ̄⟩, γ̄ the mean gap at the node's two element edges (docs/fem-drive.md §12).
+    Nodal,
+    /// p = the mean penalty pressure P⟨−γ⟩ of the node's two elements over the contact
+    /// rule's points, weighted by the elements' halves at the node (docs/fem-cosserat.md
+    /// §12.3): what the penalty term applies where the element's ν does not sit on the
+    /// pulley at its nodes.
+    Tributary,
 }
 
 /// A registered formulation of the string layout is a [`LayoutElement`] with 8 unknowns:

@@ -442,7 +442,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
 
     /// The normal traction P⟨−γ̄⟩ of a friction point and its gradient in (q_left,
     /// q_right): γ̄ the trapezoidal mean of the gaps at the node's two element edges (the
-    /// loop's, docs/fem-drive.md §12).
+    /// loop's for an element with [`FrictionNormal::Nodal`], docs/fem-drive.md §12).
     fn nodal_normal(&self, pt: FrictionPoint, z: &[f64]) -> (f64, [f64; P]) {
         let layout = self.asm.kernel().layout();
         let mut gap: Option<(f64, [f64; P])> = Some((0.0, [0.0; P]));
@@ -468,8 +468,8 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         }
     }
 
-    /// The normal traction of a friction point of the open layout (docs/fem-cosserat.md
-    /// §12.3): the mean penalty pressure P⟨−γ⟩ of the two elements at the node over the
+    /// The normal traction of a friction point of the open layout, and of the loop for an
+    /// element with [`FrictionNormal::Tributary`] (docs/fem-cosserat.md §11.1, §12.3): the mean penalty pressure P⟨−γ⟩ of the two elements at the node over the
     /// contact rule's points, weighted by the elements' halves at the node — the pressure
     /// the penalty term actually applies. (The nodal gap is no measure of it for the
     /// Cosserat element at the default penalty: the penalty, sampled at the rule's points
@@ -501,7 +501,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// The residual entries and Jacobian block of friction point i in its variables
     /// (q_left, q_right, c, ω₂, τ_i): (DS1) −wτλ̄ on the S-row of the node, (DS2)
     /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
-    /// b = μP⟨−γ̄⟩ (λ̄, γ̄: trapezoidal means of the two edges).
+    /// b = μp with p the normal load of the element's [`FrictionNormal`] rule (λ̄: the upwind element's mean).
     pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; P], [[f64; P]; P], PointResult) {
         let pt = self.points[i];
         let sp = &self.sp;
@@ -520,9 +520,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             d[off..off + N].copy_from_slice(&dl);
             (l, d)
         };
-        let (normal, dnormal) = match sp.ends {
-            Ends::Loop => self.nodal_normal(pt, z),
-            Ends::Open { .. } => self.tributary_normal(pt, z),
+        // the element's rule on the loop; the open layout's is the tributary pressure
+        let (normal, dnormal) = match (sp.ends, self.asm.kernel().friction_normal()) {
+            (Ends::Loop, FrictionNormal::Nodal) => self.nodal_normal(pt, z),
+            (Ends::Loop, FrictionNormal::Tributary) | (Ends::Open { .. }, _) => self.tributary_normal(pt, z),
         };
         let (ic, iw, it) = (2 * N, 2 * N + 1, 2 * N + 2);
         let mut r = [0.0; P];

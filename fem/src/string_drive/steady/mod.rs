@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use crate::assembly::Assembler;
 use crate::error::{FemError, NewtonFailure};
 use crate::fitting::{Beyond, FitEnd, FitReport, FitRules, Fallback, Measure, MoveLimit, Secant, Stall};
-use crate::formulation::layout::LayoutElement;
+use crate::formulation::layout::{FrictionNormal, LayoutElement};
 use crate::formulation::Kernel;
 use crate::kinematics::{ElementContext, Scalar, TermParams, NDOF};
 use crate::linear::BorderedLu;
