@@ -39,7 +39,7 @@ mod topology;
 
 pub use equations::*;
 pub use fitting::*;
-pub use open::{end_flux, solve_open, OpenEnds};
+pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
