@@ -162,6 +162,18 @@ pub enum FemError {
         time: Option<f64>,
     },
 
+    /// A one-pulley prescription the FE cannot meet (docs/fem-cosserat.md §12.7): ω with
+    /// N_in (ill-posed), or an ω or φ_B that no steady state of the scene has.
+    #[error("one-pulley prescription `{name}` = {value}: {reason}")]
+    Prescription {
+        /// The scene field.
+        name: &'static str,
+        /// Its value.
+        value: f64,
+        /// Why it cannot be met.
+        reason: String,
+    },
+
     /// The direct steady solve could not fit its mesh to the contact boundaries and
     /// stick→slip transitions (docs/fem-drive.md §12): a recovered point still lies a
     /// sizeable fraction of an element from any node, so the stick/slip arcs are not

@@ -39,11 +39,27 @@ pub enum Ends {
     Open {
         /// c₀, m/s.
         transport_rate: f64,
-        /// 𝓗(N_in) of (C18), N.
+        /// 𝓗(N_in) of (C18), N (unused in mode `pulley_speed`).
         flux_in: f64,
         /// 𝓗(N_out) of (C18), N.
         flux_out: f64,
+        /// Mode `pulley_speed` (docs/fem-cosserat.md §12.7): ω given, rad/s — the stick
+        /// rows read it, and the ω-slot holds 𝓗_in instead (N), the unknown (C21)
+        /// determines. `None`: mode `tensions`, ω the unknown in its slot.
+        pulley_speed: Option<f64>,
     },
+}
+
+impl SteadyParams {
+    /// ω of a friction point's pulley (the driven one's: the unknown `w2` of the ω₂ slot
+    /// unless the open ends give it) and whether it is that unknown.
+    pub fn point_speed(&self, driven: bool, w2: f64) -> (f64, bool) {
+        match (driven, self.ends) {
+            (false, _) => (self.omega1, false),
+            (true, Ends::Open { pulley_speed: Some(w), .. }) => (w, false),
+            (true, _) => (w2, true),
+        }
+    }
 }
 
 /// The steady problem on one mesh: X = (z, c, ω₂, τ₁ … τ_m), for an element of any
@@ -267,7 +283,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let mut d = 0.0;
         for (e, o) in self.edge_owners().into_iter().enumerate() {
             let Some(first) = o[0].or(o[1]) else { continue };
-            let omega = if self.points[first].pulley == Pulley::Driven { w2 } else { self.sp.omega1 };
+            let (omega, _) = self.sp.point_speed(self.points[first].pulley == Pulley::Driven, w2);
             let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
             let el = self.asm.context(e, &self.params);
             let q = centreline(self.asm.kernel().layout(), &el, &self.asm.dofs().gather(e, z, self.length));
@@ -423,16 +439,17 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 }
             }
             // c given; (C21) less the end fluxes; 𝓗_out on the outflow node's ξ-row (C18)
-            Ends::Open { transport_rate, flux_in, flux_out } => {
+            // (mode `pulley_speed`: 𝓗_in the unknown of the ω-slot)
+            Ends::Open { transport_rate, flux_in, flux_out, pulley_speed } => {
                 residual[self.ic()] = c - transport_rate;
-                residual[self.iw()] -= flux_out - flux_in;
+                residual[self.iw()] -= flux_out - if pulley_speed.is_some() { w2 } else { flux_in };
                 if let Some(s_end) = self.asm.dofs().node_unknowns(self.asm.mesh().node_count() - 1).values[0] {
                     residual[s_end] += flux_out;
                 }
                 if with_jacobian {
                     // the c-row's only entry (the friction blocks leave it zero when open)
                     values.push(1.0);
-                    values.push(0.0);
+                    values.push(if pulley_speed.is_some() { 1.0 } else { 0.0 });
                 }
             }
         }
@@ -531,7 +548,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // (DS1)–(DS3) are the elements' consistent friction loads (`element_friction`)
         let driven = pt.pulley == Pulley::Driven;
         // (DS4)
-        let omega = if driven { w2 } else { sp.omega1 };
+        let (omega, omega_unknown) = sp.point_speed(driven, w2);
         let v = c * lam - sp.radius * omega;
         let b = sp.mu * normal;
         let y = tau + sp.kappa * v;
@@ -549,7 +566,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 j[it][k] = -w * sp.kappa * c * dlam[k];
             }
             j[it][ic] = -w * sp.kappa * lam;
-            if driven {
+            if omega_unknown {
                 j[it][iw] = w * sp.kappa * sp.radius;
             }
         }

@@ -39,7 +39,7 @@ mod topology;
 
 pub use equations::*;
 pub use fitting::*;
-pub use open::{end_flux, solve_open, OpenEnds};
+pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
@@ -258,7 +258,7 @@ mod tests {
 
     /// The check on `scene` with the element `kernel` and the bending stiffness `bending`
     /// of its term parameters.
-    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>) {
+    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
@@ -267,7 +267,7 @@ mod tests {
         let b = &scene.belt;
         // a soft penalty keeps the FD of the normal term well conditioned
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
-        let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends: Ends::Loop };
+        let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends };
         let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
@@ -328,7 +328,7 @@ mod tests {
         let scene = drive::Scene::from_json_str(SCENE).unwrap();
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop);
     }
 
     /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
@@ -342,7 +342,23 @@ mod tests {
         let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
         let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
         assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
-        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3));
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop);
+    }
+
+    /// The open layout's rows (docs/fem-cosserat.md §12.3, §12.7) on the same Cosserat
+    /// state: c given, (C21) on the ω-row, 𝓗_out on the last node's ξ-row, the tributary
+    /// normal load — in mode `tensions` (ω in its slot) and `pulley_speed` (ω given, the
+    /// slot 𝓗_in) — against central differences. (The closed mesh only hosts the rows:
+    /// the check is of the derivatives, not of a solution.)
+    #[test]
+    fn open_ends_jacobian_matches_finite_differences() {
+        let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
+        let scene = drive::Scene::from_json_str(&json).unwrap();
+        for pulley_speed in [None, Some(9.95)] {
+            let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+            let ends = Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed };
+            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends);
+        }
     }
 
     /// The kernels the steady equations add for an element of the Cosserat layout,

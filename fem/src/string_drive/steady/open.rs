@@ -3,16 +3,22 @@
 //! of H = D without its second arc), with [`Ends::Open`] closing them — c given, ω the
 //! unknown of the global material balance (C21), the end fluxes 𝓗 of (C18) — and a
 //! continuation in the outflow tension from N_out = N_in (pure stick, no friction load)
-//! to the scene's N_out. Mode `tensions` only.
+//! to the scene's N_out. Mode `pulley_speed` swaps the ω-slot's unknown for 𝓗_in (§12.7);
+//! mode `stick_slip_angle` finds the free tension by Brent's method on the FE's φ_B (§12.7).
+
+use std::f64::consts::FRAC_PI_2;
 
 use drive::contour::OpenContour;
+use drive::scene::End;
 use drive::summary::{PulleySummary, Summary};
 use drive::contour::Path;
 use drive::view::ContactState;
 
 use super::*;
 
-/// The open ends of a one-pulley scene as the FE reads them (mode `tensions`).
+/// The open ends of a one-pulley scene as the FE reads them: of `tension_in`,
+/// `tension_out`, `pulley_speed`, `stick_slip_angle` the scene gives two (validated by
+/// the scene; [`OpenEnds::mode`] refuses the combinations the FE does not solve).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct OpenEnds {
     /// D, m: the end sections are at x = −D.
@@ -23,6 +29,42 @@ pub struct OpenEnds {
     pub tension_in: Option<f64>,
     /// N_out, N, if given.
     pub tension_out: Option<f64>,
+    /// ω, rad/s (clockwise positive), if given.
+    pub pulley_speed: Option<f64>,
+    /// φ_B, rad (polar angle of the stick → slip point), if given.
+    pub stick_slip_angle: Option<f64>,
+}
+
+/// What a one-pulley scene prescribes besides c (spec §2.3), as the FE solves it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum OpenMode {
+    /// N_in, N_out given.
+    Tensions { tension_in: f64, tension_out: f64 },
+    /// ω and N_out given (ω with N_in leaves N_out undetermined, as the BVP says).
+    PulleySpeed { pulley_speed: f64, tension_out: f64 },
+    /// φ_B and the tension of `given` (the pulley driving the belt).
+    Transition { stick_slip_angle: f64, given: End, tension: f64 },
+}
+
+/// ω with N_in leaves N_out undetermined (the BVP's `PULLEY_SPEED_WITH_TENSION_IN`).
+const PULLEY_SPEED_WITH_TENSION_IN: &str = "ω fixes the stick stretch λ_B = ωR/c of the stick zone, which sits on the inflow side: λ_B ≈ λ(N_in), so ω and N_in together leave N_out undetermined (up to exponentially small terms); prescribe `pulley_speed` with `tension_out`";
+
+impl OpenEnds {
+    /// The prescription mode.
+    ///
+    /// # Errors
+    /// [`FemError::Prescription`] for `pulley_speed` with `tension_in` (ill-posed), and
+    /// for a pair the scene validation refuses (not two of the four, no tension).
+    pub fn mode(&self) -> Result<OpenMode, FemError> {
+        match (self.tension_in, self.tension_out, self.pulley_speed, self.stick_slip_angle) {
+            (Some(tension_in), Some(tension_out), None, None) => Ok(OpenMode::Tensions { tension_in, tension_out }),
+            (None, Some(tension_out), Some(pulley_speed), None) => Ok(OpenMode::PulleySpeed { pulley_speed, tension_out }),
+            (Some(_), None, Some(pulley_speed), None) => Err(FemError::Prescription { name: "pulley_speed", value: pulley_speed, reason: PULLEY_SPEED_WITH_TENSION_IN.into() }),
+            (Some(tension), None, None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::In, tension }),
+            (None, Some(tension), None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::Out, tension }),
+            _ => Err(FemError::Prescription { name: "drive", value: f64::NAN, reason: "a one-pulley scene gives exactly two of tension_in, tension_out, pulley_speed, stick_slip_angle, at least one a tension".into() }),
+        }
+    }
 }
 
 /// 𝓗 of (C18) on a straight end section with axial force N (Q = M = 0): N(1 + Γ₁/2) −
@@ -32,20 +74,34 @@ pub fn end_flux(tension: f64, axial_stiffness: f64, chi: f64) -> f64 {
     tension * (1.0 + 0.5 * g1) - 0.5 * chi * (1.0 + g1) * (1.0 + g1)
 }
 
+/// N of an end section with flux 𝓗 of (C18): the root of 𝓗(N) = h near `guess` (Newton;
+/// ∂𝓗/∂N = 1 + Γ₁ − χλ/b₁ > 0 below the critical speed).
+fn end_tension(flux: f64, axial_stiffness: f64, chi: f64, guess: f64) -> f64 {
+    let mut n = guess;
+    for _ in 0..20 {
+        let lam = 1.0 + n / axial_stiffness;
+        let step = (end_flux(n, axial_stiffness, chi) - flux) / (lam - chi * lam / axial_stiffness);
+        n -= step;
+        if step.abs() <= 1e-15 * n.abs() {
+            break;
+        }
+    }
+    n
+}
+
 /// Solve the one-pulley scene `problem` (its [`crate::problem::FemProblem::open`]) with
 /// the element `kernel` of layout N (docs/fem-cosserat.md §12).
 ///
 /// # Errors
-/// [`FemError::Unsupported`] (not a one-pulley scene in mode `tensions`, gravity, no
-/// Coulomb contact), [`FemError::InvalidOption`] (D ≤ 2R, element count),
-/// [`FemError::SpeedAtOrAboveCritical`] (T̃ ≤ 0 at an end or b₁, b₂ ≤ ρc²),
+/// [`FemError::Unsupported`] (not a one-pulley scene, gravity, no Coulomb contact),
+/// [`FemError::Prescription`] (ω with N_in; ω or φ_B without a steady state),
+/// [`FemError::InvalidOption`] (D ≤ 2R, element count),
+/// [`FemError::SpeedAtOrAboveCritical`] (T̃ ≤ 0 at a given end or b₁, b₂ ≤ ρc²),
 /// [`FemError::HomotopyStalled`], [`FemError::NonFinite`].
 pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::super::DriveSettings, kernel: Arc<K>) -> Result<crate::FemRun, FemError> {
     let clock = std::time::Instant::now();
     let ends = problem.open.ok_or_else(|| FemError::Unsupported("the open FE solves one-pulley scenes only".into()))?;
-    let (Some(tension_in), Some(tension_out)) = (ends.tension_in, ends.tension_out) else {
-        return Err(FemError::Unsupported("the one-pulley FE solves mode `tensions` (tension_in and tension_out given) only; modes `pulley_speed` and `transition` are not built (docs/fem-cosserat.md §12.3)".into()));
-    };
+    let mode = ends.mode()?;
     let crate::problem::ContactLaw::Coulomb { mu } = problem.effects.contact else {
         return Err(FemError::Unsupported("the one-pulley FE needs Coulomb contact".into()));
     };
@@ -59,60 +115,259 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     let contour = Contour::new(r, d).map_err(|e| FemError::InvalidOption { field: "drive.end_distance", value: d.to_string(), reason: format!("the open FE takes the loop's contour of H = D and needs D > 2R ({e})") })?;
     let rho = problem.effects.inertia.then_some(b.mass_per_length);
     let chi = rho.map_or(0.0, |rho| rho * c0 * c0);
-    // the effective tension T̃ = N − χλ at both ends, and b₁, b₂ above χ (spec §1.2)
-    for (span, n) in [("inflow", tension_in), ("outflow", tension_out)] {
-        let lam = 1.0 + n / b.axial_stiffness;
+    let b1 = b.axial_stiffness;
+    // the given tensions, and the string estimate of a free one (docs/cosserat-pulley.md,
+    // modes): mode `pulley_speed` the stick section's T̃ at λ_B = ωR/c; mode `transition`
+    // the capstan over φ_B − φ_C, φ_C = −π/2 + √(a/T̃_out)/R
+    let effective = |n: f64| n - chi * (1.0 + n / b1);
+    let tension_of = |t: f64| (t + chi) / (1.0 - chi / b1);
+    let (given, estimate): (Vec<(&str, f64)>, [f64; 2]) = match mode {
+        OpenMode::Tensions { tension_in, tension_out } => (vec![("inflow", tension_in), ("outflow", tension_out)], [tension_in, tension_out]),
+        OpenMode::PulleySpeed { pulley_speed, tension_out } => {
+            let t_in = (b1 - chi) * pulley_speed * r / c0 - b1;
+            if t_in.is_nan() || t_in <= 0.0 || pulley_speed <= 0.0 {
+                return Err(FemError::Prescription { name: "pulley_speed", value: pulley_speed, reason: format!("the stick stretch ωR/c leaves the effective tension T̃_in = {t_in:.6e} N ≤ 0 at the inflow end") });
+            }
+            (vec![("outflow", tension_out)], [tension_of(t_in), tension_out])
+        }
+        OpenMode::Transition { stick_slip_angle, given, tension } => {
+            let a = b.bending_stiffness.unwrap_or(0.0);
+            let t = effective(tension);
+            let phi_c = |t_out: f64| -FRAC_PI_2 + (a / t_out).sqrt() / r;
+            let free = match given {
+                End::Out => tension_of(t * (mu * (stick_slip_angle - phi_c(t))).exp()),
+                End::In => tension_of(t * (-mu * (stick_slip_angle - phi_c(t))).exp()),
+            };
+            if !(stick_slip_angle > phi_c(t) && free.is_finite()) {
+                return Err(FemError::Prescription { name: "stick_slip_angle", value: stick_slip_angle, reason: format!("below the contact end φ_C ≈ −π/2 + √(a/T̃)/R = {:.6}: no slip arc", phi_c(t)) });
+            }
+            let pair = if given == End::In { [tension, free] } else { [free, tension] };
+            (vec![(if given == End::In { "inflow" } else { "outflow" }, tension)], pair)
+        }
+    };
+    // the effective tension T̃ = N − χλ at the given ends, and b₁, b₂ above χ (spec §1.2)
+    for (span, n) in given {
+        let lam = 1.0 + n / b1;
         let b2 = kernel.shear_stiffness().unwrap_or(f64::INFINITY);
-        if n - chi * lam <= 0.0 || b.axial_stiffness <= chi || b2 <= chi {
+        if n - chi * lam <= 0.0 || b1 <= chi || b2 <= chi {
             return Err(FemError::SpeedAtOrAboveCritical { span: span.into(), tension: n, inertia_force: chi * lam, time: None });
         }
     }
     let mesh = Mesh::open(contour, opts.elements, settings.arc_weight)?;
     let penalty = problem.penalty(opts, settings);
-    let params = TermParams { axial_stiffness: b.axial_stiffness, weight: None, penalty: Some(penalty), bending_stiffness: b.bending_stiffness };
+    let params = TermParams { axial_stiffness: b1, weight: None, penalty: Some(penalty), bending_stiffness: b.bending_stiffness };
     let asm = Assembler::with_kernel(mesh, kernel.clone());
-    let lambda_in = 1.0 + tension_in / b.axial_stiffness;
-    let omega0 = c0 * lambda_in / r;
+    let omega0 = c0 * (1.0 + estimate[0] / b1) / r;
     let arc_elements = asm.mesh().elements().iter().filter(|e| e.region == Region::DrivenArc).count().max(1);
     // κ = P_⊥ Δt₀ as the loop's (any κ > 0 has the same roots)
-    let kappa = drive_settings.tangential_penalty_factor * b.axial_stiffness / (r * r) * (PI * r / arc_elements as f64) / (r * omega0.abs());
-    let (h_in, h_out) = (end_flux(tension_in, b.axial_stiffness, chi), end_flux(tension_out, b.axial_stiffness, chi));
-    let sp_at = |eta: f64| SteadyParams {
-        mu,
-        penalty,
-        kappa,
-        radius: r,
-        omega1: omega0,
-        torque: 0.0,
-        damping: 0.0,
-        inertia: rho,
-        // η carries the outflow flux from the inflow's (pure stick) to the scene's
-        ends: Ends::Open { transport_rate: c0, flux_in: h_in, flux_out: h_in + eta * (h_out - h_in) },
-    };
+    let kappa = drive_settings.tangential_penalty_factor * b1 / (r * r) * (PI * r / arc_elements as f64) / (r * omega0.abs());
     let points = friction_points(&asm, &[], Direction::Clockwise);
-    let mut x = straight_start(&asm, lambda_in, tension_in / (r * penalty));
-    x.extend([c0, omega0]);
-    x.extend(std::iter::repeat_n(0.0, points.len()));
-    let f_ref = tension_in.max(tension_out);
+    let f_ref = estimate[0].max(estimate[1]);
     let w = variable_weights(&asm, d, r, omega0.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
+    let base = SteadyParams { mu, penalty, kappa, radius: r, omega1: omega0, torque: 0.0, damping: 0.0, inertia: rho, ends: Ends::Loop };
+    let setup = OpenSetup::<N, P, E, K> { asm: &asm, points: &points, params, base, w: &w, scales: &scales, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, kernel: &kernel, transport_rate: c0, axial_stiffness: b1, chi, _sizes: std::marker::PhantomData };
     let mut report = SteadyReport { friction_points: points.len(), ..Default::default() };
-    // η = 0 (N_out = N_in, pure stick) from the tight start: far from equilibrium in
-    // the stiff normal penalty where the belt lifts off the arc's ends over the bending
-    // layer: a penalty ladder P/10⁴ → P
-    let start = SteadyProblem::<N, P, E, K> { asm: &asm, params, length: 0.0, points: &points, sp: sp_at(0.0), strain_rule: kernel.rules().strain };
-    let tol = settings.update_tolerance;
-    let max_it = drive_settings.max_newton_iterations;
-    let n0 = penalty_ladder(&start, &mut x, &w, &scales, tol, max_it, &[1e-4, 1e-3, 1e-2, 1e-1, 1.0]).map_err(|e| FemError::HomotopyStalled { eta: 0.0, step: 0.0, min_step: 0.0, steps: 0, last_failure: format!("the pure-stick start (N_out = N_in): {e}") })?;
-    report.newton_iterations += n0.iterations;
-    // the critical speed is checked on the ends above (the loop's check reads its
-    // mid-spans): no inertia check on the path
-    let mut path = LoadPath::new(start, &sp_at, (&w, &scales), (tol, max_it), &kernel, None, x, &mut report);
-    path.run()?;
-    let (x, results) = (path.x, path.results);
+    let flux = |n: f64| end_flux(n, b1, chi);
+    let (x, results, sp) = match mode {
+        OpenMode::Tensions { tension_in, tension_out } => {
+            let stick = setup.stick(tension_in, &mut report)?;
+            let to = setup.ends(flux(tension_in), flux(tension_out), None);
+            let (x, results) = setup.path(stick, setup.ends(flux(tension_in), flux(tension_in), None), to, &w, &mut report)?;
+            (x, results, setup.sp(to))
+        }
+        OpenMode::PulleySpeed { pulley_speed, tension_out } => {
+            // the pure-stick state of N_in = N_out has ω_stick in its ω-slot; from it, the
+            // ω-slot holds 𝓗_in (start 𝓗_out) and ω moves from ω_stick to the given
+            let mut stick = setup.stick(tension_out, &mut report)?;
+            let nz = asm.len();
+            let omega_stick = stick[nz + 1];
+            let h_out = flux(tension_out);
+            stick[nz + 1] = h_out;
+            let mut w_speed = w.clone();
+            w_speed[nz + 1] = f_ref;
+            let to = setup.ends(f64::NAN, h_out, Some(pulley_speed));
+            let (x, results) = setup.path(stick, setup.ends(f64::NAN, h_out, Some(omega_stick)), to, &w_speed, &mut report).map_err(|e| FemError::Prescription { name: "pulley_speed", value: pulley_speed, reason: format!("no steady state found between the pure-stick speed {omega_stick:.9} rad/s and the given ({e}); beyond the friction capacity there is none") })?;
+            (x, results, setup.sp(to))
+        }
+        OpenMode::Transition { stick_slip_angle, given, tension } => setup.transition(stick_slip_angle, given, tension, estimate[if given == End::In { 1 } else { 0 }], &mut report)?,
+    };
+    let nz = asm.len();
+    let (h_in, omega) = match sp.ends {
+        Ends::Open { pulley_speed: Some(w), .. } => (x[nz + 1], w),
+        Ends::Open { flux_in, .. } => (flux_in, x[nz + 1]),
+        Ends::Loop => unreachable!("open ends"),
+    };
+    let Ends::Open { flux_out: h_out, .. } = sp.ends else { unreachable!("open ends") };
+    let tensions = [end_tension(h_in, b1, chi, estimate[0]), end_tension(h_out, b1, chi, estimate[1])];
     report.continuation_seconds = clock.elapsed().as_secs_f64();
     let state = State { rho, asm, x, results };
-    open_finish::<N, P, E, K>(problem, opts, settings, drive_settings, &kernel, &state, OpenRun { ends, tensions: [tension_in, tension_out], params, sp: sp_at(1.0), penalty, kappa, mu, report, clock })
+    open_finish::<N, P, E, K>(problem, opts, settings, drive_settings, &kernel, &state, OpenRun { ends, tensions, fluxes: [h_in, h_out], omega, params, sp, penalty, kappa, mu, report, clock })
+}
+
+/// The fixed parts of the open steady problem on one mesh, and its solves.
+struct OpenSetup<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
+    asm: &'a Assembler<N, K>,
+    points: &'a [FrictionPoint],
+    params: TermParams,
+    /// Everything but the ends.
+    base: SteadyParams,
+    w: &'a [f64],
+    scales: &'a [f64],
+    tolerance: f64,
+    max_iterations: usize,
+    kernel: &'a Arc<K>,
+    transport_rate: f64,
+    axial_stiffness: f64,
+    chi: f64,
+    _sizes: std::marker::PhantomData<([f64; P], [f64; E])>,
+}
+
+/// A solved state of mode `stick_slip_angle`'s root find: the free tension N_f, X and
+/// the point results.
+type Solved = (f64, Vec<f64>, Vec<PointResult>);
+
+/// Ends `a` + η(`b` − `a`) (fluxes and the given ω; `a`, `b` of one mode).
+fn blend(a: Ends, b: Ends, eta: f64) -> Ends {
+    match (a, b) {
+        (Ends::Open { transport_rate, flux_in: ia, flux_out: oa, pulley_speed: wa }, Ends::Open { flux_in: ib, flux_out: ob, pulley_speed: wb, .. }) => Ends::Open {
+            transport_rate,
+            flux_in: ia + eta * (ib - ia),
+            flux_out: oa + eta * (ob - oa),
+            pulley_speed: wa.zip(wb).map(|(wa, wb)| wa + eta * (wb - wa)),
+        },
+        _ => b,
+    }
+}
+
+impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static> OpenSetup<'a, N, P, E, K> {
+    fn ends(&self, flux_in: f64, flux_out: f64, pulley_speed: Option<f64>) -> Ends {
+        Ends::Open { transport_rate: self.transport_rate, flux_in, flux_out, pulley_speed }
+    }
+
+    fn sp(&self, ends: Ends) -> SteadyParams {
+        SteadyParams { ends, ..self.base }
+    }
+
+    fn problem(&self, ends: Ends) -> SteadyProblem<'a, N, P, E, K> {
+        SteadyProblem { asm: self.asm, params: self.params, length: 0.0, points: self.points, sp: self.sp(ends), strain_rule: self.kernel.rules().strain }
+    }
+
+    /// The pure-stick state N_out = N_in = `tension` (no friction load), mode `tensions`:
+    /// from the tight start, far from equilibrium in the stiff normal penalty where the
+    /// belt lifts off the arc's ends over the bending layer — a penalty ladder P/10⁴ → P.
+    fn stick(&self, tension: f64, report: &mut SteadyReport) -> Result<Vec<f64>, FemError> {
+        let lambda = 1.0 + tension / self.axial_stiffness;
+        let h = end_flux(tension, self.axial_stiffness, self.chi);
+        let mut x = straight_start(self.asm, lambda, tension / (self.base.radius * self.base.penalty));
+        x.extend([self.transport_rate, self.transport_rate * lambda / self.base.radius]);
+        x.extend(std::iter::repeat_n(0.0, self.points.len()));
+        let start = self.problem(self.ends(h, h, None));
+        let n0 = penalty_ladder(&start, &mut x, self.w, self.scales, self.tolerance, self.max_iterations, &[1e-4, 1e-3, 1e-2, 1e-1, 1.0]).map_err(|e| FemError::HomotopyStalled { eta: 0.0, step: 0.0, min_step: 0.0, steps: 0, last_failure: format!("the pure-stick start (N_out = N_in): {e}") })?;
+        report.newton_iterations += n0.iterations;
+        Ok(x)
+    }
+
+    /// The loop's load continuation from the state `x` converged at `from` to `to`
+    /// (variable weights `w`). The critical speed is checked on the given ends (the loop's
+    /// check reads its mid-spans): no inertia check on the path.
+    fn path(&self, x: Vec<f64>, from: Ends, to: Ends, w: &[f64], report: &mut SteadyReport) -> Result<(Vec<f64>, Vec<PointResult>), FemError> {
+        let at = |eta: f64| self.sp(blend(from, to, eta));
+        let mut path = LoadPath::new(self.problem(from), &at, (w, self.scales), (self.tolerance, self.max_iterations), self.kernel, None, x, report);
+        path.run()?;
+        Ok((path.x, path.results))
+    }
+
+    /// φ_B of a converged state: the polar angle of the located zero of v on the slip
+    /// run (as the summary's), the contact end φ_C when nothing slips (slip arc 0).
+    fn stick_slip_angle(&self, x: &[f64], results: &[PointResult]) -> Option<f64> {
+        let contour = *self.asm.mesh().contour();
+        let sol = FemSolution::new(self.asm.mesh().clone(), self.asm.dofs(), &x[..self.asm.len()], self.params, 0.0, self.kernel.clone());
+        let angle = |sigma: f64| contour.polar_angle(Pulley::Driven, sol.position(sigma));
+        match results.iter().any(|p| p.slip) {
+            true => transition(results, &contour, Pulley::Driven).map(angle),
+            false => results.iter().rfind(|p| p.normal > 0.0).map(|p| angle(p.point.sigma)),
+        }
+    }
+
+    /// Mode `stick_slip_angle` (docs/fem-cosserat.md §12.7): the free tension N_f with
+    /// φ_B(N_f) = `phi` (the pulley driving the belt), the tension of `given` fixed. Each
+    /// evaluation is a mode-`tensions` solve continued from the nearest one done; string
+    /// steps (∂φ_B/∂N_f ≈ ±1/(μT̃_f), the capstan's) until φ_B − φ brackets a root, then
+    /// Brent's method on the bracket to 10⁻¹⁰ relative in N_f.
+    fn transition(&self, phi: f64, given: End, tension: f64, estimate: f64, report: &mut SteadyReport) -> Result<(Vec<f64>, Vec<PointResult>, SteadyParams), FemError> {
+        let (b1, chi) = (self.axial_stiffness, self.chi);
+        let h_given = end_flux(tension, b1, chi);
+        let ends_of = |free: f64| match given {
+            End::In => self.ends(h_given, end_flux(free, b1, chi), None),
+            End::Out => self.ends(end_flux(free, b1, chi), h_given, None),
+        };
+        let stick = self.stick(tension, report)?;
+        // solved states by N_f; a new one continues from the nearest
+        let solved: std::cell::RefCell<Vec<Solved>> = std::cell::RefCell::new(vec![(tension, stick, Vec::new())]);
+        let report = std::cell::RefCell::new(report);
+        let solve = |free: f64| -> Result<f64, FemError> {
+            let (from, x) = {
+                let s = solved.borrow();
+                let (n, x, _) = s.iter().min_by(|a, b| (a.0 - free).abs().total_cmp(&(b.0 - free).abs())).expect("the stick state");
+                (*n, x.clone())
+            };
+            let (x, results) = self.path(x, ends_of(from), ends_of(free), self.w, &mut report.borrow_mut())?;
+            let angle = self.stick_slip_angle(&x, &results).ok_or_else(|| FemError::Prescription { name: "stick_slip_angle", value: phi, reason: format!("no contact zone at the free tension {free:.9} N") })?;
+            solved.borrow_mut().push((free, x, results));
+            Ok(angle - phi)
+        };
+        // driving: N_in > N_out; φ_B grows with N_in and falls with N_out
+        let sense = if given == End::Out { 1.0 } else { -1.0 };
+        let slope = |n: f64| sense / (self.base.mu * (n - chi * (1.0 + n / b1)));
+        let (mut n0, mut g0) = (estimate, solve(estimate)?);
+        let mut bracket = None;
+        // at the root to the FE's round-off in φ_B (Newton's update tolerance 1e-10 leaves
+        // ~1e-11 rad; measured 4e-12 on a state continued to itself)
+        let at_root = |g: f64| g.abs() <= 1e-10;
+        if at_root(g0) {
+            bracket = Some((n0, n0));
+        }
+        for _ in 0..8 {
+            if bracket.is_some() {
+                break;
+            }
+            // the string step overshot by 20 % (so that it brackets the root where the
+            // capstan slope is that accurate), kept on the driving side of the given tension
+            let mut n1 = n0 - 1.2 * g0 / slope(n0);
+            if (n1 - tension) * sense <= 0.0 {
+                n1 = tension + 0.5 * (n0 - tension);
+            }
+            let g1 = solve(n1)?;
+            if at_root(g1) {
+                bracket = Some((n1, n1));
+            } else if g0 * g1 < 0.0 {
+                bracket = Some((n0, n1));
+            }
+            (n0, g0) = (n1, g1);
+        }
+        let Some((lo, hi)) = bracket else {
+            return Err(FemError::Prescription { name: "stick_slip_angle", value: phi, reason: format!("no free tension brackets φ_B = φ within 8 string steps (last N = {n0:.9} N, φ_B − φ = {g0:.3e} rad)") });
+        };
+        let root = if lo == hi { lo } else {
+            let g = &solve;
+            numerics::continuation::locate_fold(g, lo, hi, 1e-10).map_err(|e| match e {
+                numerics::continuation::FoldError::Evaluation(e) => e,
+                other => FemError::Prescription { name: "stick_slip_angle", value: phi, reason: other.to_string() },
+            })?
+        };
+        // the state at the root (solved, or continued to it)
+        let known = solved.borrow().iter().position(|s| s.0 == root);
+        let i = match known {
+            Some(i) => i,
+            None => {
+                solve(root)?;
+                solved.borrow().len() - 1
+            }
+        };
+        let (_, x, results) = solved.into_inner().swap_remove(i);
+        Ok((x, results, self.sp(ends_of(root))))
+    }
 }
 
 /// z of the tight start: the contour at uniform stretch λ, s = σ/λ, ψ = 0, ν = 0 on the
@@ -140,8 +395,12 @@ fn straight_start<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<
 /// What [`open_finish`] needs besides the state.
 struct OpenRun {
     ends: OpenEnds,
-    /// N_in, N_out, N.
+    /// N_in, N_out, N (given or solved: 𝓗 of (C18) inverted).
     tensions: [f64; 2],
+    /// 𝓗_in, 𝓗_out of the solved state, N.
+    fluxes: [f64; 2],
+    /// ω, rad/s (solved or given).
+    omega: f64,
     params: TermParams,
     sp: SteadyParams,
     penalty: f64,
@@ -158,7 +417,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     let mesh = asm.mesh();
     let contour = *mesh.contour();
     let r = contour.radius();
-    let (c, omega) = (state.x[nz], state.x[nz + 1]);
+    let (c, omega) = (state.x[nz], run.omega);
     let base = FemSolution::new(mesh.clone(), asm.dofs(), &state.x[..nz], run.params, 0.0, kernel.clone());
     let pulley = Pulley::Driven;
     let torque = r * state.results.iter().filter(|p| p.point.pulley == pulley).map(|p| p.point.weight * p.traction).sum::<f64>();
@@ -201,7 +460,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     let prob = SteadyProblem::<N, P, E, K> { asm, params: run.params, length: 0.0, points: &points, sp: run.sp, strain_rule: kernel.rules().strain };
     // power (§12.4): −torque·ω = c(𝓗_in − 𝓗_out) + D to round-off by (C21)
     let dissipation = prob.dissipation(&state.x);
-    let Ends::Open { flux_in, flux_out, .. } = run.sp.ends else { unreachable!("open ends") };
+    let [flux_in, flux_out] = run.fluxes;
     let power_in = -torque * omega;
     let power_ends = c * (flux_in - flux_out);
     let per_element = view_points(state, run.params, 0.0, kernel);

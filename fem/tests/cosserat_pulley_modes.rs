@@ -1,0 +1,148 @@
+//! The open one-pulley layout by the FE (issue 13; docs/fem-cosserat.md §12.7–§12.8): the
+//! prescription modes `pulley_speed` and `stick_slip_angle` by their round trip (spec
+//! §2.7 C-11), and the hard cases of spec §2.8 — the belt driving the pulley (N_in <
+//! N_out), pure stick (N_in = N_out), μ ≥ 1 — against the BVP (collocation gauss6 at
+//! tolerance 1e-10, docs/cosserat-pulley.md). Scene: `scenes/cosserat-pulley.json` with
+//! the drive block changed; `cosserat-gauss`, unfitted meshes.
+
+use drive::summary::Summary;
+use drive::Scene;
+use fem::{FemError, FemOptions, FemRun, SolverSettings};
+
+/// The catalogue scene with the one-pulley prescription `drive` (pairs of field, value)
+/// and Coulomb μ.
+fn scene(drive: &[(&str, f64)], mu: f64) -> Scene {
+    let mut v: serde_json::Value = serde_json::from_str(include_str!("../../scenes/cosserat-pulley.json")).unwrap();
+    let d = v["drive"].as_object_mut().unwrap();
+    d.remove("tension_in");
+    d.remove("tension_out");
+    for (k, x) in drive {
+        d.insert((*k).into(), (*x).into());
+    }
+    v["effects"]["contact"]["coulomb"] = mu.into();
+    Scene::from_json_str(&v.to_string()).unwrap()
+}
+
+fn fe(scene: &Scene, elements: usize) -> Result<FemRun, FemError> {
+    let opts = FemOptions { elements, formulation: "cosserat-gauss".into(), penalty: None };
+    fem::solve_scene_with(scene, &opts, &SolverSettings::default())
+}
+
+fn bvp(scene: &Scene) -> Summary {
+    let mut opts = bvp::scene::BvpRunOptions::from_scene(scene).unwrap();
+    opts.tolerance = 1e-10;
+    bvp::scene::solve_one_pulley(scene, &opts).unwrap().summary()
+}
+
+/// (ω, y_in, y_out, contact arc, slip arc, torque) of a summary.
+fn quantities(s: &Summary) -> [f64; 6] {
+    let p = s.pulley.as_ref().expect("pulley summary");
+    [s.pulley_speed.unwrap(), s.y_in.unwrap(), s.y_out.unwrap(), p.contact_arc.unwrap(), p.slip_arc.unwrap(), p.torque.unwrap()]
+}
+
+/// φ_B = φ_C + slip arc of a summary.
+fn stick_slip_angle(s: &Summary) -> f64 {
+    let p = s.pulley.as_ref().unwrap();
+    p.contact_end.unwrap() + p.slip_arc.unwrap()
+}
+
+/// C-11, mode `pulley_speed` (§12.7: the ω-slot holds 𝓗_in, ω given): the `tensions`
+/// solve's ω fed back with N_out returns N_in = 15 N and the whole summary. Measured at 64
+/// elements: N_in to 4e-11 N and every summary quantity to ≤ 1e-9 relative — the same
+/// discrete equations with another unknown, so only the Newton tolerance (1e-10 in the
+/// scaled update) separates them; bounds 1e-8 (N) and 1e-7 (relative) leave room for
+/// that tolerance on another machine's round-off, and fail on any difference of the
+/// equations.
+#[test]
+fn pulley_speed_round_trip() {
+    let tensions = fe(&scene(&[("tension_in", 15.0), ("tension_out", 10.0)], 0.3), 64).unwrap();
+    let omega = tensions.summary.pulley_speed.unwrap();
+    let back = fe(&scene(&[("pulley_speed", omega), ("tension_out", 10.0)], 0.3), 64).unwrap();
+    let n_in = back.summary.tension_in.unwrap();
+    eprintln!("ω = {omega}: N_in = {n_in} ({:.2} s)", back.stats.wall_seconds);
+    assert!((n_in - 15.0).abs() < 1e-8, "N_in = {n_in}");
+    assert_eq!(back.summary.pulley_speed, Some(omega));
+    for (a, b) in quantities(&tensions.summary).iter().zip(quantities(&back.summary)) {
+        assert!((a - b).abs() <= 1e-7 * a.abs(), "{a} vs {b}");
+    }
+    // power balance with 𝓗_in solved (§12.4)
+    let o = &back.options["drive"];
+    let (pin, pends, d) = (o["power_in"].as_f64().unwrap(), o["power_ends"].as_f64().unwrap(), o["dissipation"].as_f64().unwrap());
+    assert!((pin - pends - d).abs() < 1e-12 * pin, "power: {pin} vs {pends} + {d}");
+    // ω with N_in is ill-posed (docs/cosserat-pulley.md, modes): a named error
+    match fe(&scene(&[("pulley_speed", omega), ("tension_in", 15.0)], 0.3), 64) {
+        Err(FemError::Prescription { name: "pulley_speed", .. }) => {}
+        other => panic!("ω with N_in: {:?}", other.map(|r| r.summary)),
+    }
+}
+
+/// C-11, mode `stick_slip_angle` (§12.7: string steps to a bracket, then Brent's method
+/// on the free tension): the `tensions` solve's φ_B fed back with one tension returns the
+/// other. Measured at 64 elements: N_out = 10 + 5.9e-11 N (N_in given), N_in = 15 +
+/// 2.6e-10 N (N_out given), φ_B to 1.5e-11 / 8.7e-11 rad. Bounds: φ_B to 1e-9 rad (the
+/// acceptance 1e-10 rad and Brent's 1e-10 relative in N times ∂φ_B/∂N ≈ 1/(μT̃) = 0.23
+/// rad/N), N to 1e-8 N. Caveat (§12.7): the FE's φ_B is located inside an element (no
+/// fit to B yet) and jumps by ~1.6° where a friction point changes between stick and slip
+/// (measured, N_out = 10: slip arc 68.26°, 69.63°, 70.31°, 69.38°, 69.98°, 70.58° at N_in
+/// = 14.8, 14.9, 14.95, 15, 15.05, 15.1 N), so φ_B can have a second FE root (N_in =
+/// 14.8815 N was found by an earlier bracket search without the 20 % overshoot) — within
+/// the FE's φ_B error, but this test then fails: it holds the search to the original root.
+#[test]
+fn stick_slip_angle_round_trip() {
+    let tensions = fe(&scene(&[("tension_in", 15.0), ("tension_out", 10.0)], 0.3), 64).unwrap();
+    let phi = stick_slip_angle(&tensions.summary);
+    for (given, value, free, original) in [("tension_in", 15.0, "out", 10.0), ("tension_out", 10.0, "in", 15.0)] {
+        let back = fe(&scene(&[("stick_slip_angle", phi), (given, value)], 0.3), 64).unwrap();
+        let s = &back.summary;
+        let n = if free == "in" { s.tension_in.unwrap() } else { s.tension_out.unwrap() };
+        eprintln!("φ_B = {phi} with {given}: N_{free} = {n}, φ_B = {} ({:.2} s, {} Newton iterations)", stick_slip_angle(s), back.stats.wall_seconds, back.stats.newton_iterations);
+        assert!((stick_slip_angle(s) - phi).abs() < 1e-9, "φ_B {} vs {phi}", stick_slip_angle(s));
+        assert!((n - original).abs() <= 1e-8, "N_{free} = {n}, original {original}");
+        assert!(s.pulley.as_ref().unwrap().torque.unwrap() < 0.0, "the pulley drives");
+    }
+}
+
+/// Spec §2.8 at 128 elements against the BVP: relative errors of (ω, y_in, y_out,
+/// contact arc, slip arc, torque). Measured (unfitted mesh):
+/// - braking, N_in = 10 < N_out = 15 N (the belt drives the pulley, slip reversed, torque
+///   > 0): 1.5e-5, 1.2e-5, 5.0e-5, 8.0e-3, 6.3e-2, 2.8e-6;
+/// - μ = 1.2, N_in = 30, N_out = 10 N: 2.2e-5, 5.2e-5, 1.6e-5, 9.5e-4, 4.6e-3, 7.8e-7
+///   (at 64 elements the load continuation stalls at η = 0.22: the slip zone of ~9
+///   elements of 8 mm; a named `HomotopyStalled`);
+/// - pure stick, N_in = N_out = 12 N: slip arc 0 and torque 0 by both methods (the FE's
+///   friction load vanishes, no point slips: not a failure), ω 2.3e-5, y 6.1e-5, contact
+///   arc 7.9e-3.
+///
+/// Bounds 2–3× those (the contact edges and φ_B move erratically with the mesh, §12.5:
+/// the slip arc's 6.3e-2 is one arc element's jump of the located B).
+#[test]
+fn hard_cases_against_the_bvp() {
+    // (name, prescription, μ, bounds of the six relative errors; 0: checked below)
+    type Case<'a> = (&'a str, [(&'a str, f64); 2], f64, [f64; 6]);
+    let cases: [Case; 3] = [
+        ("braking", [("tension_in", 10.0), ("tension_out", 15.0)], 0.3, [4e-5, 3e-5, 1.2e-4, 2e-2, 1.3e-1, 7e-6]),
+        ("mu = 1.2", [("tension_in", 30.0), ("tension_out", 10.0)], 1.2, [5e-5, 1.2e-4, 4e-5, 2.5e-3, 1.2e-2, 2e-6]),
+        ("pure stick", [("tension_in", 12.0), ("tension_out", 12.0)], 0.3, [6e-5, 1.5e-4, 1.5e-4, 2e-2, 0.0, 0.0]),
+    ];
+    for (name, drive, mu, bounds) in cases {
+        let sc = scene(&drive, mu);
+        let r = fe(&sc, 128).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let (f, b) = (quantities(&r.summary), quantities(&bvp(&sc)));
+        let e: Vec<f64> = (0..6).map(|k| ((f[k] - b[k]) / b[k]).abs()).collect();
+        eprintln!("{name}: errors {e:?}, FE {f:?}, BVP {b:?} ({:.2} s)", r.stats.wall_seconds);
+        for k in 0..6 {
+            // pure stick: slip arc and torque are zero by both methods (below)
+            if bounds[k] > 0.0 {
+                assert!(e[k] <= bounds[k], "{name}, quantity {k}: {} vs BVP {} (error {:e} above {:e})", f[k], b[k], e[k], bounds[k]);
+            }
+        }
+        let torque = f[5];
+        match name {
+            "braking" => assert!(torque > 0.0 && f[4] > 0.5, "the belt drives the pulley: torque {torque}, slip arc {}", f[4]),
+            // slip arc 0 exactly (no point slips), torque 0 to round-off of the tractions
+            // (measured FE 0.0, BVP ~1e-16 N·m)
+            "pure stick" => assert!(f[4] == 0.0 && b[4].abs() < 1e-9 && torque.abs() < 1e-9 && b[5].abs() < 1e-9 && r.summary.pulley.as_ref().unwrap().stick_arc.unwrap() > 2.5, "pure stick: slip arcs {} / {}, torques {torque} / {}", f[4], b[4], b[5]),
+            _ => assert!(torque < -1.9, "μ = 1.2 carries 2 N·m: {torque}"),
+        }
+    }
+}
