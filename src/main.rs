@@ -1081,12 +1081,8 @@ fn run_sweep(args: &SweepArgs) -> Result<()> {
     };
     let sweep = Sweep::run(&scene, &plan, &update);
     bar.finish_and_clear();
-    let command = std::iter::once("beltcheck sweep".to_string())
-        .chain(std::iter::once(args.scene.display().to_string()))
-        .chain(args.params.iter().map(|p| format!("--param {p}")))
-        .chain([format!("--fe-points {}", args.fe_points), format!("-o {}", args.out.display())])
-        .collect::<Vec<_>>()
-        .join(" ");
+    // the command as given, for the report
+    let command = std::iter::once("beltcheck".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ");
     let files = verification::sweep::write_sweep(&sweep, &command, &args.out)?;
     println!(
         "beltcheck sweep: {} — {} of {} BVP points solved in {:.1} s ({} thread(s)), {} FE spot check(s)",
