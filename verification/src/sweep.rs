@@ -30,8 +30,9 @@
 //!   there is no solution of this branch beyond the last converged point. The line stops there ([`Fold`]) and the remaining points are
 //!   [`PointStatus::BeyondFold`];
 //! - otherwise a cold solve at t_i; if that fails too, the point is
-//!   [`PointStatus::Failed`] with the solver's error and the line goes on from the last
-//!   converged point.
+//!   [`PointStatus::Failed`] with the solver's error, and the next point is tried by a
+//!   cold solve only (beyond an admissibility limit of the modelled topology the
+//!   halvings would fail again); once a point converges the line continues from it.
 //!
 //! A model without warm starts (the static loops, the one-pulley belt) is solved cold
 //! at every point.
@@ -615,7 +616,10 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
             }
         };
         let mut status: Option<PointStatus> = None;
-        if let Some(first) = path.last().filter(|c| c.warm.is_some()) {
+        // after a point neither continuation nor a cold solve reached, the next is tried
+        // cold only (beyond an admissibility limit the halvings would fail again)
+        let after_failure = matches!(points.last(), Some(Point { status: PointStatus::Failed { .. }, .. }));
+        if let Some(first) = path.last().filter(|c| c.warm.is_some() && !after_failure) {
             // natural-parameter continuation from the last converged point
             let mut h = target - first.t;
             loop {
