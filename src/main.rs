@@ -90,6 +90,12 @@ enum Command {
     /// The scene's reference solution (the gate's BVP run) sampled where an outside code
     /// wants it: at the σ of a file, or at N equally spaced σ; as a result JSON or CSV.
     Reference(ReferenceArgs),
+    /// Parameter study: every summary output against numeric scene fields, by BVP
+    /// natural-parameter continuation (warm starts, step halving, fold detection) with
+    /// FE spot checks and the asymptotes; Markdown + SVG + JSON to -o DIR. Exit status 2
+    /// for a bad --param (nothing run or written), or when a point has no solution (the
+    /// report is still written and names it). docs/sweep.md.
+    Sweep(SweepArgs),
     /// Print the JSON Schema of the scene or the result format (shipped in schemas/).
     Schema {
         /// Which format.
@@ -245,6 +251,34 @@ struct ReferenceArgs {
     out: Option<PathBuf>,
 }
 
+#[derive(clap::Args)]
+struct SweepArgs {
+    /// Scene JSON file.
+    scene: PathBuf,
+    /// A swept field: NAME=FROM:TO[:log]:N, NAME the dotted path of a numeric scene field
+    /// (e.g. belt.shear_stiffness=1e2:1e6:log:40); N ≥ 2 values, equally spaced in the
+    /// value or its logarithm (log: both bounds > 0). Repeat for a grid: the first runs
+    /// along the continuation lines, the others make one line per combination.
+    #[arg(long = "param", value_name = "NAME=FROM:TO[:log]:N", required = true)]
+    params: Vec<String>,
+    /// FE spot checks per line, evenly spaced over its points (0 = none).
+    #[arg(long, default_value_t = 2, value_name = "K")]
+    fe_points: usize,
+    /// Elements of the FE spot checks (4 … 16384); default: the scene's `fem.elements`.
+    #[arg(long, value_name = "N")]
+    fe_elements: Option<usize>,
+    /// BVP tolerance of every point, 0 < tolerance < 1; default: the scene's
+    /// `bvp.tolerance`, else 1e-8.
+    #[arg(long)]
+    tolerance: Option<f64>,
+    /// Leave out the asymptotes (string limit, Kirchhoff limit, belt-creep closed form).
+    #[arg(long)]
+    no_asymptotes: bool,
+    /// Output directory (created if needed): sweep.md, sweep.svg, sweep.json.
+    #[arg(short = 'o', long = "out", value_name = "DIR")]
+    out: PathBuf,
+}
+
 #[derive(Clone, Copy, ValueEnum)]
 enum SchemaArg {
     /// The scene format (DESIGN.md "Scene format").
@@ -319,6 +353,7 @@ fn main() -> ExitCode {
             Ok(())
         }
         Some(Command::Reference(args)) => run_reference(&args),
+        Some(Command::Sweep(args)) => run_sweep(&args),
         Some(Command::Schema { format }) => {
             let schema = match format {
                 SchemaArg::Scene => drive::schemas::scene_schema(),
@@ -1010,6 +1045,60 @@ fn run_reference(args: &ReferenceArgs) -> Result<()> {
             eprintln!("reference written to {}", path.display());
         }
         None => print!("{text}"),
+    }
+    Ok(())
+}
+
+// ---------------------------------------------------------------------------
+// Parameter studies: sweep
+
+/// `beltcheck sweep` (docs/sweep.md): every argument checked before anything runs; the
+/// report is written even when points have no solution, and those make exit status 2.
+fn run_sweep(args: &SweepArgs) -> Result<()> {
+    use verification::sweep::{ParamRange, Sweep, SweepPlan};
+    let params: Vec<ParamRange> = args.params.iter().map(|p| p.parse()).collect::<Result<_, _>>()?;
+    if let Some(t) = args.tolerance {
+        check_tolerance("tolerance", t)?;
+    }
+    if let Some(n) = args.fe_elements {
+        check_elements("fe-elements", n)?;
+    }
+    let scene = load_scene(&args.scene)?;
+    let mut plan = SweepPlan::new(&scene, params, args.fe_points)?;
+    if let Some(t) = args.tolerance {
+        plan.tolerance = t;
+    }
+    if let Some(n) = args.fe_elements {
+        plan.fe_elements = n;
+    }
+    plan.asymptotes = !args.no_asymptotes;
+    let bar = progress_bar();
+    bar.set_prefix(scene.name.clone());
+    let update = |p: verification::sweep::Progress| {
+        bar.set_length(p.total as u64);
+        bar.set_position(p.done as u64);
+        bar.set_message(p.label);
+    };
+    let sweep = Sweep::run(&scene, &plan, &update);
+    bar.finish_and_clear();
+    // the command as given, for the report
+    let command = std::iter::once("beltcheck".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ");
+    let files = verification::sweep::write_sweep(&sweep, &command, &args.out)?;
+    println!(
+        "beltcheck sweep: {} — {} of {} BVP points solved in {:.1} s ({} thread(s)), {} FE spot check(s)",
+        scene.name,
+        sweep.solved(),
+        plan.point_count(),
+        sweep.wall_seconds,
+        sweep.threads,
+        sweep.fe_checks.len()
+    );
+    for f in &files {
+        println!("  {}", f.display());
+    }
+    let failures = sweep.failures();
+    if !failures.is_empty() {
+        anyhow::bail!("{} point(s) or check(s) without a solution:\n  {}", failures.len(), failures.join("\n  "));
     }
     Ok(())
 }

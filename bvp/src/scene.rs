@@ -8,12 +8,12 @@ use thiserror::Error;
 
 use crate::belt::{BeltError, BeltSolution, SectionLaw};
 use crate::problem::JacobianMode;
-use crate::cosserat_drive::{self, CosseratDrive};
+use crate::cosserat_drive::{self, CosseratDrive, CosseratDriveSolution};
 use crate::cosserat_hanging::{self, CosseratHanging};
 use crate::cosserat_pulley::{self, CosseratPulley, CosseratPulleySolution, Mode};
 use crate::rod_hanging::{self, RodHanging};
 use crate::solution::Stats;
-use crate::string_drive::{self, StringDrive};
+use crate::string_drive::{self, StringDrive, StringDriveSolution};
 use crate::string_hanging::{self, StringHanging};
 
 pub use crate::belt::{BeltOptions, BvpMethod};
@@ -84,6 +84,20 @@ pub struct BvpRun {
     pub options: serde_json::Value,
     /// Diagnostics worth printing (closure defect, homotopy steps, invariant drift).
     pub notes: Vec<String>,
+    /// What a nearby scene's run can start from ([`solve_scene_from`]); `None` for a
+    /// model without warm starts (the static loops and the one-pulley belt: each of
+    /// their runs starts from its closed form).
+    pub warm: Option<WarmStart>,
+}
+
+/// The solved problem of a run, kept to start the run of a nearby scene from it (a
+/// natural-parameter continuation in a scene field, `beltcheck sweep`).
+#[derive(Debug, Clone)]
+pub enum WarmStart {
+    /// A solved steady string drive.
+    StringDrive(Box<StringDriveSolution>),
+    /// A solved steady Cosserat drive.
+    CosseratDrive(Box<CosseratDriveSolution>),
 }
 
 impl BvpRun {
@@ -98,6 +112,7 @@ impl BvpRun {
             method_detail: opts.detail(),
             options,
             notes,
+            warm: None,
         }
     }
 }
@@ -224,6 +239,7 @@ fn one_pulley_run(sol: CosseratPulleySolution, opts: &BvpRunOptions, options: se
         view: Box::new(sol),
         options,
         notes,
+        warm: None,
     }
 }
 
@@ -290,47 +306,12 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
         }
         Theory::String if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
             let Contact::Coulomb(mu) = scene.effects.contact else { unreachable!("matched above") };
-            let data = string_drive_data(scene, mu);
-            let sol = string_drive::solve(&data, opts)?;
-            let (input, output, dissipation) = sol.power_balance();
-            let mut notes = vec![
-                format!("homotopy: {} continuation steps from the tight loop at rest (torque, gravity, length, speed)", sol.homotopy_steps),
-                format!(
-                    "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
-                    input - output - dissipation
-                ),
-            ];
-            if data.gravity == 0.0 {
-                if let Ok(e) = data.creep() {
-                    notes.push(format!(
-                        "belt-creep closed form: T_tight {:.9} N, T_slack {:.9} N, ω₂ {:.9} rad/s, slip arc {:.9} rad",
-                        e.tension_tight, e.tension_slack, e.driven_speed, e.slip_arc
-                    ));
-                }
-            }
-            Ok(BvpRun::of(sol, opts, options, notes))
+            let sol = string_drive::solve(&string_drive_data(scene, mu), opts)?;
+            Ok(string_drive_run(sol, opts, options))
         }
         Theory::Cosserat if matches!(scene.analysis, Analysis::Steady) && matches!(scene.effects.contact, Contact::Coulomb(_)) => {
-            let data = CosseratDrive::from_scene(scene)?;
-            let sol = cosserat_drive::solve(&data, opts)?;
-            let (input, output, dissipation) = sol.power_balance();
-            let (lambda_driver, lambda_driven) = sol.stick_stretches();
-            let c = sol.transport_rate().unwrap_or(f64::NAN);
-            let path = if sol.problem.law.starts_at_scene() {
-                direct_start("a", data.bending_stiffness)
-            } else {
-                format!("{} in log a from a₀ = {} N·m²", sol.homotopy_steps, numerics::Sig(sol.bending_start()))
-            };
-            let notes = vec![
-                format!("homotopy: the string drive ({} continuation steps), then {path}", sol.start.homotopy_steps),
-                format!(
-                    "power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)",
-                    input - output - dissipation
-                ),
-                format!("stick stretches λ₁ = {lambda_driver:.9}, λ₂ = {lambda_driven:.9} (creep ω₂/ω₁ = λ₂/λ₁)"),
-                format!("shear layer √(a/(b₂ − ρc²)) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(data.shear_layer(c))),
-            ];
-            Ok(BvpRun::of(sol, opts, options, notes))
+            let sol = cosserat_drive::solve(&CosseratDrive::from_scene(scene)?, opts)?;
+            Ok(cosserat_drive_run(sol, opts, options))
         }
         _ => Err(SceneSolveError::Unsupported(format!(
             "theory {}, analysis {}, contact {:?}: the BVP models so far are the static string, Kirchhoff rod and Cosserat rod on frictionless pulleys, and the string and the Cosserat belt in steady motion with Coulomb friction",
@@ -343,4 +324,90 @@ pub fn solve_scene(scene: &Scene, opts: &BvpRunOptions) -> Result<BvpRun, SceneS
 /// in the bending stiffness `name` (N·m²).
 fn direct_start(name: &str, bending: f64) -> String {
     format!("the scene's {name} = {} N·m² directly (its bending layer is at least the start layer)", numerics::Sig(bending))
+}
+
+/// How a drive run reached its scene, in words: its homotopy, or a warm start.
+fn path_note(homotopy: String, sol_steps: usize, warm_iterations: usize) -> String {
+    if sol_steps == 0 {
+        format!("warm start from the previous point of a continuation: {warm_iterations} Newton iterations, no homotopy")
+    } else {
+        homotopy
+    }
+}
+
+/// The run of a solved string drive, with its power balance (and the belt-creep closed
+/// form without gravity) in `notes`, kept as a warm start.
+fn string_drive_run(sol: StringDriveSolution, opts: &BvpRunOptions, options: serde_json::Value) -> BvpRun {
+    let data = sol.data;
+    let (input, output, dissipation) = sol.power_balance();
+    let homotopy = format!("homotopy: {} continuation steps from the tight loop at rest (torque, gravity, length, speed)", sol.homotopy_steps);
+    let mut notes = vec![
+        path_note(homotopy, sol.homotopy_steps, sol.stats.newton_iterations),
+        format!("power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)", input - output - dissipation),
+    ];
+    if data.gravity == 0.0 {
+        if let Ok(e) = data.creep() {
+            notes.push(format!(
+                "belt-creep closed form: T_tight {:.9} N, T_slack {:.9} N, ω₂ {:.9} rad/s, slip arc {:.9} rad",
+                e.tension_tight, e.tension_slack, e.driven_speed, e.slip_arc
+            ));
+        }
+    }
+    let warm = WarmStart::StringDrive(Box::new(sol.clone()));
+    BvpRun { warm: Some(warm), ..BvpRun::of(sol, opts, options, notes) }
+}
+
+/// The run of a solved Cosserat drive, with its power balance, stick stretches and shear
+/// layer in `notes`, kept as a warm start.
+fn cosserat_drive_run(sol: CosseratDriveSolution, opts: &BvpRunOptions, options: serde_json::Value) -> BvpRun {
+    let data = sol.data;
+    let (input, output, dissipation) = sol.power_balance();
+    let (lambda_driver, lambda_driven) = sol.stick_stretches();
+    let c = sol.transport_rate().unwrap_or(f64::NAN);
+    let path = if sol.problem.law.starts_at_scene() {
+        direct_start("a", data.bending_stiffness)
+    } else {
+        format!("{} in log a from a₀ = {} N·m²", sol.homotopy_steps, numerics::Sig(sol.bending_start()))
+    };
+    let homotopy = format!("homotopy: the string drive ({} continuation steps), then {path}", sol.start.homotopy_steps);
+    let notes = vec![
+        path_note(homotopy, sol.homotopy_steps, sol.stats.newton_iterations),
+        format!("power: input {input:.6} W = output {output:.6} W + slip dissipation {dissipation:.6} W (imbalance {:.3e} W)", input - output - dissipation),
+        format!("stick stretches λ₁ = {lambda_driver:.9}, λ₂ = {lambda_driven:.9} (creep ω₂/ω₁ = λ₂/λ₁)"),
+        format!("shear layer √(a/(b₂ − ρc²)) = {} m at the contact boundaries (no edge forces: edge pressures)", numerics::Sig(data.shear_layer(c))),
+    ];
+    let warm = WarmStart::CosseratDrive(Box::new(sol.clone()));
+    BvpRun { warm: Some(warm), ..BvpRun::of(sol, opts, options, notes) }
+}
+
+/// Solve a scene from the run of a nearby scene (natural-parameter continuation in a
+/// scene field, `beltcheck sweep`): the drive's final solve from `previous`'s solution,
+/// no homotopy ([`string_drive::solve_from`], [`cosserat_drive::solve_from`], both the
+/// shared [`crate::belt::solution::solve_from`]). Falls back to [`solve_scene`] (a cold
+/// start, its homotopy) when `previous` cannot start this scene: another model, running
+/// direction or power flow.
+///
+/// # Errors
+/// As [`solve_scene`]; a warm solve that fails is an error (the caller decides whether
+/// to retry from closer, or cold).
+pub fn solve_scene_from(scene: &Scene, opts: &BvpRunOptions, previous: &WarmStart) -> Result<BvpRun, SceneSolveError> {
+    if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Bvp) {
+        return Err(e.into());
+    }
+    let options = serde_json::to_value(opts).unwrap_or(serde_json::Value::Null);
+    let steady = scene.drive.layout == Layout::TwoPulley && matches!(scene.analysis, Analysis::Steady);
+    match (previous, scene.belt.theory, scene.effects.contact.clone()) {
+        (WarmStart::StringDrive(p), Theory::String, Contact::Coulomb(mu)) if steady => {
+            if let Some(solved) = string_drive::solve_from(&string_drive_data(scene, mu), opts, p) {
+                return Ok(string_drive_run(solved?, opts, options));
+            }
+        }
+        (WarmStart::CosseratDrive(p), Theory::Cosserat, Contact::Coulomb(_)) if steady => {
+            if let Some(solved) = cosserat_drive::solve_from(&CosseratDrive::from_scene(scene)?, opts, p) {
+                return Ok(cosserat_drive_run(solved?, opts, options));
+            }
+        }
+        _ => {}
+    }
+    solve_scene(scene, opts)
 }

@@ -33,6 +33,7 @@ pub mod reference;
 pub mod report;
 pub mod run;
 pub mod study;
+pub mod sweep;
 pub mod table;
 
 use drive::summary::Summary;

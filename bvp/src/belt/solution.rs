@@ -145,6 +145,45 @@ pub fn solve<L: SectionLaw>(
         Ok(s) => s,
         Err(e) => return Err(failure(e, last_rejection.borrow().as_deref())),
     };
+    finish(data, problem, scales, pulleys, start, solved, opts)
+}
+
+/// Solve a belt problem from a converged solution of a nearby scene (a *warm start*, the
+/// step of a natural-parameter continuation in a scene field, `beltcheck sweep`): the
+/// guess `run.guess` must be a solution at η = 1 of a problem with the same topology,
+/// power flow and scales (the caller builds `run.problem` with the previous solution's
+/// scales). No homotopy: the final solve at `opts` from the guess on its mesh, then the
+/// acceptance test of every homotopy point ([`on_branch`]: a warm solve that converged
+/// onto another branch, e.g. one that lost a stick arc, is refused with the reason), the
+/// law's balance check and the contact checks, as [`solve`].
+///
+/// # Errors
+/// [`BeltError::Solver`] (stage "warm start …") when the final solve fails;
+/// [`BeltError::ContactViolated`] when the solution left the physical branch; the
+/// balance and contact errors of [`solve`].
+pub fn solve_from<L: SectionLaw>(run: Run<'_, L>, opts: &BeltOptions, clock: Instant) -> Result<BeltSolution<L>, BeltError> {
+    let Run { data, problem, scales, pulleys, guess, start } = run;
+    let guess = Solution { eta: 1.0, ..guess.clone() };
+    let solution = run::final_solve(&problem, &guess, opts)
+        .map_err(|cause| BeltError::Solver { stage: "warm start from the previous point of the continuation", cause })?;
+    on_branch(&problem, &solution, scales.force).map_err(BeltError::ContactViolated)?;
+    let mut stats = Stats::default();
+    stats.close_with(&solution.stats, clock);
+    let solved = run::Solved { solution, stats, homotopy_steps: 0 };
+    finish(data, problem, scales, pulleys, start, solved, opts)
+}
+
+/// The solution of a solved run with its σ map, after the law's balance check and the
+/// contact checks.
+fn finish<L: SectionLaw>(
+    data: L::Data,
+    problem: BeltProblem<L>,
+    scales: Scales,
+    pulleys: Pulleys,
+    start: L::Start,
+    solved: run::Solved,
+    opts: &BeltOptions,
+) -> Result<BeltSolution<L>, BeltError> {
     let contour = Contour::new(pulleys.radius, pulleys.centre_distance).expect("validated geometry");
     let mut sol = BeltSolution {
         data,

@@ -188,6 +188,34 @@ pub fn solve(data: &CosseratDrive, opts: &BeltOptions) -> Result<CosseratDriveSo
     Ok(sol)
 }
 
+/// Solve a Cosserat drive from the solution `previous` of a nearby drive (a warm start,
+/// [`solution::solve_from`]): the scene's a directly (no path in a) in `previous`'s
+/// scales, on its topology. The solution keeps `previous`'s string drive as its `start`
+/// (the string solution the continuation began from, not one of this scene). `None` when
+/// `previous` cannot start it: another running direction or power flow.
+pub fn solve_from(data: &CosseratDrive, opts: &BeltOptions, previous: &CosseratDriveSolution) -> Option<Result<CosseratDriveSolution, BeltError>> {
+    let clock = Instant::now();
+    let scales = string_drive::warm_scales(&data.drive, previous.scales);
+    let string = string_drive::scaled_problem_in(&data.drive, scales);
+    if string.topology != previous.problem.topology || string.law.flow != previous.problem.law.string.flow {
+        return None;
+    }
+    let bending = data.bending_stiffness / (scales.force * scales.length * scales.length);
+    let law = ScaledCosseratDrive { string: string.law, shear: data.shear_stiffness / scales.force, bending_start: bending, bending };
+    let solved = validate(data, opts).and_then(|()| {
+        let run = Run {
+            data: *data,
+            problem: BeltProblem::new(string.topology, law),
+            scales,
+            pulleys: data.drive.pulleys(),
+            guess: &previous.solution,
+            start: previous.start.clone(),
+        };
+        solution::solve_from(run, opts, clock)
+    });
+    Some(solved.and_then(|sol| sol.check_admissible().map(|()| sol)))
+}
+
 /// The named error of a stalled homotopy in log a: the friction capacity or a reversed
 /// slip when the last rejected point lost its stick or slip arc, else the bending
 /// stiffness reached and the layers that make it hard.

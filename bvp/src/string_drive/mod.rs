@@ -129,12 +129,34 @@ fn validate(d: &StringDrive) -> Result<(), BeltError> {
 
 /// The scaled problem and its scales (docs/string-drive.md, "Scaling and homotopy").
 pub fn scaled_problem(d: &StringDrive) -> (BeltProblem<ScaledStringDrive>, Scales) {
-    let h = d.centre_distance;
+    let scales = scales(d);
+    (scaled_problem_in(d, scales), scales)
+}
+
+/// The scales of a drive: H, F_ref = max(ρgL, EA(L_geom/L − 1), |M₂ + d₂ω₁|/R),
+/// V = √(F_ref/ρ).
+fn scales(d: &StringDrive) -> Scales {
+    let weight_total = d.mass_per_length * d.gravity * d.length;
+    let target = d.axial_stiffness * (d.geometric_length() / d.length - 1.0);
+    let force = weight_total.max(target).max(d.net_load().abs() / d.radius);
+    Scales { length: d.centre_distance, force, speed: (force / d.mass_per_length).sqrt() }
+}
+
+/// The scales of a warm start of drive `d` from a solution in scales `previous`: its
+/// force scale F_ref (so the previous scaled forces, moments and transport rate are a
+/// guess of the same size), the length scale H and V = √(F_ref/ρ) of `d` (the scaled
+/// law places the pulleys at x = ∓1/2 and writes χ/F_ref = c̃²).
+pub fn warm_scales(d: &StringDrive, previous: Scales) -> Scales {
+    Scales { length: d.centre_distance, force: previous.force, speed: (previous.force / d.mass_per_length).sqrt() }
+}
+
+/// The scaled problem of a drive in given scales (those of [`scaled_problem`], or a
+/// nearby scene's for a warm start, [`solve_from`]).
+pub fn scaled_problem_in(d: &StringDrive, scales: Scales) -> BeltProblem<ScaledStringDrive> {
+    let Scales { length: h, force, speed } = scales;
     let weight_total = d.mass_per_length * d.gravity * d.length;
     let target = d.axial_stiffness * (d.geometric_length() / d.length - 1.0);
     let torque = d.net_load().abs();
-    let force = weight_total.max(target).max(torque / d.radius);
-    let speed = (force / d.mass_per_length).sqrt();
     let capacity_tension = 2.0 * torque / (d.radius * (1.0 - (-d.friction * PI).exp()));
     let t0 = weight_total.max(target).max(capacity_tension);
     let length_start = if t0 == target { d.length } else { d.geometric_length() / (1.0 + t0 / d.axial_stiffness) };
@@ -156,7 +178,7 @@ pub fn scaled_problem(d: &StringDrive) -> (BeltProblem<ScaledStringDrive>, Scale
     // net load while the driver is at rest (law docs)
     let law = if d.driven_torque * d.net_load() < 0.0 { ScaledStringDrive { preload: law.damping * law.driver_speed, ..law } } else { law };
     let topology = Topology::two_pulley_running(ContactModel::Coulomb, d.direction());
-    (BeltProblem::new(topology, law), Scales { length: h, force, speed })
+    BeltProblem::new(topology, law)
 }
 
 /// The exact solution at η = 0: the tight weightless loop at rest with length L₀ —
@@ -170,12 +192,7 @@ pub fn tight_start(problem: &BeltProblem<ScaledStringDrive>, nodes: usize) -> So
 /// Solve a `string-drive` scene from its data alone.
 pub fn solve(data: &StringDrive, opts: &BeltOptions) -> Result<StringDriveSolution, BeltError> {
     let clock = Instant::now();
-    validate(data)?;
-    opts.check_tolerance()?;
-    if data.gravity == 0.0 {
-        // Exact no-solution cases of belt-creep theory, before any iteration.
-        data.creep()?;
-    }
+    check(data, opts)?;
     let (problem, scales) = scaled_problem(data);
     let guess = tight_start(&problem, 5);
     let run = Run { data: *data, problem, scales, pulleys: data.pulleys(), guess: &guess, start: () };
@@ -183,6 +200,34 @@ pub fn solve(data: &StringDrive, opts: &BeltOptions) -> Result<StringDriveSoluti
         StageError::Homotopy(cause) => homotopy_failure(data, cause, last_rejection),
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
     })
+}
+
+/// The data and the options valid, and no exact no-solution case of belt-creep theory
+/// (without gravity), before any iteration.
+fn check(data: &StringDrive, opts: &BeltOptions) -> Result<(), BeltError> {
+    validate(data)?;
+    opts.check_tolerance()?;
+    if data.gravity == 0.0 {
+        data.creep()?;
+    }
+    Ok(())
+}
+
+/// Solve a drive from the solution `previous` of a nearby drive (a warm start:
+/// [`solution::solve_from`] in `previous`'s scales). `None` when `previous` cannot start
+/// it: another running direction or power flow (another topology or slip signs).
+pub fn solve_from(data: &StringDrive, opts: &BeltOptions, previous: &StringDriveSolution) -> Option<Result<StringDriveSolution, BeltError>> {
+    let clock = Instant::now();
+    let scales = warm_scales(data, previous.scales);
+    let problem = scaled_problem_in(data, scales);
+    if problem.topology != previous.problem.topology || problem.law.flow != previous.problem.law.flow {
+        return None;
+    }
+    if let Err(e) = check(data, opts) {
+        return Some(Err(e));
+    }
+    let run = Run { data: *data, problem, scales, pulleys: data.pulleys(), guess: &previous.solution, start: () };
+    Some(solution::solve_from(run, opts, clock))
 }
 
 /// The named error of a homotopy that stalled: the friction capacity or a reversed slip
