@@ -33,6 +33,7 @@ use crate::error::{check_fraction, BvpError};
 use crate::newton::{self, NewtonOptions, NewtonReport, NewtonSystem};
 use crate::problem::{JacobianMode, Problem};
 use crate::solution::{Solution, Stats};
+use numerics::phases::{self, timed, Phase};
 use condensed::CondensedLu;
 use discretisation::{validate_solution, Discretisation};
 use std::time::Instant;
@@ -359,7 +360,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         };
         stats.newton_iterations += report.iterations;
         stats.jacobian_evaluations += report.iterations;
-        let (rho, bc) = match disc.residual_norms(&z, eta) {
+        let (rho, bc) = match timed(Phase::Residuals, || disc.residual_norms(&z, eta)) {
             Ok(v) => v,
             Err(e) => return accepted.ok_or(e),
         };
@@ -377,13 +378,18 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 });
             }
             if opts.remove_nodes && passes < opts.max_refinements {
-                let coarse: Vec<Option<Vec<f64>>> =
-                    disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::coarsen(m, r, tol, q)).collect();
+                let coarse: Vec<Option<Vec<f64>>> = timed(Phase::MeshAdaptation, || {
+                    disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::coarsen(m, r, tol, q)).collect()
+                });
                 if coarse.iter().any(Option::is_some) {
                     let meshes =
                         coarse.into_iter().zip(&disc.meshes).map(|(c, m)| c.unwrap_or_else(|| m.clone())).collect();
-                    let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-                    corrector.transfer(&disc, &z, eta, &new_disc)?;
+                    let (new_disc, new_z) = timed(Phase::MeshAdaptation, || -> Result<_, BvpError> {
+                        let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
+                        corrector.transfer(&disc, &z, eta, &new_disc)?;
+                        Ok((new_disc, new_z))
+                    })?;
+                    phases::count(phases::Step::MeshRefinement, 1);
                     accepted = Some(Adapted { disc, z, eta, max_residual });
                     disc = new_disc;
                     z = new_z;
@@ -397,7 +403,8 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         if let Some(a) = accepted {
             return Ok(a);
         }
-        let meshes: Vec<Vec<f64>> = disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::refine(m, r, tol, q)).collect();
+        let meshes: Vec<Vec<f64>> =
+            timed(Phase::MeshAdaptation, || disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::refine(m, r, tol, q)).collect());
         let nodes: usize = meshes.iter().map(Vec::len).sum();
         if nodes > opts.max_nodes {
             return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
@@ -405,8 +412,12 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         if passes >= opts.max_refinements {
             return Err(BvpError::RefinementLimit { passes, residual: max_rho, tolerance: tol });
         }
-        let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-        corrector.transfer(&disc, &z, eta, &new_disc)?;
+        let (new_disc, new_z) = timed(Phase::MeshAdaptation, || -> Result<_, BvpError> {
+            let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
+            corrector.transfer(&disc, &z, eta, &new_disc)?;
+            Ok((new_disc, new_z))
+        })?;
+        phases::count(phases::Step::MeshRefinement, 1);
         disc = new_disc;
         z = new_z;
         passes += 1;
