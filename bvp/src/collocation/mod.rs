@@ -329,6 +329,23 @@ pub(crate) fn remesh<'a, P: Problem>(
     Ok((new, z_new))
 }
 
+/// One mesh adaptation pass of [`adapt`]: the point carried over to `meshes`
+/// ([`remesh`]) and the corrector's data with it, timed and counted as mesh adaptation.
+fn adapted_mesh<'a, P: Problem, C: Corrector<P>>(
+    disc: &Discretisation<'a, P>,
+    z: &[f64],
+    eta: f64,
+    meshes: Vec<Vec<f64>>,
+    corrector: &mut C,
+) -> Result<(Discretisation<'a, P>, Vec<f64>), BvpError> {
+    timed(Phase::MeshAdaptation, || {
+        let (new_disc, new_z) = remesh(disc, z, eta, meshes)?;
+        corrector.transfer(disc, z, eta, &new_disc)?;
+        phases::count(phases::Step::MeshRefinement, 1);
+        Ok((new_disc, new_z))
+    })
+}
+
 /// The adaptive loop: correct, estimate, insert or remove nodes, repeat.
 ///
 /// Removal is tried only on a mesh that meets the tolerance; if the coarser mesh fails
@@ -384,12 +401,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 if coarse.iter().any(Option::is_some) {
                     let meshes =
                         coarse.into_iter().zip(&disc.meshes).map(|(c, m)| c.unwrap_or_else(|| m.clone())).collect();
-                    let (new_disc, new_z) = timed(Phase::MeshAdaptation, || -> Result<_, BvpError> {
-                        let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-                        corrector.transfer(&disc, &z, eta, &new_disc)?;
-                        Ok((new_disc, new_z))
-                    })?;
-                    phases::count(phases::Step::MeshRefinement, 1);
+                    let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
                     accepted = Some(Adapted { disc, z, eta, max_residual });
                     disc = new_disc;
                     z = new_z;
@@ -412,12 +424,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         if passes >= opts.max_refinements {
             return Err(BvpError::RefinementLimit { passes, residual: max_rho, tolerance: tol });
         }
-        let (new_disc, new_z) = timed(Phase::MeshAdaptation, || -> Result<_, BvpError> {
-            let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-            corrector.transfer(&disc, &z, eta, &new_disc)?;
-            Ok((new_disc, new_z))
-        })?;
-        phases::count(phases::Step::MeshRefinement, 1);
+        let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
         disc = new_disc;
         z = new_z;
         passes += 1;
