@@ -339,6 +339,11 @@ struct SolveArgs {
     /// at most 100000).
     #[arg(long, default_value_t = 200)]
     fields: usize,
+    /// Also print where the wall time went: seconds and share per phase (assembly,
+    /// symbolic and numeric LU, solves, residuals, integration, mesh adaptation,
+    /// fitting, other) and the step counts — the result's `cost.phases`.
+    #[arg(long, short)]
+    verbose: bool,
 }
 
 fn main() -> ExitCode {
@@ -470,11 +475,8 @@ fn chosen_method(scene: &Scene, flags: MethodFlags<'_>) -> Result<(Box<dyn Metho
 
 /// Solve and time one run (the harness's clock, around the whole solve).
 fn solve_once(scene: &Scene, method: &dyn Method, disc: Discretisation) -> Result<Solved> {
-    let start = std::time::Instant::now();
     // the method's typed error stays the source (`{:#}` prints its chain)
-    let mut solved = method.solve(scene, disc).map_err(|e| anyhow::Error::new(e).context(method.label()))?;
-    solved.cost.wall_seconds = start.elapsed().as_secs_f64();
-    Ok(solved)
+    verification::run::solve_timed(method, scene, disc).map_err(|e| anyhow::Error::new(e).context(method.label()))
 }
 
 /// The glossary of the summary: one line a quantity, from the typed ids of
@@ -521,6 +523,9 @@ fn run_solve(args: &SolveArgs) -> Result<()> {
     let run = solve_once(&scene, method.as_ref(), disc)?;
     let label = format!("{} ({disc})", method.label());
     print_run(&scene, &label, &run);
+    if args.verbose {
+        print_phases(&run.cost);
+    }
     if let Some(n) = &run.not_steady {
         eprintln!("warning: {n}");
     }
@@ -569,6 +574,7 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
             newton_iterations: run.cost.newton_iterations,
             unknowns: run.cost.unknowns,
             mesh_nodes: run.cost.mesh_nodes.or(run.cost.elements.map(|e| e + 1)),
+            phases: run.cost.cost_phases(),
         },
         fields,
         options: Some(run.options.clone()),
@@ -708,6 +714,24 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         (None, None) => String::new(),
     };
     println!("cost    {:.4} s wall, {} Newton iterations, {} unknowns, {size}", c.wall_seconds, c.newton_iterations, c.unknowns);
+}
+
+/// The `--verbose` table of where the wall time went (`cost.phases`): the phases that
+/// took any time, seconds and share of the wall, then the step counts.
+fn print_phases(cost: &verification::run::RunCost) {
+    let Some(p) = cost.cost_phases() else { return };
+    let wall = cost.wall_seconds;
+    println!("time    phase                      seconds   share");
+    for (name, seconds) in p.named().into_iter().filter(|(_, s)| *s > 0.0) {
+        println!("        {:<24} {seconds:>9.4} {:>6.1}%", name.replace('_', " "), 100.0 * seconds / wall.max(f64::MIN_POSITIVE));
+    }
+    if p.fitting_passes > 0 {
+        println!("        {:<24} {:>9.4} {:>6.1}%   (its Newton solves included)", "fitting, inclusive", p.fitting_total, 100.0 * p.fitting_total / wall.max(f64::MIN_POSITIVE));
+    }
+    println!(
+        "steps   {} Newton iterations, {} continuation steps, {} mesh refinements, {} fitting passes",
+        cost.newton_iterations, p.continuation_steps, p.mesh_refinements, p.fitting_passes
+    );
 }
 
 fn print_agreement(a: &Summary, b: &Summary) {

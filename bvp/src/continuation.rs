@@ -876,6 +876,7 @@ fn locate_fold<P: Problem>(
             });
         }
         total.refinements += 1;
+        numerics::phases::count(numerics::phases::Step::MeshRefinement, 1);
         disc = disc.with_meshes(meshes)?;
     }
     Err(fail(format!("no mesh met the tolerance in {} refinements", opts.max_refinements)))

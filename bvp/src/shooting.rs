@@ -76,6 +76,7 @@ use std::time::Instant;
 use diffsol::{OdeBuilder, OdeSolverMethod, OdeSolverStopReason};
 use nalgebra::{DMatrix, DVector};
 use numerics::newton::scaled_norm;
+use numerics::phases::{self, timed, Phase};
 
 use crate::error::{check_fraction, BvpError};
 use crate::jacobian::{bc_jacobian, rhs_jacobian};
@@ -515,27 +516,29 @@ fn sweep<P: Problem>(
 ) -> Result<Sweep, BvpError> {
     counters.sweeps += 1;
     let p = &u[layout.p_offset..];
-    (0..layout.dims.len())
-        .map(|k| {
-            (0..layout.m)
-                .map(|j| {
-                    let s = &u[layout.node(k, j)];
-                    integrate_interval(
-                        problem,
-                        opts,
-                        k,
-                        layout.x(j),
-                        layout.x(j + 1),
-                        s,
-                        p,
-                        eta,
-                        with_sens,
-                        rhs_count,
-                    )
-                })
-                .collect()
-        })
-        .collect()
+    timed(Phase::Integration, || {
+        (0..layout.dims.len())
+            .map(|k| {
+                (0..layout.m)
+                    .map(|j| {
+                        let s = &u[layout.node(k, j)];
+                        integrate_interval(
+                            problem,
+                            opts,
+                            k,
+                            layout.x(j),
+                            layout.x(j + 1),
+                            s,
+                            p,
+                            eta,
+                            with_sens,
+                            rhs_count,
+                        )
+                    })
+                    .collect()
+            })
+            .collect()
+    })
 }
 
 /// Residual F(u) (length N) and the scaled defect d(u) of the module documentation.
@@ -744,7 +747,7 @@ pub fn solve<P: Problem>(
     // sensitivities when `sens`.
     let sweep_at = |u: &[f64], sens: bool, counters: &mut Counters| sweep(problem, &layout, u, eta, opts, sens, &rhs_count, counters);
     let mut flows = sweep_at(&u, true, &mut counters)?;
-    let (mut f, mut defect) = residual(problem, &layout, &u, eta, &flows);
+    let (mut f, mut defect) = timed(Phase::Residuals, || residual(problem, &layout, &u, eta, &flows));
     if !defect.is_finite() {
         return Err(BvpError::NonFinite {
             what: "shooting residual at the initial guess".into(),
@@ -763,9 +766,10 @@ pub fn solve<P: Problem>(
         if !have_sens {
             flows = sweep_at(&u, true, &mut counters)?;
         }
-        let jac = jacobian(problem, &layout, &u, eta, &flows, opts.jacobian);
+        let jac = timed(Phase::Assembly, || jacobian(problem, &layout, &u, eta, &flows, opts.jacobian));
         counters.jacobians += 1;
-        let lu = jac.lu();
+        phases::count(phases::Step::NewtonIteration, 1);
+        let lu = timed(Phase::NumericFactorisation, || jac.lu());
         let diag = lu.u().diagonal();
         let (dmin, dmax) = diag.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), v| {
             (a.min(v.abs()), b.max(v.abs()))
@@ -781,7 +785,7 @@ pub fn solve<P: Problem>(
             });
         }
         let solve_lu = |rhs: &[f64]| -> Option<Vec<f64>> {
-            lu.solve(&DVector::from_column_slice(rhs))
+            timed(Phase::LinearSolves, || lu.solve(&DVector::from_column_slice(rhs)))
                 .map(|x| x.iter().map(|v| -v).collect())
         };
         let delta = solve_lu(&f).ok_or_else(|| BvpError::SingularJacobian {
@@ -796,7 +800,7 @@ pub fn solve<P: Problem>(
             match sweep_at(&trial, false, &mut counters) {
                 Ok(trial_flows) => {
                     last_failure = None;
-                    let (ft, dt) = residual(problem, &layout, &trial, eta, &trial_flows);
+                    let (ft, dt) = timed(Phase::Residuals, || residual(problem, &layout, &trial, eta, &trial_flows));
                     if dt.is_finite() {
                         let simplified = solve_lu(&ft)
                             .map(|d| scaled_norm(&d, &u))

@@ -496,6 +496,70 @@ pub struct Cost {
     /// Mesh nodes of the final mesh (collocation nodes or FE nodes), if meaningful.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mesh_nodes: Option<usize>,
+    /// Where the wall time went, per phase, with the step counts (optional; absent in
+    /// results written before it existed or by tools that do not measure it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phases: Option<CostPhases>,
+}
+
+/// The wall time of a run by phase (`cost.phases`), s. Each phase's seconds are
+/// *exclusive* — a phase nested in another (the numeric LU inside a Newton iteration's
+/// assembly, the Newton solves inside a fitting pass) is not counted in the outer one —
+/// so the phases and `other` add up to `wall_seconds`. `fitting_total` alone is
+/// inclusive. Phases a method does not have are 0 (shooting has no symbolic LU, an FE
+/// solve no integration of flows).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct CostPhases {
+    /// Jacobian assembly (element or interval evaluations, scatter, the collocation's
+    /// condensation), s.
+    pub assembly: f64,
+    /// Symbolic sparse LU (ordering, elimination structure; once per pattern), s.
+    pub symbolic_factorisation: f64,
+    /// Numeric LU, s.
+    pub numeric_factorisation: f64,
+    /// Triangular solves with the factorised Jacobian, s.
+    pub linear_solves: f64,
+    /// Residual evaluations of Newton trials and the error estimate of mesh adaptation, s.
+    pub residuals: f64,
+    /// Integration of the flows (shooting), s.
+    pub integration: f64,
+    /// Mesh adaptation: new meshes and the transfer of the solution onto them, s.
+    pub mesh_adaptation: f64,
+    /// Mesh fitting (FE) outside its Newton solves: locating breakpoints, building the
+    /// fitted mesh, transferring the state, s.
+    pub fitting: f64,
+    /// The rest of the wall time (set-up, continuation bookkeeping, summary, sampling), s.
+    pub other: f64,
+    /// Wall time inside the mesh fitting, its Newton solves included, s (inclusive).
+    pub fitting_total: f64,
+    /// Accepted continuation (homotopy) steps.
+    pub continuation_steps: usize,
+    /// Mesh adaptation passes (collocation).
+    pub mesh_refinements: usize,
+    /// Accepted mesh fitting passes (FE).
+    pub fitting_passes: usize,
+}
+
+impl CostPhases {
+    /// The exclusive phases with their names, `other` last, in the order of the JSON.
+    pub fn named(&self) -> [(&'static str, f64); 9] {
+        [
+            ("assembly", self.assembly),
+            ("symbolic_factorisation", self.symbolic_factorisation),
+            ("numeric_factorisation", self.numeric_factorisation),
+            ("linear_solves", self.linear_solves),
+            ("residuals", self.residuals),
+            ("integration", self.integration),
+            ("mesh_adaptation", self.mesh_adaptation),
+            ("fitting", self.fitting),
+            ("other", self.other),
+        ]
+    }
+
+    /// The phase with the most seconds, `other` included (`None` if all are 0).
+    pub fn dominant(&self) -> Option<(&'static str, f64)> {
+        self.named().into_iter().filter(|(_, s)| *s > 0.0).max_by(|a, b| a.1.total_cmp(&b.1))
+    }
 }
 
 /// One run = scene + method + discretisation (DESIGN.md "Result format").
@@ -549,6 +613,13 @@ impl RunResult {
                 quantity: "cost.wall_seconds".into(),
                 value: self.cost.wall_seconds,
             });
+        }
+        if let Some(p) = &self.cost.phases {
+            let named = p.named();
+            let bad = named.iter().copied().chain([("fitting_total", p.fitting_total)]).find(|(_, v)| !v.is_finite());
+            if let Some((name, value)) = bad {
+                return Err(ResultError::NotFinite { quantity: format!("cost.phases.{name}"), value });
+            }
         }
         if let Some(f) = &self.fields {
             f.check()?;

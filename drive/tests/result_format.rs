@@ -1,7 +1,7 @@
 //! Result JSON contract (DESIGN.md "Result format"): keys and nesting exactly as
 //! documented, absent quantities absent, round trip, no NaN written.
 
-use drive::{Cost, Fields, Frame, History, PulleySummary, ResultError, RunResult, Summary, SurfaceFields, TimeSeries, SCALAR_NAMES};
+use drive::{Cost, CostPhases, Fields, Frame, History, PulleySummary, ResultError, RunResult, Summary, SurfaceFields, TimeSeries, SCALAR_NAMES};
 use serde_json::{json, Value};
 
 fn full_summary() -> Summary {
@@ -23,6 +23,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
             newton_iterations: 12,
             unknowns: 3400,
             mesh_nodes: None,
+            phases: None,
         },
         fields,
         options: None,
@@ -30,6 +31,26 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         history: None,
         discretisation: None,
         warnings: Vec::new(),
+    }
+}
+
+/// A breakdown of the 0.25 s of [`result`]: every phase non-zero, so that a field the
+/// round trip dropped or renamed would show.
+fn phases() -> CostPhases {
+    CostPhases {
+        assembly: 0.08,
+        symbolic_factorisation: 0.01,
+        numeric_factorisation: 0.03,
+        linear_solves: 0.02,
+        residuals: 0.04,
+        integration: 0.005,
+        mesh_adaptation: 0.015,
+        fitting: 0.01,
+        other: 0.04,
+        fitting_total: 0.12,
+        continuation_steps: 7,
+        mesh_refinements: 3,
+        fitting_passes: 4,
     }
 }
 
@@ -172,6 +193,7 @@ fn absent_quantities_are_absent_not_zero_or_null() {
     );
     assert!(v["fields"].get("moment").is_none());
     assert!(v["cost"].get("mesh_nodes").is_none());
+    assert!(v["cost"].get("phases").is_none());
     assert!(v.get("options").is_none());
     // flattened names for the harness
     let flat = result(
@@ -193,8 +215,13 @@ fn absent_quantities_are_absent_not_zero_or_null() {
 fn round_trip() {
     let mut r = result(full_summary(), None);
     r.cost.mesh_nodes = Some(801);
+    r.cost.phases = Some(phases());
     r.options = Some(json!({"tolerance": 1e-8, "scheme": "gauss6"}));
-    let back = RunResult::from_json_str(&r.to_json_pretty().unwrap()).unwrap();
+    let text = r.to_json_pretty().unwrap();
+    let v: Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(v["cost"]["phases"]["numeric_factorisation"], json!(0.03));
+    assert_eq!(v["cost"]["phases"]["fitting_passes"], json!(4));
+    let back = RunResult::from_json_str(&text).unwrap();
     assert_eq!(back, r);
     let flat = back.summary.scalars();
     assert_eq!(
@@ -239,6 +266,10 @@ fn nan_is_never_written() {
         ),
         "{e}"
     );
+
+    let mut r = result(Summary::default(), None);
+    r.cost.phases = Some(CostPhases { linear_solves: f64::INFINITY, ..phases() });
+    assert_eq!(r.to_json_pretty().unwrap_err().to_string(), "result quantity `cost.phases.linear_solves` is not finite (inf)");
 
     let mut r = result(Summary::default(), None);
     r.cost.wall_seconds = f64::NAN;

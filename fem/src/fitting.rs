@@ -27,6 +27,7 @@
 //! - at most `max_passes` refit attempts.
 
 use drive::contour::Contour;
+use numerics::phases::{self, timed, Phase};
 
 use crate::error::FemError;
 use crate::mesh::{Grading, Mesh};
@@ -227,7 +228,17 @@ pub fn periodic_diff(a: f64, b: f64, period: f64) -> f64 {
 
 /// Fit the mesh of `problem` by `rules` (module documentation). The accepted solution
 /// at the end is the fitted one (or the best, [`FitRules::keep_best`]).
+/// Timed as [`Phase::Fitting`] (its Newton solves in their own phases), its accepted
+/// passes counted.
 pub fn fit<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Failure> {
+    timed(Phase::Fitting, || {
+        let out = fit_passes(problem, rules);
+        phases::count(phases::Step::FittingPass, out.passes);
+        out
+    })
+}
+
+fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Failure> {
     let contour = *problem.mesh().contour();
     let period = contour.length();
     // the positions the accepted mesh was fitted to (none at the start and after a

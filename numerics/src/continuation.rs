@@ -210,6 +210,7 @@ impl StepControl {
     /// iterations, and set the next step by the growth rule.
     pub fn accept(&mut self, done: f64, iterations: usize) {
         self.accepted += 1;
+        crate::phases::count(crate::phases::Step::ContinuationStep, 1);
         let o = &self.opts;
         self.step = match o.growth {
             Growth::Quick { fast, factor } => {

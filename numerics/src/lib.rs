@@ -27,6 +27,9 @@
 //!   [`continuation::Branch`] with fold detection, and fold location by Brent's method.
 //!   The caller keeps its predictor, corrector and mesh transfer; what moves here is the
 //!   part every continuation repeats.
+//! - [`phases`]: where a solve's time goes — seconds per phase (assembly, symbolic and
+//!   numeric LU, solves, residuals, integration, mesh adaptation, fitting) and work
+//!   counts, marked by every solver and collected by the caller around a whole solve.
 //!
 //! Errors are typed enums carrying the numbers; the linear solvers are generic over the
 //! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
@@ -35,6 +38,7 @@ pub mod continuation;
 pub mod fmt;
 pub mod linear;
 pub mod newton;
+pub mod phases;
 pub mod quadrature;
 pub mod scalar;
 

@@ -16,6 +16,7 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::MatMut;
 use thiserror::Error;
+use crate::phases::{timed, Phase};
 
 /// Why a sparse factorisation or solve failed.
 #[derive(Debug, Clone, PartialEq, Error)]
@@ -113,10 +114,12 @@ impl<E: From<LinearError>> SparseLu<E> {
     pub fn set_pattern(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), E> {
         check_pattern(n, rows, cols)?;
         let pairs: Vec<Pair<usize, usize>> = rows.iter().zip(cols).map(|(&r, &c)| Pair::new(r, c)).collect();
-        let (sym, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .map_err(|e| LinearError::InvalidPattern { n, detail: format!("{e:?}") })?;
-        let symbolic = SymbolicLu::try_new(sym.as_ref())
-            .map_err(|e| LinearError::Singular { detail: format!("symbolic LU: {e:?}") })?;
+        let (sym, argsort, symbolic) = timed(Phase::SymbolicFactorisation, || -> Result<_, LinearError> {
+            let (sym, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+                .map_err(|e| LinearError::InvalidPattern { n, detail: format!("{e:?}") })?;
+            let symbolic = SymbolicLu::try_new(sym.as_ref()).map_err(|e| LinearError::Singular { detail: format!("symbolic LU: {e:?}") })?;
+            Ok((sym, argsort, symbolic))
+        })?;
         self.symbolic_factorisations += 1;
         self.n = n;
         self.entries = rows.len();
@@ -138,11 +141,13 @@ impl<E: From<LinearError>> SparseLu<E> {
         if values.len() != self.entries {
             return Err(LinearError::DimensionMismatch { what: "value list", expected: self.entries, got: values.len() }.into());
         }
-        let mat = SparseColMat::new_from_argsort(sym.clone(), argsort, values)
-            .map_err(|e| LinearError::InvalidPattern { n: self.n, detail: format!("{e:?}") })?;
         self.lu = None;
-        let lu = Lu::try_new_with_symbolic(symbolic.clone(), mat.as_ref())
-            .map_err(|e| LinearError::Singular { detail: format!("{e:?}") })?;
+        let n = self.n;
+        let lu = timed(Phase::NumericFactorisation, || -> Result<_, LinearError> {
+            let mat = SparseColMat::new_from_argsort(sym.clone(), argsort, values)
+                .map_err(|e| LinearError::InvalidPattern { n, detail: format!("{e:?}") })?;
+            Lu::try_new_with_symbolic(symbolic.clone(), mat.as_ref()).map_err(|e| LinearError::Singular { detail: format!("{e:?}") })
+        })?;
         self.numeric_factorisations += 1;
         self.lu = Some(lu);
         Ok(())
@@ -158,7 +163,7 @@ impl<E: From<LinearError>> SparseLu<E> {
         if b.len() != self.n {
             return Err(LinearError::DimensionMismatch { what: "right-hand side", expected: self.n, got: b.len() }.into());
         }
-        lu.solve_in_place(MatMut::from_column_major_slice_mut(b, self.n, 1));
+        timed(Phase::LinearSolves, || lu.solve_in_place(MatMut::from_column_major_slice_mut(b, self.n, 1)));
         if first_non_finite(b).is_some() {
             return Err(LinearError::NonFiniteSolution.into());
         }

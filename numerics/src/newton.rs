@@ -122,6 +122,7 @@
 use thiserror::Error;
 
 use crate::linear::{LinearError, TripletLu};
+use crate::phases::{self, timed, Phase};
 
 /// Armijo's constant c of the default backtracking test m(z + αΔz) ≤ (1 − cα) m(z).
 pub const SUFFICIENT_DECREASE: f64 = 1e-4;
@@ -518,7 +519,8 @@ impl<P: NewtonProblem> Run<'_, P> {
     fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), NewtonError<P::Error>> {
         self.stats.residual_evaluations += 1;
         let iteration = self.stats.iterations;
-        self.problem.residual(z, r).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Residual, error })
+        let problem = &mut *self.problem;
+        timed(Phase::Residuals, || problem.residual(z, r)).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Residual, error })
     }
 
     /// Factorise at `z`; with [`Evaluation::residual_with_factorization`] `r` becomes
@@ -526,17 +528,19 @@ impl<P: NewtonProblem> Run<'_, P> {
     fn factorize(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), NewtonError<P::Error>> {
         let iteration = self.stats.iterations + 1;
         let failed = |error| NewtonError::Problem { iteration, stage: Stage::Factorize, error };
+        let problem = &mut *self.problem;
         if self.evaluation.residual_with_factorization {
-            self.problem.factorize_with_residual(z, r).map_err(failed)?;
+            timed(Phase::Assembly, || problem.factorize_with_residual(z, r)).map_err(failed)?;
             if !all_finite(r) {
                 let what = if iteration == 1 { NonFiniteWhat::InitialResidual } else { NonFiniteWhat::IterateResidual };
                 return Err(NewtonError::NonFinite { iteration, what });
             }
             self.residual = max_abs(r);
         } else {
-            self.problem.factorize(z).map_err(failed)?;
+            timed(Phase::Assembly, || problem.factorize(z)).map_err(failed)?;
         }
         self.stats.iterations += 1;
+        phases::count(phases::Step::NewtonIteration, 1);
         self.stats.factorisations += 1;
         Ok(())
     }
@@ -547,9 +551,8 @@ impl<P: NewtonProblem> Run<'_, P> {
         if self.evaluation.merit_only {
             self.stats.merit_evaluations += 1;
             let iteration = self.stats.iterations;
-            let merit = self
-                .problem
-                .trial_merit(trial, kind)
+            let problem = &mut *self.problem;
+            let merit = timed(Phase::Residuals, || problem.trial_merit(trial, kind))
                 .map_err(|error| NewtonError::Problem { iteration, stage: Stage::Residual, error })?;
             return Ok(merit.filter(|m| m.is_finite()));
         }
@@ -571,7 +574,8 @@ impl<P: NewtonProblem> Run<'_, P> {
 
     fn solve(&mut self, b: &mut [f64]) -> Result<(), NewtonError<P::Error>> {
         let iteration = self.stats.iterations;
-        self.problem.solve(b).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Solve, error })?;
+        let problem = &mut *self.problem;
+        timed(Phase::LinearSolves, || problem.solve(b)).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Solve, error })?;
         self.stats.solves += 1;
         Ok(())
     }
@@ -580,7 +584,8 @@ impl<P: NewtonProblem> Run<'_, P> {
     /// [`Stage::Solve`]: the floor is a solve with the current factorisation).
     fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, NewtonError<P::Error>> {
         let iteration = self.stats.iterations;
-        let floor = self.problem.correction_floor(z).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Solve, error })?;
+        let problem = &mut *self.problem;
+        let floor = timed(Phase::LinearSolves, || problem.correction_floor(z)).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Solve, error })?;
         if floor.is_some() {
             self.stats.solves += 1;
         }
@@ -770,9 +775,8 @@ impl<P: NewtonProblem> Run<'_, P> {
                 }
                 level += 1;
                 let iteration = self.stats.iterations;
-                let regularised = self
-                    .problem
-                    .regularise(z, level)
+                let problem = &mut *self.problem;
+                let regularised = timed(Phase::Assembly, || problem.regularise(z, level))
                     .map_err(|error| NewtonError::Problem { iteration, stage: Stage::Factorize, error })?;
                 if regularised {
                     self.stats.regularisations += 1;

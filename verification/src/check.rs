@@ -148,9 +148,7 @@ pub fn skip_table(skipped: &[Skip]) -> Table {
 /// for a scene no BVP solves.
 pub fn reference_solution(scene: &Scene, tolerance: f64) -> Result<(String, Solved), RunError> {
     let solver = BvpSolver { variant: BvpVariant::Collocation(Scheme::Gauss6), max_nodes: Some(crate::study::STUDY_MAX_NODES) };
-    let start = std::time::Instant::now();
-    let mut solved = solver.solve(scene, Discretisation::Tolerance(tolerance))?;
-    solved.cost.wall_seconds = start.elapsed().as_secs_f64();
+    let solved = crate::run::solve_timed(&solver, scene, Discretisation::Tolerance(tolerance))?;
     Ok((solver.label(), solved))
 }
 

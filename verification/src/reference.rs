@@ -214,7 +214,7 @@ impl Reference {
                 let wall = start.elapsed().as_secs_f64();
                 let outcome = solved.map_err(RunError::ClosedForm).map(|lp| RunData {
                     summary: lp.summary(),
-                    cost: RunCost { wall_seconds: wall, newton_iterations: lp.iterations, unknowns: 4, mesh_nodes: None, elements: None },
+                    cost: RunCost::counted(wall, lp.iterations, 4),
                     options: serde_json::json!({"closed_form": "elastic catenary loop", "tolerance": CATENARY_TOLERANCE}),
                     terms: Vec::new(),
                     notes: vec!["summary scalars only: the closed form gives no fields, so no field norms are measured against it".into()],
@@ -316,6 +316,7 @@ fn richardson_data(runs: &[Run], estimates: &mut Vec<Estimate>, notes: &mut Vec<
         unknowns: finest.cost.unknowns,
         mesh_nodes: finest.cost.mesh_nodes,
         elements: finest.cost.elements,
+        phases: None,
     };
     Ok(RunData { summary, cost, options: finest.options.clone(), terms: finest.terms.clone(), notes: finest.notes.clone(), warnings: finest.warnings.clone(), samples })
 }

@@ -21,6 +21,7 @@ use bvp::scene::{BvpMethod, BvpRunOptions, SceneSolveError};
 use drive::scene::{Scene, Theory};
 use drive::summary::Summary;
 use drive::view::{ContactState, SolutionView};
+use numerics::phases::Phases;
 use serde::Serialize;
 
 /// Which of the two independent computations a method belongs to.
@@ -54,13 +55,58 @@ pub struct RunCost {
     /// Elements (FE).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub elements: Option<usize>,
+    /// Where the wall time went, recorded by the harness around the solve
+    /// ([`solve_timed`]); `None` for runs not solved through it (a closed form, a
+    /// Richardson extrapolation).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phases: Option<Phases>,
 }
 
 impl RunCost {
-    /// The counters every method has; mesh nodes and elements absent.
+    /// The counters every method has; mesh nodes, elements and phases absent.
     pub fn counted(wall_seconds: f64, newton_iterations: usize, unknowns: usize) -> RunCost {
-        RunCost { wall_seconds, newton_iterations, unknowns, mesh_nodes: None, elements: None }
+        RunCost { wall_seconds, newton_iterations, unknowns, mesh_nodes: None, elements: None, phases: None }
     }
+
+    /// The phases in the result format (`cost.phases`): exclusive seconds, `other` =
+    /// wall − their sum.
+    pub fn cost_phases(&self) -> Option<drive::result::CostPhases> {
+        use numerics::phases::Phase;
+        let p = self.phases.as_ref()?;
+        Some(drive::result::CostPhases {
+            assembly: p.get(Phase::Assembly),
+            symbolic_factorisation: p.get(Phase::SymbolicFactorisation),
+            numeric_factorisation: p.get(Phase::NumericFactorisation),
+            linear_solves: p.get(Phase::LinearSolves),
+            residuals: p.get(Phase::Residuals),
+            integration: p.get(Phase::Integration),
+            mesh_adaptation: p.get(Phase::MeshAdaptation),
+            fitting: p.get(Phase::Fitting),
+            other: p.other(self.wall_seconds),
+            fitting_total: p.fitting_total,
+            continuation_steps: p.continuation_steps,
+            mesh_refinements: p.mesh_refinements,
+            fitting_passes: p.fitting_passes,
+        })
+    }
+}
+
+/// `method.solve(scene, disc)` timed by the harness: the wall time of the whole call
+/// and its phases ([`numerics::phases::record`]) go into [`Solved::cost`], the same way
+/// for every method. The wall clock is read outside the record, so the phases sum to at
+/// most the wall time.
+///
+/// # Errors
+/// The method's.
+pub fn solve_timed(method: &dyn Method, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+    let start = Instant::now();
+    let (solved, phases) = numerics::phases::record(|| method.solve(scene, disc));
+    let wall = start.elapsed().as_secs_f64();
+    solved.map(|mut s| {
+        s.cost.wall_seconds = wall;
+        s.cost.phases = Some(phases);
+        s
+    })
 }
 
 /// What a method returns for one discretisation, before the harness samples it.
@@ -730,7 +776,7 @@ impl Run {
 /// into a [`RunError::Failed`] (no NaN reaches a table).
 pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples: usize) -> Run {
     let start = Instant::now();
-    let solved = method.solve(scene, disc);
+    let solved = solve_timed(method, scene, disc);
     let wall = start.elapsed().as_secs_f64();
     let outcome = solved.and_then(|s| {
         if let Some(n) = s.not_steady {
@@ -738,8 +784,7 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
         }
         s.summary.check_finite()?;
         let samples = Samples::of_view(s.view.as_ref(), samples)?;
-        let mut cost = s.cost;
-        cost.wall_seconds = wall;
+        let cost = s.cost;
         Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, warnings: s.warnings, samples })
     });
     Run { method: method.label(), family: method.family(), discretisation: disc, wall_seconds: wall, outcome }

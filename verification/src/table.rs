@@ -136,6 +136,22 @@ pub fn fmt_seconds(s: Option<f64>) -> String {
     }
 }
 
+/// The phase that took most of a run's wall time and its share, `numeric LU 43%`
+/// (`cost.phases`); `—` for a run without phases.
+pub fn fmt_dominant(cost: &crate::run::RunCost) -> String {
+    let dominant = cost.cost_phases().and_then(|p| p.dominant());
+    dominant.map_or(NONE.into(), |(name, s)| {
+        let short = match name {
+            "symbolic_factorisation" => "symbolic LU",
+            "numeric_factorisation" => "numeric LU",
+            "linear_solves" => "solves",
+            "mesh_adaptation" => "adaptation",
+            other => other,
+        };
+        format!("{short} {:.0}%", 100.0 * s / cost.wall_seconds.max(f64::MIN_POSITIVE))
+    })
+}
+
 /// The discretisation cell: `1e-8`, `256` or `64×4 Δt 1e-2`.
 pub fn fmt_disc(d: Discretisation) -> String {
     d.cell()
@@ -156,7 +172,7 @@ pub fn convergence_table(study: &Study, series: &Series) -> Table {
     if !fe {
         header.push("nodes".into());
     }
-    header.extend(["Newton".to_string(), "wall [s]".to_string(), "scalars".to_string()]);
+    header.extend(["Newton".to_string(), "wall [s]".to_string(), "most time".to_string(), "scalars".to_string()]);
     if fe {
         header.push("rate".into());
     }
@@ -175,6 +191,7 @@ pub fn convergence_table(study: &Study, series: &Series) -> Table {
         }
         cells.push(d.map_or(NONE.into(), |d| d.cost.newton_iterations.to_string()));
         cells.push(fmt_seconds(row.run.wall_seconds()));
+        cells.push(d.map_or(NONE.into(), |d| fmt_dominant(&d.cost)));
         cells.push(fmt_error(row.scalar_error));
         if fe {
             cells.push(fmt_order(row.scalar_order));

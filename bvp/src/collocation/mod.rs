@@ -33,6 +33,7 @@ use crate::error::{check_fraction, BvpError};
 use crate::newton::{self, NewtonOptions, NewtonReport, NewtonSystem};
 use crate::problem::{JacobianMode, Problem};
 use crate::solution::{Solution, Stats};
+use numerics::phases::{self, timed, Phase};
 use condensed::CondensedLu;
 use discretisation::{validate_solution, Discretisation};
 use std::time::Instant;
@@ -340,6 +341,23 @@ pub const FLOOR_PASSES: usize = 8;
 /// Halvings of the chattering segments before a residual floor is an error.
 pub const DAMPING_PASSES: usize = 2;
 
+/// One mesh adaptation pass of [`adapt`]: the point carried over to `meshes`
+/// ([`remesh`]) and the corrector's data with it, timed and counted as mesh adaptation.
+fn adapted_mesh<'a, P: Problem, C: Corrector<P>>(
+    disc: &Discretisation<'a, P>,
+    z: &[f64],
+    eta: f64,
+    meshes: Vec<Vec<f64>>,
+    corrector: &mut C,
+) -> Result<(Discretisation<'a, P>, Vec<f64>), BvpError> {
+    timed(Phase::MeshAdaptation, || {
+        let (new_disc, new_z) = remesh(disc, z, eta, meshes)?;
+        corrector.transfer(disc, z, eta, &new_disc)?;
+        phases::count(phases::Step::MeshRefinement, 1);
+        Ok((new_disc, new_z))
+    })
+}
+
 /// The adaptive loop: correct, estimate, insert or remove nodes, repeat.
 ///
 /// Removal is tried only on a mesh that meets the tolerance; if the coarser mesh fails
@@ -374,7 +392,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         };
         stats.newton_iterations += report.iterations;
         stats.jacobian_evaluations += report.iterations;
-        let (rho, bc) = match disc.residual_norms(&z, eta) {
+        let (rho, bc) = match timed(Phase::Residuals, || disc.residual_norms(&z, eta)) {
             Ok(v) => v,
             Err(e) => return accepted.ok_or(e),
         };
@@ -392,13 +410,13 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 });
             }
             if opts.remove_nodes && passes < opts.max_refinements {
-                let coarse: Vec<Option<Vec<f64>>> =
-                    disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::coarsen(m, r, tol, q)).collect();
+                let coarse: Vec<Option<Vec<f64>>> = timed(Phase::MeshAdaptation, || {
+                    disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::coarsen(m, r, tol, q)).collect()
+                });
                 if coarse.iter().any(Option::is_some) {
                     let meshes =
                         coarse.into_iter().zip(&disc.meshes).map(|(c, m)| c.unwrap_or_else(|| m.clone())).collect();
-                    let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-                    corrector.transfer(&disc, &z, eta, &new_disc)?;
+                    let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
                     accepted = Some(Adapted { disc, z, eta, max_residual });
                     disc = new_disc;
                     z = new_z;
@@ -412,7 +430,8 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         if let Some(a) = accepted {
             return Ok(a);
         }
-        let meshes: Vec<Vec<f64>> = disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::refine(m, r, tol, q)).collect();
+        let meshes: Vec<Vec<f64>> =
+            timed(Phase::MeshAdaptation, || disc.meshes.iter().zip(&rho).map(|(m, r)| mesh::refine(m, r, tol, q)).collect());
         let nodes: usize = meshes.iter().map(Vec::len).sum();
         if nodes > opts.max_nodes {
             return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
@@ -439,8 +458,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
             }
         }
-        let (new_disc, new_z) = remesh(&disc, &z, eta, meshes)?;
-        corrector.transfer(&disc, &z, eta, &new_disc)?;
+        let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
         disc = new_disc;
         z = new_z;
         passes += 1;
