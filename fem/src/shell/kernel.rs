@@ -1,5 +1,6 @@
 //! The shell as one [`SurfaceKernel`] (docs/fem-shell.md §3, §6): energy densities per
-//! dσ dζ of the membrane (Simpson × Gauss 3), (S10), over the fields {S, ν, z} of the
+//! dσ dζ of the membrane (Simpson × Gauss 3) and of bending and gravity (Gauss 3 × 3),
+//! (S10), over the fields {S, ν, z} of the
 //! Bogner–Fox–Schmit elements, with the augmented C¹ map (S12) at the Cartesian/polar
 //! transitions given to the assembler as quadratic products
 //! ([`SurfaceKernel::quadratic_terms`]).
@@ -47,8 +48,18 @@ const VARIABLES: [(Field, PointDerivative); SHELL_VALUES] = [
 
 /// Index of the membrane term in [`Shell::terms`].
 pub const MEMBRANE: usize = 0;
+/// Index of the bending and gravity term in [`Shell::terms`].
+pub const BENDING_GRAVITY: usize = 1;
 
-/// The shell on a mesh: section, gauge, camber and the element columns.
+/// Where the shell lies, for the heights of gravity: on the contour (g_y(σ), n_g,y(σ) of
+/// eq. 27), or a flat horizontal strip at y = 0 with n_g = +j.
+#[derive(Debug, Clone, PartialEq)]
+enum Placement {
+    Contour(Contour),
+    Strip,
+}
+
+/// The shell on a mesh: section, gauge, camber, the element columns and gravity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Shell {
     section: ShellSection,
@@ -56,6 +67,9 @@ pub struct Shell {
     camber: f64,
     sides: TransitionSides,
     zeta_elements: usize,
+    placement: Placement,
+    /// ρ_s h g: weight per initial area, N/m² (0: no gravity).
+    weight: f64,
 }
 
 impl Shell {
@@ -67,7 +81,7 @@ impl Shell {
     /// of non-positive initial length 1 − κ_c ζ on the mesh's width); the errors of
     /// [`TransitionSides::new`] (a transition that is no σ-node, a length mismatch).
     pub fn on_contour(section: ShellSection, gauge: f64, camber: f64, contour: &Contour, mesh: &SurfaceMesh) -> Result<Shell, ShellError> {
-        Shell::with_sides(section, gauge, camber, TransitionSides::new(contour, mesh)?, mesh)
+        Ok(Shell { placement: Placement::Contour(*contour), ..Shell::with_sides(section, gauge, camber, TransitionSides::new(contour, mesh)?, mesh)? })
     }
 
     /// The shell as a flat periodic strip (α = 0 on every column, no transition).
@@ -79,7 +93,7 @@ impl Shell {
     }
 
     /// The shell on given columns (e.g. [`TransitionSides::without_augmentation`] for a
-    /// comparison with the plain BFS map).
+    /// comparison with the plain BFS map); gravity, if set, as on a flat strip.
     ///
     /// # Errors
     /// As [`Shell::on_contour`] for the parameters; a column count other than the mesh's.
@@ -99,7 +113,18 @@ impl Shell {
         if sides.columns() != mesh.sigma_elements() {
             return Err(ShellError::BadParameter { what: "columns of the transition sides", value: sides.columns() as f64 });
         }
-        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements() })
+        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements(), placement: Placement::Strip, weight: 0.0 })
+    }
+
+    /// The shell with gravity: ρ_s h g, weight per initial area (N/m², ≥ 0).
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`] for a weight that is not finite and ≥ 0.
+    pub fn with_gravity(self, weight: f64) -> Result<Shell, ShellError> {
+        if !(weight.is_finite() && weight >= 0.0) {
+            return Err(ShellError::BadParameter { what: "weight per area ρ_s h g", value: weight });
+        }
+        Ok(Shell { weight, ..self })
     }
 
     /// The section.
@@ -135,6 +160,42 @@ impl Shell {
         membrane::strain(&derivatives, 1.0 / self.fibre_length(at.zeta))
     }
 
+    /// The change of curvature K = F*ᵀ B° F* (S8), [K_ss, K_sζ, K_ζζ] in the initial
+    /// frame, 1/m, at `at`: B° the second fundamental form (S6) of the actual surface in
+    /// the material coordinates, b_ij = n · ∂̊_i∂̊_j r with n = ∂̊_s r × ∂̊_ζ r / |…| and the
+    /// second derivatives (S4) of the position (b* = 0: flat initial surface).
+    pub fn curvature<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
+        let alpha = self.column(at.element).alpha;
+        let fields = self.fields(v);
+        let [a, b] = material_derivatives(alpha, &fields);
+        let (s, nu, z) = (&fields[S], &fields[NU], &fields[Z]);
+        let cross = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        let norm = membrane::dot(&cross, &cross).sqrt();
+        let n = cross.map(|c| c / norm);
+        // (S4) in the frame (t_g, n_g, k)
+        let r_ss = [nu[1] * (2.0 * alpha), nu[3] - (nu[0] * alpha + 1.0) * alpha, z[3]];
+        let r_sz = [nu[2] * alpha, nu[4], z[4]];
+        let r_zz = [D::zero(), nu[5], z[5]];
+        let beta = s[2] / s[1];
+        let (b_ss, b_rs, b_zz) = (membrane::dot(&n, &r_ss), membrane::dot(&n, &r_sz), membrane::dot(&n, &r_zz));
+        let f = 1.0 / self.fibre_length(at.zeta);
+        [b_ss / (s[1] * s[1]) * (f * f), (b_rs - beta * b_ss) / s[1] * f, b_zz - beta * b_rs * 2.0 + beta * beta * b_ss]
+    }
+
+    /// The bending moments M = D₁ tr K I + D₂ K, [M_ss, M_sζ, M_ζζ] (per initial length,
+    /// N m/m) at `at`.
+    pub fn moments(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> [f64; 3] {
+        response(self.section.d1, self.section.d2, &self.curvature(at, v))
+    }
+
+    /// The height r·j = g_y(σ) + ν n_g,y(σ) of the point (S1), m.
+    fn height<D: Scalar>(&self, sigma: f64, nu: D) -> D {
+        match &self.placement {
+            Placement::Contour(contour) => nu * contour.n_g(sigma)[1] + contour.g(sigma)[1],
+            Placement::Strip => nu,
+        }
+    }
+
     /// The membrane forces N = A₁ tr E I + A₂ E, [N_ss, N_sζ, N_ζζ] (second
     /// Piola–Kirchhoff, per initial length, N/m) at `at`.
     pub fn forces(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> [f64; 3] {
@@ -151,14 +212,25 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         VARIABLES.map(|(field, derivative)| PointVariable { field, derivative })
     }
 
-    /// [`MEMBRANE`]: Simpson × Gauss 3 (§7.3).
+    /// [`MEMBRANE`]: Simpson × Gauss 3 (§7.3); [`BENDING_GRAVITY`]: Gauss 3 × 3
+    /// (docs/fem-shell.md §6: the text is silent, the rod's choice).
     fn terms(&self) -> Vec<SurfaceTerm> {
-        vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }]
+        vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(3)], history: 0 }]
     }
 
-    /// (S10) per dσ dζ: W_m = ½(A₁ (tr E)² + A₂ E··E) ∂σS ℓ*.
-    fn density<D: Scalar>(&self, _term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], _state: &[f64]) -> D {
-        quadratic_energy(self.section.a1, self.section.a2, &self.strain(at, v)) * (v[0] + self.gauge) * self.fibre_length(at.zeta)
+    /// (S10) per dσ dζ, each per initial area times dA*/(dσ dζ) = ∂σS ℓ*:
+    /// [`MEMBRANE`] W_m = ½(A₁ (tr E)² + A₂ E··E); [`BENDING_GRAVITY`]
+    /// W_b + W_g = ½(D₁ (tr K)² + D₂ K··K) + ρ_s h g (r·j).
+    fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], _state: &[f64]) -> D {
+        let area = (v[0] + self.gauge) * self.fibre_length(at.zeta);
+        if term == MEMBRANE {
+            return quadratic_energy(self.section.a1, self.section.a2, &self.strain(at, v)) * area;
+        }
+        let mut w = quadratic_energy(self.section.d1, self.section.d2, &self.curvature(at, v));
+        if self.weight != 0.0 {
+            w += self.height(at.sigma, v[2]) * self.weight;
+        }
+        w * area
     }
 
     /// ∂σS > 0 and a regular surface (|∂̊_s r × ∂̊_ζ r| > 0).
@@ -364,6 +436,117 @@ mod tests {
                 let moved: Vec<f64> = z.iter().zip(&constant).map(|(a, b)| a + b).collect();
                 let shifted = asm.energy(&moved, &ev).unwrap();
                 assert!((shifted - energy).abs() < 1e-13 * energy, "{field:?} + const changes U: {shifted} vs {energy}");
+            }
+        }
+    }
+
+    /// V-3 of docs/fem-shell.md: the belt wrapped isometrically on the contour (c₀ = 1,
+    /// S̃ = 0, ν = 0, z = ζ): E ≡ 0, K = diag(α, 0), so U = U_b = ½ D/R² × 2πR b = πDb/R
+    /// with D = Eh³/(12(1 − ν_P²)) — the lateral curvature is held at zero (z = ζ, ν = 0),
+    /// the wide-plate value; with ν_P = 0 the bending energy of the curvature change 1/R
+    /// against the flat unstressed belt, ½(Eh³/12)/R² per area. The integrand is constant
+    /// per element, so the rule is exact: round-off.
+    #[test]
+    fn belt_wrapped_on_the_contour_has_the_bending_energy_of_the_arcs() {
+        let contour = contour();
+        let (e_modulus, h, b) = (1.0e5, 0.01, 0.4);
+        let mesh = contour_mesh(&contour, [3, 2, 4, 1], 0.15, vec![-0.2, -0.05, 0.2]).unwrap();
+        for nu_p in [0.0, 0.3] {
+            let section = ShellSection::isotropic(e_modulus, nu_p, h).unwrap();
+            let shell = Shell::on_contour(section, 1.0, 0.0, &contour, &mesh).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+            let z = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let energy = asm.energy(&z, &static_ev()).unwrap();
+            let d = e_modulus * h.powi(3) / (12.0 * (1.0 - nu_p * nu_p));
+            let exact = std::f64::consts::PI * d * b / contour.radius();
+            assert!((energy - exact).abs() < 1e-13 * exact, "ν_P = {nu_p}: U = {energy} vs πDb/R = {exact}");
+            // the moment on an arc: M_ss = D K_ss (K_ζζ = 0), M_ζζ = ν_P M_ss
+            let at = SurfacePoint { sigma: 1.5, zeta: 0.0, element: 3 * mesh.zeta_elements() + 1, time: 0.0, dt: 0.0 };
+            let mut v = [0.0; SHELL_VALUES];
+            v[9] = 1.0;
+            let m = asm.kernel().moments(&at, &v);
+            let k = asm.kernel().curvature(&at, &v);
+            assert!((k[0] - 1.0 / contour.radius()).abs() < 1e-14 && k[1].abs() < 1e-15 && k[2].abs() < 1e-15, "K = {k:?}");
+            assert!((m[0] - d / contour.radius()).abs() < 1e-13 * m[0] && (m[2] - nu_p * m[0]).abs() < 1e-13 * m[0], "M = {m:?}");
+        }
+    }
+
+    /// Cylindrical bending of a flat strip (V-4) at a point, in closed form: ν_σσ = −κ
+    /// (n = −n_g, so K_ss = κ) with the anticlastic curvature K_ζζ = −ν_P κ of a narrow
+    /// strip with free edges gives W_b = ½(Eh³/12)κ² per area (the Poisson coupling
+    /// D₁/(D₁ + D₂) = ν_P makes M_ζζ = 0); held flat across (K_ζζ = 0, a wide plate)
+    /// ½Dκ², D = Eh³/(12(1 − ν_P²)). Round-off.
+    #[test]
+    fn cylindrical_bending_of_a_strip_has_the_plate_energies() {
+        let (e_modulus, nu_p, h, kappa) = (2.0e11, 0.3, 1.0e-3, 2.5);
+        let mesh = SurfaceMesh::mapped(2.0, 4, |u| u, [-0.1, 0.1], 2).unwrap();
+        let shell = Shell::strip(ShellSection::isotropic(e_modulus, nu_p, h).unwrap(), 1.0, 0.0, &mesh).unwrap();
+        let at = SurfacePoint { sigma: 0.3, zeta: 0.02, element: 1, time: 0.0, dt: 0.0 };
+        let bending = e_modulus * h.powi(3) / 12.0;
+        for (lateral, exact) in [(nu_p * kappa, 0.5 * bending * kappa * kappa), (0.0, 0.5 * bending / (1.0 - nu_p * nu_p) * kappa * kappa)] {
+            let mut v = [0.0; SHELL_VALUES];
+            v[9] = 1.0; // ∂ζz
+            v[5] = -kappa; // ∂²σν
+            v[7] = lateral; // ∂²ζν
+            let w = shell.density(BENDING_GRAVITY, &at, &v, &[]);
+            assert!((w - exact).abs() < 1e-13 * exact, "W_b = {w} vs {exact}");
+            let m = shell.moments(&at, &v);
+            if lateral != 0.0 {
+                assert!(m[2].abs() < 1e-13 * m[0], "free edge: M_ζζ = {} of M_ss = {}", m[2], m[0]);
+            }
+        }
+    }
+
+    /// Gravity (S10): lifting a flat horizontal strip rigidly by d (ν + d, n_g = +j)
+    /// changes W_g by weight × d, the weight ρ_s h g × initial area c₀ L ∫ℓ* dζ
+    /// (camber, random state: ∫∂σS̃ = 0 over the loop; the integrands are polynomials of
+    /// degree ≤ 3 per direction, exact under Gauss 3 × 3) — and nothing else changes.
+    #[test]
+    fn lifting_a_strip_changes_gravity_by_weight_times_height() {
+        let (weight, c0, camber, d) = (75.0, 1.02, 0.3, 0.013);
+        let mesh = SurfaceMesh::mapped(2.0, 5, |u| u + 0.05 * (std::f64::consts::TAU * u).sin(), [-0.25, 0.35], 3).unwrap();
+        let shell = Shell::strip(section(), c0, camber, &mesh).unwrap().with_gravity(weight).unwrap();
+        let asm = SurfaceAssembler::new(mesh, shell, &[]).unwrap();
+        let mut rng = Rng(0x9a7);
+        let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+        let z: Vec<f64> = reference.iter().map(|v| v + 0.02 * (2.0 * rng.next() - 1.0)).collect();
+        let lift = asm.interpolate(&[(Field::Nu, &|_: f64, _: f64| [d, 0.0, 0.0, 0.0])]);
+        let lifted: Vec<f64> = z.iter().zip(&lift).map(|(a, b)| a + b).collect();
+        let ev = static_ev();
+        let (before, after) = (asm.energy(&z, &ev).unwrap(), asm.energy(&lifted, &ev).unwrap());
+        // ∫ℓ* dζ over [−0.25, 0.35]: 0.6 − κ_c (0.35² − 0.25²)/2
+        let initial_area = c0 * 2.0 * (0.6 - camber * (0.35f64.powi(2) - 0.25f64.powi(2)) / 2.0);
+        let exact = weight * initial_area * d;
+        assert!(((after - before) - exact).abs() < 1e-12 * before.abs().max(exact), "ΔW_g = {} vs weight × d = {exact}", after - before);
+    }
+
+    /// Gradient and Hessian of each energy on its own (membrane: D = 0; bending:
+    /// A = 0; gravity: A = D = 0) on the closed contour with camber at a random state,
+    /// elements at transitions included, against central differences — the bending and
+    /// gravity terms are 1e-5 of the membrane's in the full shell and would hide under
+    /// its tolerance; and the zero modes (S̃ + const, z + const) of the bending.
+    #[test]
+    fn each_term_matches_central_differences_at_transitions() {
+        let contour = contour();
+        let mesh = contour_mesh(&contour, [2, 2, 2, 1], 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+        let full = section();
+        let zero = ShellSection { a1: 0.0, a2: 0.0, d1: 0.0, d2: 0.0 };
+        for (what, section, weight) in [("membrane", ShellSection { d1: 0.0, d2: 0.0, ..full }, 0.0), ("bending", ShellSection { a1: 0.0, a2: 0.0, ..full }, 0.0), ("gravity", zero, 75.0)] {
+            let shell = Shell::on_contour(section, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(weight).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+            let mut rng = Rng(0x0be_d1e);
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let z: Vec<f64> = reference.iter().map(|v| v + 0.03 * (2.0 * rng.next() - 1.0)).collect();
+            let energy = asm.energy(&z, &static_ev()).unwrap();
+            assert!(energy.abs() > 0.0, "{what}: no energy");
+            check_derivatives(&asm, &z, 0x7e57, 4);
+            if what == "bending" {
+                for field in [Field::S, Field::Z] {
+                    let constant = asm.interpolate(&[(field, &|_: f64, _: f64| [0.37, 0.0, 0.0, 0.0])]);
+                    let moved: Vec<f64> = z.iter().zip(&constant).map(|(a, b)| a + b).collect();
+                    let shifted = asm.energy(&moved, &static_ev()).unwrap();
+                    assert!((shifted - energy).abs() < 1e-13 * energy, "bending: {field:?} + const changes U: {shifted} vs {energy}");
+                }
             }
         }
     }
