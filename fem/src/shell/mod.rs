@@ -5,9 +5,12 @@
 //! - [`transition`]: the geometry of the element columns (α, which σ-edges are
 //!   Cartesian/polar transitions), the augmented C¹ construction at the transitions
 //!   (docs/fem-shell.md (S11)–(S12)) and the material derivatives (37) of the position;
-//! - [`membrane`]: the stiffness coefficients of (19) and the membrane energy with camber
-//!   as a [`crate::surface::assembly::SurfaceKernel`] (Simpson × Gauss 3).
+//! - [`membrane`]: the stiffness coefficients of (19), Green's membrane strain with
+//!   camber and the quadratic energy density of (19);
+//! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
+//!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
+pub mod kernel;
 pub mod membrane;
 pub mod transition;
 
@@ -23,6 +26,9 @@ pub enum ShellError {
     /// be constant on every element, docs/fem-shell.md §4).
     #[error("the transition at σ = {sigma} m is no σ-node of the mesh (nearest node at {nearest} m)")]
     TransitionNotANode { sigma: f64, nearest: f64 },
+    /// The surface mesh cannot be built.
+    #[error(transparent)]
+    Surface(#[from] crate::surface::SurfaceError),
     /// A material or model parameter out of its range.
     #[error("{what} = {value} is out of range")]
     BadParameter { what: &'static str, value: f64 },

@@ -23,9 +23,10 @@
 
 use drive::contour::Contour;
 
-use crate::element::BfsRectangle;
+use crate::element::{BfsRectangle, Field};
 use crate::hermite;
-use crate::surface::dofs::PER_FIELD;
+use crate::surface::assembly::QuadraticTerm;
+use crate::surface::dofs::{PointDerivative, PER_FIELD};
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
@@ -107,6 +108,23 @@ impl TransitionSides {
         Ok(TransitionSides { radius, columns })
     }
 
+    /// The columns of a flat periodic strip: `columns` Cartesian columns (α = 0), no
+    /// transition (R = ∞, unused).
+    pub fn strip(columns: usize) -> TransitionSides {
+        TransitionSides { radius: f64::INFINITY, columns: vec![Column { alpha: 0.0, augmented: Augmented::default() }; columns] }
+    }
+
+    /// The same columns with the augmentation dropped (the plain BFS map at the
+    /// transitions, for comparisons).
+    pub fn without_augmentation(&self) -> TransitionSides {
+        TransitionSides { radius: self.radius, columns: self.columns.iter().map(|c| Column { augmented: Augmented::default(), ..*c }).collect() }
+    }
+
+    /// Number of columns (σ-elements).
+    pub fn columns(&self) -> usize {
+        self.columns.len()
+    }
+
     /// R of the contour, m.
     pub fn radius(&self) -> f64 {
         self.radius
@@ -119,9 +137,40 @@ impl TransitionSides {
 
     /// Element e of `mesh` (the mesh these sides were built on) as a shell element.
     pub fn element(&self, mesh: &SurfaceMesh, e: usize) -> ShellElement {
-        let column = self.columns[mesh.element_position(e).0];
-        ShellElement { rect: mesh.element(e), alpha: column.alpha, radius: self.radius, augmented: column.augmented }
+        self.element_of(self.columns[mesh.element_position(e).0], mesh.element(e))
     }
+
+    /// The shell element of rectangle `rect` in `column`.
+    pub fn element_of(&self, column: Column, rect: BfsRectangle) -> ShellElement {
+        ShellElement { rect, alpha: column.alpha, radius: self.radius, augmented: column.augmented, gauge: 0.0 }
+    }
+}
+
+/// A surface mesh on `contour` with σ-nodes on its four transitions: `per_region`
+/// elements in each region (upper span, driven arc, lower span, driver arc), spaced by
+/// u ↦ u + grading · u(1 − u) inside the region (0: uniform; |grading| < 1 keeps the
+/// nodes increasing), and the ζ-nodes `zeta`.
+///
+/// # Errors
+/// [`ShellError::BadParameter`] for |grading| ≥ 1 or a region without elements;
+/// [`ShellError::Surface`] for the mesh's own (e.g. ζ-nodes not increasing).
+pub fn contour_mesh(contour: &Contour, per_region: [usize; 4], grading: f64, zeta: Vec<f64>) -> Result<SurfaceMesh, ShellError> {
+    if grading.is_nan() || grading.abs() >= 1.0 {
+        return Err(ShellError::BadParameter { what: "grading", value: grading });
+    }
+    if let Some(&n) = per_region.iter().find(|&&n| n == 0) {
+        return Err(ShellError::BadParameter { what: "elements in a region", value: n as f64 });
+    }
+    let t = contour.transitions();
+    let ends = [t[1], t[2], t[3], contour.length()];
+    let mut sigma = Vec::new();
+    for (k, &n) in per_region.iter().enumerate() {
+        for j in 0..n {
+            let u = j as f64 / n as f64;
+            sigma.push(t[k] + (ends[k] - t[k]) * (u + grading * u * (1.0 - u)));
+        }
+    }
+    Ok(SurfaceMesh::new(contour.length(), sigma, zeta)?)
 }
 
 /// A shell element: its rectangle, α, the contour radius R and its augmented edges.
@@ -135,6 +184,9 @@ pub struct ShellElement {
     pub radius: f64,
     /// Transition edges whose σ-slope terms are augmented.
     pub augmented: Augmented,
+    /// c₀ of the gauge S = c₀σ + S̃ (S2) when the S unknowns are those of S̃ (the
+    /// Cartesian slope in (S11) is then c₀ + ∂σS̃); 0 when they are S itself.
+    pub gauge: f64,
 }
 
 impl ShellElement {
@@ -151,39 +203,83 @@ impl ShellElement {
                 *row = w.iter().zip(block).fold(D::zero(), |acc, (&wk, &qk)| acc + qk * wk);
             }
         }
+        let mut terms = Vec::new();
+        self.quadratic_terms(xi, eta, &mut terms);
+        let local = |(field, k): (Field, usize)| slot(field) * PER_FIELD + k;
+        for t in &terms {
+            let factor = t.j.map_or(D::one(), |j| q[local(j)]);
+            out[slot(t.field)][t.derivative as usize] += q[local(t.i)] * factor * t.coefficient;
+        }
+        out
+    }
+
+    /// The correction (S12) at (ξ, η) as products c q_i q_j of the element unknowns
+    /// ([`QuadraticTerm`], what the surface assembler adds to the BFS point values),
+    /// pushed onto `out`; nothing for an element without augmented edges.
+    ///
+    /// At an augmented edge with nodes a, b the correction of field X is
+    /// H(ξ) g(η), g = ν_T D_C / R, with ν_T = w·(ν_a, ∂ζν_a, ν_b, ∂ζν_b) and
+    /// D_C = w·(∂σX_a, ∂σ∂ζX_a, ∂σX_b, ∂σ∂ζX_b) (w the 1-D Hermite weights in ζ); its
+    /// derivative of σ-order m and ζ-order k is H⁽ᵐ⁾ Σ binom(k, l) ν_T⁽ˡ⁾ D_C⁽ᵏ⁻ˡ⁾ / R, a
+    /// bilinear form in the two sets of four unknowns. For S with a gauge c₀ the
+    /// Cartesian slope is c₀ + D_C: the terms H⁽ᵐ⁾ ν_T⁽ᵏ⁾ c₀ / R, linear in ν, join.
+    pub fn quadratic_terms(&self, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
         let [h_sigma, h_zeta] = self.rect.size;
         let (vs, ds) = hermite::weights(xi, h_sigma);
         let d2s = hermite::second_weights(xi, h_sigma);
         let (vz, dz) = hermite::weights(eta, h_zeta);
         let d2z = hermite::second_weights(eta, h_zeta);
+        let zeta_weights = [vz, dz, d2z];
+        // (derivative row, σ-order, ζ-order), the rows of SURFACE_DERIVATIVES
+        const ROWS: [(PointDerivative, usize, usize); 6] = [
+            (PointDerivative::Value, 0, 0),
+            (PointDerivative::DSigma, 1, 0),
+            (PointDerivative::DZeta, 0, 1),
+            (PointDerivative::DSigmaSigma, 2, 0),
+            (PointDerivative::DSigmaZeta, 1, 1),
+            (PointDerivative::DZetaZeta, 0, 2),
+        ];
+        // Leibniz: ∂ᵏ(ν_T D_C) = Σ_l binom(k, l) ν_T⁽ˡ⁾ D_C⁽ᵏ⁻ˡ⁾
+        const LEIBNIZ: [&[(usize, usize, f64)]; 3] = [&[(0, 0, 1.0)], &[(1, 0, 1.0), (0, 1, 1.0)], &[(2, 0, 1.0), (1, 1, 2.0), (0, 2, 1.0)]];
         // (edge, the σ-slope function's index in the 1-D order, the edge's two nodes)
         for (on, slope, [a, b]) in [(self.augmented.start, 1, [0, 2]), (self.augmented.end, 3, [1, 3])] {
             if !on {
                 continue;
             }
             let h = [vs[slope], ds[slope], d2s[slope]];
-            // the ζ-interpolant along the edge of (value, ζ-derivative) pairs of nodes a, b:
-            // its value, ∂ζ and ∂²ζ
-            let along = |field: usize, value: usize, derivative: usize| -> [D; 3] {
-                let data = [q[field * PER_FIELD + 4 * a + value], q[field * PER_FIELD + 4 * a + derivative], q[field * PER_FIELD + 4 * b + value], q[field * PER_FIELD + 4 * b + derivative]];
-                [&vz, &dz, &d2z].map(|w| w.iter().zip(&data).fold(D::zero(), |acc, (&wk, &qk)| acc + qk * wk))
-            };
-            // ν along the edge over R: ν_T/R and its ζ-derivatives
-            let nu = along(NU, 0, 2).map(|v| v * (1.0 / self.radius));
-            for (field, rows) in out.iter_mut().enumerate() {
-                // D_C: the Cartesian side's ∂σX along the edge (nodal ∂σX, ∂σ∂ζX)
-                let d = along(field, 1, 3);
-                // g = ν_T D_C / R and its first two ζ-derivatives
-                let g = [nu[0] * d[0], nu[1] * d[0] + nu[0] * d[1], nu[2] * d[0] + nu[1] * d[1] * 2.0 + nu[0] * d[2]];
-                // rows (σ order, ζ order): (0,0) (1,0) (0,1) (2,0) (1,1) (0,2)
-                let correction = [g[0] * h[0], g[0] * h[1], g[1] * h[0], g[0] * h[2], g[1] * h[1], g[2] * h[0]];
-                for (row, c) in rows.iter_mut().zip(correction) {
-                    *row += c;
+            // the four unknowns along the edge: ν's (value, ∂ζ) and X's (∂σ, ∂σ∂ζ) at a, b
+            let nu_data = [4 * a, 4 * a + 2, 4 * b, 4 * b + 2];
+            let slope_data = [4 * a + 1, 4 * a + 3, 4 * b + 1, 4 * b + 3];
+            for field in FIELDS {
+                for (derivative, m, k) in ROWS {
+                    for &(l, r, binom) in LEIBNIZ[k] {
+                        for (ki, &i) in nu_data.iter().enumerate() {
+                            for (kj, &j) in slope_data.iter().enumerate() {
+                                let coefficient = h[m] * binom * zeta_weights[l][ki] * zeta_weights[r][kj] / self.radius;
+                                if coefficient != 0.0 {
+                                    out.push(QuadraticTerm { field, derivative, i: (Field::Nu, i), j: Some((field, j)), coefficient });
+                                }
+                            }
+                            // the gauge: the Cartesian slope of S is c₀ + ∂σS̃ (S2)
+                            let gauge = h[m] * binom * zeta_weights[l][ki] * (if r == 0 { self.gauge } else { 0.0 }) / self.radius;
+                            if field == Field::S && gauge != 0.0 {
+                                out.push(QuadraticTerm { field, derivative, i: (Field::Nu, i), j: None, coefficient: gauge });
+                            }
+                        }
+                    }
                 }
             }
         }
-        out
     }
+}
+
+/// The shell's fields in slot order ([`S`], [`NU`], [`Z`]).
+pub const FIELDS: [Field; 3] = [Field::S, Field::Nu, Field::Z];
+
+/// The slot of a shell field in the element vector (the products of
+/// [`ShellElement::quadratic_terms`] name only shell fields).
+fn slot(field: Field) -> usize {
+    FIELDS.iter().position(|&f| f == field).expect("a shell field")
 }
 
 /// The material derivatives (37) of the position (S1) from the point values of
@@ -218,16 +314,7 @@ mod tests {
     /// A mesh with σ-nodes on the four transitions: `per_region` elements per region,
     /// graded inside each region, three ζ-elements over an asymmetric width.
     fn mesh(contour: &Contour, per_region: [usize; 4]) -> SurfaceMesh {
-        let t = contour.transitions();
-        let ends = [t[1], t[2], t[3], contour.length()];
-        let mut sigma = Vec::new();
-        for (k, &n) in per_region.iter().enumerate() {
-            for j in 0..n {
-                let u = j as f64 / n as f64;
-                sigma.push(t[k] + (ends[k] - t[k]) * (u + 0.15 * u * (1.0 - u)));
-            }
-        }
-        SurfaceMesh::new(contour.length(), sigma, vec![-0.2, -0.07, 0.1, 0.25]).unwrap()
+        contour_mesh(contour, per_region, 0.15, vec![-0.2, -0.07, 0.1, 0.25]).unwrap()
     }
 
     /// Random nodal data of a belt near its reference state: S ≈ c₀σ with ∂σS > 0,

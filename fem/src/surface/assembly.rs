@@ -10,8 +10,11 @@
 //! unknowns q — ∂E/∂q = Σ_points w J Bᵀ ∂W/∂v, ∂²E/∂q² = Σ_points w J Bᵀ ∂²W/∂v² B with
 //! B = ∂v/∂q the weight rows of [`BfsRectangle::derivative_weights`] — the per-point
 //! path of the 1-D formulations (`formulation`, `PointHessian`). A map that is
-//! nonlinear in q (the shell's augmented transition map, spec §4.4) adds its own
-//! Jacobian to B and its curvature term, as `pointwise_derivatives_rod` does in 1-D.
+//! nonlinear in q (the shell's augmented transition map, spec §4.4, docs/fem-shell.md
+//! (S12)) is given by the kernel as products c q_i q_j added to point values
+//! ([`QuadraticTerm`], [`SurfaceKernel::quadratic_terms`]); the assembler then uses the
+//! Jacobian J_m = B + ∂(Σ c q_i q_j)/∂q in place of B and adds the curvature term
+//! Σ_p (∂W/∂v_p) ∇²v_p, as `pointwise_derivatives_rod` does in 1-D.
 //! Elements are evaluated in parallel (rayon) and summed in element order, so results
 //! do not depend on the thread count. The Hessian's triplet pattern is fixed by the
 //! numbering; duplicates are summed by the sparse LU.
@@ -65,6 +68,25 @@ pub struct SurfacePoint {
     pub dt: f64,
 }
 
+/// One product c · q_i · q_j (or, without j, a term c · q_i) added to a point value
+/// (derivative `derivative` of `field`) of an element: the part of a kernel's point map
+/// beyond the BFS interpolant, at most quadratic in the element unknowns. `i`, `j` name
+/// a nodal unknown as (field, 4 · node + nodal derivative), node in BFS order, nodal
+/// derivative in [`PointDerivative::NODAL`] order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct QuadraticTerm {
+    /// The field whose point value gets the product.
+    pub field: Field,
+    /// Which of its six derivative rows.
+    pub derivative: PointDerivative,
+    /// First factor's unknown.
+    pub i: (Field, usize),
+    /// Second factor's unknown; None for a term linear in q_i.
+    pub j: Option<(Field, usize)>,
+    /// c.
+    pub coefficient: f64,
+}
+
 /// A 2-D element kernel: energy densities per unit reference area (dσ dζ) over P point
 /// values, term by term; the terms' history (if any) and the belt speed that advects it.
 /// The shell (issue 15) is one: P = its fields' derivatives, terms membrane (Simpson ×
@@ -96,6 +118,12 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = (term, at, v);
         next.copy_from_slice(previous);
     }
+    /// The products added to the BFS point values of element `element` (rectangle `rect`)
+    /// at the reference point (ξ, η), pushed onto `out`: a point map quadratic in the
+    /// element unknowns (docs/fem-shell.md (S12)). Default: none (the plain BFS map).
+    fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
+        let _ = (element, rect, xi, eta, out);
+    }
     /// The belt speed c(t) that transports the history along σ, m/s. Default 0.
     fn belt_speed(&self, time: f64) -> f64 {
         let _ = time;
@@ -119,6 +147,9 @@ pub struct Evaluation<'a> {
 pub(crate) struct QuadraturePoint {
     pub(crate) a: usize,
     pub(crate) b: usize,
+    /// Reference coordinates (ξ, η).
+    pub(crate) xi: f64,
+    pub(crate) eta: f64,
     pub(crate) at: SurfacePoint,
     pub(crate) weights: [[f64; PER_FIELD]; 6],
     pub(crate) scale: f64,
@@ -207,25 +238,79 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         rz.points().iter().enumerate().flat_map(move |(b, &(eta, wz))| {
             rs.points().iter().enumerate().map(move |(a, &(xi, ws))| {
                 let [sigma, zeta] = el.point(xi, eta);
-                QuadraturePoint { a, b, at: SurfacePoint { sigma, zeta, element: e, time, dt }, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
+                QuadraturePoint { a, b, xi, eta, at: SurfacePoint { sigma, zeta, element: e, time, dt }, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
             })
         })
     }
 
-    /// The P point values from the BFS weight rows and the element's local unknowns.
-    pub(crate) fn values(&self, weights: &[[f64; PER_FIELD]; 6], q: &[f64]) -> [f64; P] {
-        std::array::from_fn(|p| {
+    /// The products the kernel adds to element e's point values at (ξ, η), as
+    /// (variable p, local i, local j, c) for the variables it reads (local index
+    /// `16 · slot + k`; j None for a linear term); empty for a plain BFS element.
+    pub(crate) fn quadratic(&self, e: usize, xi: f64, eta: f64) -> Vec<(usize, usize, Option<usize>, f64)> {
+        let variables = self.kernel.variables();
+        let mut out = Vec::new();
+        for (t, i, j) in self.local_quadratic(e, xi, eta) {
+            out.extend((0..P).filter(|&p| variables[p].field == t.field && variables[p].derivative == t.derivative).map(|p| (p, i, j, t.coefficient)));
+        }
+        out
+    }
+
+    /// The kernel's quadratic products at element e, (ξ, η) with their factors' local
+    /// indices (products of unnumbered fields dropped).
+    fn local_quadratic(&self, e: usize, xi: f64, eta: f64) -> Vec<(QuadraticTerm, usize, Option<usize>)> {
+        let mut terms = Vec::new();
+        self.kernel.quadratic_terms(e, &self.mesh.element(e), xi, eta, &mut terms);
+        let local = |(field, k): (Field, usize)| self.dofs.slot(field).map(|s| s * PER_FIELD + k);
+        terms
+            .into_iter()
+            .filter_map(|t| {
+                let j = match t.j {
+                    Some(j) => Some(local(j)?),
+                    None => None,
+                };
+                Some((t, local(t.i)?, j))
+            })
+            .collect()
+    }
+
+    /// The P point values from the BFS weight rows, the element's local unknowns and the
+    /// kernel's quadratic products ([`Self::quadratic`]) at the point.
+    pub(crate) fn values(&self, weights: &[[f64; PER_FIELD]; 6], quadratic: &[(usize, usize, Option<usize>, f64)], q: &[f64]) -> [f64; P] {
+        let mut v: [f64; P] = std::array::from_fn(|p| {
             let (slot, row) = self.slots[p];
             weights[row].iter().zip(&q[slot * PER_FIELD..(slot + 1) * PER_FIELD]).map(|(w, v)| w * v).sum()
-        })
+        });
+        for &(p, i, j, c) in quadratic {
+            v[p] += c * q[i] * j.map_or(1.0, |j| q[j]);
+        }
+        v
+    }
+
+    /// The Jacobian rows ∂v_p/∂q (P × local length) at a point: the BFS rows plus the
+    /// derivatives of the quadratic products.
+    fn jacobian(&self, weights: &[[f64; PER_FIELD]; 6], quadratic: &[(usize, usize, Option<usize>, f64)], q: &[f64]) -> Vec<f64> {
+        let n = q.len();
+        let mut rows = vec![0.0; P * n];
+        for (p, &(slot, row)) in self.slots.iter().enumerate() {
+            rows[p * n + slot * PER_FIELD..p * n + (slot + 1) * PER_FIELD].copy_from_slice(&weights[row]);
+        }
+        for &(p, i, j, c) in quadratic {
+            rows[p * n + i] += c * j.map_or(1.0, |j| q[j]);
+            if let Some(j) = j {
+                rows[p * n + j] += c * q[i];
+            }
+        }
+        rows
     }
 
     /// Every (term, point) of element e with its values and state: `visit` returns false
     /// to stop (an inadmissible point); false if stopped.
-    fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64]) -> bool) -> bool {
+    /// The closure also gets the point's quadratic products ([`Self::quadratic`]).
+    fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
         for (t, term) in self.terms.iter().enumerate() {
             for point in self.points(e, t, ev.time, ev.dt) {
-                let v = self.values(&point.weights, q);
+                let quadratic = self.quadratic(e, point.xi, point.eta);
+                let v = self.values(&point.weights, &quadratic, q);
                 if !self.kernel.admissible(&point.at, &v) {
                     return false;
                 }
@@ -233,7 +318,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                     (0, _) | (_, None) => &[][..],
                     (_, Some(h)) => h.state(t, e, point.a, point.b),
                 };
-                if !visit(t, &point, &v, state) {
+                if !visit(t, &point, &v, state, &quadratic) {
                     return false;
                 }
             }
@@ -245,7 +330,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     fn element_energy(&self, e: usize, z: &[f64], ev: &Evaluation) -> Option<f64> {
         let q = self.dofs.gather(e, z);
         let mut total = 0.0;
-        self.visit_points(e, &q, ev, |t, point, v, state| {
+        self.visit_points(e, &q, ev, |t, point, v, state, _| {
             total += self.kernel.density(t, &point.at, v, state) * point.scale;
             true
         })
@@ -257,9 +342,16 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         let q = self.dofs.gather(e, z);
         let mut g = vec![0.0; q.len()];
         let mut total = 0.0;
-        self.visit_points(e, &q, ev, |t, point, v, state| {
+        self.visit_points(e, &q, ev, |t, point, v, state, quadratic| {
             let (w, dw) = gradient(|x| self.kernel.density(t, &point.at, &std::array::from_fn(|p| x[p]), state), &SVector::<f64, P>::from_column_slice(v));
             total += w * point.scale;
+            for &(p, i, j, c) in quadratic {
+                let d = dw[p] * point.scale * c;
+                g[i] += d * j.map_or(1.0, |j| q[j]);
+                if let Some(j) = j {
+                    g[j] += d * q[i];
+                }
+            }
             for (p, &(slot, row)) in self.slots.iter().enumerate() {
                 let d = dw[p] * point.scale;
                 for (gk, wk) in g[slot * PER_FIELD..(slot + 1) * PER_FIELD].iter_mut().zip(&point.weights[row]) {
@@ -280,9 +372,37 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         let mut total = 0.0;
         // per variable p and field slot s: Σ_{q of slot s} ∂²W/∂v_p∂v_q B_q (16 entries)
         let mut hb = vec![0.0; P * nf * PER_FIELD];
-        self.visit_points(e, &q, ev, |t, point, v, state| {
+        self.visit_points(e, &q, ev, |t, point, v, state, quadratic| {
             let (w, dw, ddw) = hessian(|x| self.kernel.density(t, &point.at, &std::array::from_fn(|p| x[p]), state), &SVector::<f64, P>::from_column_slice(v));
             total += w * point.scale;
+            if !quadratic.is_empty() {
+                // the augmented map: dense J_m (P × n), H += Jᵀ W'' J + Σ_p W'_p ∇²v_p
+                let jac = self.jacobian(&point.weights, quadratic, &q);
+                let mut wj = vec![0.0; P * n];
+                for p in 0..P {
+                    let row = &jac[p * n..(p + 1) * n];
+                    g.iter_mut().zip(row).for_each(|(gk, jk)| *gk += dw[p] * point.scale * jk);
+                    for r in 0..P {
+                        let c = ddw[(r, p)] * point.scale;
+                        if c != 0.0 {
+                            wj[r * n..(r + 1) * n].iter_mut().zip(row).for_each(|(o, jk)| *o += c * jk);
+                        }
+                    }
+                }
+                for r in 0..P {
+                    for (i, &jri) in jac[r * n..(r + 1) * n].iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                        h[i * n..(i + 1) * n].iter_mut().zip(&wj[r * n..(r + 1) * n]).for_each(|(hij, b)| *hij += jri * b);
+                    }
+                }
+                for &(p, i, j, c) in quadratic {
+                    if let Some(j) = j {
+                        let d = dw[p] * point.scale * c;
+                        h[i * n + j] += d;
+                        h[j * n + i] += d;
+                    }
+                }
+                return true;
+            }
             hb.fill(0.0);
             for p in 0..P {
                 for (qv, &(slot, row)) in self.slots.iter().enumerate() {
@@ -357,15 +477,20 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         finite.then_some(Assembled { energy, gradient: g, values })
     }
 
-    /// The six derivatives (f, ∂σ, ∂ζ, ∂²σ, ∂σ∂ζ, ∂²ζ) of `field` at (σ, ζ) from z; `None`
-    /// if the field is not numbered.
+    /// The six derivatives (f, ∂σ, ∂ζ, ∂²σ, ∂σ∂ζ, ∂²ζ) of `field` at (σ, ζ) from z, with
+    /// the kernel's quadratic products (the augmented map); `None` if the field is not
+    /// numbered.
     pub fn field_at(&self, z: &[f64], field: Field, sigma: f64, zeta: f64) -> Option<[f64; 6]> {
         let slot = self.dofs.slot(field)?;
         let (e, xi, eta) = self.mesh.locate(sigma, zeta);
         let q = self.dofs.gather(e, z);
         let w = self.mesh.element(e).derivative_weights(xi, eta);
         let local = &q[slot * PER_FIELD..(slot + 1) * PER_FIELD];
-        Some(std::array::from_fn(|row| w[row].iter().zip(local).map(|(a, b)| a * b).sum()))
+        let mut out: [f64; 6] = std::array::from_fn(|row| w[row].iter().zip(local).map(|(a, b)| a * b).sum());
+        for (t, i, j) in self.local_quadratic(e, xi, eta).into_iter().filter(|(t, ..)| t.field == field) {
+            out[t.derivative as usize] += t.coefficient * q[i] * j.map_or(1.0, |j| q[j]);
+        }
+        Some(out)
     }
 
     /// The nodal unknowns that interpolate a field given with its derivatives

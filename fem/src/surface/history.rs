@@ -211,7 +211,7 @@ impl SurfaceHistory {
                 let q = asm.dofs().gather(e, z);
                 for point in asm.points(e, t, ev.time, ev.dt) {
                     let (row, column) = states.place(i, j, point.a, point.b);
-                    let v = asm.values(&point.weights, &q);
+                    let v = asm.values(&point.weights, &asm.quadratic(e, point.xi, point.eta), &q);
                     let k = (row * states.columns + column) * width;
                     asm.kernel().advance(t, &point.at, &v, previous.get(row, column), &mut states.values[k..k + width]);
                 }

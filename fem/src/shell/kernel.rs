@@ -1,0 +1,553 @@
+//! The shell as one [`SurfaceKernel`] (docs/fem-shell.md §3, §6): energy densities per
+//! dσ dζ of the membrane (Simpson × Gauss 3) and of bending and gravity (Gauss 3 × 3),
+//! (S10), over the fields {S, ν, z} of the
+//! Bogner–Fox–Schmit elements, with the augmented C¹ map (S12) at the Cartesian/polar
+//! transitions given to the assembler as quadratic products
+//! ([`SurfaceKernel::quadratic_terms`]).
+//!
+//! The unknown S is the periodic part S̃ of the gauge S = c₀σ + S̃ (S2): the kernel reads
+//! the derivatives of S̃ and adds c₀ to ∂σS. Camber enters as the intrinsic strain
+//! F* = diag(f, 1), f = 1/ℓ*(ζ), ℓ* = 1 − κ_c ζ (S9); the initial area element is
+//! dA* = ∂σS ℓ* dσ dζ (S8).
+
+use drive::contour::Contour;
+
+use crate::element::{BfsRectangle, ElementLayout, Field, SHELL};
+use crate::quadrature::Rule;
+use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, SurfaceKernel, SurfacePoint, SurfaceTerm};
+use crate::surface::mesh::SurfaceMesh;
+use crate::Scalar;
+
+use super::membrane::{self, quadratic_energy, response, ShellSection};
+use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
+use super::ShellError;
+
+/// Number of point values the shell reads ([`Shell::variables`]).
+pub const SHELL_VALUES: usize = 13;
+
+/// The point values in the densities' argument order: S̃ (∂σ, ∂ζ), ν (all six rows),
+/// z (∂σ, ∂ζ, ∂²σ, ∂σ∂ζ, ∂²ζ) — the rows of [`crate::element::SURFACE_DERIVATIVES`]
+/// the energy needs: neither S nor z itself enters (the energy is invariant to a
+/// material shift and a lateral translation), nor the second derivatives of S (their
+/// terms of the second material derivatives are tangential and drop out of (S6)).
+const VARIABLES: [(Field, PointDerivative); SHELL_VALUES] = [
+    (Field::S, PointDerivative::DSigma),
+    (Field::S, PointDerivative::DZeta),
+    (Field::Nu, PointDerivative::Value),
+    (Field::Nu, PointDerivative::DSigma),
+    (Field::Nu, PointDerivative::DZeta),
+    (Field::Nu, PointDerivative::DSigmaSigma),
+    (Field::Nu, PointDerivative::DSigmaZeta),
+    (Field::Nu, PointDerivative::DZetaZeta),
+    (Field::Z, PointDerivative::DSigma),
+    (Field::Z, PointDerivative::DZeta),
+    (Field::Z, PointDerivative::DSigmaSigma),
+    (Field::Z, PointDerivative::DSigmaZeta),
+    (Field::Z, PointDerivative::DZetaZeta),
+];
+
+/// Index of the membrane term in [`Shell::terms`].
+pub const MEMBRANE: usize = 0;
+/// Index of the bending and gravity term in [`Shell::terms`].
+pub const BENDING_GRAVITY: usize = 1;
+
+/// Where the shell lies, for the heights of gravity: on the contour (g_y(σ), n_g,y(σ) of
+/// eq. 27), or a flat horizontal strip at y = 0 with n_g = +j.
+#[derive(Debug, Clone, PartialEq)]
+enum Placement {
+    Contour(Contour),
+    Strip,
+}
+
+/// The shell on a mesh: section, gauge, camber, the element columns and gravity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Shell {
+    section: ShellSection,
+    gauge: f64,
+    camber: f64,
+    sides: TransitionSides,
+    zeta_elements: usize,
+    placement: Placement,
+    /// ρ_s h g: weight per initial area, N/m² (0: no gravity).
+    weight: f64,
+}
+
+impl Shell {
+    /// The shell of `section` laid on `contour` with the mesh `mesh`: gauge
+    /// c₀ = L_ref/L_geom (> 0), camber curvature κ_c (1/m).
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`] (c₀ not finite and positive, κ_c not finite, a fibre
+    /// of non-positive initial length 1 − κ_c ζ on the mesh's width); the errors of
+    /// [`TransitionSides::new`] (a transition that is no σ-node, a length mismatch).
+    pub fn on_contour(section: ShellSection, gauge: f64, camber: f64, contour: &Contour, mesh: &SurfaceMesh) -> Result<Shell, ShellError> {
+        Ok(Shell { placement: Placement::Contour(*contour), ..Shell::with_sides(section, gauge, camber, TransitionSides::new(contour, mesh)?, mesh)? })
+    }
+
+    /// The shell as a flat periodic strip (α = 0 on every column, no transition).
+    ///
+    /// # Errors
+    /// As [`Shell::on_contour`] for the parameters.
+    pub fn strip(section: ShellSection, gauge: f64, camber: f64, mesh: &SurfaceMesh) -> Result<Shell, ShellError> {
+        Shell::with_sides(section, gauge, camber, TransitionSides::strip(mesh.sigma_elements()), mesh)
+    }
+
+    /// The shell on given columns (e.g. [`TransitionSides::without_augmentation`] for a
+    /// comparison with the plain BFS map); gravity, if set, as on a flat strip.
+    ///
+    /// # Errors
+    /// As [`Shell::on_contour`] for the parameters; a column count other than the mesh's.
+    pub fn with_sides(section: ShellSection, gauge: f64, camber: f64, sides: TransitionSides, mesh: &SurfaceMesh) -> Result<Shell, ShellError> {
+        if !(gauge.is_finite() && gauge > 0.0) {
+            return Err(ShellError::BadParameter { what: "gauge c₀", value: gauge });
+        }
+        if !camber.is_finite() {
+            return Err(ShellError::BadParameter { what: "camber curvature", value: camber });
+        }
+        let zeta = mesh.zeta_nodes();
+        for edge in [zeta[0], zeta[zeta.len() - 1]] {
+            if 1.0 - camber * edge <= 0.0 {
+                return Err(ShellError::BadParameter { what: "initial fibre length 1 − κ_c ζ at an edge", value: 1.0 - camber * edge });
+            }
+        }
+        if sides.columns() != mesh.sigma_elements() {
+            return Err(ShellError::BadParameter { what: "columns of the transition sides", value: sides.columns() as f64 });
+        }
+        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements(), placement: Placement::Strip, weight: 0.0 })
+    }
+
+    /// The shell with gravity: ρ_s h g, weight per initial area (N/m², ≥ 0).
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`] for a weight that is not finite and ≥ 0.
+    pub fn with_gravity(self, weight: f64) -> Result<Shell, ShellError> {
+        if !(weight.is_finite() && weight >= 0.0) {
+            return Err(ShellError::BadParameter { what: "weight per area ρ_s h g", value: weight });
+        }
+        Ok(Shell { weight, ..self })
+    }
+
+    /// The section.
+    pub fn section(&self) -> ShellSection {
+        self.section
+    }
+
+    /// ℓ*(ζ) = 1 − κ_c ζ: initial length of the fibre at ζ per reference length (S9).
+    pub fn fibre_length(&self, zeta: f64) -> f64 {
+        1.0 - self.camber * zeta
+    }
+
+    /// The column of element e.
+    fn column(&self, element: usize) -> Column {
+        self.sides.column(element / self.zeta_elements)
+    }
+
+    /// The six derivative rows of S, ν, z from the point values `v` (S with the gauge:
+    /// ∂σS = c₀ + ∂σS̃; the rows the energy does not read — S, z and the second
+    /// derivatives of S — are 0).
+    pub fn fields<D: Scalar>(&self, v: &[D; SHELL_VALUES]) -> [[D; 6]; 3] {
+        let mut fields = [[D::zero(); 6]; 3];
+        fields[S][1..3].copy_from_slice(&v[0..2]);
+        fields[S][1] += self.gauge;
+        fields[NU].copy_from_slice(&v[2..8]);
+        fields[Z][1..].copy_from_slice(&v[8..13]);
+        fields
+    }
+
+    /// Green's membrane strain [E_ss, E_sζ, E_ζζ] in the initial frame (S8) at `at`.
+    pub fn strain<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
+        let derivatives = material_derivatives(self.column(at.element).alpha, &self.fields(v));
+        membrane::strain(&derivatives, 1.0 / self.fibre_length(at.zeta))
+    }
+
+    /// The change of curvature K = F*ᵀ B° F* (S8), [K_ss, K_sζ, K_ζζ] in the initial
+    /// frame, 1/m, at `at`: B° the second fundamental form (S6) of the actual surface in
+    /// the material coordinates, b_ij = n · ∂̊_i∂̊_j r with n = ∂̊_s r × ∂̊_ζ r / |…| and the
+    /// second derivatives (S4) of the position (b* = 0: flat initial surface).
+    pub fn curvature<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
+        let alpha = self.column(at.element).alpha;
+        let fields = self.fields(v);
+        let [a, b] = material_derivatives(alpha, &fields);
+        let (s, nu, z) = (&fields[S], &fields[NU], &fields[Z]);
+        let cross = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        let norm = membrane::dot(&cross, &cross).sqrt();
+        let n = cross.map(|c| c / norm);
+        // (S4) in the frame (t_g, n_g, k)
+        let r_ss = [nu[1] * (2.0 * alpha), nu[3] - (nu[0] * alpha + 1.0) * alpha, z[3]];
+        let r_sz = [nu[2] * alpha, nu[4], z[4]];
+        let r_zz = [D::zero(), nu[5], z[5]];
+        let beta = s[2] / s[1];
+        let (b_ss, b_rs, b_zz) = (membrane::dot(&n, &r_ss), membrane::dot(&n, &r_sz), membrane::dot(&n, &r_zz));
+        let f = 1.0 / self.fibre_length(at.zeta);
+        [b_ss / (s[1] * s[1]) * (f * f), (b_rs - beta * b_ss) / s[1] * f, b_zz - beta * b_rs * 2.0 + beta * beta * b_ss]
+    }
+
+    /// The bending moments M = D₁ tr K I + D₂ K, [M_ss, M_sζ, M_ζζ] (per initial length,
+    /// N m/m) at `at`.
+    pub fn moments(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> [f64; 3] {
+        response(self.section.d1, self.section.d2, &self.curvature(at, v))
+    }
+
+    /// The height r·j = g_y(σ) + ν n_g,y(σ) of the point (S1), m.
+    fn height<D: Scalar>(&self, sigma: f64, nu: D) -> D {
+        match &self.placement {
+            Placement::Contour(contour) => nu * contour.n_g(sigma)[1] + contour.g(sigma)[1],
+            Placement::Strip => nu,
+        }
+    }
+
+    /// The membrane forces N = A₁ tr E I + A₂ E, [N_ss, N_sζ, N_ζζ] (second
+    /// Piola–Kirchhoff, per initial length, N/m) at `at`.
+    pub fn forces(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> [f64; 3] {
+        response(self.section.a1, self.section.a2, &self.strain(at, v))
+    }
+}
+
+impl SurfaceKernel<SHELL_VALUES> for Shell {
+    fn layout(&self) -> ElementLayout {
+        SHELL
+    }
+
+    fn variables(&self) -> [PointVariable; SHELL_VALUES] {
+        VARIABLES.map(|(field, derivative)| PointVariable { field, derivative })
+    }
+
+    /// [`MEMBRANE`]: Simpson × Gauss 3 (§7.3); [`BENDING_GRAVITY`]: Gauss 3 × 3
+    /// (docs/fem-shell.md §6: the text is silent, the rod's choice).
+    fn terms(&self) -> Vec<SurfaceTerm> {
+        vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(3)], history: 0 }]
+    }
+
+    /// (S10) per dσ dζ, each per initial area times dA*/(dσ dζ) = ∂σS ℓ*:
+    /// [`MEMBRANE`] W_m = ½(A₁ (tr E)² + A₂ E··E); [`BENDING_GRAVITY`]
+    /// W_b + W_g = ½(D₁ (tr K)² + D₂ K··K) + ρ_s h g (r·j).
+    fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], _state: &[f64]) -> D {
+        let area = (v[0] + self.gauge) * self.fibre_length(at.zeta);
+        if term == MEMBRANE {
+            return quadratic_energy(self.section.a1, self.section.a2, &self.strain(at, v)) * area;
+        }
+        let mut w = quadratic_energy(self.section.d1, self.section.d2, &self.curvature(at, v));
+        if self.weight != 0.0 {
+            w += self.height(at.sigma, v[2]) * self.weight;
+        }
+        w * area
+    }
+
+    /// ∂σS > 0 and a regular surface (|∂̊_s r × ∂̊_ζ r| > 0).
+    fn admissible(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> bool {
+        if v[0] + self.gauge <= 0.0 {
+            return false;
+        }
+        let [a, b] = material_derivatives(self.column(at.element).alpha, &self.fields(v));
+        let cross = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        membrane::dot(&cross, &cross) > 0.0
+    }
+
+    /// The augmented map (S12) on the columns with transition edges.
+    fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
+        let column = self.column(element);
+        if column.augmented.start || column.augmented.end {
+            let element = ShellElement { gauge: self.gauge, ..self.sides.element_of(column, *rect) };
+            element.quadratic_terms(xi, eta, out);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::SurfaceElement;
+    use crate::shell::transition::contour_mesh;
+    use crate::surface::assembly::{Evaluation, SurfaceAssembler};
+    use crate::test_rng::Rng;
+
+    /// Eh = 1000 N/m, ν_P = 0.3, h = 0.01 m.
+    fn section() -> ShellSection {
+        ShellSection::isotropic(1.0e5, 0.3, 0.01).unwrap()
+    }
+
+    fn static_ev() -> Evaluation<'static> {
+        Evaluation { time: 0.0, dt: 0.0, history: None }
+    }
+
+    /// R = 0.3 m, H = 1.1 m: O(1) geometry.
+    fn contour() -> Contour {
+        Contour::new(0.3, 1.1).unwrap()
+    }
+
+    /// Gradient and Hessian of `asm` at `z` against central differences along `n`
+    /// random directions: step 1e-6 on unknowns of size ≲ 1, truncation h²|E'''| and
+    /// round-off ε|E|/h ≲ 1e-9 of the entries' scale; tolerance 1e-6 of the largest
+    /// entry (of the directional derivative: of max(|slope|, 1e-3 U)).
+    fn check_derivatives(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], seed: u64, n: usize) {
+        let mut rng = Rng(seed);
+        let ev = static_ev();
+        let assembled = asm.assemble(z, &ev).unwrap();
+        let (rows, cols) = asm.pattern();
+        let step = 1e-6;
+        for _ in 0..n {
+            let d: Vec<f64> = z.iter().map(|_| 2.0 * rng.next() - 1.0).collect();
+            let shifted = |t: f64| -> Vec<f64> { z.iter().zip(&d).map(|(a, b)| a + t * b).collect() };
+            let (ep, gp) = asm.gradient(&shifted(step), &ev).unwrap();
+            let (em, gm) = asm.gradient(&shifted(-step), &ev).unwrap();
+            let slope: f64 = assembled.gradient.iter().zip(&d).map(|(g, v)| g * v).sum();
+            let fd = (ep - em) / (2.0 * step);
+            assert!((slope - fd).abs() < 1e-6 * slope.abs().max(1e-3 * assembled.energy.abs()), "directional derivative {slope} vs {fd}");
+            let mut hd = vec![0.0; z.len()];
+            for ((&i, &j), &h) in rows.iter().zip(cols).zip(&assembled.values) {
+                hd[i] += h * d[j];
+            }
+            let largest = hd.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            for ((p, m), h) in gp.iter().zip(&gm).zip(&hd) {
+                assert!(((p - m) / (2.0 * step) - h).abs() < 1e-6 * largest, "Hessian × direction {h} vs {}", (p - m) / (2.0 * step));
+            }
+        }
+    }
+
+    /// A flat periodic strip (α = 0) of length 2 m and width 0.6 m stretched uniformly:
+    /// S = σ/λ₁ (c₀ = 1/λ₁, S̃ = 0), ν = 0, z = λ₂ζ. With free edges (E₂₂ = −ν_P E₁₁,
+    /// exact in Green's strain since A₁/(A₁ + A₂) = ν_P) it is an equilibrium with
+    /// N_ss = Eh E₁₁, N_ζζ = N_sζ = 0 and U = ½ Eh E₁₁² × (initial area c₀ L b) — the
+    /// membrane patch test (docs/fem-shell.md V-2). Suppressing the contraction (λ₂ = 1)
+    /// leaves a lateral force at the free edges: the gradient is not zero.
+    #[test]
+    fn uniform_stretch_of_a_flat_strip_gives_the_exact_membrane_force() {
+        let (lambda, nu_p, eh) = (1.02, 0.3, 1000.0);
+        let e11 = 0.5 * (lambda * lambda - 1.0);
+        let mesh = SurfaceMesh::mapped(2.0, 6, |u| u + 0.1 * (std::f64::consts::TAU * u).sin(), [-0.3, 0.3], 3).unwrap();
+        let shell = Shell::strip(section(), 1.0 / lambda, 0.0, &mesh).unwrap();
+        let asm = SurfaceAssembler::new(mesh, shell, &[]).unwrap();
+        let scale = eh * e11 * 0.6; // the axial force of the strip, N
+        for (lateral, free) in [((1.0 - 2.0 * nu_p * e11).sqrt(), true), (1.0, false)] {
+            let z_field = move |_: f64, zeta: f64| [lateral * zeta, 0.0, lateral, 0.0];
+            let z = asm.interpolate(&[(Field::Z, &z_field)]);
+            let (energy, gradient) = asm.gradient(&z, &static_ev()).unwrap();
+            let largest = gradient.iter().fold(0.0_f64, |m, g| m.max(g.abs()));
+            let at = SurfacePoint { sigma: 0.7, zeta: 0.1, element: 7, time: 0.0, dt: 0.0 };
+            let mut v = [0.0; SHELL_VALUES];
+            v[9] = lateral;
+            let forces = asm.kernel().forces(&at, &v);
+            if free {
+                let exact = 0.5 * eh * e11 * e11 * (2.0 / lambda) * 0.6;
+                assert!((energy - exact).abs() < 1e-13 * exact, "U = {energy} vs {exact}");
+                assert!(largest < 1e-12 * scale, "not in equilibrium: largest gradient entry {largest:e}");
+                assert!((forces[0] - eh * e11).abs() < 1e-13 * eh * e11 && forces[1].abs() < 1e-15 * eh * e11 && forces[2].abs() < 1e-13 * eh * e11, "N = {forces:?}");
+            } else {
+                assert!(largest > 1e-3 * scale, "edge force of the suppressed contraction not seen: {largest:e}");
+                assert!(forces[2] > 0.1 * eh * e11, "N_ζζ = {} should be ν_P N_ss", forces[2]);
+            }
+        }
+    }
+
+    /// The closed belt stretched uniformly by λ on the contour offset by ν₀: ν = ν₀,
+    /// z = λ₂ζ, and S piecewise linear with ∂σS = 1/λ on the spans and (1 + ν₀/R)/λ on
+    /// the arcs — then ∂̊_s r = λ t_g everywhere (S3). The S-slope jumps at every
+    /// transition: the state is a C¹ field of the augmented map (the transition nodes
+    /// carry the Cartesian slope 1/λ, (S11) gives the polar one), and no plain BFS field.
+    /// Gauge c₀ = (2H + 2π(R + ν₀))/(λ L_geom), initial area c₀ L_geom b.
+    fn stretched_belt(lambda: f64, nu0: f64, contour: &Contour, mesh: &SurfaceMesh) -> (f64, impl Fn(f64, f64) -> [f64; 4]) {
+        let (r, h) = (contour.radius(), contour.centre_distance());
+        let c0 = (2.0 * h + 2.0 * std::f64::consts::PI * (r + nu0)) / (lambda * contour.length());
+        let (span, arc) = (1.0 / lambda, (1.0 + nu0 / r) / lambda);
+        let t = contour.transitions();
+        let ends = [t[1], t[2], t[3], contour.length()];
+        let slopes = [span, arc, span, arc];
+        let tolerance = 1e-9 * contour.length();
+        let transitions = t;
+        let length = mesh.length();
+        let s_tilde = move |sigma: f64, _: f64| {
+            let mut s = 0.0;
+            for k in 0..4 {
+                s += slopes[k] * (sigma.min(ends[k]) - t[k]).max(0.0);
+            }
+            let on_transition = transitions.iter().any(|&tt| (tt - sigma).abs() < tolerance) || (sigma - length).abs() < tolerance;
+            // at a transition node the Cartesian side's slope (docs/fem-shell.md §5)
+            let slope = if on_transition { span } else { slopes[(0..4).rev().find(|&k| sigma >= t[k]).unwrap_or(0)] };
+            [s - c0 * sigma, slope - c0, 0.0, 0.0]
+        };
+        (c0, s_tilde)
+    }
+
+    #[test]
+    fn uniformly_stretched_closed_belt_has_the_exact_membrane_energy_across_transitions() {
+        let (lambda, nu0, nu_p, eh, b): (f64, f64, f64, f64, f64) = (1.01, 0.02, 0.3, 1000.0, 0.4);
+        let e11 = 0.5 * (lambda * lambda - 1.0);
+        let lateral = (1.0 - 2.0 * nu_p * e11).sqrt();
+        let contour = contour();
+        let mesh = contour_mesh(&contour, [3, 2, 4, 1], 0.15, vec![-0.2, -0.05, 0.2]).unwrap();
+        let (c0, s_tilde) = stretched_belt(lambda, nu0, &contour, &mesh);
+        let nu = move |_: f64, _: f64| [nu0, 0.0, 0.0, 0.0];
+        let z_field = move |_: f64, zeta: f64| [lateral * zeta, 0.0, lateral, 0.0];
+        let exact = 0.5 * eh * e11 * e11 * c0 * contour.length() * b;
+        let membrane = ShellSection { d1: 0.0, d2: 0.0, ..section() };
+        let shell = Shell::on_contour(membrane, c0, 0.0, &contour, &mesh).unwrap();
+        let plain = Shell::with_sides(membrane, c0, 0.0, TransitionSides::new(&contour, &mesh).unwrap().without_augmentation(), &mesh).unwrap();
+        let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+        let z = asm.interpolate(&[(Field::S, &s_tilde), (Field::Nu, &nu), (Field::Z, &z_field)]);
+        let energy = asm.energy(&z, &static_ev()).unwrap();
+        // round-off of a sum over 60 elements × 27 points of O(1e-2) J
+        assert!((energy - exact).abs() < 1e-12 * exact, "augmented: U = {energy} vs exact {exact} (rel. {:e})", (energy - exact) / exact);
+        let plain = SurfaceAssembler::new(mesh.clone(), plain, &[]).unwrap();
+        let wrong = plain.energy(&z, &static_ev()).unwrap();
+        assert!((wrong - exact).abs() > 1e-2 * exact, "plain BFS map: U = {wrong} should miss {exact}");
+        // the assembler's point values are the augmented fields of shell::transition
+        let sides = TransitionSides::new(&contour, &mesh).unwrap();
+        let m = mesh.zeta_elements();
+        for e in (0..mesh.len()).filter(|&e| sides.column(e / m).augmented != Default::default()) {
+            let el = ShellElement { gauge: c0, ..sides.element(&mesh, e) };
+            let q: [f64; crate::shell::transition::SHELL_DOFS] = asm.dofs().gather(e, &z).try_into().unwrap();
+            for (xi, eta) in [(-0.9, 0.3), (0.4, -0.6)] {
+                let [sigma, zeta] = el.rect.point(xi, eta);
+                let want = el.fields(&q, xi, eta);
+                for (field, k) in [(Field::S, S), (Field::Nu, NU), (Field::Z, Z)] {
+                    let got = asm.field_at(&z, field, sigma, zeta).unwrap();
+                    for row in 0..6 {
+                        assert!((got[row] - want[k][row]).abs() < 1e-12 * (1.0 + want[k][row].abs()), "element {e} {field:?} row {row}: {} vs {}", got[row], want[k][row]);
+                    }
+                }
+                // ∂σS of the whole state: c₀ + ∂σS̃ is the region's slope inside the element
+                let slope = asm.field_at(&z, Field::S, sigma, zeta).unwrap()[1] + c0;
+                assert!((slope - (1.0 + nu0 / contour.radius()) / lambda).abs() < 1e-12, "polar slope {slope}");
+            }
+        }
+    }
+
+    /// Gradient and Hessian of the assembled shell on the closed contour (camber, graded
+    /// mesh, arcs of one and of two elements: every transition element augmented at one
+    /// or both ends) at a random state with |ν| ~ 0.03 (a tenth of R) against central
+    /// differences; the two zero modes of docs/fem-shell.md §1, §9: a constant added to S̃
+    /// or to z leaves the energy unchanged.
+    #[test]
+    fn shell_derivatives_match_central_differences_at_transitions_and_zero_modes_are_free() {
+        let contour = contour();
+        for per_region in [[2, 1, 2, 2], [3, 2, 2, 1]] {
+            let mesh = contour_mesh(&contour, per_region, 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+            let shell = Shell::on_contour(section(), 1.03, 0.4, &contour, &mesh).unwrap();
+            let asm = SurfaceAssembler::new(mesh, shell, &[]).unwrap();
+            let mut rng = Rng(0x3e3b_0a11);
+            let mut r = |scale: f64| scale * (2.0 * rng.next() - 1.0);
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let z: Vec<f64> = reference.iter().map(|v| v + r(0.03)).collect();
+            check_derivatives(&asm, &z, 0x5eed, 6);
+            let ev = static_ev();
+            let energy = asm.energy(&z, &ev).unwrap();
+            for field in [Field::S, Field::Z] {
+                let constant = asm.interpolate(&[(field, &|_: f64, _: f64| [0.37, 0.0, 0.0, 0.0])]);
+                let moved: Vec<f64> = z.iter().zip(&constant).map(|(a, b)| a + b).collect();
+                let shifted = asm.energy(&moved, &ev).unwrap();
+                assert!((shifted - energy).abs() < 1e-13 * energy, "{field:?} + const changes U: {shifted} vs {energy}");
+            }
+        }
+    }
+
+    /// V-3 of docs/fem-shell.md: the belt wrapped isometrically on the contour (c₀ = 1,
+    /// S̃ = 0, ν = 0, z = ζ): E ≡ 0, K = diag(α, 0), so U = U_b = ½ D/R² × 2πR b = πDb/R
+    /// with D = Eh³/(12(1 − ν_P²)) — the lateral curvature is held at zero (z = ζ, ν = 0),
+    /// the wide-plate value; with ν_P = 0 the bending energy of the curvature change 1/R
+    /// against the flat unstressed belt, ½(Eh³/12)/R² per area. The integrand is constant
+    /// per element, so the rule is exact: round-off.
+    #[test]
+    fn belt_wrapped_on_the_contour_has_the_bending_energy_of_the_arcs() {
+        let contour = contour();
+        let (e_modulus, h, b) = (1.0e5, 0.01, 0.4);
+        let mesh = contour_mesh(&contour, [3, 2, 4, 1], 0.15, vec![-0.2, -0.05, 0.2]).unwrap();
+        for nu_p in [0.0, 0.3] {
+            let section = ShellSection::isotropic(e_modulus, nu_p, h).unwrap();
+            let shell = Shell::on_contour(section, 1.0, 0.0, &contour, &mesh).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+            let z = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let energy = asm.energy(&z, &static_ev()).unwrap();
+            let d = e_modulus * h.powi(3) / (12.0 * (1.0 - nu_p * nu_p));
+            let exact = std::f64::consts::PI * d * b / contour.radius();
+            assert!((energy - exact).abs() < 1e-13 * exact, "ν_P = {nu_p}: U = {energy} vs πDb/R = {exact}");
+            // the moment on an arc: M_ss = D K_ss (K_ζζ = 0), M_ζζ = ν_P M_ss
+            let at = SurfacePoint { sigma: 1.5, zeta: 0.0, element: 3 * mesh.zeta_elements() + 1, time: 0.0, dt: 0.0 };
+            let mut v = [0.0; SHELL_VALUES];
+            v[9] = 1.0;
+            let m = asm.kernel().moments(&at, &v);
+            let k = asm.kernel().curvature(&at, &v);
+            assert!((k[0] - 1.0 / contour.radius()).abs() < 1e-14 && k[1].abs() < 1e-15 && k[2].abs() < 1e-15, "K = {k:?}");
+            assert!((m[0] - d / contour.radius()).abs() < 1e-13 * m[0] && (m[2] - nu_p * m[0]).abs() < 1e-13 * m[0], "M = {m:?}");
+        }
+    }
+
+    /// Cylindrical bending of a flat strip (V-4) at a point, in closed form: ν_σσ = −κ
+    /// (n = −n_g, so K_ss = κ) with the anticlastic curvature K_ζζ = −ν_P κ of a narrow
+    /// strip with free edges gives W_b = ½(Eh³/12)κ² per area (the Poisson coupling
+    /// D₁/(D₁ + D₂) = ν_P makes M_ζζ = 0); held flat across (K_ζζ = 0, a wide plate)
+    /// ½Dκ², D = Eh³/(12(1 − ν_P²)). Round-off.
+    #[test]
+    fn cylindrical_bending_of_a_strip_has_the_plate_energies() {
+        let (e_modulus, nu_p, h, kappa) = (2.0e11, 0.3, 1.0e-3, 2.5);
+        let mesh = SurfaceMesh::mapped(2.0, 4, |u| u, [-0.1, 0.1], 2).unwrap();
+        let shell = Shell::strip(ShellSection::isotropic(e_modulus, nu_p, h).unwrap(), 1.0, 0.0, &mesh).unwrap();
+        let at = SurfacePoint { sigma: 0.3, zeta: 0.02, element: 1, time: 0.0, dt: 0.0 };
+        let bending = e_modulus * h.powi(3) / 12.0;
+        for (lateral, exact) in [(nu_p * kappa, 0.5 * bending * kappa * kappa), (0.0, 0.5 * bending / (1.0 - nu_p * nu_p) * kappa * kappa)] {
+            let mut v = [0.0; SHELL_VALUES];
+            v[9] = 1.0; // ∂ζz
+            v[5] = -kappa; // ∂²σν
+            v[7] = lateral; // ∂²ζν
+            let w = shell.density(BENDING_GRAVITY, &at, &v, &[]);
+            assert!((w - exact).abs() < 1e-13 * exact, "W_b = {w} vs {exact}");
+            let m = shell.moments(&at, &v);
+            if lateral != 0.0 {
+                assert!(m[2].abs() < 1e-13 * m[0], "free edge: M_ζζ = {} of M_ss = {}", m[2], m[0]);
+            }
+        }
+    }
+
+    /// Gravity (S10): lifting a flat horizontal strip rigidly by d (ν + d, n_g = +j)
+    /// changes W_g by weight × d, the weight ρ_s h g × initial area c₀ L ∫ℓ* dζ
+    /// (camber, random state: ∫∂σS̃ = 0 over the loop; the integrands are polynomials of
+    /// degree ≤ 3 per direction, exact under Gauss 3 × 3) — and nothing else changes.
+    #[test]
+    fn lifting_a_strip_changes_gravity_by_weight_times_height() {
+        let (weight, c0, camber, d) = (75.0, 1.02, 0.3, 0.013);
+        let mesh = SurfaceMesh::mapped(2.0, 5, |u| u + 0.05 * (std::f64::consts::TAU * u).sin(), [-0.25, 0.35], 3).unwrap();
+        let shell = Shell::strip(section(), c0, camber, &mesh).unwrap().with_gravity(weight).unwrap();
+        let asm = SurfaceAssembler::new(mesh, shell, &[]).unwrap();
+        let mut rng = Rng(0x9a7);
+        let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+        let z: Vec<f64> = reference.iter().map(|v| v + 0.02 * (2.0 * rng.next() - 1.0)).collect();
+        let lift = asm.interpolate(&[(Field::Nu, &|_: f64, _: f64| [d, 0.0, 0.0, 0.0])]);
+        let lifted: Vec<f64> = z.iter().zip(&lift).map(|(a, b)| a + b).collect();
+        let ev = static_ev();
+        let (before, after) = (asm.energy(&z, &ev).unwrap(), asm.energy(&lifted, &ev).unwrap());
+        // ∫ℓ* dζ over [−0.25, 0.35]: 0.6 − κ_c (0.35² − 0.25²)/2
+        let initial_area = c0 * 2.0 * (0.6 - camber * (0.35f64.powi(2) - 0.25f64.powi(2)) / 2.0);
+        let exact = weight * initial_area * d;
+        assert!(((after - before) - exact).abs() < 1e-12 * before.abs().max(exact), "ΔW_g = {} vs weight × d = {exact}", after - before);
+    }
+
+    /// Gradient and Hessian of each energy on its own (membrane: D = 0; bending:
+    /// A = 0; gravity: A = D = 0) on the closed contour with camber at a random state,
+    /// elements at transitions included, against central differences — the bending and
+    /// gravity terms are 1e-5 of the membrane's in the full shell and would hide under
+    /// its tolerance; and the zero modes (S̃ + const, z + const) of the bending.
+    #[test]
+    fn each_term_matches_central_differences_at_transitions() {
+        let contour = contour();
+        let mesh = contour_mesh(&contour, [2, 2, 2, 1], 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+        let full = section();
+        let zero = ShellSection { a1: 0.0, a2: 0.0, d1: 0.0, d2: 0.0 };
+        for (what, section, weight) in [("membrane", ShellSection { d1: 0.0, d2: 0.0, ..full }, 0.0), ("bending", ShellSection { a1: 0.0, a2: 0.0, ..full }, 0.0), ("gravity", zero, 75.0)] {
+            let shell = Shell::on_contour(section, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(weight).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+            let mut rng = Rng(0x0be_d1e);
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let z: Vec<f64> = reference.iter().map(|v| v + 0.03 * (2.0 * rng.next() - 1.0)).collect();
+            let energy = asm.energy(&z, &static_ev()).unwrap();
+            assert!(energy.abs() > 0.0, "{what}: no energy");
+            check_derivatives(&asm, &z, 0x7e57, 4);
+            if what == "bending" {
+                for field in [Field::S, Field::Z] {
+                    let constant = asm.interpolate(&[(field, &|_: f64, _: f64| [0.37, 0.0, 0.0, 0.0])]);
+                    let moved: Vec<f64> = z.iter().zip(&constant).map(|(a, b)| a + b).collect();
+                    let shifted = asm.energy(&moved, &static_ev()).unwrap();
+                    assert!((shifted - energy).abs() < 1e-13 * energy, "bending: {field:?} + const changes U: {shifted} vs {energy}");
+                }
+            }
+        }
+    }
+}
