@@ -86,6 +86,18 @@ pub enum FemError {
         last_failure: String,
     },
 
+    /// The start of a continuation (its η = 0 problem) could not be solved, with the
+    /// scene quantities that made it hard.
+    #[error("the start state ({start}) did not converge: {cause}; {hard}")]
+    StartFailed {
+        /// Which start, in words.
+        start: String,
+        /// The solver's failure.
+        cause: String,
+        /// The scene quantities that make it hard, with their numbers.
+        hard: String,
+    },
+
     /// The converged static solution is no belt-on-pulley equilibrium
     /// (docs/fem-rod.md §10): a contact zone over the inner point of its pulley, a
     /// compressive edge force, or contact force on a pulley with no contact zone — an

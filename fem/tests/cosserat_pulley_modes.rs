@@ -146,3 +146,21 @@ fn hard_cases_against_the_bvp() {
         }
     }
 }
+
+/// Spec §2.8, b₂ close to ρc² (1.01 ρc² = 0.404 N): the effective shear stiffness b₂ − ρc²
+/// = 0.004 N makes a shear layer of 15.8 R, and the pure-stick start does not converge.
+/// The FE says so by name with the scene's layers (the BVP fails there too, by name), not
+/// as a homotopy "stalled" at a zero step.
+#[test]
+fn shear_stiffness_near_critical_fails_at_the_start_by_name() {
+    let mut s = scene(&[("tension_in", 15.0), ("tension_out", 10.0)], 0.3);
+    let chi = s.belt.mass_per_length * 2.0 * 2.0; // ρc², c = 2 m/s
+    s.belt.shear_stiffness = Some(1.01 * chi);
+    match fe(&s, 64) {
+        Err(FemError::StartFailed { start, hard, .. }) => {
+            assert!(start.contains("pure stick") && start.contains("15 N"), "{start}");
+            assert!(hard.contains("shear layer") && hard.contains("15.8") && hard.contains("b₂ − ρc² = 0.004 N"), "{hard}");
+        }
+        other => panic!("expected a failed start, got {:?}", other.map(|r| r.summary)),
+    }
+}

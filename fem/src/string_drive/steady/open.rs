@@ -6,6 +6,7 @@
 //! to the scene's N_out. Mode `pulley_speed` swaps the ω-slot's unknown for 𝓗_in (§12.7);
 //! mode `stick_slip_angle` finds the free tension by Brent's method on the FE's φ_B (§12.7).
 
+use numerics::Sig;
 use std::f64::consts::FRAC_PI_2;
 
 use drive::contour::OpenContour;
@@ -263,9 +264,28 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         x.extend([self.transport_rate, self.transport_rate * lambda / self.base.radius]);
         x.extend(std::iter::repeat_n(0.0, self.points.len()));
         let start = self.problem(self.ends(h, h, None));
-        let n0 = penalty_ladder(&start, &mut x, self.w, self.scales, self.tolerance, self.max_iterations, &[1e-4, 1e-3, 1e-2, 1e-1, 1.0]).map_err(|e| FemError::HomotopyStalled { eta: 0.0, step: 0.0, min_step: 0.0, steps: 0, last_failure: format!("the pure-stick start (N_out = N_in): {e}") })?;
+        let n0 = penalty_ladder(&start, &mut x, self.w, self.scales, self.tolerance, self.max_iterations, &[1e-4, 1e-3, 1e-2, 1e-1, 1.0])
+            .map_err(|e| FemError::StartFailed { start: format!("pure stick at N_in = N_out = {} N", Sig(tension)), cause: e.to_string(), hard: self.layers(tension) })?;
         report.newton_iterations += n0.iterations;
         Ok(x)
+    }
+
+    /// The scene's layers at the tension `tension` (N) against R, in words: the bending
+    /// layer √(a/T̃) and, for a shear-deformable belt, the shear layer √(a/(b₂ − ρc²)) —
+    /// what makes a start hard (a shear layer of many R: b₂ close to ρc²).
+    fn layers(&self, tension: f64) -> String {
+        let r = self.base.radius;
+        let a = self.params.bending_stiffness.unwrap_or(0.0);
+        let effective = tension - self.chi * (1.0 + tension / self.axial_stiffness);
+        let mut text = format!("bending layer √(a/T̃) = {} R (T̃ = {} N)", Sig((a / effective).sqrt() / r), Sig(effective));
+        if let Some(b2) = self.kernel.shear_stiffness() {
+            text += &format!(
+                ", shear layer √(a/(b₂ − ρc²)) = {} R (b₂ − ρc² = {} N: the closer b₂ is to ρc², the softer the belt in shear)",
+                Sig((a / (b2 - self.chi)).sqrt() / r),
+                Sig(b2 - self.chi)
+            );
+        }
+        text
     }
 
     /// The loop's load continuation from the state `x` converged at `from` to `to`
