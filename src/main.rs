@@ -30,15 +30,9 @@ enum CliError {
     /// A flag value outside its documented range.
     #[error("--{flag} = {value} is out of range: {range}")]
     OutOfRange { flag: &'static str, value: String, range: String },
-    /// `--json` onto an existing path that is not a regular file.
-    #[error("`{}` exists and is {kind}: refusing to replace it (--json writes regular files only); give the path of a new or a regular file", .path.display())]
-    NotRegularFile { path: PathBuf, kind: &'static str },
-    /// `--json` onto a path without a file name (`/`, `..`).
-    #[error("`{}` names no file", .path.display())]
-    NoFileName { path: PathBuf },
-    /// Writing or renaming failed (the temporary file is removed).
-    #[error("writing `{}`", .path.display())]
-    Write { path: PathBuf, source: std::io::Error },
+    /// A result file that was not written (nothing of it is left behind).
+    #[error(transparent)]
+    File(#[from] verification::files::WriteError),
     /// Two scenes of one `report` run with the same name (their reports would overwrite
     /// each other).
     #[error("scene name `{name}` appears twice ({} and {}): each scene's report is written to a directory of its name; rename one", .first.display(), .second.display())]
@@ -585,34 +579,10 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
     }
 }
 
-/// Writes `text` to `path` via a temporary file in the same directory and a rename, so
-/// that a failure leaves neither a half-written result nor the temporary file. An
-/// existing path that is not a regular file (a symlink, FIFO, device, socket or
-/// directory) is refused: renaming over it would replace the link or the device node.
+/// Writes `text` to `path` by [`verification::files::write_file`]: nothing half-written
+/// on an error, and never over a link, a directory or a device.
 fn write_output(path: &Path, text: &str) -> Result<(), CliError> {
-    if let Ok(meta) = std::fs::symlink_metadata(path) {
-        let t = meta.file_type();
-        if !t.is_file() {
-            let kind = if t.is_symlink() {
-                "a symbolic link"
-            } else if t.is_dir() {
-                "a directory"
-            } else {
-                "not a regular file (a FIFO, device or socket)"
-            };
-            return Err(CliError::NotRegularFile { path: path.to_path_buf(), kind });
-        }
-    }
-    let Some(file) = path.file_name() else {
-        return Err(CliError::NoFileName { path: path.to_path_buf() });
-    };
-    let tmp = path.with_file_name(format!(".{}.{}.partial", file.to_string_lossy(), std::process::id()));
-    let written = std::fs::write(&tmp, text).and_then(|()| std::fs::rename(&tmp, path));
-    written.map_err(|source| {
-        // the temporary file may exist (the rename failed) or not (the write did)
-        let _ = std::fs::remove_file(&tmp);
-        CliError::Write { path: path.to_path_buf(), source }
-    })
+    Ok(verification::files::write_file(path, text)?)
 }
 
 fn deg(rad: f64) -> f64 {

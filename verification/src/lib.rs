@@ -25,6 +25,7 @@
 
 pub mod check;
 pub mod closed_form;
+pub mod files;
 pub mod gate;
 pub mod measure;
 pub mod outside;

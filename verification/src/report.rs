@@ -27,14 +27,9 @@ use crate::table::{self, fmt_error, fmt_seconds, Table};
 /// Why a report could not be written.
 #[derive(Debug, thiserror::Error)]
 pub enum ReportError {
-    /// A file could not be written.
-    #[error("writing {path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
+    /// A file could not be written (nothing of the scene's set is left half-written).
+    #[error(transparent)]
+    Write(#[from] crate::files::WriteError),
     /// A plot failed.
     #[error(transparent)]
     Plot(#[from] plot::PlotError),
@@ -177,10 +172,6 @@ pub fn study_json(scene: &Scene, study: &Study) -> Result<String, serde_json::Er
     serde_json::to_string_pretty(&v)
 }
 
-fn write(path: &Path, text: &str) -> Result<(), ReportError> {
-    std::fs::write(path, text).map_err(|source| ReportError::Io { path: path.to_path_buf(), source })
-}
-
 /// Every effect a scene can call for, in the order of [`Scene::effect_names`].
 const ALL_EFFECTS: [&str; 5] = ["gravity", "transport inertia", "frictionless contact", "coulomb friction", "elastic interlayer contact"];
 
@@ -235,25 +226,21 @@ fn fem_status(study: &Study) -> String {
 /// A file that cannot be written or a plot that cannot be drawn.
 pub fn write_scene_report(scene: &Scene, scene_file: &Path, study: &Study, dir: &Path) -> Result<ReportEntry, ReportError> {
     let sdir = dir.join(&scene.name);
-    std::fs::create_dir_all(&sdir).map_err(|source| ReportError::Io { path: sdir.clone(), source })?;
-    let mut files = Vec::new();
-    for (name, svg) in [
+    crate::files::create_dir(&sdir)?;
+    let texts = [
         ("shape.svg", plot::shape_svg(scene, study)?),
         ("force.svg", plot::force_svg(scene, study)?),
         ("convergence.svg", plot::convergence_svg(scene, study)?),
         ("work-precision.svg", plot::work_precision_svg(scene, study)?),
-    ] {
-        let p = sdir.join(name);
-        write(&p, &svg)?;
-        files.push(p);
-    }
-    let json = study_json(scene, study)?;
-    let jp = sdir.join("study.json");
-    write(&jp, &json)?;
-    files.push(jp);
-    let md = scene_markdown(scene, scene_file, study);
-    let mp = sdir.join("report.md");
-    write(&mp, &md)?;
+        ("study.json", study_json(scene, study)?),
+        ("report.md", scene_markdown(scene, scene_file, study)),
+    ];
+    let set: Vec<(PathBuf, &str)> = texts.iter().map(|(name, text)| (sdir.join(name), text.as_str())).collect();
+    crate::files::write_all(&set)?;
+    // the page itself is `markdown`; `files` are what it shows and links
+    let (page, shown) = set.split_last().expect("six files");
+    let files: Vec<PathBuf> = shown.iter().map(|(p, _)| p.clone()).collect();
+    let mp = page.0.clone();
     Ok(ReportEntry {
         scene: scene.name.clone(),
         description: scene.description.clone(),
@@ -499,7 +486,7 @@ pub fn write_index(entries: &[ReportEntry], dir: &Path) -> Result<PathBuf, Repor
         .collect();
     all.sort_by(|a, b| a.scene.cmp(&b.scene));
     let entries = &all[..];
-    write(&json, &serde_json::to_string_pretty(entries)?)?;
+    let index_json = serde_json::to_string_pretty(entries)?;
     let mut m = String::new();
     let _ = writeln!(m, "# beltcheck reports\n");
     let _ = writeln!(m, "Each scene of the catalogue computed two independent ways — BVP references and MEL finite elements — and held against each other. Regenerate with `cargo run --release -- report scenes/ -o reports/` (see docs/verification.md).\n");
@@ -526,6 +513,6 @@ pub fn write_index(entries: &[ReportEntry], dir: &Path) -> Result<PathBuf, Repor
         }
     }
     let p = dir.join("index.md");
-    write(&p, &m)?;
+    crate::files::write_all(&[(json, index_json.as_str()), (p.clone(), m.as_str())])?;
     Ok(p)
 }

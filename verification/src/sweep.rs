@@ -98,8 +98,8 @@ pub enum SweepError {
     #[error(transparent)]
     Plot(#[from] crate::plot::PlotError),
     /// A file could not be written (nothing of the sweep is left behind).
-    #[error("writing `{}`: {source}", .path.display())]
-    Write { path: PathBuf, source: std::io::Error },
+    #[error(transparent)]
+    Write(#[from] crate::files::WriteError),
     /// JSON serialisation.
     #[error("JSON: {0}")]
     Json(#[from] serde_json::Error),
@@ -1061,35 +1061,11 @@ pub fn sweep_markdown(sweep: &Sweep, command: &str) -> String {
 /// [`SweepError::Plot`], [`SweepError::Json`], [`SweepError::Write`].
 pub fn write_sweep(sweep: &Sweep, command: &str, dir: &Path) -> Result<Vec<PathBuf>, SweepError> {
     let files = [("sweep.md", sweep_markdown(sweep, command)), ("sweep.svg", sweep_svg(sweep)?), ("sweep.json", sweep_json(sweep)?)];
-    std::fs::create_dir_all(dir).map_err(|source| SweepError::Write { path: dir.to_path_buf(), source })?;
-    let mut written: Vec<(PathBuf, PathBuf)> = Vec::new();
-    let cleanup = |w: &[(PathBuf, PathBuf)]| {
-        for (tmp, _) in w {
-            let _ = std::fs::remove_file(tmp);
-        }
-    };
-    for (name, text) in &files {
-        let path = dir.join(name);
-        if std::fs::symlink_metadata(&path).is_ok_and(|m| !m.file_type().is_file()) {
-            cleanup(&written);
-            let source = std::io::Error::other("exists and is not a regular file: refusing to replace it");
-            return Err(SweepError::Write { path, source });
-        }
-        let tmp = dir.join(format!(".{name}.{}.partial", std::process::id()));
-        if let Err(source) = std::fs::write(&tmp, text) {
-            let _ = std::fs::remove_file(&tmp);
-            cleanup(&written);
-            return Err(SweepError::Write { path, source });
-        }
-        written.push((tmp, path));
-    }
-    for (tmp, path) in &written {
-        if let Err(source) = std::fs::rename(tmp, path) {
-            cleanup(&written);
-            return Err(SweepError::Write { path: path.clone(), source });
-        }
-    }
-    Ok(written.into_iter().map(|(_, p)| p).collect())
+    crate::files::create_dir(dir)?;
+    let paths: Vec<PathBuf> = files.iter().map(|(name, _)| dir.join(name)).collect();
+    let set: Vec<(PathBuf, &str)> = paths.iter().cloned().zip(files.iter().map(|(_, text)| text.as_str())).collect();
+    crate::files::write_all(&set)?;
+    Ok(paths)
 }
 
 #[cfg(test)]
