@@ -44,10 +44,7 @@ use crate::error::BvpError;
 use crate::newton::{self, NewtonReport, NewtonSystem, SparseLu};
 use crate::problem::Problem;
 use crate::solution::{Solution, Stats};
-use argmin::core::{CostFunction, Executor, State, TerminationReason};
 use numerics::continuation::{ContinuationError, Homotopy, Step, StepControl};
-use argmin::solver::brent::BrentRoot;
-use std::cell::RefCell;
 use std::time::Instant;
 
 /// Options of [`natural`] and [`pseudo_arclength`]. Serialisable.
@@ -190,54 +187,17 @@ impl Branch {
     }
 }
 
-/// The root of a scalar function on [a, b] (f(a) f(b) ≤ 0) by argmin's Brent method,
-/// to absolute tolerance `tol` in the argument. Errors of `f` are passed through.
-pub(crate) fn brent_root(
-    f: impl FnMut(f64) -> Result<f64, BvpError>,
-    a: f64,
-    b: f64,
-    tol: f64,
-) -> Result<f64, BvpError> {
-    struct Cost<'e, F> {
-        f: RefCell<F>,
-        error: &'e RefCell<Option<BvpError>>,
-    }
-    impl<F: FnMut(f64) -> Result<f64, BvpError>> CostFunction for Cost<'_, F> {
-        type Param = f64;
-        type Output = f64;
-        fn cost(&self, x: &f64) -> Result<f64, argmin::core::Error> {
-            match (self.f.borrow_mut())(*x) {
-                Ok(v) if v.is_finite() => Ok(v),
-                Ok(_) => {
-                    *self.error.borrow_mut() = Some(BvpError::NonFinite { what: format!("root function at {x}") });
-                    Err(argmin::core::Error::msg("non-finite function value"))
-                }
-                Err(e) => {
-                    *self.error.borrow_mut() = Some(e);
-                    Err(argmin::core::Error::msg("function evaluation failed"))
-                }
-            }
-        }
-    }
-    let error = RefCell::new(None);
-    let cost = Cost { f: RefCell::new(f), error: &error };
-    let result = Executor::new(cost, BrentRoot::new(a, b, tol)).configure(|s| s.max_iters(200)).run();
-    if let Some(e) = error.borrow_mut().take() {
-        return Err(e);
-    }
-    match result {
-        Ok(res) => {
-            let state = res.state();
-            let converged = matches!(state.get_termination_reason(), Some(TerminationReason::SolverConverged));
-            match (converged, state.get_best_param()) {
-                (true, Some(&x)) => Ok(x),
-                _ => {
-                    Err(BvpError::InvalidInput(format!("Brent root on [{a}, {b}] did not converge in 200 iterations")))
-                }
-            }
-        }
-        Err(e) => Err(BvpError::InvalidInput(format!("Brent root on [{a}, {b}]: {e}"))),
-    }
+/// The root of a scalar function on [a, b] (f(a) f(b) ≤ 0) by Brent's method
+/// ([`numerics::roots::brent`]), to absolute tolerance `tol` in the argument. Errors of
+/// `f` are passed through; the search's own failures are [`BvpError::NonFinite`] or
+/// [`BvpError::InvalidInput`] with the numbers.
+pub(crate) fn brent_root(f: impl FnMut(f64) -> Result<f64, BvpError>, a: f64, b: f64, tol: f64) -> Result<f64, BvpError> {
+    use numerics::roots::RootError;
+    numerics::roots::brent(f, a, b, tol).map_err(|e| match e {
+        RootError::Evaluation(e) => e,
+        e @ RootError::NonFinite { .. } => BvpError::NonFinite { what: format!("root function: {e}") },
+        e => BvpError::InvalidInput(format!("Brent root: {e}")),
+    })
 }
 
 /// ⟨a, b⟩_w on (z, η) vectors.

@@ -7,8 +7,6 @@
 //! This module is standalone: it shares only the Hermite shape functions, the quadrature
 //! rules and the sparse LU with the MEL elements.
 
-use argmin::core::{CostFunction, Executor, State, TerminationReason};
-use argmin::solver::brent::BrentRoot;
 use thiserror::Error;
 
 use crate::hermite;
@@ -167,30 +165,11 @@ pub fn closed_form(stamp: &Stamp) -> Result<ClosedForm, StampError> {
             full,
         });
     }
-    struct Residual(Stamp);
-    impl CostFunction for Residual {
-        type Param = f64;
-        type Output = f64;
-        fn cost(&self, a: &f64) -> Result<f64, argmin::core::Error> {
-            Ok(edge_conditions(&self.0, *a).2)
-        }
-    }
     let l = stamp.half_span;
     // f(0) = δ₀ − δ < 0 and f(ℓ⁻) → ℓ²/2ρ − δ > 0; stay off ℓ where coth k(a − ℓ) blows up.
     let (lo, hi) = (0.0, l * (1.0 - 1e-12));
-    let res = Executor::new(Residual(*stamp), BrentRoot::new(lo, hi, 1e-15 * l))
-        .configure(|st| st.max_iters(200))
-        .run()
-        .map_err(|e| StampError::Solver(format!("Brent on (T5): {e}")))?;
-    let state = res.state();
-    let a = match (state.get_termination_reason(), state.get_best_param()) {
-        (Some(TerminationReason::SolverConverged), Some(&a)) => a,
-        _ => {
-            return Err(StampError::Solver(
-                "Brent on (T5) did not converge in 200 iterations".into(),
-            ))
-        }
-    };
+    let residual = |a: f64| Ok::<f64, std::convert::Infallible>(edge_conditions(stamp, a).2);
+    let a = numerics::roots::brent(residual, lo, hi, 1e-15 * l).map_err(|e| StampError::Solver(format!("Brent on (T5): {e}")))?;
     let (b, c, _) = edge_conditions(stamp, a);
     let k = stamp.k();
     let pressure = stamp.axial_force / stamp.stamp_radius;

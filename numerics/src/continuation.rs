@@ -32,8 +32,6 @@
 //! monotone through the fold) on the bracket with Brent's method (argmin). η is
 //! stationary at the fold, so an error δ in the coordinate costs only O(δ²) in η.
 
-use argmin::core::{CostFunction, Executor, State, TerminationReason};
-use argmin::solver::brent::BrentRoot;
 use thiserror::Error;
 
 use crate::fmt::Sig;
@@ -486,78 +484,17 @@ pub fn pseudo_arclength<B: Branch>(
     }
 }
 
-/// Fold location failed.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum FoldError<E> {
-    /// g has the same sign at both ends of the bracket.
-    #[error("fold location: g({a}) = {ga} and g({b}) = {gb} have the same sign")]
-    NotBracketed { a: Sig, b: Sig, ga: Sig, gb: Sig },
-    /// An evaluation of g failed.
-    #[error("fold location: {0}")]
-    Evaluation(E),
-    /// Brent's method did not converge.
-    #[error("fold location: Brent's method did not converge on [{a}, {b}] ({reason})")]
-    NotConverged { a: Sig, b: Sig, reason: String },
-}
+/// Fold location failed: [`crate::roots::RootError`].
+pub type FoldError<E> = crate::roots::RootError<E>;
 
 /// The root s* ∈ [a, b] of g (a continuous function with g(a)·g(b) ≤ 0), to within
-/// `tol`·(1 + max(|a|, |b|)), by Brent's method (argmin's `BrentRoot`). Used with g = the
-/// η-component of the tangent as a function of a state coordinate monotone through
-/// the fold.
-pub fn locate_fold<E>(
-    g: impl Fn(f64) -> Result<f64, E>,
-    a: f64,
-    b: f64,
-    tol: f64,
-) -> Result<f64, FoldError<E>> {
-    let ga = g(a).map_err(FoldError::Evaluation)?;
-    if ga == 0.0 {
-        return Ok(a);
-    }
-    let gb = g(b).map_err(FoldError::Evaluation)?;
-    if gb == 0.0 {
-        return Ok(b);
-    }
-    if ga * gb > 0.0 || !(ga.is_finite() && gb.is_finite()) {
-        return Err(FoldError::NotBracketed { a: Sig(a), b: Sig(b), ga: Sig(ga), gb: Sig(gb) });
-    }
-    let failure = std::cell::RefCell::new(None);
-    let cost = Scalar { g: &g, failure: &failure };
-    let (lo, hi) = if a < b { (a, b) } else { (b, a) };
-    let solver = BrentRoot::new(lo, hi, tol * (1.0 + a.abs().max(b.abs())));
-    let res = Executor::new(cost, solver).configure(|s| s.param(0.5 * (lo + hi)).max_iters(200)).run();
-    if let Some(e) = failure.borrow_mut().take() {
-        return Err(FoldError::Evaluation(e));
-    }
-    let not_converged = |reason: String| FoldError::NotConverged { a: Sig(a), b: Sig(b), reason };
-    let res = res.map_err(|e| not_converged(e.to_string()))?;
-    let state = res.state();
-    match state.get_termination_reason() {
-        Some(TerminationReason::SolverConverged) => {}
-        other => return Err(not_converged(format!("{other:?}"))),
-    }
-    state.get_best_param().copied().ok_or_else(|| not_converged("no estimate".into()))
-}
-
-/// g as argmin's cost function; a failed evaluation is remembered and reported as NaN
-/// (which ends Brent's iteration).
-struct Scalar<'a, G, E> {
-    g: &'a G,
-    failure: &'a std::cell::RefCell<Option<E>>,
-}
-
-impl<G: Fn(f64) -> Result<f64, E>, E> CostFunction for Scalar<'_, G, E> {
-    type Param = f64;
-    type Output = f64;
-    fn cost(&self, s: &f64) -> Result<f64, argmin::core::Error> {
-        match (self.g)(*s) {
-            Ok(v) => Ok(v),
-            Err(e) => {
-                self.failure.borrow_mut().get_or_insert(e);
-                Err(argmin::core::Error::msg("evaluation failed"))
-            }
-        }
-    }
+/// `tol`·(1 + max(|a|, |b|)), by [`crate::roots::brent`]. Used with g = the η-component
+/// of the tangent as a function of a state coordinate monotone through the fold.
+///
+/// # Errors
+/// [`FoldError`]: no bracket, a failed evaluation, no convergence.
+pub fn locate_fold<E>(g: impl Fn(f64) -> Result<f64, E>, a: f64, b: f64, tol: f64) -> Result<f64, FoldError<E>> {
+    crate::roots::brent(g, a, b, tol * (1.0 + a.abs().max(b.abs())))
 }
 
 #[cfg(test)]

@@ -40,6 +40,7 @@ pub mod linear;
 pub mod newton;
 pub mod phases;
 pub mod quadrature;
+pub mod roots;
 pub mod scalar;
 
 pub use fmt::Sig;
