@@ -291,7 +291,7 @@ enum FormatArg {
 
 #[derive(Clone, Copy, ValueEnum)]
 enum MethodArg {
-    /// Collocation with residual control (scheme from --scheme or the scene, default gauss6).
+    /// Collocation with residual control (scheme from --scheme or the scene, default gauss8).
     BvpCollocation,
     /// Multiple shooting on an adaptive Runge–Kutta integrator (diffsol).
     BvpShooting,
@@ -311,7 +311,7 @@ struct SolveArgs {
     #[arg(long)]
     tolerance: Option<f64>,
     /// bvp-collocation only: scheme (gauss4, gauss6, gauss8); default: the scene's
-    /// `bvp.scheme`, else gauss6.
+    /// `bvp.scheme`, else gauss8.
     #[arg(long)]
     scheme: Option<String>,
     /// fem only: number of elements round the loop, 4 … 16384; default: the scene's

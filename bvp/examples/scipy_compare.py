@@ -21,6 +21,10 @@ Problems (same data as bvp::analytical):
   `elastica::Exact::max_error` (component-wise relative to max(1, max|y_i|) on 2001
   points, |P - P_ex| / P_ex, |Q| / P_ex).
 
+Then the elastica once more with analytic Jacobians (fun_jac, bc_jac), best process CPU
+time of 5 runs at 1e-7 and 1e-8: the side of `cargo run --release -p bvp --example speed`
+(docs/bvp-engine.md, "Speed").
+
 scipy's tol is its relative residual tolerance (the same definition the Rust collocation
 uses); bc_tol is set equal to tol; max_nodes = 10^5 (status 1 = node cap reached).
 """
@@ -117,6 +121,51 @@ def elastica(tol):
     return solve_bvp(fun, bc, s, y0, p=[4 * np.pi**2, 0.0], tol=tol, bc_tol=tol, max_nodes=10**5)
 
 
+def elastica_analytic(tol):
+    """The same elastica with analytic Jacobians (fun_jac, bc_jac), as the peers in
+    ../shared/peers/ run scipy: the fair side of a CPU-time comparison."""
+    s, y0 = elastica_guess()
+
+    def fun(s, y, p):
+        P, Q = p
+        return np.vstack([np.cos(y[2]), np.sin(y[2]), y[3], -P * np.sin(y[2]) - Q * np.cos(y[2])])
+
+    def fun_jac(s, y, p):
+        P, Q = p
+        dy, dp = np.zeros((4, 4, s.size)), np.zeros((4, 2, s.size))
+        dy[0, 2], dy[1, 2], dy[2, 3] = -np.sin(y[2]), np.cos(y[2]), 1.0
+        dy[3, 2] = -P * np.cos(y[2]) + Q * np.sin(y[2])
+        dp[3, 0], dp[3, 1] = -np.sin(y[2]), -np.cos(y[2])
+        return dy, dp
+
+    def bc(ya, yb, p):
+        return np.array([ya[0], ya[1], ya[2], yb[0] - A_END, yb[1], yb[2]])
+
+    def bc_jac(ya, yb, p):
+        da, db = np.zeros((6, 4)), np.zeros((6, 4))
+        da[0, 0] = da[1, 1] = da[2, 2] = 1.0
+        db[3, 0] = db[4, 1] = db[5, 2] = 1.0
+        return da, db, np.zeros((6, 2))
+
+    return solve_bvp(fun, bc, s, y0, p=[4 * np.pi**2, 0.0], fun_jac=fun_jac, bc_jac=bc_jac,
+                     tol=tol, bc_tol=tol, max_nodes=10**5)
+
+
+def cpu_table(name, run, error, exact, tolerances=(1e-7, 1e-8), repeats=5):
+    """Best process CPU time of `repeats` runs per tolerance (compare with
+    `cargo run --release -p bvp --example speed`, which reports CPU time too)."""
+    print(f"{name:<22} {'tol':>8} {'nodes':>7} {'max error':>11} {'status':>6} {'cpu [ms]':>11}")
+    for tol in tolerances:
+        best = np.inf
+        for _ in range(repeats):
+            c0 = time.process_time()
+            sol = run(tol)
+            best = min(best, time.process_time() - c0)
+        err = error(sol, exact) if sol.success else float("nan")
+        print(f"{name:<22} {tol:>8.0e} {sol.x.size:>7} {err:>11.3e} {sol.status:>6} {best * 1e3:>11.3f}")
+    print()
+
+
 def elastica_error(sol, exact):
     num = sol.sol(S)
     scale = np.maximum(1.0, np.max(np.abs(exact), axis=1))
@@ -143,3 +192,5 @@ if __name__ == "__main__":
     table("scipy solve_bvp", bratu, bratu_error, bratu_exact())
     print(f"elastica k = 1/sqrt2: a = {A_END:.12f}, P = {P_EX:.12f}; guess theta = sin 2 pi s (11 nodes)")
     table("scipy solve_bvp", elastica, elastica_error, elastica_exact())
+    print("elastica k = 1/sqrt2 with analytic Jacobians; best CPU time of 5 runs")
+    cpu_table("scipy analytic", elastica_analytic, elastica_error, elastica_exact())

@@ -719,7 +719,8 @@ pub struct BvpSettings {
     #[serde(default = "BvpSettings::default_tolerance")]
     pub tolerance: f64,
     /// Collocation scheme, e.g. `"gauss6"`; the name is validated by the `bvp`
-    /// crate; unused by shooting. Non-empty. Default `"gauss6"`.
+    /// crate; unused by shooting. Non-empty. Default `"gauss8"` (the `bvp` crate's
+    /// default, the cheapest at every accuracy measured).
     #[serde(default = "BvpSettings::default_scheme")]
     pub scheme: String,
     /// Maximum mesh nodes of collocation before it gives up, ≥ 4. Default 20000.
@@ -735,7 +736,7 @@ impl BvpSettings {
         1e-8
     }
     fn default_scheme() -> String {
-        "gauss6".to_string()
+        "gauss8".to_string()
     }
     fn default_max_nodes() -> usize {
         20_000

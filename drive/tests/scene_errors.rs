@@ -149,7 +149,7 @@ fn cosserat_drive_is_valid_and_round_trips() {
         s.effect_names(),
         vec!["gravity", "transport inertia", "coulomb friction"]
     );
-    assert_eq!(s.bvp_settings().scheme, "gauss6");
+    assert_eq!(s.bvp_settings().scheme, "gauss8");
     let back = Scene::from_json_str(&s.to_json_pretty()).unwrap();
     assert_eq!(back, s);
     // and the baseline

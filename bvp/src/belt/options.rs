@@ -20,7 +20,8 @@ pub struct BeltOptions {
     /// defect of [`crate::shooting`]). Scene `bvp.tolerance`; default 1e-8; valid
     /// (1e-13, 1e-2].
     pub tolerance: f64,
-    /// Collocation scheme of the final solve (scene `bvp.scheme`). Default: gauss6.
+    /// Collocation scheme of the final solve (scene `bvp.scheme`). Default: gauss8
+    /// ([`Scheme::default`]).
     pub scheme: Scheme,
     /// Mesh cap of every collocation solve, total nodes (scene `bvp.max_nodes`).
     /// Default 20 000.

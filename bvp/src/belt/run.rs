@@ -36,10 +36,12 @@ pub enum StageError {
     Final(BvpError),
 }
 
-/// The collocation options of the homotopy path: gauss6 at `opts.homotopy_tolerance`.
+/// The collocation options of the homotopy path: gauss6 at `opts.homotopy_tolerance`
+/// (gauss6, not the default gauss8: the paths, and with them the final meshes of the
+/// catalogue scenes, stay those measured when gauss6 was the default).
 pub fn path_options(opts: &BeltOptions) -> CollocationOptions {
     CollocationOptions {
-        scheme: Scheme::default(),
+        scheme: Scheme::Gauss6,
         tolerance: opts.homotopy_tolerance,
         max_nodes: opts.max_nodes,
         jacobian: opts.jacobian,

@@ -101,7 +101,7 @@ fn critical(d: &CosseratDrive, rate: f64) -> Result<(), BeltError> {
 /// 1e-8) with the run's mesh cap and homotopy tolerance. Its own named errors (friction
 /// capacity, reversed slip, wave speed) are the scene's.
 pub fn string_start(d: &CosseratDrive, opts: &BeltOptions) -> Result<StringDriveSolution, BeltError> {
-    let sopts = BeltOptions { method: BvpMethod::Collocation, scheme: Scheme::default(), tolerance: 1e-8, ..opts.clone() };
+    let sopts = BeltOptions { method: BvpMethod::Collocation, scheme: Scheme::Gauss6, tolerance: 1e-8, ..opts.clone() };
     string_drive::solve(&d.drive, &sopts)
 }
 

@@ -183,7 +183,9 @@ pub(crate) fn string_start(
 ) -> Result<(StringHangingSolution, RodPath), BeltError> {
     let sopts = BeltOptions {
         method: BvpMethod::Collocation,
-        scheme: Scheme::default(),
+        // gauss6, not the default scheme: the start (and with it the final mesh) of every
+        // catalogue rod scene stays what it was when the default was gauss6
+        scheme: Scheme::Gauss6,
         tolerance: 1e-8,
         shooting_intervals: BeltOptions::default().shooting_intervals,
         ..opts.clone()
