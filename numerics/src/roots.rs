@@ -111,12 +111,12 @@ mod tests {
     #[test]
     fn failures_are_named() {
         let e = brent(|x: f64| Ok::<f64, Failed>(x * x + 1.0), -1.0, 1.0, 1e-10).unwrap_err();
-        assert!(matches!(e, RootError::NotBracketed { .. }), "{e}");
+        assert!(matches!(e, RootError::NotBracketed { .. }), "{e:?}");
         // every evaluation strictly inside the bracket fails (or is NaN); the ends do not
         let inside = |x: f64| x > 0.0 && x < 0.5;
         let e = brent(|x: f64| if inside(x) { Err(Failed(x)) } else { Ok(x - 0.45) }, 0.0, 0.5, 1e-10).unwrap_err();
         assert!(matches!(e, RootError::Evaluation(Failed(x)) if inside(x)), "{e:?}");
         let e = brent(|x: f64| Ok::<f64, Failed>(if inside(x) { f64::NAN } else { x - 0.45 }), 0.0, 0.5, 1e-10).unwrap_err();
-        assert!(matches!(e, RootError::NonFinite { .. }), "{e}");
+        assert!(matches!(e, RootError::NonFinite { .. }), "{e:?}");
     }
 }
