@@ -29,7 +29,6 @@
 use drive::contour::Contour;
 use numerics::phases::{self, timed, Phase};
 
-use crate::error::FemError;
 use crate::mesh::{Grading, Mesh};
 
 /// A solution whose mesh is fitted to points it locates on itself.
@@ -54,7 +53,7 @@ pub trait Fitted {
     fn snapshot(&self) -> Self::Snapshot;
     /// Make a copy the accepted solution again.
     fn restore(&mut self, snapshot: Self::Snapshot);
-    /// The grading of the fitted meshes towards the points ([`Mesh::graded`]); `None`
+    /// The grading of the fitted meshes towards the points ([`Mesh::regraded`]); `None`
     /// (the default): uniform pieces between them.
     fn grading(&self) -> Option<Grading> {
         None
@@ -128,10 +127,6 @@ pub struct Stall {
 /// The rules of a fitting (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FitRules {
-    /// Elements of the fitted meshes.
-    pub elements: usize,
-    /// Arc refinement weight of the fitted meshes.
-    pub arc_weight: f64,
     /// Converged when the measure is ≤ this, m.
     pub tolerance: f64,
     /// Largest number of refit attempts (accepted and rejected).
@@ -158,8 +153,6 @@ pub enum FitEnd<F> {
     PassLimit,
     /// The stall rule stopped it.
     Stalled,
-    /// The fitted mesh could not be built.
-    Mesh(FemError),
     /// A refit failed (and the move limit allows no retry).
     Refit(F),
 }
@@ -210,7 +203,6 @@ impl FitReport {
         self.fit_last_move = out.last_move;
         match &out.end {
             FitEnd::Refit(e) => self.fit_failure = Some(e.to_string()),
-            FitEnd::Mesh(e) => self.fit_failure = Some(format!("the fitted mesh could not be built: {e}")),
             FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
         }
     }
@@ -292,14 +284,9 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
         let next = propose(problem.mesh(), &contour, rules, factor, &located, &fitted_to, residual.as_deref(), previous.as_ref());
         previous = residual.map(|f| (std::mem::take(&mut fitted_to), f));
 
-        // refit and accept
-        let mesh = match Mesh::graded(contour, rules.elements, rules.arc_weight, &next, problem.grading()) {
-            Ok((mesh, _)) => mesh,
-            Err(e) => {
-                out.end = FitEnd::Mesh(e);
-                break;
-            }
-        };
+        // refit and accept, on the accepted mesh's topology (a loop's or an open mesh's
+        // regions and elements per region: the same unknowns and sparsity pattern)
+        let (mesh, _) = problem.mesh().regraded(&next, problem.grading());
         match (problem.refit(mesh, &next), rules.limit) {
             (Ok(()), limit) => {
                 out.passes += 1;
@@ -472,8 +459,6 @@ mod tests {
     /// The static fit's rules (fem-string.md §5).
     fn static_rules() -> FitRules {
         FitRules {
-            elements: ELEMENTS,
-            arc_weight: 1.0,
             tolerance: 1e-12,
             max_passes: 10,
             measure: Measure::FittedTo,

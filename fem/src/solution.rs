@@ -675,6 +675,66 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         self.zone_between(pulley, z.sigma_start + shift, z.sigma_end - shift, false, [None, None])
     }
 
+    /// P⟨−γ⟩ of element `e` at ξ (N per unit contour length): the values at the contact
+    /// rule's points (where the formulation applies the penalty) interpolated, or
+    /// extrapolated, by their Lagrange polynomial.
+    fn penalty_pressure(&self, penalty: f64, e: usize, xi: f64) -> f64 {
+        let el = self.context(e);
+        let values: Vec<(f64, f64)> = self
+            .kernel
+            .rules()
+            .contact
+            .points()
+            .iter()
+            .map(|&(x, _)| (x, el.gap(&self.point(e, x)).map_or(0.0, |g| penalty * (-g).max(0.0))))
+            .collect();
+        lagrange(&values, xi)
+    }
+
+    /// The edge pressure of a Cosserat rod's contact zone on `pulley` (issue 13: "contact
+    /// pressure per unit reference length just inside the zone at its first/last point";
+    /// docs/fem-cosserat.md §12.5), at the zone edge σ_b ([`Self::loaded_zone`];
+    /// `inward` = +1 at an entry, −1 at an exit). The penalty's pointwise pressure is no
+    /// measure of it (the cubic ν is pressed in at the contact rule's points only and
+    /// oscillates from node to node), its sums are: G(x), the contact force the penalty
+    /// applies between the edge's gap crossing and x (the points of
+    /// [`Self::contact_forces`], the penalty layer's included — it carries the force of
+    /// the limit solution between its edge σ_b and x), is taken at σ_b (G = 0) and at the
+    /// next three nodes inside; the edge pressure per unit contour length is G′(σ_b) of
+    /// the cubic through these four points (the pressure that is quadratic over the
+    /// three elements and has their forces), per unit material length p_σ/∂σS.
+    /// `None` without a penalty, fewer than three nodes inside the zone, or for a
+    /// non-positive or non-finite value.
+    pub fn edge_pressure(&self, pulley: Pulley, sigma_b: f64, inward: f64) -> Option<f64> {
+        self.params.penalty?;
+        let forces = self.contact_forces(pulley);
+        let l = self.mesh.contour().length();
+        // σ_b and the nodes unwrapped into the forces' window, measured inward from σ_b
+        let (w0, w1, _) = self.contact_window(pulley);
+        let unwrap = |x: f64| [x - l, x, x + l].into_iter().find(|y| *y > w0 && *y < w1).unwrap_or(x);
+        let b = unwrap(sigma_b);
+        let mut inside: Vec<f64> = self.mesh.node_sigmas().iter().map(|&n| inward * (unwrap(n) - b)).filter(|d| *d > 1e-12 * l).collect();
+        inside.sort_by(f64::total_cmp);
+        inside.dedup();
+        let x: [f64; 3] = inside.get(..3)?.try_into().ok()?;
+        // G(x_j): the forces from the free side up to x_j (the zone is one interval)
+        let g = x.map(|xj| forces.iter().filter(|f| inward * (f.0 - b) < xj).map(|f| f.1).sum::<f64>());
+        // G′(0) of the cubic through (0, 0), (x_j, G_j): Σ_j G_j L_j′(0), L_j′(0) =
+        // Π_{m≠j} (−x_m) / (x_j Π_{m≠j} (x_j − x_m)) over m among the three inside
+        let slope: f64 = (0..3)
+            .map(|j| {
+                let others = (0..3).filter(|&m| m != j);
+                let num: f64 = others.clone().map(|m| -x[m]).product();
+                let den: f64 = x[j] * others.map(|m| x[j] - x[m]).product::<f64>();
+                g[j] * num / den
+            })
+            .sum();
+        let (e, xi) = if inward < 0.0 { self.mesh.locate_left(sigma_b) } else { self.mesh.locate(sigma_b) };
+        let ds = self.context(e).field(self.layout, &self.local[e], 0, xi)[1];
+        let per_material = slope / ds;
+        (per_material.is_finite() && per_material > 0.0).then_some(per_material)
+    }
+
     /// The decay length ℓ_P = 1/k of the penalty's own mode at a contact edge of a
     /// Cosserat rod on the penalty foundation P (docs/fem-cosserat.md §9): the section
     /// rotation φ and the gap w of a ∝ e^{kx} solve a φ″ + b₂(w′ − φ) = 0,
@@ -917,16 +977,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<
             return Some(0.0);
         }
         let (e, xi) = self.mesh.locate(sigma);
-        let el = self.context(e);
-        let values: Vec<(f64, f64)> = self
-            .kernel
-            .rules()
-            .contact
-            .points()
-            .iter()
-            .map(|&(x, _)| (x, el.gap(&self.point(e, x)).map_or(0.0, |g| penalty * (-g).max(0.0))))
-            .collect();
-        Some(lagrange(&values, xi).max(0.0))
+        Some(self.penalty_pressure(penalty, e, xi).max(0.0))
     }
 
     /// `Contact` inside a recovered contact zone (consistent with the summary's

@@ -445,8 +445,6 @@ fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
     let elements = sol.mesh().len();
     let h_min = Mesh::new(contour, elements, settings.arc_weight).map_or(0.0, |m| m.elements().iter().fold(f64::INFINITY, |a, e| a.min(e.h)));
     let rules = FitRules {
-        elements,
-        arc_weight: settings.arc_weight,
         // fitted: every recovered boundary within fit_tolerance·L_c of its node
         tolerance: settings.fit_tolerance * contour.length(),
         max_passes: settings.max_fits,
@@ -551,7 +549,8 @@ pub fn transfer<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<
     let dofs = asm.dofs();
     let fields = dofs.layout().fields.len();
     let mut z = vec![0.0; asm.len()];
-    for k in 0..mesh.len() {
+    // every distinct node: the end node of an open mesh too
+    for k in 0..mesh.node_count() {
         let sigma = mesh.node_sigmas()[k];
         let nd = dofs.node_unknowns(k);
         let shared_transition = nd.slopes_in == nd.slopes_out && mesh.is_transition(k);
@@ -579,7 +578,7 @@ fn scale_material<const N: usize, K: ElementKernel<N> + ?Sized>(asm: &Assembler<
         return;
     }
     let dofs = asm.dofs();
-    for k in 0..asm.mesh().len() {
+    for k in 0..asm.mesh().node_count() {
         let nd = dofs.node_unknowns(k);
         if let Some(s) = nd.values[0] {
             z[s] *= ratio;

@@ -121,6 +121,9 @@ pub(super) struct SteadyFitData<'a, K: ?Sized> {
     pub r: f64,
     pub omega1: f64,
     pub f_ref: f64,
+    /// The variable weight of the ω-slot when it holds another unknown: 𝓗_in (N) in the
+    /// open layout's mode `pulley_speed` (docs/fem-cosserat.md §12.7); `None`: ω's, ω₁.
+    pub slot_weight: Option<f64>,
     /// The belt's running direction (the upwind element of each friction point).
     pub direction: Direction,
     /// Newton tolerance and iteration limit.
@@ -188,7 +191,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         x.extend([self.state.x[nz_old], self.state.x[nz_old + 1]]);
         x.extend(points.iter().map(|p| interpolate_traction(&self.state.results, &contour, p)));
         let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
-        let w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
+        let mut w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
+        if let Some(slot) = d.slot_weight {
+            w[asm.len() + 1] = slot;
+        }
         let scales = row_scales(&asm, d.f_ref, points.len());
         // the transferred state is far from equilibrium in the stiff normal penalty
         // where a kink moved between elements: on failure, a penalty ladder

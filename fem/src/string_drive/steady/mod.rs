@@ -163,56 +163,68 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
-    let element = PI * r / arc_elements as f64;
     if settings.contact_fitting {
-        let lc = contour.length();
-        let rules = FitRules {
-            elements: opts.elements,
-            arc_weight: settings.arc_weight,
-            tolerance: settings.fit_tolerance * lc,
-            max_passes: drive_settings.max_fits,
-            // the distance of each breakpoint from its nearest node
-            measure: Measure::NearestNode,
-            // a secant per breakpoint on F(x) = g(x) − x (as fem-string.md §5; the plain
-            // iteration x ← g(x) oscillates for the drive's transitions); a secant step
-            // beyond twice the plain one is not trusted
-            secant: Secant { bound: 2.0, beyond: Beyond::Plain, degenerate: 1e-12 * lc, fallback: Fallback::Located },
-            // at most 0.3 of the local element length per pass (÷4 after a failed pass,
-            // down to 0.02): a refit is then a small perturbation of the transferred
-            // state (a kink moved across an element leaves the stiff normal penalty far
-            // from equilibrium)
-            limit: MoveLimit::Element { max: 0.3, grow: 2.0, shrink: 0.25, min: 0.02 },
-            // stalled below 5 % of an element: no 10 % gain over the best pass in 4
-            // passes (a point the mesh cannot take, e.g. within 2 % of an element of a
-            // region transition, where `Mesh::fitted` keeps the transition node)
-            stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
-            keep_best: false,
-        };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
-        let out = crate::fitting::fit(&mut fit, &rules);
-        state = fit.into_state();
-        report.fit.record(&out);
-        report.rejected_fits = out.rejected;
-        // within the 5 % the error below allows, but not fitted: the arcs of the result
-        // carry the offset (stated, never a clean result)
-        if let (FitEnd::PassLimit, Some(m)) = (&out.end, out.last_move.filter(|m| *m > rules.tolerance)) {
-            report.warnings.push(format!(
-                "the mesh fitting stopped at its pass limit ({} passes, `fem.max_fits`) with a contact boundary or stick→slip transition {} m ({:.1} % of an arc element) from its node: the arcs carry that offset",
-                out.passes + out.rejected,
-                numerics::Sig(m),
-                100.0 * m / element
-            ));
-        }
+        let data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) };
+        state = fit_steady::<N, P, E, K>(state, data, settings, drive_settings, PI * r / arc_elements as f64, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
+    finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
+}
+
+/// The contact fitting of a converged steady state (docs/fem-drive.md §12 "Fitting"; the
+/// open one-pulley layout's, docs/fem-cosserat.md §12.5) on the shared driver
+/// [`crate::fitting::fit`]: a node at every contact boundary and stick→slip transition,
+/// the mesh graded towards them by `data.grading`. `element` is the mean arc element πR/n
+/// (m) the stall and failure thresholds are measured in. Recorded in `report`.
+///
+/// # Errors
+/// [`FemError::SteadyFitFailed`] when a located point stays more than 5 % of `element`
+/// from its node.
+fn fit_steady<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(state: State<N, K>, data: SteadyFitData<K>, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, element: f64, report: &mut SteadyReport) -> Result<State<N, K>, FemError> {
+    let lc = state.asm.mesh().contour().length();
+    let rules = FitRules {
+        tolerance: settings.fit_tolerance * lc,
+        max_passes: drive_settings.max_fits,
+        // the distance of each breakpoint from its nearest node
+        measure: Measure::NearestNode,
+        // a secant per breakpoint on F(x) = g(x) − x (as fem-string.md §5; the plain
+        // iteration x ← g(x) oscillates for the drive's transitions); a secant step
+        // beyond twice the plain one is not trusted
+        secant: Secant { bound: 2.0, beyond: Beyond::Plain, degenerate: 1e-12 * lc, fallback: Fallback::Located },
+        // at most 0.3 of the local element length per pass (÷4 after a failed pass,
+        // down to 0.02): a refit is then a small perturbation of the transferred
+        // state (a kink moved across an element leaves the stiff normal penalty far
+        // from equilibrium)
+        limit: MoveLimit::Element { max: 0.3, grow: 2.0, shrink: 0.25, min: 0.02 },
+        // stalled below 5 % of an element: no 10 % gain over the best pass in 4
+        // passes (a point the mesh cannot take, e.g. within 2 % of an element of a
+        // region transition, where `Mesh::fitted` keeps the transition node)
+        stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
+        keep_best: false,
+    };
+    let mut fit = SteadyFit::<N, P, E, K>::new(state, data, report);
+    let out = crate::fitting::fit(&mut fit, &rules);
+    let state = fit.into_state();
+    report.fit.record(&out);
+    report.rejected_fits = out.rejected;
+    // within the 5 % the error below allows, but not fitted: the arcs of the result
+    // carry the offset (stated, never a clean result)
+    if let (FitEnd::PassLimit, Some(m)) = (&out.end, out.last_move.filter(|m| *m > rules.tolerance)) {
+        report.warnings.push(format!(
+            "the mesh fitting stopped at its pass limit ({} passes, `fem.max_fits`) with a contact boundary or stick→slip transition {} m ({:.1} % of an arc element) from its node: the arcs carry that offset",
+            out.passes + out.rejected,
+            numerics::Sig(m),
+            100.0 * m / element
+        ));
+    }
     // an unresolved fit leaves the stick/slip arcs wrong by a fraction of an element or
     // more: a named error above 5 % of an arc element (§12; the unresolved cases
     // measured sit at 10–50 %, the stalled but resolved ones at ≤ 1 %)
-    if let Some(m) = report.fit.fit_last_move.filter(|m| settings.contact_fitting && !report.fit.fit_converged && *m > 0.05 * element) {
+    if let Some(m) = report.fit.fit_last_move.filter(|m| !report.fit.fit_converged && *m > 0.05 * element) {
         let reason = report.fit.fit_failure.clone().unwrap_or_else(|| "the passes did not converge".into());
         return Err(FemError::SteadyFitFailed { passes: report.fit.fits + report.rejected_fits, last_move: m, element, reason });
     }
-    finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
+    Ok(state)
 }
 
 /// ρc² of a state (0 without inertia).

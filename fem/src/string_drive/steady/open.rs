@@ -193,7 +193,35 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
         }
         OpenMode::Transition { stick_slip_angle, given, tension } => setup.transition(stick_slip_angle, given, tension, estimate[if given == End::In { 1 } else { 0 }], &mut report)?,
     };
-    let nz = asm.len();
+    report.continuation_seconds = clock.elapsed().as_secs_f64();
+    let mut state = State { rho, asm, x, results };
+    // the loop's fitting (§12.5): a node at the contact start A, the stick→slip point B
+    // and the contact end C, the mesh graded towards them over the shear layer
+    // √(a/(b₂ − ρc²)). Not in mode `stick_slip_angle`, whose root find holds φ_B on one
+    // mesh (a mesh refitted per evaluation would move B with the tension it varies).
+    if settings.contact_fitting && !matches!(mode, OpenMode::Transition { .. }) {
+        let sp_at = move |_: f64| sp;
+        let shear = kernel.shear_stiffness().map(|b2| b2 - chi);
+        let data = SteadyFitData {
+            params,
+            length: 0.0,
+            kernel: &kernel,
+            sp_at: &sp_at,
+            strain_rule: kernel.rules().strain,
+            h: d,
+            r,
+            omega1: omega0,
+            f_ref,
+            slot_weight: matches!(mode, OpenMode::PulleySpeed { .. }).then_some(f_ref),
+            direction: Direction::Clockwise,
+            tolerance: settings.update_tolerance,
+            max_iterations: drive_settings.max_newton_iterations,
+            grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, shear),
+        };
+        state = super::fit_steady::<N, P, E, K>(state, data, settings, drive_settings, PI * r / arc_elements as f64, &mut report)?;
+    }
+    report.fitting_seconds = clock.elapsed().as_secs_f64() - report.continuation_seconds;
+    let (nz, x) = (state.asm.len(), &state.x);
     let (h_in, omega) = match sp.ends {
         Ends::Open { pulley_speed: Some(w), .. } => (x[nz + 1], w),
         Ends::Open { flux_in, .. } => (flux_in, x[nz + 1]),
@@ -201,8 +229,6 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     };
     let Ends::Open { flux_out: h_out, .. } = sp.ends else { unreachable!("open ends") };
     let tensions = [end_tension(h_in, b1, chi, estimate[0]), end_tension(h_out, b1, chi, estimate[1])];
-    report.continuation_seconds = clock.elapsed().as_secs_f64();
-    let state = State { rho, asm, x, results };
     open_finish::<N, P, E, K>(problem, opts, settings, drive_settings, &kernel, &state, OpenRun { ends, tensions, fluxes: [h_in, h_out], omega, params, sp, penalty, kappa, mu, report, clock })
 }
 
@@ -469,6 +495,8 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
             stick_arc: Some(arc - slip),
             slip_arc: Some(slip),
             torque: Some(torque),
+            edge_pressure_start: zone.and_then(|z| base.edge_pressure(pulley, z.sigma_start, 1.0)),
+            edge_pressure_end: zone.and_then(|z| base.edge_pressure(pulley, z.sigma_end, -1.0)),
             ..PulleySummary::default()
         }),
         ..Summary::default()
@@ -491,8 +519,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     if problem.effects.inertia {
         terms.push(format!("transport inertia (ρ = {} kg/m)", problem.belt.mass_per_length));
     }
-    let mut report = run.report;
-    report.fitting_seconds = 0.0;
+    let report = run.report;
     let options = opts.record(Some(run.penalty), settings, serde_json::json!({
         "drive": {
             "solver": "steady-open",
