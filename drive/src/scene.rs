@@ -794,6 +794,28 @@ pub struct FemSettings {
     /// of driver rotation (docs/fem-drive.md §7), 0 < tol < 1. Default absent = 1e-6.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steady_tolerance: Option<f64>,
+    /// How the FE's direct steady solve of a two-pulley drive finds its stick and slip
+    /// zones after the load continuation (analysis `steady`): `semismooth` — Coulomb
+    /// complementarity per friction point and a mesh fitted to the located transitions
+    /// (docs/fem-drive.md §12) — or `paper-d` — Paper D's fixed topology with prescribed
+    /// stick→slip points iterated until no stick zone exceeds Coulomb's bound (spec
+    /// §3.5, docs/cosserat-drive.md). Default absent = `semismooth`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steady_scheme: Option<SteadyScheme>,
+}
+
+/// The FE's scheme for the stick and slip zones of a steady two-pulley drive
+/// (`fem.steady_scheme`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum SteadyScheme {
+    /// Coulomb complementarity per friction point (semismooth Newton), mesh fitted to
+    /// the located contact boundaries and transitions.
+    #[default]
+    Semismooth,
+    /// Paper D: fixed topology with prescribed stick→slip points and a scalar root find
+    /// on the matching condition.
+    PaperD,
 }
 
 impl FemSettings {
@@ -826,6 +848,7 @@ impl Default for FemSettings {
             time_step: None,
             max_steps: None,
             steady_tolerance: None,
+            steady_scheme: None,
         }
     }
 }

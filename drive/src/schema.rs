@@ -259,6 +259,11 @@ pub(crate) const FEM: &[Field] = &[
     opt("time_step", Kind::Number, "time step of the quasistatic transient, s"),
     opt("max_steps", Kind::Count, "largest number of time steps"),
     opt("steady_tolerance", Kind::Number, "steady-state threshold per radian of driver rotation"),
+    opt(
+        "steady_scheme",
+        Kind::Choice { what: "steady scheme", variants: &["semismooth", "paper-d"] },
+        "how the steady FE finds its stick and slip zones",
+    ),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -700,6 +705,7 @@ mod tests {
             time_step: Some(1e-3),
             max_steps: Some(100),
             steady_tolerance: Some(1e-6),
+            steady_scheme: Some(SteadyScheme::PaperD),
             ..Default::default()
         })
         .unwrap();

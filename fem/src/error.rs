@@ -202,6 +202,20 @@ pub enum FemError {
         reason: String,
     },
 
+    /// Paper D's scheme (`fem.steady_scheme` = `paper-d`, spec §3.5) did not find the
+    /// prescribed stick→slip points that make its matching measures vanish: a
+    /// fixed-topology solve failed, no bracket of a root was found, or the root find
+    /// stopped (docs/cosserat-drive.md, "FE, second way").
+    #[error("Paper D's scheme failed after {outer} outer iterations (matching residual {residual:.3e} N): {reason}")]
+    PaperDFailed {
+        /// Outer iterations (fixed-topology solves at a new pair of points) done.
+        outer: usize,
+        /// Largest |E_k| of the last solved pair, N (NaN before the first).
+        residual: f64,
+        /// What stopped it, with its numbers.
+        reason: String,
+    },
+
     /// The steady state reached has a slip run at the contact entry of a pulley followed
     /// by stick (docs/fem-drive.md §11): a discrete artefact of the contact boundary (a
     /// concentrated normal force there carries a concentrated friction force that drops

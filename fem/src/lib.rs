@@ -257,6 +257,7 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         if problem.analysis == Analysis::Steady {
             return string_drive::steady::solve(problem, opts, settings, drive_settings, kernel);
         }
+        refuse_paper_d(drive_settings, "the quasistatic transient")?;
         return string_drive::solve(problem, opts, settings, drive_settings, kernel);
     }
     if problem.is_cosserat_steady_drive() {
@@ -274,6 +275,7 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         const NC: usize = formulation::layout::NDOF_COSSERAT;
         use string_drive::steady::{element_size, point_size};
         if problem.is_one_pulley() {
+            refuse_paper_d(drive_settings, "the one-pulley layout (its transition is prescribed by mode `stick_slip_angle`)")?;
             // the open layout (docs/fem-cosserat.md §12)
             return string_drive::steady::solve_open::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
         }
@@ -299,6 +301,15 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
             solve_static(&data, kernel, opts, settings, clock)
         }
     }
+}
+
+/// Paper D's scheme (`fem.steady_scheme` = `paper-d`) is the steady two-pulley solve's
+/// only: refused by name for `what`.
+fn refuse_paper_d(drive_settings: &string_drive::DriveSettings, what: &str) -> Result<(), FemError> {
+    if drive_settings.steady_scheme == string_drive::steady::SteadyScheme::PaperD {
+        return Err(FemError::InvalidOption { field: "steady_scheme", value: "paper-d".into(), reason: format!("Paper D's fixed-topology scheme solves the steady two-pulley drive; {what} has no use for it") });
+    }
+    Ok(())
 }
 
 /// The static analysis of `data` with the element `kernel` of any 1-D layout, and the

@@ -95,6 +95,11 @@ pub struct DriveSettings {
     /// Default 30; ≥ 1. The only control of those passes (the static fit's `max_fits`
     /// does not apply).
     pub max_fits: usize,
+    /// How the direct steady solve finds the stick and slip zones after its load
+    /// continuation (the scene's `fem.steady_scheme`): the semismooth fit (default,
+    /// docs/fem-drive.md §12) or Paper D's fixed topology ([`steady::SteadyScheme`];
+    /// spec §3.5). Not read by the transient.
+    pub steady_scheme: steady::SteadyScheme,
 }
 
 impl Default for DriveSettings {
@@ -110,6 +115,7 @@ impl Default for DriveSettings {
             tangential_penalty_factor: 300.0,
             max_newton_iterations: 40,
             max_fits: 30,
+            steady_scheme: steady::SteadyScheme::Semismooth,
         }
     }
 }
@@ -123,6 +129,7 @@ impl DriveSettings {
             time_step: f.time_step,
             max_steps: f.max_steps.unwrap_or(d.max_steps),
             steady_tolerance: f.steady_tolerance.unwrap_or(d.steady_tolerance),
+            steady_scheme: f.steady_scheme.unwrap_or_default(),
             ..d
         }
     }

@@ -552,9 +552,19 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let v = c * lam - sp.radius * omega;
         let b = sp.mu * normal;
         let y = tau + sp.kappa * v;
-        let slip = y.abs() >= b && !force_stick;
+        // Paper D's fixed topology prescribes the row of a point in contact (spec §3.5)
+        let fixed = pt.fixed.filter(|_| b > 0.0);
+        let slip = match fixed {
+            Some(Fixed::Stick) => false,
+            Some(Fixed::Slip(_)) => true,
+            None => y.abs() >= b && !force_stick,
+        };
         if slip {
-            let s = if b > 0.0 { y.signum() } else { 0.0 };
+            let s = match fixed {
+                Some(Fixed::Slip(s)) => s,
+                _ if b > 0.0 => y.signum(),
+                _ => 0.0,
+            };
             r[it] = w * (tau - b * s);
             j[it][it] = w;
             for k in 0..2 * N {

@@ -160,7 +160,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
 }
 
 /// The solution of a steady state (with its transport inertia ρc²).
-fn solution<const N: usize, K: LayoutElement<N> + ?Sized>(state: &State<N, K>, d: &SteadyFitData<K>) -> FemSolution<N, K> {
+pub(super) fn solution<const N: usize, K: LayoutElement<N> + ?Sized>(state: &State<N, K>, d: &SteadyFitData<K>) -> FemSolution<N, K> {
     FemSolution::new(state.asm.mesh().clone(), state.asm.dofs(), &state.x[..state.asm.len()], d.params, d.length, d.kernel.clone()).with_transport_inertia(rho_c2(state))
 }
 

@@ -34,6 +34,7 @@ mod kernels;
 mod load_path;
 mod open;
 mod output;
+mod paper_d;
 mod semismooth;
 mod topology;
 
@@ -43,6 +44,8 @@ pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
+pub use paper_d::{PaperDReport, SteadyScheme};
+use paper_d::PaperD;
 pub use semismooth::*;
 pub use topology::*;
 
@@ -69,6 +72,10 @@ pub struct SteadyReport {
     pub continuation_seconds: f64,
     /// Wall time of the fitting passes, s.
     pub fitting_seconds: f64,
+    /// Paper D's scheme, when the scene asks for it (`fem.steady_scheme` = `paper-d`):
+    /// its outer iterations and final matching residual.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paper_d: Option<PaperDReport>,
     /// Stated warnings of the solve (the run's notes; [`slip_resolution_warnings`]).
     #[serde(skip)]
     pub warnings: Vec<String>,
@@ -163,9 +170,18 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
-    if settings.contact_fitting {
-        let data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) };
-        state = fit_steady::<N, P, E, K>(state, data, settings, drive_settings, PI * r / arc_elements as f64, &mut report)?;
+    let element = PI * r / arc_elements as f64;
+    let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
+    let data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading };
+    if drive_settings.steady_scheme == SteadyScheme::PaperD {
+        // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`)
+        let scheme = PaperD::<N, P, E, K>::new(state, data, opts.elements, settings.arc_weight, mu, load_torque + damping * omega1);
+        let (solved, pd, iterations) = scheme.run()?;
+        state = solved;
+        report.newton_iterations += iterations;
+        report.paper_d = Some(pd);
+    } else if settings.contact_fitting {
+        state = fit_steady::<N, P, E, K>(state, data, settings, drive_settings, element, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
     finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)

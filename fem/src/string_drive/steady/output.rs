@@ -36,7 +36,9 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
     // smaller mid-span force where a pulley has no stick zone or no recovered zone
     let (tu, tl) = (summary.tension_upper_mid.unwrap_or(0.0), summary.tension_lower_mid.unwrap_or(0.0));
     let direction = Direction::of_speed(omega1);
-    let stick_force = |pulley: Pulley| super::super::stick_zone_force(&base, pulley, transition(&state.results, &contour, pulley), direction);
+    // the stick→slip point: located on the slip run (semismooth), or prescribed (Paper D)
+    let located = |pulley: Pulley| fixed_transition(&state.results, pulley).or_else(|| transition(&state.results, &contour, pulley));
+    let stick_force = |pulley: Pulley| super::super::stick_zone_force(&base, pulley, located(pulley), direction);
     summary.tension_tight = Some(stick_force(Pulley::Driver).unwrap_or(tu.max(tl)));
     summary.tension_slack = Some(stick_force(Pulley::Driven).unwrap_or(tu.min(tl)));
     summary.driven_speed = Some(omega2);
@@ -76,7 +78,7 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
         } else if pts.iter().all(|p| p.slip) {
             arc
         } else {
-            transition(&state.results, &contour, pulley).map_or(0.0, |s| slip_from(s).min(arc))
+            located(pulley).map_or(0.0, |s| slip_from(s).min(arc))
         };
         warnings.extend(slip_resolution_warning(pulley, slip * r, PI * r / arc_elements as f64, opts.elements, params.bending_stiffness));
         let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };

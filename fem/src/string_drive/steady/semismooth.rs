@@ -222,9 +222,11 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         }
     })?;
     // a point taken as stick only to give its pulley an equation (see `evaluate`) must
-    // obey Coulomb's bound by itself at the solution (the accepted trial's results)
+    // obey Coulomb's bound by itself at the solution (the accepted trial's results); a
+    // point of Paper D's fixed topology sticks whatever its traction (its excess is the
+    // scheme's matching measure, `paper_d`)
     let after = if semismooth.took_best { None } else { semismooth.trial_results };
-    if let Some(p) = after.and_then(|r| r.into_iter().find(|p| !p.slip && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
+    if let Some(p) = after.and_then(|r| r.into_iter().find(|p| !p.slip && p.point.fixed.is_none() && p.traction.abs() > problem.sp.mu * p.normal * (1.0 + 1e-8) + 1e-12)) {
         return Err(NewtonFailure::NoCoulombState { traction: p.traction.abs(), bound: problem.sp.mu * p.normal, sigma: p.point.sigma });
     }
     Ok(SteadyNewton { iterations: stats.iterations, update_norm: stats.last_correction })

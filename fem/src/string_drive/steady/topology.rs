@@ -25,6 +25,21 @@ pub struct FrictionPoint {
     /// The running direction of the belt: the upwind element of a whole node is the one
     /// ending at it clockwise, the one starting at it counter-clockwise.
     pub direction: Direction,
+    /// Paper D's fixed topology (spec §3.5, [`super::paper_d`]): the point's row while it
+    /// is in contact, prescribed instead of decided by Coulomb's law; `None` (the direct
+    /// semismooth solve): decided per iterate by (DS4).
+    pub fixed: Option<Fixed>,
+}
+
+/// A friction point's prescribed row in Paper D's fixed topology (spec §3.5): while the
+/// point is in contact (p > 0) either the stick row v = 0 whatever |τ|, or the slip row
+/// τ = s μ p with the slip direction s given; out of contact τ = 0 as always.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Fixed {
+    /// v = 0.
+    Stick,
+    /// τ = s μ p, s = ±1.
+    Slip(f64),
 }
 
 /// Which share of a node a friction point carries (docs/fem-drive.md §12).
@@ -116,7 +131,7 @@ pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assem
         let reach = |region: Region| reachable_pulley(contour, region, sigma);
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
         let Some(pulley) = pulley.filter(|p| !(mesh.is_open() && *p == Pulley::Driver)) else { continue };
-        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction };
+        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction, fixed: None };
         if splits.iter().any(|&t| crate::fitting::periodic_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
             out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
             out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
@@ -125,4 +140,10 @@ pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assem
         }
     }
     out
+}
+
+/// σ of a pulley's prescribed stick→slip point in Paper D's fixed topology (the node split
+/// into a fixed stick and a fixed slip half); `None` without a fixed topology.
+pub fn fixed_transition(results: &[PointResult], pulley: Pulley) -> Option<f64> {
+    results.iter().find(|p| p.point.pulley == pulley && p.point.fixed.is_some() && p.point.part != Part::Whole).map(|p| p.point.sigma)
 }

@@ -1,0 +1,393 @@
+//! Paper D's own scheme for the steady two-pulley drive (spec §3.4–§3.5; docs/cosserat-drive.md,
+//! "FE, second way"): a **fixed topology** — on each pulley the stick rows v = 0 up to a
+//! prescribed stick→slip point B and the slip rows τ = sμp after it (s the slip
+//! direction), on a mesh with a (split) node at each B — instead of the semismooth
+//! solve's Coulomb complementarity. The fixed system is square for any (B₁, B₂), but a
+//! wrong B leaves a stick zone that Coulomb's law would not hold: its stick tractions
+//! exceed μp where the stick constraint absorbs a tension jump (a concentrated traction).
+//! The matching measure of pulley k is that excess, signed,
+//!
+//! ```text
+//!   E_k = Σ_{stick points i of k} w_i (τ_i − clip(τ_i, −μp_i, μp_i))   (N),
+//! ```
+//!
+//! zero exactly when every stick point obeys Coulomb's bound (the slip points obey it by
+//! their row): the fixed topology then is a state of Coulomb's law, a solution of the
+//! original problem. On the FE the excess sits at the stick→slip node itself (measured;
+//! the spec expected it at the stick-zone entry), and E_k vanishes on a *band* of B_k
+//! about one local element wide, not at a point — so a root finder that stops at the
+//! first zero (Brent) would return any point of it. The scheme locates each band by a
+//! scalar search per pulley in the travel coordinate ([`Band`]: steps, regula falsi,
+//! then bisection of both edges), both pulleys advanced by each solve, and takes the
+//! band centres.
+
+use std::cell::RefCell;
+
+use numerics::Sig;
+
+use super::*;
+
+pub use drive::scene::SteadyScheme;
+
+/// Work and outcome of Paper D's scheme (in the run's `options.drive.report.paper_d`).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct PaperDReport {
+    /// Outer iterations: evaluations of the matching measures, i.e. fixed-topology
+    /// (auxiliary) solves at a new pair (B₁, B₂).
+    pub outer_iterations: usize,
+    /// Newton solves of the fixed topology in all (refits to the contact boundaries
+    /// at a pair included).
+    pub auxiliary_solves: usize,
+    /// The matching measures E₁, E₂ (driver, driven) at the result, N.
+    pub matching_residual: [f64; 2],
+    /// The prescribed stick→slip points at the result, σ on the contour, m.
+    pub transition_sigma: [f64; 2],
+    /// Width of the band of prescribed points whose fixed topology is Coulomb-admissible
+    /// (E = 0) per pulley, m: the result is its centre.
+    pub band_width: [f64; 2],
+    /// Wall time of the scheme (after the load continuation), s.
+    pub seconds: f64,
+}
+
+/// Most fixed-topology solves at a new pair of points (outer iterations).
+const MAX_OUTER: usize = 32;
+
+/// Most refits to the contact boundaries at one pair of points.
+const BOUNDARY_PASSES: usize = 3;
+
+/// One solved fixed-topology state at the prescribed points `at` (σ, m).
+struct Aux<const N: usize, K: LayoutElement<N> + ?Sized> {
+    at: [f64; 2],
+    state: State<N, K>,
+    defects: [f64; 2],
+}
+
+/// The scheme's fixed parts and its solved states.
+pub(super) struct PaperD<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
+    data: SteadyFitData<'a, K>,
+    elements: usize,
+    arc_weight: f64,
+    /// Slip direction s of each pulley's slip rows (driver, driven).
+    slip_sign: [f64; 2],
+    mu: f64,
+    solved: RefCell<Vec<Aux<N, K>>>,
+    report: RefCell<PaperDReport>,
+    newton_iterations: RefCell<usize>,
+    _sizes: std::marker::PhantomData<([f64; P], [f64; E])>,
+}
+
+impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> PaperD<'a, N, P, E, K> {
+    pub(super) fn new(start: State<N, K>, data: SteadyFitData<'a, K>, elements: usize, arc_weight: f64, mu: f64, load: f64) -> Self {
+        // the driver drives when the load resists (M₂ + d₂ω₂ of the sign of ω₁): its belt is
+        // slower than its surface in the slip zone, v < 0 clockwise (τ and v share their sign)
+        let s = -load.signum();
+        let defects = [f64::NAN; 2];
+        PaperD {
+            data,
+            elements,
+            arc_weight,
+            slip_sign: [s, -s],
+            mu,
+            solved: RefCell::new(vec![Aux { at: [f64::NAN; 2], state: start, defects }]),
+            report: RefCell::new(PaperDReport::default()),
+            newton_iterations: RefCell::new(0),
+            _sizes: std::marker::PhantomData,
+        }
+    }
+
+    fn contour(&self) -> Contour {
+        *self.solved.borrow()[0].state.asm.mesh().contour()
+    }
+
+    /// The fixed topology's points on `asm` with the transitions `at`: the node at each
+    /// is split, the points of a pulley upstream of its transition (in the travel) stick,
+    /// downstream slip.
+    fn points(&self, asm: &Assembler<N, K>, at: [f64; 2]) -> Vec<FrictionPoint> {
+        let contour = *asm.mesh().contour();
+        let sign = self.data.direction.sign();
+        let mut points = friction_points(asm, &at, self.data.direction);
+        for p in &mut points {
+            let k = usize::from(p.pulley == Pulley::Driven);
+            let u = sign * (unwrapped(&contour, p.pulley, p.sigma) - unwrapped(&contour, p.pulley, at[k]));
+            // a half of the split node: the upstream half sticks
+            let stick = if u.abs() <= 1e-9 * contour.length() { sign * p.part.offset() < 0.0 || p.part == Part::Whole } else { u < 0.0 };
+            p.fixed = Some(if stick { Fixed::Stick } else { Fixed::Slip(self.slip_sign[k]) });
+        }
+        points
+    }
+
+    /// E₁, E₂ of a solved state (module documentation).
+    fn defects(&self, results: &[PointResult]) -> [f64; 2] {
+        let mut e = [0.0; 2];
+        for p in results.iter().filter(|p| p.normal > 0.0 && p.point.fixed == Some(Fixed::Stick)) {
+            let b = self.mu * p.normal;
+            e[usize::from(p.point.pulley == Pulley::Driven)] += p.point.weight * (p.traction - p.traction.clamp(-b, b));
+        }
+        e
+    }
+
+    /// Solve the fixed topology at the transitions `at` from the solved state nearest to
+    /// it: a mesh with a node at each contact boundary located on that state and at each
+    /// transition, then refits to the boundaries located on the new state (at most
+    /// `passes`, until they are within `tolerance` of their nodes).
+    fn solve_at(&self, at: [f64; 2]) -> Result<[f64; 2], FemError> {
+        let contour = self.contour();
+        let d = &self.data;
+        let lc = contour.length();
+        let dist = |a: &[f64; 2]| if a[0].is_nan() { f64::INFINITY } else { crate::fitting::periodic_diff(a[0], at[0], lc).abs().max(crate::fitting::periodic_diff(a[1], at[1], lc).abs()) };
+        let nearest = {
+            let s = self.solved.borrow();
+            let (i, _) = s.iter().enumerate().min_by(|a, b| dist(&a.1.at).total_cmp(&dist(&b.1.at))).expect("the start");
+            i
+        };
+        self.report.borrow_mut().outer_iterations += 1;
+        let (mut x_from, mut sol, mut results_from, mut nz_from) = {
+            let s = self.solved.borrow();
+            let st = &s[nearest].state;
+            (st.x.clone(), solution(st, d), st.results.clone(), st.asm.len())
+        };
+        let arc_element = {
+            let s = self.solved.borrow();
+            PI * d.r / s[0].state.asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1) as f64
+        };
+        let mut state = None;
+        // the contact boundaries follow the transitions by a fraction of an element: at most
+        // BOUNDARY_PASSES refits, until they are within 1 % of an arc element of their nodes
+        for _pass in 0..BOUNDARY_PASSES {
+            let boundaries = sol.contact_boundaries();
+            if let Some(st) = &state {
+                let st: &State<N, K> = st;
+                let nodes = st.asm.mesh().node_sigmas();
+                let off = boundaries.iter().map(|&g| nodes.iter().map(|&n| crate::fitting::periodic_diff(n, g, lc).abs()).fold(f64::INFINITY, f64::min)).fold(0.0f64, f64::max);
+                if off <= 1e-2 * arc_element {
+                    break;
+                }
+            }
+            let mut breaks = boundaries.clone();
+            breaks.extend(at);
+            let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
+            let asm = Assembler::with_kernel(mesh, d.kernel.clone());
+            let points = self.points(&asm, at);
+            let mut x = crate::static_homotopy::transfer(&sol, &asm);
+            x.extend([x_from[nz_from], x_from[nz_from + 1]]);
+            x.extend(points.iter().map(|p| interpolate_traction(&results_from, &contour, p)));
+            let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(1.0), strain_rule: d.strain_rule };
+            let w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
+            let scales = row_scales(&asm, d.f_ref, points.len());
+            let n = newton_or_ladder(&prob, &mut x, &w, &scales, d.tolerance, d.max_iterations, &[1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1.0]).map_err(|e| FemError::PaperDFailed {
+                outer: self.report.borrow().outer_iterations,
+                residual: f64::NAN,
+                reason: format!("the fixed-topology solve at the prescribed points σ_B = ({}, {}) m did not converge: {e}", Sig(at[0]), Sig(at[1])),
+            })?;
+            *self.newton_iterations.borrow_mut() += n.iterations;
+            self.report.borrow_mut().auxiliary_solves += 1;
+            let results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
+            let st = State { asm, x, results, rho: self.solved.borrow()[0].state.rho };
+            sol = solution(&st, d);
+            (x_from, results_from, nz_from) = (st.x.clone(), st.results.clone(), st.asm.len());
+            state = Some(st);
+        }
+        let state = state.expect("one pass");
+        let defects = self.defects(&state.results);
+        self.solved.borrow_mut().push(Aux { at, state, defects });
+        Ok(defects)
+    }
+}
+
+impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> PaperD<'_, N, P, E, K> {
+    /// Run the scheme from the load continuation's state; the solved state, the report and
+    /// the Newton iterations spent.
+    ///
+    /// # Errors
+    /// [`FemError::PaperDFailed`].
+    pub(super) fn run(self) -> Result<(State<N, K>, PaperDReport, usize), FemError> {
+        let clock = std::time::Instant::now();
+        let contour = self.contour();
+        let start: [Option<f64>; 2] = {
+            let s = self.solved.borrow();
+            [Pulley::Driver, Pulley::Driven].map(|p| transition(&s[0].state.results, &contour, p))
+        };
+        let [Some(b1), Some(b2)] = start else {
+            return Err(FemError::PaperDFailed { outer: 0, residual: f64::NAN, reason: format!("the load continuation's state has no stick→slip point on a pulley (driver {:?}, driven {:?}) to start from", start[0], start[1]) });
+        };
+        let sign = self.data.direction.sign();
+        // u = ς·σ unwrapped: the coordinate running with the belt
+        let u_of = |k: usize, sigma: f64| sign * unwrapped(&contour, [Pulley::Driver, Pulley::Driven][k], sigma);
+        let sigma_of = |u: f64| contour.wrap(sign * u);
+        let signed = |e: [f64; 2]| [self.slip_sign[0] * e[0], self.slip_sign[1] * e[1]];
+        let arc_element = {
+            let s = self.solved.borrow();
+            let mesh = s[0].state.asm.mesh();
+            PI * self.data.r / mesh.elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1) as f64
+        };
+        let mut bands = [Band::new(u_of(0, b1), 0.1 * arc_element), Band::new(u_of(1, b2), 0.1 * arc_element)];
+        // the band edges to 0.5 % of an arc element (measured bands: ≈ 0.1 arc element)
+        let tolerance = 5e-3 * arc_element;
+        let mut u = [bands[0].start, bands[1].start];
+        loop {
+            let outer = self.report.borrow().outer_iterations;
+            if outer >= MAX_OUTER {
+                return Err(FemError::PaperDFailed {
+                    outer,
+                    residual: bands.iter().map(|b| b.last.abs()).fold(0.0, f64::max),
+                    reason: format!(
+                        "the band of stick→slip points without a concentrated stick traction was not located within {MAX_OUTER} fixed-topology solves (last σ_B = ({}, {}) m, ŝE = ({}, {}) N)",
+                        Sig(sigma_of(u[0])),
+                        Sig(sigma_of(u[1])),
+                        Sig(bands[0].last),
+                        Sig(bands[1].last)
+                    ),
+                });
+            }
+            let e = signed(self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?);
+            for k in 0..2 {
+                bands[k].record(u[k], e[k]);
+            }
+            match (bands[0].next(tolerance), bands[1].next(tolerance)) {
+                (None, None) => break,
+                (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
+            }
+        }
+        // the band centres, solved: Coulomb-admissible on both pulleys (E = 0)
+        let centre = [bands[0].centre(), bands[1].centre()];
+        let e = self.solve_at([sigma_of(centre[0]), sigma_of(centre[1])])?;
+        if e != [0.0; 2] {
+            return Err(FemError::PaperDFailed {
+                outer: self.report.borrow().outer_iterations,
+                residual: e[0].abs().max(e[1].abs()),
+                reason: format!("the centres σ_B = ({}, {}) m of the located bands leave a concentrated stick traction E = ({}, {}) N", Sig(sigma_of(centre[0])), Sig(sigma_of(centre[1])), Sig(e[0]), Sig(e[1])),
+            });
+        }
+        let widths = [bands[0].width(), bands[1].width()];
+        let best = self.solved.into_inner().pop().expect("solved");
+        let mut report = self.report.into_inner();
+        report.matching_residual = best.defects;
+        report.transition_sigma = best.at;
+        report.band_width = widths;
+        report.seconds = clock.elapsed().as_secs_f64();
+        Ok((best.state, report, self.newton_iterations.into_inner()))
+    }
+}
+
+/// The search of one pulley's band of admissible prescribed points in u (m, along the
+/// travel): ŝE < 0 upstream of it, 0 in it, > 0 downstream (ŝ the slip direction).
+#[derive(Debug, Clone, Copy)]
+struct Band {
+    start: f64,
+    /// Largest u with ŝE < 0, smallest and largest with ŝE = 0, smallest with ŝE > 0.
+    below: Option<f64>,
+    inside: Option<(f64, f64)>,
+    above: Option<f64>,
+    /// ŝE at the smallest u above and the largest below (for the regula falsi before a
+    /// point inside is found).
+    e_below: f64,
+    e_above: f64,
+    /// The unbracketed step, doubled after each use, m.
+    step: f64,
+    last: f64,
+}
+
+impl Band {
+    fn new(start: f64, step: f64) -> Self {
+        Band { start, below: None, inside: None, above: None, e_below: 0.0, e_above: 0.0, step, last: f64::NAN }
+    }
+
+    fn record(&mut self, u: f64, e: f64) {
+        self.last = e;
+        if e < 0.0 {
+            if self.below.is_none_or(|b| u > b) {
+                (self.below, self.e_below) = (Some(u), e);
+            }
+        } else if e > 0.0 {
+            if self.above.is_none_or(|a| u < a) {
+                (self.above, self.e_above) = (Some(u), e);
+            }
+        } else {
+            self.inside = Some(self.inside.map_or((u, u), |(lo, hi)| (lo.min(u), hi.max(u))));
+        }
+    }
+
+    /// The next point to solve at, `None` once both edges are within `tolerance`.
+    fn next(&mut self, tolerance: f64) -> Option<f64> {
+        let mut stepped = |from: f64, dir: f64| {
+            let x = from + dir * self.step;
+            self.step *= 2.0;
+            x
+        };
+        match (self.below, self.inside, self.above) {
+            // before the band is found: the regula falsi in the bracket (kept a tenth off
+            // its ends), else a step towards it
+            (Some(b), None, Some(a)) => {
+                let x = b - self.e_below * (a - b) / (self.e_above - self.e_below);
+                Some(x.clamp(b + 0.1 * (a - b), a - 0.1 * (a - b)))
+            }
+            (Some(b), None, None) => Some(stepped(b, 1.0)),
+            (None, None, Some(a)) => Some(stepped(a, -1.0)),
+            (None, None, None) => unreachable!("a point is recorded before the next"),
+            // in the band: bisect the wider open edge, stepping out first where unbracketed
+            (below, Some((lo, hi)), above) => {
+                let gap_lo = below.map_or(f64::INFINITY, |b| lo - b);
+                let gap_hi = above.map_or(f64::INFINITY, |a| a - hi);
+                if gap_lo <= tolerance && gap_hi <= tolerance {
+                    return None;
+                }
+                Some(if gap_lo >= gap_hi {
+                    below.map_or_else(|| stepped(lo, -1.0), |b| 0.5 * (b + lo))
+                } else {
+                    above.map_or_else(|| stepped(hi, 1.0), |a| 0.5 * (hi + a))
+                })
+            }
+        }
+    }
+
+    /// The band's centre: midway between its located edges.
+    fn centre(&self) -> f64 {
+        let (lo, hi) = self.inside.expect("located");
+        let lo_edge = self.below.map_or(lo, |b| 0.5 * (b + lo));
+        let hi_edge = self.above.map_or(hi, |a| 0.5 * (hi + a));
+        0.5 * (lo_edge + hi_edge)
+    }
+
+    /// The band's width between its located edges, m.
+    fn width(&self) -> f64 {
+        let (lo, hi) = self.inside.expect("located");
+        self.above.map_or(hi, |a| 0.5 * (hi + a)) - self.below.map_or(lo, |b| 0.5 * (b + lo))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Band;
+
+    /// The band search on a measure of the FE's shape (negative and growing up to the
+    /// band, zero on it, positive after): from either side and from inside, it ends
+    /// with both edges bracketed to the tolerance, and its centre is the band's to half
+    /// of it; the work (solves) is counted.
+    #[test]
+    fn band_search_finds_the_centre_of_a_zero_band() {
+        let (lo, hi) = (0.0123, 0.0137);
+        let measure = |u: f64| if u < lo { 40.0 * (u - lo) } else if u > hi { 25.0 * (u - hi) } else { 0.0 };
+        let tolerance = 5e-5;
+        for start in [0.005, 0.0125, 0.02] {
+            let mut band = Band::new(start, 1e-3);
+            let mut u = start;
+            let mut solves = 0;
+            loop {
+                band.record(u, measure(u));
+                solves += 1;
+                match band.next(tolerance) {
+                    Some(next) => u = next,
+                    None => break,
+                }
+                assert!(solves < 32, "from {start}: not located in 32 solves");
+            }
+            let centre = band.centre();
+            assert!((centre - 0.5 * (lo + hi)).abs() <= 0.5 * tolerance, "from {start}: centre {centre}");
+            assert!((band.width() - (hi - lo)).abs() <= tolerance, "from {start}: width {}", band.width());
+            assert_eq!(measure(centre), 0.0);
+            // work counter: 19 solves from 7 mm below the band (steps of 1, 2, 4 mm, the
+            // regula falsi, then both edges bisected from ≈ 1 mm to 50 µm)
+            assert!(solves <= 20, "from {start}: {solves} solves");
+        }
+    }
+}
