@@ -32,6 +32,7 @@ mod equations;
 mod fitting;
 mod kernels;
 mod load_path;
+mod nested;
 mod open;
 mod output;
 mod semismooth;
@@ -53,6 +54,10 @@ pub struct SteadyReport {
     pub continuation_steps: usize,
     /// Rejected continuation steps.
     pub rejected: usize,
+    /// Element counts of the coarse meshes of the nested start (coarsest first, the
+    /// load continuation on the first): empty when the continuation ran on the solve's
+    /// own mesh (fewer than 128 elements, or a rung of the ladder failed).
+    pub nested_meshes: Vec<usize>,
     /// Newton iterations over all solves.
     pub newton_iterations: usize,
     /// The contact fitting (converged: every boundary and transition within the
@@ -155,10 +160,26 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
     let w = variable_weights(&asm, h, r, omega1.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
-    let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule };
-    let mut path = LoadPath::new(steady, &sp_at, (&w, &scales), (tol, max_it), &kernel, inertia.then_some(b.mass_per_length), x, &mut report);
-    path.run()?;
-    let (x, last_results) = (path.x, path.results);
+    // nested: the continuation on a coarse mesh, carried up to this one (nested.rs);
+    // on this mesh from the static start if a rung fails
+    let rho = inertia.then_some(b.mass_per_length);
+    // (not for a rod with a graded shear layer: its rungs need 12–23 iterations each on
+    // cosserat-drive, no fewer fine-mesh iterations than the continuation on the fine
+    // mesh itself, measured)
+    let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
+    let levels = if grading.is_none() { nested::coarse_levels(opts.elements) } else { Vec::new() };
+    let nested_data = nested::NestedData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, arc_weight: settings.arc_weight, grading, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
+    let nested = nested::nested_start::<N, P, E, K>(&start, &asm, &points, &levels, &nested_data, &mut report)?;
+    let (x, last_results) = match nested {
+        Some(solved) => solved,
+        None => {
+            report.nested_meshes.clear();
+            let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule };
+            let mut path = LoadPath::new(steady, &sp_at, (&w, &scales), (tol, max_it), &kernel, rho, x, &mut report);
+            path.run()?;
+            (path.x, path.results)
+        }
+    };
     let mut state = State { asm, x, results: last_results, rho: inertia.then_some(b.mass_per_length) };
     report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 
@@ -188,7 +209,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness()) }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading }, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fit.record(&out);
