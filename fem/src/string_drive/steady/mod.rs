@@ -168,7 +168,8 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     // mesh itself, measured)
     let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
     let levels = if grading.is_none() { nested::coarse_levels(opts.elements) } else { Vec::new() };
-    let nested_data = nested::NestedData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, arc_weight: settings.arc_weight, grading, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
+    let fit_data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading };
+    let nested_data = nested::NestedData { base: &fit_data, arc_weight: settings.arc_weight, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
     let nested = nested::nested_start::<N, P, E, K>(&start, &asm, &points, &levels, &nested_data, &mut report)?;
     let (x, last_results) = match nested {
         Some(solved) => solved,
@@ -209,7 +210,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
             stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
             keep_best: false,
         };
-        let mut fit = SteadyFit::<N, P, E, K>::new(state, SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, direction, tolerance: tol, max_iterations: max_it, grading }, &mut report);
+        let mut fit = SteadyFit::<N, P, E, K>::new(state, fit_data, &mut report);
         let out = crate::fitting::fit(&mut fit, &rules);
         state = fit.into_state();
         report.fit.record(&out);

@@ -34,25 +34,12 @@ pub(super) fn coarse_levels(elements: usize) -> Vec<usize> {
 /// A converged state at η = 1: the unknowns X and their point results.
 type Converged = (Vec<f64>, Vec<PointResult>);
 
-/// What the nested start needs besides the meshes.
-pub(super) struct NestedData<'a, K: ?Sized> {
-    pub params: TermParams,
-    pub length: f64,
-    pub kernel: &'a Arc<K>,
-    pub sp_at: &'a dyn Fn(f64) -> SteadyParams,
-    pub strain_rule: Rule,
-    /// H, R, ω₁ and F_ref of the variable weights and row scales.
-    pub h: f64,
-    pub r: f64,
-    pub omega1: f64,
-    pub f_ref: f64,
-    pub direction: Direction,
-    pub tolerance: f64,
-    pub max_iterations: usize,
+/// What the nested start needs besides the meshes: the refits' data (the same
+/// equations, weights and Newton settings) and the start.
+pub(super) struct NestedData<'d, 'a, K: ?Sized> {
+    pub base: &'d SteadyFitData<'a, K>,
     /// The arc weight of the coarse meshes' element distribution.
     pub arc_weight: f64,
-    /// The grading of fitted meshes ([`SteadyFitData::grading`]).
-    pub grading: Option<crate::mesh::Grading>,
     /// ρ of the transport inertia, if on.
     pub inertia: Option<f64>,
     /// c and ω₂ of the start state (c = Rω₁/λ₀, ω₂ = ω₁).
@@ -63,9 +50,9 @@ pub(super) struct NestedData<'a, K: ?Sized> {
 /// of the assembler `from`: z by the transfer of the static homotopy (the old
 /// solution's fields at the new nodes), c and ω₂ copied, each traction interpolated
 /// linearly in σ between the old points of its pulley.
-fn prolong<const N: usize, K: LayoutElement<N> + ?Sized>(from: &Assembler<N, K>, x: &[f64], results: &[PointResult], asm: &Assembler<N, K>, points: &[FrictionPoint], d: &NestedData<K>) -> Vec<f64> {
+fn prolong<const N: usize, K: LayoutElement<N> + ?Sized>(from: &Assembler<N, K>, x: &[f64], results: &[PointResult], asm: &Assembler<N, K>, points: &[FrictionPoint], d: &NestedData<'_, '_, K>) -> Vec<f64> {
     let nz = from.len();
-    let sol = FemSolution::new(from.mesh().clone(), from.dofs(), &x[..nz], d.params, d.length, d.kernel.clone());
+    let sol = FemSolution::new(from.mesh().clone(), from.dofs(), &x[..nz], d.base.params, d.base.length, d.base.kernel.clone());
     let contour = *asm.mesh().contour();
     let mut out = crate::static_homotopy::transfer(&sol, asm);
     out.extend([x[nz], x[nz + 1]]);
@@ -86,7 +73,7 @@ pub(super) fn nested_start<const N: usize, const P: usize, const E: usize, K: La
     fine: &Assembler<N, K>,
     fine_points: &[FrictionPoint],
     levels: &[usize],
-    d: &NestedData<K>,
+    d: &NestedData<'_, '_, K>,
     report: &mut SteadyReport,
 ) -> Result<Option<Converged>, FemError> {
     let contour = *fine.mesh().contour();
@@ -98,17 +85,17 @@ pub(super) fn nested_start<const N: usize, const P: usize, const E: usize, K: La
     // `Mesh::graded` ignores a boundary, one within 2 % of an element of a region
     // transition, is uniform there: its rung takes 6–17)
     let breaks = start.contact_boundaries();
-    let coarse = |n: usize| Mesh::graded(contour, n, d.arc_weight, &breaks, d.grading).ok().map(|(m, _)| m);
+    let coarse = |n: usize| Mesh::graded(contour, n, d.arc_weight, &breaks, d.base.grading).ok().map(|(m, _)| m);
     let Some(mesh) = coarse(coarsest) else { return Ok(None) };
-    let asm = Assembler::with_kernel(mesh, d.kernel.clone());
-    let points = friction_points(&asm, &[], d.direction);
+    let asm = Assembler::with_kernel(mesh, d.base.kernel.clone());
+    let points = friction_points(&asm, &[], d.base.direction);
     let mut x = crate::static_homotopy::transfer(start, &asm);
     x.extend(d.start_rates);
     x.extend(std::iter::repeat_n(0.0, points.len()));
-    let w = variable_weights(&asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
-    let scales = row_scales(&asm, d.f_ref, points.len());
-    let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params: d.params, length: d.length, points: &points, sp: (d.sp_at)(0.0), strain_rule: d.strain_rule };
-    let mut path = LoadPath::new(steady, d.sp_at, (&w, &scales), (d.tolerance, d.max_iterations), d.kernel, d.inertia, x, report);
+    let w = variable_weights(&asm, d.base.h, d.base.r, d.base.omega1.abs(), d.base.f_ref, points.len());
+    let scales = row_scales(&asm, d.base.f_ref, points.len());
+    let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params: d.base.params, length: d.base.length, points: &points, sp: (d.base.sp_at)(0.0), strain_rule: d.base.strain_rule };
+    let mut path = LoadPath::new(steady, d.base.sp_at, (&w, &scales), (d.base.tolerance, d.base.max_iterations), d.base.kernel, d.inertia, x, report);
     match path.run() {
         Ok(()) => {}
         Err(e @ FemError::SpeedAtOrAboveCritical { .. }) => return Err(e),
@@ -120,8 +107,8 @@ pub(super) fn nested_start<const N: usize, const P: usize, const E: usize, K: La
     // the finer coarse meshes, then the fine one
     for &n in finer {
         let Some(mesh) = coarse(n) else { return Ok(None) };
-        let asm = Assembler::with_kernel(mesh, d.kernel.clone());
-        let points = friction_points(&asm, &[], d.direction);
+        let asm = Assembler::with_kernel(mesh, d.base.kernel.clone());
+        let points = friction_points(&asm, &[], d.base.direction);
         let Some(next) = rung::<N, P, E, K>(&prev, &x, &results, &asm, &points, d, report)? else { return Ok(None) };
         (x, results, prev) = (next.0, next.1, asm);
         report.nested_meshes.push(n);
@@ -137,19 +124,19 @@ fn rung<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?S
     results: &[PointResult],
     asm: &Assembler<N, K>,
     points: &[FrictionPoint],
-    d: &NestedData<K>,
+    d: &NestedData<'_, '_, K>,
     report: &mut SteadyReport,
 ) -> Result<Option<Converged>, FemError> {
     let mut xn = prolong(from, x, results, asm, points, d);
-    let sp = (d.sp_at)(1.0);
-    let prob = SteadyProblem::<N, P, E, K> { asm, params: d.params, length: d.length, points, sp, strain_rule: d.strain_rule };
-    let w = variable_weights(asm, d.h, d.r, d.omega1.abs(), d.f_ref, points.len());
-    let scales = row_scales(asm, d.f_ref, points.len());
-    match newton(&prob, &mut xn, &w, &scales, d.tolerance, d.max_iterations) {
+    let sp = (d.base.sp_at)(1.0);
+    let prob = SteadyProblem::<N, P, E, K> { asm, params: d.base.params, length: d.base.length, points, sp, strain_rule: d.base.strain_rule };
+    let w = variable_weights(asm, d.base.h, d.base.r, d.base.omega1.abs(), d.base.f_ref, points.len());
+    let scales = row_scales(asm, d.base.f_ref, points.len());
+    match newton(&prob, &mut xn, &w, &scales, d.base.tolerance, d.base.max_iterations) {
         Ok(n) => {
             report.newton_iterations += n.iterations;
             if let Some(rho) = d.inertia {
-                let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &xn[..asm.len()], d.params, d.length, d.kernel.clone());
+                let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &xn[..asm.len()], d.base.params, d.base.length, d.base.kernel.clone());
                 let c = xn[asm.len()];
                 check_critical(&sol, rho * c * c)?;
             }
@@ -157,7 +144,7 @@ fn rung<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?S
             Ok(Some((xn, results)))
         }
         Err(_) => {
-            report.newton_iterations += d.max_iterations;
+            report.newton_iterations += d.base.max_iterations;
             Ok(None)
         }
     }
