@@ -32,6 +32,7 @@ mod equations;
 mod fitting;
 mod kernels;
 mod load_path;
+mod nested;
 mod open;
 mod output;
 mod paper_d;
@@ -56,6 +57,10 @@ pub struct SteadyReport {
     pub continuation_steps: usize,
     /// Rejected continuation steps.
     pub rejected: usize,
+    /// Element counts of the coarse meshes of the nested start (coarsest first, the
+    /// load continuation on the first): empty when the continuation ran on the solve's
+    /// own mesh (fewer than 128 elements, or a rung of the ladder failed).
+    pub nested_meshes: Vec<usize>,
     /// Newton iterations over all solves.
     pub newton_iterations: usize,
     /// The contact fitting (converged: every boundary and transition within the
@@ -162,26 +167,41 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     // continuation in η: load M₂, d₂ and inertia ρ scaled by η (§12)
     let w = variable_weights(&asm, h, r, omega1.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
-    let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule };
-    let mut path = LoadPath::new(steady, &sp_at, (&w, &scales), (tol, max_it), &kernel, inertia.then_some(b.mass_per_length), x, &mut report);
-    path.run()?;
-    let (x, last_results) = (path.x, path.results);
+    // nested: the continuation on a coarse mesh, carried up to this one (nested.rs);
+    // on this mesh from the static start if a rung fails
+    let rho = inertia.then_some(b.mass_per_length);
+    // (not for a rod with a graded shear layer: its rungs need 12–23 iterations each on
+    // cosserat-drive, no fewer fine-mesh iterations than the continuation on the fine
+    // mesh itself, measured)
+    let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
+    let levels = if grading.is_none() { nested::coarse_levels(opts.elements) } else { Vec::new() };
+    let fit_data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading };
+    let nested_data = nested::NestedData { base: &fit_data, arc_weight: settings.arc_weight, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
+    let nested = nested::nested_start::<N, P, E, K>(&start, &asm, &points, &levels, &nested_data, &mut report)?;
+    let (x, last_results) = match nested {
+        Some(solved) => solved,
+        None => {
+            report.nested_meshes.clear();
+            let steady = SteadyProblem::<N, P, E, K> { asm: &asm, params, length, points: &points, sp: sp_at(0.0), strain_rule };
+            let mut path = LoadPath::new(steady, &sp_at, (&w, &scales), (tol, max_it), &kernel, rho, x, &mut report);
+            path.run()?;
+            (path.x, path.results)
+        }
+    };
     let mut state = State { asm, x, results: last_results, rho: inertia.then_some(b.mass_per_length) };
     report.continuation_seconds = clock.elapsed().as_secs_f64() - static_seconds;
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
     let element = PI * r / arc_elements as f64;
-    let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
-    let data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading };
     if drive_settings.steady_scheme == SteadyScheme::PaperD {
         // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`)
-        let scheme = PaperD::<N, P, E, K>::new(state, data, opts.elements, settings.arc_weight, mu, load_torque + damping * omega1);
+        let scheme = PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, settings.arc_weight, mu, load_torque + damping * omega1);
         let (solved, pd, iterations) = scheme.run()?;
         state = solved;
         report.newton_iterations += iterations;
         report.paper_d = Some(pd);
     } else if settings.contact_fitting {
-        state = fit_steady::<N, P, E, K>(state, data, settings, drive_settings, element, &mut report)?;
+        state = fit_steady::<N, P, E, K>(state, fit_data, settings, drive_settings, element, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
     finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
