@@ -17,6 +17,14 @@
 //! - `direct_steady/string-drive/N`: the catalogue scene (gravity, inertia), N = 32 … 256;
 //! - `direct_steady/slack/N`: the very slack belt with gravity, N = 128, 256.
 //!
+//! The catalogue scenes of the performance targets (issues 13, 14, 17;
+//! docs/performance.md "Direct steady FE"), `steady_targets/…`, through
+//! [`fem::solve_problem`] as the CLI runs them:
+//! - `steady_targets/cosserat-pulley/N`: the open one-pulley layout, N = 128, 512;
+//! - `steady_targets/cosserat-drive/N`: semismooth scheme, N = 128, 256;
+//! - `steady_targets/cosserat-drive-paper-d/128`: Paper D's scheme;
+//! - `steady_targets/string-drive-exudyn/N`: N = 128, 512.
+//!
 //! Run: `cargo bench -p fem --bench string_drive`. Sample size 10.
 
 use std::path::Path;
@@ -83,5 +91,31 @@ fn direct_steady(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, to_steady, direct_steady);
+/// A catalogue scene's FE solve as the CLI runs it (its formulation, settings and
+/// scheme) on `elements`; returns ω of its last pulley to keep the solve.
+fn solve_catalogue(scene: &Scene, elements: usize, ds: &DriveSettings) -> f64 {
+    let formulation = scene.fem_settings().formulations.first().cloned().unwrap_or_else(|| fem::formulations_for(scene.belt.theory)[0].to_string());
+    let opts = FemOptions { elements, ..FemOptions::from_scene(scene, &formulation) };
+    let run = fem::solve_problem(&fem::FemProblem::from_scene(scene), &opts, &SolverSettings::default(), ds).expect("steady state");
+    run.summary.driven_speed.or(run.summary.pulley_speed).unwrap()
+}
+
+fn steady_targets(c: &mut Criterion) {
+    let mut group = c.benchmark_group("steady_targets");
+    group.sample_size(10).warm_up_time(Duration::from_millis(500)).measurement_time(Duration::from_secs(5));
+    let catalogue = |name: &str| Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes").join(name)).unwrap();
+    for (name, sizes) in [("cosserat-pulley", [128, 512]), ("cosserat-drive", [128, 256]), ("string-drive-exudyn", [128, 512])] {
+        let scene = catalogue(&format!("{name}.json"));
+        let ds = DriveSettings::from_scene(&scene);
+        for n in sizes {
+            group.bench_with_input(BenchmarkId::new(name, n), &n, |b, &n| b.iter(|| solve_catalogue(&scene, n, &ds)));
+        }
+    }
+    let drive = catalogue("cosserat-drive.json");
+    let ds = DriveSettings { steady_scheme: string_drive::steady::SteadyScheme::PaperD, ..DriveSettings::from_scene(&drive) };
+    group.bench_with_input(BenchmarkId::new("cosserat-drive-paper-d", 128), &128, |b, &n| b.iter(|| solve_catalogue(&drive, n, &ds)));
+    group.finish();
+}
+
+criterion_group!(benches, to_steady, direct_steady, steady_targets);
 criterion_main!(benches);

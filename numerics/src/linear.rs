@@ -310,6 +310,11 @@ impl<E: From<LinearError>> BorderedLu<E> {
         Ok(BorderedLu { border, global_of, entries, inner_len: ir.len(), inner_diagonal, lu })
     }
 
+    /// Size n of the whole system (A and its border).
+    pub fn dim(&self) -> usize {
+        self.global_of.len() + 2
+    }
+
     /// Numeric factorisations of A done.
     pub fn factorisations(&self) -> usize {
         self.lu.numeric_factorisations

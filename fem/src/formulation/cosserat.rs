@@ -18,7 +18,7 @@
 //! u = (∂σs, ν, ∂σν, ψ, ∂σψ) with the linear Hermite map and the chain rule through (C3).
 
 use nalgebra::{Const, SVector, U1};
-use num_dual::Dual2SVec64;
+use num_dual::{Dual2SVec64, DualSVec64};
 
 use super::terms::{Gravity, PenaltyContact, PointDensity};
 use super::layout::{FrictionNormal, LayoutElement};
@@ -320,6 +320,12 @@ impl<D: Scalar> CosseratVisitor<D> for Sum<'_, D> {
     }
 }
 
+/// The point values of `p` as AD numbers by `var(value, variable)`: ∂σs, ν, ∂σν, ψ,
+/// ∂σψ the variables 0–4, s a constant (`None`; no density reads it).
+fn seeded<D: Scalar>(p: &CosseratPoint<f64>, var: impl Fn(f64, Option<usize>) -> D) -> CosseratPoint<D> {
+    CosseratPoint { sigma: p.sigma, s: var(p.s, None), ds: var(p.ds, Some(0)), nu: var(p.nu, Some(1)), dnu: var(p.dnu, Some(2)), psi: var(p.psi, Some(3)), dpsi: var(p.dpsi, Some(4)) }
+}
+
 /// Per-point derivatives in the effective unknowns q̃.
 struct PointHessian<'a> {
     el: &'a ElementContext,
@@ -335,17 +341,13 @@ impl CosseratVisitor<D5> for PointHessian<'_> {
         let jac = el.jacobian();
         for &(xi, wt) in rule.points() {
             let p = CosseratElement::point(el, self.q, xi);
-            let var = |v: f64, i: usize| D5::from_re(v).derivative(i);
-            let pd = CosseratPoint { sigma: p.sigma, s: D5::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), psi: var(p.psi, 3), dpsi: var(p.dpsi, 4) };
+            let pd = seeded(&p, |v, i| i.map_or(D5::from_re(v), |i| D5::from_re(v).derivative(i)));
             let f = term.density(el, &pd);
             let scale = wt * jac;
             let g = f.v1.unwrap_generic(U1, Const::<POINT_VALUES>);
             let h = f.v2.unwrap_generic(Const::<POINT_VALUES>, Const::<POINT_VALUES>);
             self.out.energy += scale * f.re;
-            // u_a = Σ_k w_a[k] q̃[idx_a[k]]: (∂σs, ν, ∂σν, ψ, ∂σψ)
-            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-            let [is, inu, ipsi] = [FIELD_S, FIELD_NU, FIELD_PSI].map(|f| COSSERAT.hermite_indices(f));
-            let rows: [(&[usize; 4], &[f64; 4]); POINT_VALUES] = [(&is, &wd), (&inu, &wv), (&inu, &wd), (&ipsi, &wv), (&ipsi, &wd)];
+            let rows = point_rows(xi, el.geometry.h);
             for (a, (ia, wa)) in rows.iter().enumerate() {
                 for k in 0..4 {
                     let row = ia[k];
@@ -357,6 +359,45 @@ impl CosseratVisitor<D5> for PointHessian<'_> {
                             self.out.hessian[row][ib[l]] += hab * wb[l];
                         }
                     }
+                }
+            }
+        }
+    }
+}
+
+/// The point values u_a = Σ_k w_a[k] q̃[idx_a[k]] = (∂σs, ν, ∂σν, ψ, ∂σψ) at ξ: per value
+/// the unknowns idx_a and the weights w_a.
+fn point_rows(xi: f64, h: f64) -> [([usize; 4], [f64; 4]); POINT_VALUES] {
+    let (wv, wd) = crate::hermite::weights(xi, h);
+    let [is, inu, ipsi] = [FIELD_S, FIELD_NU, FIELD_PSI].map(|f| COSSERAT.hermite_indices(f));
+    [(is, wd), (inu, wv), (inu, wd), (ipsi, wv), (ipsi, wd)]
+}
+
+/// Per-point energy and gradient in the effective unknowns q̃ (first-order duals: the
+/// residual evaluations of a line search need no Hessian).
+struct PointGradient<'a> {
+    el: &'a ElementContext,
+    q: &'a [f64; NC],
+    energy: f64,
+    gradient: [f64; NC],
+}
+
+type G5 = DualSVec64<POINT_VALUES>;
+
+impl CosseratVisitor<G5> for PointGradient<'_> {
+    fn visit<T: CosseratDensity<G5>>(&mut self, rule: Rule, term: &T) {
+        let el = self.el;
+        let jac = el.jacobian();
+        for &(xi, wt) in rule.points() {
+            let p = CosseratElement::point(el, self.q, xi);
+            let pd = seeded(&p, |v, i| i.map_or(G5::from_re(v), |i| G5::from_re(v).derivative(i)));
+            let f = term.density(el, &pd);
+            let scale = wt * jac;
+            let g = f.eps.unwrap_generic(Const::<POINT_VALUES>, U1);
+            self.energy += scale * f.re;
+            for (a, (ia, wa)) in point_rows(xi, el.geometry.h).iter().enumerate() {
+                for k in 0..4 {
+                    self.gradient[ia[k]] += scale * wa[k] * g[a];
                 }
             }
         }
@@ -430,10 +471,14 @@ impl ElementKernel<NC> for CosseratElement {
         self.element_energy(el, q)
     }
 
-    /// From the per-point Hessian path (the gradient alone would save little: the
-    /// Newton loops ask for the Hessian at nearly every gradient).
+    /// Per point by first-order duals over u, then g = Jᵀ g̃ through the map (C3): the
+    /// line searches of the steady solves evaluate 1–5 residuals per Hessian (measured,
+    /// docs/performance.md), and the per-point Hessian costs ≈ 3 gradients.
     fn gradient(&self, el: &ElementContext, q: &[f64; NC]) -> (f64, [f64; NC]) {
-        let d = self.derivatives_pointwise(el, q);
+        let qe = Self::effective_unknowns(el, q);
+        let mut v = PointGradient { el, q: &qe, energy: 0.0, gradient: [0.0; NC] };
+        self.visit(&el.params, &mut v);
+        let d = chain_through_map(el, q, ElementDerivatives { energy: v.energy, gradient: v.gradient, hessian: [[0.0; NC]; NC] });
         (d.energy, d.gradient)
     }
 
@@ -642,9 +687,15 @@ mod tests {
                 for _ in 0..8 {
                     let q = random_q(&el, &mut rng);
                     let (a, b) = (k.derivatives_pointwise(&el, &q), k.derivatives_full(&el, &q));
+                    // the gradient path (first-order duals per point, `gradient`) too
+                    let (ge, g) = k.gradient(&el, &q);
                     assert!((a.energy - b.energy).abs() <= 1e-13 * b.energy.abs().max(1e-10));
+                    assert!((ge - b.energy).abs() <= 1e-13 * b.energy.abs().max(1e-10));
                     let gs = b.gradient.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
                     let hs = b.hessian.iter().flatten().fold(1e-300f64, |m, v| m.max(v.abs()));
+                    for (i, (gi, bi)) in g.iter().zip(&b.gradient).enumerate() {
+                        assert!((gi - bi).abs() <= 1e-12 * gs, "{:?} gradient path g[{i}]", el.augmented);
+                    }
                     for i in 0..NC {
                         assert!((a.gradient[i] - b.gradient[i]).abs() <= 1e-12 * gs, "{:?} g[{i}]", el.augmented);
                         for j in 0..NC {

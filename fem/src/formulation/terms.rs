@@ -154,11 +154,18 @@ impl TransportInertia {
         let jac = el.jacobian();
         let mut total = c * 0.0;
         for &(xi, wt) in self.rule.points() {
-            let p = el.fields(q, xi);
-            let t = el.tangent_length(&p);
-            total -= t * t / p.ds * c * c * (0.5 * self.rho * wt * jac);
+            total += self.point_energy(el, &el.fields(q, xi), c, wt * jac);
         }
         total
+    }
+
+    /// −T at one point, J, for the rule weight times the Jacobian `scale`:
+    /// −ρc²|∂σr|²/(2∂σS) · `scale` (generic in the point values, so that AD
+    /// differentiates it per point).
+    #[inline]
+    pub fn point_energy<D: Scalar>(&self, el: &ElementContext, p: &PointFields<D>, c: D, scale: f64) -> D {
+        let t = el.tangent_length(p);
+        -(t * t / p.ds * c * c * (0.5 * self.rho * scale))
     }
 }
 

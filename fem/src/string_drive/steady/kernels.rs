@@ -6,6 +6,7 @@
 use super::*;
 use crate::element::ElementLayout;
 use crate::formulation::terms::TransportInertia;
+use crate::formulation::PointFields;
 
 /// The centreline {s, ν} of an element of `layout` ([`ElementContext::centreline`]).
 #[inline]
@@ -89,6 +90,48 @@ pub(super) fn material_derivatives<const N: usize>(layout: ElementLayout, el: &E
 pub(super) type InertiaBlock<const N: usize> = ([f64; N], [f64; N], [[f64; N]; N]);
 
 pub(super) fn inertia_derivatives<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], c: f64, rho: f64, rule: Rule) -> InertiaBlock<N> {
+    if el.augmented.iter().any(|&a| a) {
+        return inertia_derivatives_mapped(layout, el, q, c, rho, rule);
+    }
+    // without the augmented map the point values u = (∂σS, ν, ∂σν) are linear in q:
+    // per point the 3 × 3 derivatives of −T in u by `Dual2SVec64<3>`, then
+    // ∂/∂q = Σ (∂/∂u) w and ∂²/∂q² = Σ wᵀ (∂²/∂u²) w — exact, and a small fraction of
+    // the cost of the Hessian by AD over all N unknowns (measured, docs/performance.md)
+    type D3 = num_dual::Dual2SVec64<3>;
+    let term = TransportInertia { rule, rho };
+    let jac = el.jacobian();
+    let qc = centreline(layout, el, q);
+    let (is, inu) = (layout.hermite_indices(0), layout.hermite_indices(1));
+    let mut gq = [0.0; N];
+    let mut h = [[0.0; N]; N];
+    for &(xi, wt) in rule.points() {
+        let p = el.fields(&qc, xi);
+        let var = |v: f64, i: usize| D3::from_re(v).derivative(i);
+        let pd = PointFields { sigma: p.sigma, s: D3::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: D3::from_re(p.d2nu) };
+        let f = term.point_energy(el, &pd, D3::from_re(c), wt * jac);
+        let g = f.v1.unwrap_generic(nalgebra::U1, nalgebra::Const::<3>);
+        let hu = f.v2.unwrap_generic(nalgebra::Const::<3>, nalgebra::Const::<3>);
+        let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
+        let rows: [(&[usize; 4], &[f64; 4]); 3] = [(&is, &wd), (&inu, &wv), (&inu, &wd)];
+        for (a, (ia, wa)) in rows.iter().enumerate() {
+            for k in 0..4 {
+                gq[ia[k]] += wa[k] * g[a];
+                for (b, (ib, wb)) in rows.iter().enumerate() {
+                    let hab = wa[k] * hu[(a, b)];
+                    for l in 0..4 {
+                        h[ia[k]][ib[l]] += hab * wb[l];
+                    }
+                }
+            }
+        }
+    }
+    let gc = if c != 0.0 { gq.map(|v| 2.0 * v / c) } else { [0.0; N] };
+    (gq, gc, h)
+}
+
+/// [`inertia_derivatives`] of an element with the augmented map at a node (S and ν
+/// nonlinear in q there): the Hessian by AD over all N unknowns.
+pub(super) fn inertia_derivatives_mapped<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], c: f64, rho: f64, rule: Rule) -> InertiaBlock<N> {
     let (_, g, h) = hessian(
         |v| {
             let qq: [_; N] = std::array::from_fn(|i| v[i]);

@@ -409,6 +409,52 @@ mod tests {
         }
     }
 
+    /// The Cosserat element (b₂ = 10⁴ N, gauss3 shear) on the test drive's 24-element
+    /// mesh in a wavy state (ψ ≠ 0, ν ≠ 0): (kernel, assembler, z).
+    fn cosserat_wave_state() -> (Arc<dyn LayoutElement<NC>>, Assembler<NC, dyn LayoutElement<NC>>, Vec<f64>) {
+        let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
+        let scene = drive::Scene::from_json_str(&json).unwrap();
+        let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+        let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
+        let asm = Assembler::with_kernel(mesh, kernel.clone());
+        let z = crate::assembly::tests::wave_state(&asm, 0.99);
+        (kernel, asm, z)
+    }
+
+    /// The per-point transport inertia (`inertia_derivatives` on an element without
+    /// the augmented map) equals AD over all the element's unknowns
+    /// (`inertia_derivatives_mapped`) to round-off — both exact — on every such element
+    /// of a Cosserat mesh in a wavy state (ν, ψ ≠ 0): 1e-12 of the gradient and 1e-11 of
+    /// the Hessian scale.
+    #[test]
+    fn pointwise_inertia_equals_full_ad() {
+        let (kernel, asm, z) = cosserat_wave_state();
+        let layout = kernel.layout();
+        let params = TermParams { axial_stiffness: 2e4, weight: Some(1.1772), penalty: None, bending_stiffness: Some(1e-3) };
+        let mut compared = 0;
+        for e in 0..asm.mesh().len() {
+            let el = asm.context(e, &params);
+            if el.augmented.iter().any(|&a| a) {
+                continue;
+            }
+            let q = asm.dofs().gather(e, &z, 1.3956749);
+            for rule in [Rule::Simpson, Rule::Gauss(3)] {
+                let (ga, gca, ha) = inertia_derivatives(layout, &el, &q, 0.8, 0.12, rule);
+                let (gb, gcb, hb) = inertia_derivatives_mapped(layout, &el, &q, 0.8, 0.12, rule);
+                let gs = gb.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
+                let hs = hb.iter().flatten().fold(1e-300f64, |m, v| m.max(v.abs()));
+                for i in 0..NC {
+                    assert!((ga[i] - gb[i]).abs() <= 1e-12 * gs && (gca[i] - gcb[i]).abs() <= 1e-12 * gs / 0.8, "element {e} g[{i}]: {} vs {}", ga[i], gb[i]);
+                    for j in 0..NC {
+                        assert!((ha[i][j] - hb[i][j]).abs() <= 1e-11 * hs, "element {e} H[{i}][{j}]: {} vs {}", ha[i][j], hb[i][j]);
+                    }
+                }
+            }
+            compared += 1;
+        }
+        assert!(compared >= 16, "{compared} elements compared");
+    }
+
     /// The kernels the steady equations add for an element of the Cosserat layout,
     /// element by element against central differences on a wavy state (ψ ≠ 0, ν ≠ 0)
     /// and in every element whose nodes carry the augmented map (C3): the transport
@@ -417,13 +463,8 @@ mod tests {
     /// and the gradients of the upwind stretch (DS0) and of the gap.
     #[test]
     fn cosserat_steady_kernels_match_central_differences() {
-        let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
-        let scene = drive::Scene::from_json_str(&json).unwrap();
-        let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+        let (kernel, asm, z) = cosserat_wave_state();
         let layout = kernel.layout();
-        let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
-        let asm = Assembler::with_kernel(mesh, kernel.clone());
-        let z = crate::assembly::tests::wave_state(&asm, 0.99);
         let points = friction_points(&asm, &[], Direction::Clockwise);
         let params = TermParams { axial_stiffness: 2e4, weight: Some(1.1772), penalty: None, bending_stiffness: Some(1e-3) };
         let sp = SteadyParams { mu: 0.3, penalty: 1e8, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends: Ends::Loop };

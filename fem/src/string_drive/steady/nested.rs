@@ -21,9 +21,21 @@ pub(super) const MIN_COARSE: usize = 64;
 /// The element counts of the coarse meshes for a solve on `elements`: `elements`/2,
 /// /4, … while at least [`MIN_COARSE`], coarsest first; empty below 2 [`MIN_COARSE`].
 pub(super) fn coarse_levels(elements: usize) -> Vec<usize> {
+    coarse_levels_from(elements, MIN_COARSE)
+}
+
+/// Fewest elements of the coarsest mesh of the open one-pulley layout's ladder
+/// (docs/fem-cosserat.md §12.5): 128, on which the continuation of `cosserat-pulley`
+/// converges in 31 iterations with the shear layer graded (its mesh-convergence study
+/// starts there); the fine solves of the rungs above take 3–8 iterations (measured).
+pub(super) const MIN_COARSE_OPEN: usize = 128;
+
+/// The element counts `elements`/2, /4, … while at least `min`, coarsest first; empty
+/// below 2 `min`.
+pub(super) fn coarse_levels_from(elements: usize, min: usize) -> Vec<usize> {
     let mut levels = Vec::new();
     let mut n = elements;
-    while n / 2 >= MIN_COARSE {
+    while n / 2 >= min {
         n /= 2;
         levels.push(n);
     }
@@ -118,7 +130,7 @@ pub(super) fn nested_start<const N: usize, const P: usize, const E: usize, K: La
 
 /// One rung of the ladder: the state of `from` carried to `asm` and solved there at
 /// η = 1; `None` if the Newton solve fails.
-fn rung<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(
+pub(super) fn rung<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(
     from: &Assembler<N, K>,
     x: &[f64],
     results: &[PointResult],
@@ -163,5 +175,7 @@ mod tests {
         assert_eq!(coarse_levels(128), vec![64]);
         assert_eq!(coarse_levels(512), vec![64, 128, 256]);
         assert_eq!(coarse_levels(300), vec![75, 150]);
+        assert!(coarse_levels_from(255, MIN_COARSE_OPEN).is_empty());
+        assert_eq!(coarse_levels_from(512, MIN_COARSE_OPEN), vec![128, 256]);
     }
 }

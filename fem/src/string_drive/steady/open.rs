@@ -172,10 +172,23 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     let flux = |n: f64| end_flux(n, b1, chi);
     let (x, results, sp) = match mode {
         OpenMode::Tensions { tension_in, tension_out } => {
-            let stick = setup.stick(tension_in, &mut report)?;
-            let to = setup.ends(flux(tension_in), flux(tension_out), None);
-            let (x, results) = setup.path(stick, setup.ends(flux(tension_in), flux(tension_in), None), to, &w, &mut report)?;
-            (x, results, setup.sp(to))
+            let (from, to) = (setup.ends(flux(tension_in), flux(tension_in), None), setup.ends(flux(tension_in), flux(tension_out), None));
+            // nested: the continuation on a coarse mesh, carried up by doublings
+            // (nested.rs); on this mesh if a rung fails
+            let sp_to = setup.sp(to);
+            let sp_at = move |_: f64| sp_to;
+            let base = SteadyFitData { params, length: 0.0, kernel: &kernel, sp_at: &sp_at, strain_rule: kernel.rules().strain, h: d, r, omega1: omega0, f_ref, slot_weight: None, direction: Direction::Clockwise, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, grading: None };
+            let data = nested::NestedData { base: &base, arc_weight: settings.arc_weight, inertia: None, start_rates: [c0, omega0] };
+            let levels = nested::coarse_levels_from(opts.elements, nested::MIN_COARSE_OPEN);
+            let (x, results) = match setup.nested(&levels, contour, tension_in, (from, to), &data, &mut report) {
+                Some(solved) => solved,
+                None => {
+                    report.nested_meshes.clear();
+                    let stick = setup.stick(tension_in, &mut report)?;
+                    setup.path(stick, from, to, &w, &mut report)?
+                }
+            };
+            (x, results, sp_to)
         }
         OpenMode::PulleySpeed { pulley_speed, tension_out } => {
             // the pure-stick state of N_in = N_out has ω_stick in its ω-slot; from it, the
@@ -322,6 +335,34 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         let mut path = LoadPath::new(self.problem(from), &at, (w, self.scales), (self.tolerance, self.max_iterations), self.kernel, None, x, report);
         path.run()?;
         Ok((path.x, path.results))
+    }
+
+    /// Mode `tensions` by the nested start (nested.rs): the pure stick state and the
+    /// continuation from `ends.0` to `ends.1` on the open mesh of the first of `levels`,
+    /// then one Newton solve at `ends.1` on each finer one and last on this setup's
+    /// mesh, each from the state of the mesh before it. `None` if a step fails (the
+    /// caller then continues on this mesh itself; the work done is counted in `report`).
+    fn nested(&self, levels: &[usize], contour: Contour, tension_in: f64, ends: (Ends, Ends), data: &nested::NestedData<'_, '_, K>, report: &mut SteadyReport) -> Option<(Vec<f64>, Vec<PointResult>)> {
+        let (&coarsest, finer) = levels.split_first()?;
+        let base = data.base;
+        let open_asm = |n: usize| Mesh::open(contour, n, data.arc_weight).ok().map(|mesh| Assembler::with_kernel(mesh, self.kernel.clone()));
+        let asm = open_asm(coarsest)?;
+        let points = friction_points(&asm, &[], Direction::Clockwise);
+        let w = variable_weights(&asm, base.h, base.r, base.omega1.abs(), base.f_ref, points.len());
+        let scales = row_scales(&asm, base.f_ref, points.len());
+        let coarse = OpenSetup { asm: &asm, points: &points, w: &w, scales: &scales, ..*self };
+        let stick = coarse.stick(tension_in, report).ok()?;
+        let (mut x, mut results) = coarse.path(stick, ends.0, ends.1, &w, report).ok()?;
+        report.nested_meshes.push(coarsest);
+        let mut prev = asm;
+        for &n in finer {
+            let asm = open_asm(n)?;
+            let points = friction_points(&asm, &[], Direction::Clockwise);
+            (x, results) = nested::rung::<N, P, E, K>(&prev, &x, &results, &asm, &points, data, report).ok()??;
+            prev = asm;
+            report.nested_meshes.push(n);
+        }
+        nested::rung::<N, P, E, K>(&prev, &x, &results, self.asm, self.points, data, report).ok()?
     }
 
     /// φ_B of a converged state: the polar angle of the located zero of v on the slip

@@ -192,7 +192,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
 pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(problem: &SteadyProblem<N, P, E, K>, x: &mut [f64], w: &[f64], scales: &[f64], tolerance: f64, max_iterations: usize) -> Result<SteadyNewton, NewtonFailure> {
     let n = x.len();
     let problem = &Patterned::new(problem);
-    let lu = BorderedLu::new(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()]).map_err(NewtonFailure::Pattern)?;
+    let lu = cached_lu(&problem.rows, &problem.cols, n, [problem.ic(), problem.iw()])?;
     let mut semismooth = Semismooth {
         problem,
         lu,
@@ -207,7 +207,9 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         floor_count: 0,
     };
     let opts = NewtonOptions { tolerance, max_iterations, min_damping: 1.0 / 1024.0 };
-    let stats = numerics::newton::solve(&mut semismooth, x, &opts).map_err(|e| match e {
+    let solved = numerics::newton::solve(&mut semismooth, x, &opts);
+    LU_CACHE.with(|c| *c.borrow_mut() = Some((problem.rows.clone(), problem.cols.clone(), [problem.ic(), problem.iw()], semismooth.lu)));
+    let stats = solved.map_err(|e| match e {
         // the state of the last iterate is checked before the iteration limit
         NewtonError::MaxIterations { iterations, .. } if problem.evaluate(x, true).is_none() => NewtonFailure::Inadmissible { iteration: iterations },
         NewtonError::MaxIterations { iterations, correction, .. } => NewtonFailure::NotConverged { iterations, update: correction, tolerance },
@@ -230,6 +232,27 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         return Err(NewtonFailure::NoCoulombState { traction: p.traction.abs(), bound: problem.sp.mu * p.normal, sigma: p.point.sigma });
     }
     Ok(SteadyNewton { iterations: stats.iterations, update_norm: stats.last_correction })
+}
+
+/// A bordered LU with its pattern (rows, cols, border), kept for the next solve.
+type CachedLu = (Vec<usize>, Vec<usize>, [usize; 2], BorderedLu);
+
+thread_local! {
+    /// The bordered LU of this thread's last [`newton`] solve: the steps of a load
+    /// continuation, the rungs of a penalty ladder and the solves of Paper D's scheme
+    /// repeat one sparsity pattern, whose symbolic factorisation (as costly as 1–2
+    /// numeric ones, measured) is then done once.
+    static LU_CACHE: std::cell::RefCell<Option<CachedLu>> = const { std::cell::RefCell::new(None) };
+}
+
+/// The bordered LU of the pattern (`rows`, `cols`) of size `n` with `border`: the cached
+/// one if its pattern is this one, else a new one (its symbolic factorisation done).
+fn cached_lu(rows: &[usize], cols: &[usize], n: usize, border: [usize; 2]) -> Result<BorderedLu, NewtonFailure> {
+    let cached = LU_CACHE.with(|c| c.borrow_mut().take());
+    match cached {
+        Some((r, c, b, lu)) if b == border && lu.dim() == n && r == rows && c == cols => Ok(lu),
+        _ => BorderedLu::new(rows, cols, n, border).map_err(NewtonFailure::Pattern),
+    }
 }
 
 /// [`newton`] on `problem` from `x`; if it fails, [`penalty_ladder`] from the same `x`
