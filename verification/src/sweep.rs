@@ -19,7 +19,9 @@
 //! is a cold solve ([`bvp::scene::solve_scene`], the model's own homotopy); each next
 //! point t_i is reached from the last converged solution by warm starts
 //! ([`bvp::scene::solve_scene_from`]: the final solve from the previous solution, no
-//! homotopy). A failed step is halved (Δt/2, Δt/4, … down to
+//! homotopy), with a secant predictor once two comparable points are accepted
+//! ([`WarmStart::predicted`]: the last solution extrapolated along the line through the
+//! one before, at most [`MAX_PREDICTOR_RATIO`] times the last step). A failed step is halved (Δt/2, Δt/4, … down to
 //! Δt_grid / 2^[`MAX_HALVINGS`]); an accepted intermediate step doubles the next one
 //! (never past t_i). When the halving runs out:
 //!
@@ -54,6 +56,10 @@ use crate::run::{Discretisation, FemFormulation, Method};
 /// At most this many halvings of a line's grid step before a point counts as not
 /// reachable by continuation (a smallest step of Δt_grid/64).
 pub const MAX_HALVINGS: u32 = 6;
+
+/// The largest ratio of a step to the last accepted one for which the warm start is
+/// the secant predictor through the last two points (beyond it: the last point).
+pub const MAX_PREDICTOR_RATIO: f64 = 4.0;
 
 /// The η-component of the unit tangent below which the branch counts as turning (a
 /// fold): 0.05, the branch within 3° of vertical in (t, y) with y the relative change of
@@ -532,6 +538,19 @@ struct Converged {
     scalars: Vec<(String, f64)>,
 }
 
+/// The warm start of a step to `t` with the secant predictor through the last two
+/// accepted points of `path` (module docs, step 2): `None` with fewer than two, when
+/// they are not comparable (a cold start between them: other scales) or when the step
+/// is more than [`MAX_PREDICTOR_RATIO`] times the last one (then the last point alone).
+fn predictor(path: &[Converged], t: f64) -> Option<WarmStart> {
+    let [.., older, here] = path else { return None };
+    let ratio = (t - here.t) / (here.t - older.t);
+    if !(ratio > 0.0 && ratio <= MAX_PREDICTOR_RATIO) {
+        return None;
+    }
+    here.warm.as_ref()?.predicted(older.warm.as_ref()?, ratio)
+}
+
 /// The secant slope ‖Δy‖/|Δt| from `a` to `b`, y the summary scalars relative to
 /// max(|y_a|, |y_b|, 1e-12), ‖·‖ their RMS (module docs).
 fn slope(a: &Converged, b: &Converged) -> f64 {
@@ -625,7 +644,8 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
             loop {
                 let here = path.last().expect("a converged point");
                 let t = if (target - here.t).abs() <= h.abs() { target } else { here.t + h };
-                match solve(if t == target { v } else { p0.value(t) }, here.warm.as_ref()) {
+                let predicted = predictor(&path, t);
+                match solve(if t == target { v } else { p0.value(t) }, predicted.as_ref().or(here.warm.as_ref())) {
                     Ok(run) => {
                         accept(run, t, &mut path);
                         if t == target {
