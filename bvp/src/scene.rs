@@ -100,6 +100,20 @@ pub enum WarmStart {
     CosseratDrive(Box<CosseratDriveSolution>),
 }
 
+impl WarmStart {
+    /// The warm start of a point r steps beyond this one along a line through `older`
+    /// (the previous point): this solution with the secant predictor of
+    /// [`BeltSolution::predicted`] as its guess. `None` when `older` is another model or
+    /// the two are not comparable (other scales or topology): then start from `self`.
+    pub fn predicted(&self, older: &WarmStart, ratio: f64) -> Option<WarmStart> {
+        match (self, older) {
+            (WarmStart::StringDrive(a), WarmStart::StringDrive(b)) => a.predicted(b, ratio).map(|s| WarmStart::StringDrive(Box::new(s))),
+            (WarmStart::CosseratDrive(a), WarmStart::CosseratDrive(b)) => a.predicted(b, ratio).map(|s| WarmStart::CosseratDrive(Box::new(s))),
+            _ => None,
+        }
+    }
+}
+
 impl BvpRun {
     /// The run of a solved belt problem with options `opts` (as JSON: `options`) and its
     /// diagnostics `notes`.

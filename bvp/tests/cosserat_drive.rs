@@ -71,8 +71,11 @@ fn scene_solves_with_its_balances() {
 /// −R∫f_t ds = −[M + k·((r − C) × F̃)]_start^end + ρg∫(x − x_C) ds, from the point
 /// output (the torque is the BVP's quadrature τ′ = −R f_t, the rest its states), and
 /// the vertical force balance Σ F_iy = ρgL (D-2). The moment balance holds to the
-/// BVP's tolerance (1e-8) and the trapezoidal ∫(x − x_C) ds over 8 points per mesh
-/// interval (measured 5e-8 N·m against a torque of 0.1 N·m): 1e-6 F_ref R.
+/// BVP's tolerance (1e-8) and the trapezoidal ∫(x − x_C) ds over 32 points per mesh
+/// interval (measured 1.4e-8 N·m against a torque of 0.1 N·m and a limit 1.3e-7 N·m
+/// on the scene's gauss8 mesh of 626 nodes; the trapezoidal error is O(h²): 8 points
+/// per interval gave 5e-8 N·m on gauss6's 2457 nodes, 2.2e-7 N·m on gauss8's):
+/// 1e-6 F_ref R.
 #[test]
 fn moment_and_force_balances_hold() {
     let sol = solved();
@@ -80,7 +83,7 @@ fn moment_and_force_balances_hold() {
     let chi = dd.chi(sol.transport_rate().unwrap());
     let w = d.mass_per_length * d.gravity;
     let topo = sol.topology();
-    let samples = sol.samples(8);
+    let samples = sol.samples(32);
     let mut vertical = 0.0;
     for pulley in [Pulley::Driver, Pulley::Driven] {
         let xc = pulley.centre_x() * d.centre_distance;

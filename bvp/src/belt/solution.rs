@@ -13,7 +13,7 @@ use drive::summary::{PulleySummary, Summary};
 use drive::view::SolutionView;
 
 use crate::sigma_map::SigmaMap;
-use crate::solution::{Solution, Stats};
+use crate::solution::{SegmentSolution, Solution, Stats};
 
 use super::law::{BeltPoint, ContactEdges, Pulleys, Scales, SectionLaw};
 use super::problem::BeltProblem;
@@ -173,6 +173,56 @@ pub fn solve_from<L: SectionLaw>(run: Run<'_, L>, opts: &BeltOptions, clock: Ins
     finish(data, problem, scales, pulleys, start, solved, opts)
 }
 
+/// The secant predictor of a continuation step: `newer` + r (`newer` − `older`) on
+/// `newer`'s meshes. The difference of the states is taken at `newer`'s nodes (`older`
+/// by its dense output there) and interpolated linearly inside each interval, added to
+/// `newer`'s dense output; the parameters are extrapolated alike. `None` when the two
+/// do not have the same segments, dimensions and parameters, or r is not finite.
+pub fn secant_guess(newer: &Solution, older: &Solution, ratio: f64) -> Option<Solution> {
+    let shaped = newer.segments.len() == older.segments.len()
+        && newer.params.len() == older.params.len()
+        && newer.segments.iter().zip(&older.segments).all(|(a, b)| a.dim() == b.dim());
+    if !(shaped && ratio.is_finite()) {
+        return None;
+    }
+    let segments = newer
+        .segments
+        .iter()
+        .zip(&older.segments)
+        .map(|(seg, old)| {
+            // the step of every component at every node, r (y_newer − y_older)
+            let steps: Vec<Vec<f64>> = seg
+                .mesh
+                .iter()
+                .zip(&seg.nodes)
+                .map(|(&x, y)| y.iter().zip(old.eval(x)).map(|(a, b)| ratio * (a - b)).collect())
+                .collect();
+            let nodes = seg.nodes.iter().zip(&steps).map(|(y, d)| y.iter().zip(d).map(|(a, b)| a + b).collect()).collect();
+            let poly = seg
+                .poly
+                .iter()
+                .enumerate()
+                .map(|(i, comps)| {
+                    comps
+                        .iter()
+                        .enumerate()
+                        .map(|(j, c)| {
+                            let mut c = c.clone();
+                            c.resize(c.len().max(2), 0.0);
+                            c[0] += steps[i][j];
+                            c[1] += steps[i + 1][j] - steps[i][j];
+                            c
+                        })
+                        .collect()
+                })
+                .collect();
+            SegmentSolution { mesh: seg.mesh.clone(), nodes, poly }
+        })
+        .collect();
+    let params = newer.params.iter().zip(&older.params).map(|(a, b)| a + ratio * (a - b)).collect();
+    Some(Solution { segments, params, eta: newer.eta, stats: Stats::default() })
+}
+
 /// The solution of a solved run with its σ map, after the law's balance check and the
 /// contact checks.
 fn finish<L: SectionLaw>(
@@ -207,6 +257,24 @@ fn finish<L: SectionLaw>(
 }
 
 impl<L: SectionLaw> BeltSolution<L> {
+    /// This solution with its BVP solution replaced by the secant predictor towards a
+    /// point r steps beyond it ([`secant_guess`] from `older`): a warm start of a
+    /// continuation with a first-order predictor. `None` unless both have the same
+    /// scales and topology (then the scaled states are comparable) and the predictor
+    /// exists.
+    pub fn predicted(&self, older: &Self, ratio: f64) -> Option<Self>
+    where
+        L: Clone,
+        L::Data: Clone,
+        L::Start: Clone,
+    {
+        if self.scales != older.scales || self.problem.topology != older.problem.topology {
+            return None;
+        }
+        let solution = secant_guess(&self.solution, &older.solution, ratio)?;
+        Some(Self { solution, ..self.clone() })
+    }
+
     /// The topology.
     pub fn topology(&self) -> &Topology {
         &self.problem.topology
@@ -579,5 +647,46 @@ mod tests {
         let pb = BeltProblem::new(Topology::two_pulley(ContactModel::Coulomb), drive);
         let (conditions, slope) = tight_defects(&pb, tension, stretch, 0.18);
         assert!(conditions < 1e-13 && slope < 1e-13, "drive: conditions {conditions:e}, y′ − f {slope:e}");
+    }
+
+    /// The secant predictor on two solutions on different meshes (the older's a
+    /// superset of the newer's, so that both hold g at the newer's nodes), y(x; t) =
+    /// g(x) + t·h(x) with h linear in x (so that the step is exact at the nodes and its
+    /// linear interpolation exact inside): the predictor at t₁ + r(t₁ − t₀) is newer's dense
+    /// output plus r(t₁ − t₀)·h to round-off at nodes and mid-intervals, the parameters
+    /// extrapolated alike; other shapes or a non-finite ratio give `None`.
+    #[test]
+    fn secant_guess_extrapolates_along_the_line() {
+        let g = |x: f64| [x * x * x, (3.0 * x).sin()];
+        let h = |x: f64| [2.0 - x, 0.5 + 3.0 * x];
+        let at = |mesh: &[f64], t: f64| {
+            let nodes = mesh.iter().map(|&x| g(x).iter().zip(h(x)).map(|(a, b)| a + t * b).collect()).collect();
+            Solution { segments: vec![SegmentSolution::piecewise_linear(mesh.to_vec(), nodes)], params: vec![1.0 + t, -2.0 * t], eta: 1.0, stats: Stats::default() }
+        };
+        let (t0, t1, r) = (0.3, 0.5, 1.5);
+        let older = at(&[0.0, 0.05, 0.1, 0.25, 0.4, 0.6, 0.75, 0.9, 1.0], t0);
+        let newer = at(&[0.0, 0.1, 0.25, 0.6, 0.9, 1.0], t1);
+        let p = secant_guess(&newer, &older, r).expect("same shapes");
+        let dt = r * (t1 - t0);
+        let seg = &p.segments[0];
+        assert_eq!(seg.mesh, newer.segments[0].mesh);
+        for x in [0.0, 0.05, 0.1, 0.2, 0.25, 0.4, 0.6, 0.75, 0.9, 0.95, 1.0] {
+            let want: Vec<f64> = newer.eval(0, x).iter().zip(h(x)).map(|(a, b)| a + dt * b).collect();
+            for (a, b) in seg.eval(x).iter().zip(&want) {
+                assert!((a - b).abs() < 1e-14, "dense output at {x}: {a} against {b}");
+            }
+        }
+        for (y, &x) in seg.nodes.iter().zip(&seg.mesh) {
+            for (a, b) in y.iter().zip(seg.eval(x)) {
+                assert!((a - b).abs() < 1e-14, "node value at {x} against the dense output");
+            }
+        }
+        let t2 = t1 + dt;
+        for (a, b) in p.params.iter().zip([1.0 + t2, -2.0 * t2]) {
+            assert!((a - b).abs() < 1e-14, "parameter {a} against {b}");
+        }
+        assert!(secant_guess(&newer, &older, f64::NAN).is_none());
+        let fewer = Solution { params: vec![1.0], ..older.clone() };
+        assert!(secant_guess(&newer, &fewer, r).is_none());
     }
 }
