@@ -637,6 +637,33 @@ mod tests {
         }
     }
 
+    /// The reusable stage Jacobian of the condensation gives the values of the
+    /// allocating [`crate::jacobian::rhs_jacobian`] to the bit — f from the first dual
+    /// pass instead of a plain call — and without the η column leaves ∂f/∂η zero
+    /// (Test2's segment 0 depends on η, so a skipped or stale column shows).
+    #[test]
+    fn stage_jacobian_buffers_equal_the_allocating_version_to_the_bit() {
+        use crate::jacobian::{rhs_jacobian, RhsJacobian};
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut state = 5u64;
+        let mut jac = RhsJacobian::default();
+        for k in 0..2 {
+            let y = [lcg(&mut state), lcg(&mut state)];
+            let p = [1.0 + 0.3 * lcg(&mut state)];
+            let (x, eta) = (0.37, 0.8);
+            let (f, dfdy, dfdp, dfdeta) = rhs_jacobian(&Test2, JacobianMode::Ad, k, x, &y, &p, eta);
+            assert!(k == 1 || dfdeta.iter().any(|&v| v != 0.0), "segment 0 depends on η");
+            for eta_column in [true, false] {
+                jac.evaluate(&Test2, JacobianMode::Ad, k, x, &y, &p, eta, eta_column);
+                assert_eq!(bits(&jac.f), bits(&f), "f, segment {k}");
+                assert_eq!(bits(&jac.dfdy), bits(&dfdy), "∂f/∂y, segment {k}");
+                assert_eq!(bits(&jac.dfdp), bits(&dfdp), "∂f/∂p, segment {k}");
+                let expected = if eta_column { bits(&dfdeta) } else { bits(&[0.0, 0.0]) };
+                assert_eq!(bits(&jac.dfdeta), expected, "∂f/∂η, segment {k}, η column {eta_column}");
+            }
+        }
+    }
+
     #[test]
     fn options_are_validated() {
         let guess = Solution::from_fn(2, 3, vec![1.0], 0.5, |_, _| vec![0.0, 0.0]);
