@@ -349,6 +349,7 @@ impl CondensedLu {
         let p = disc.params(z);
         let mut phi = Vec::new();
         let mut psi = Vec::new();
+        let mut bw = Vec::new();
         let mut qcols = Vec::with_capacity(np);
         self.used.clear();
         self.used.resize(self.intervals.len() * np, false);
@@ -379,17 +380,20 @@ impl CondensedLu {
             for j in 0..s {
                 for a in 0..n {
                     let r = j * n + a;
-                    for l in 0..s {
+                    let krow = &mut kk[r * sn..(r + 1) * sn];
+                    let wrow = &mut ww[r * nu..(r + 1) * nu];
+                    for (l, jl) in jac.iter().enumerate() {
                         let ajl = disc.tab.a[j * s + l];
-                        for c in 0..n {
-                            kk[r * sn + l * n + c] = -h * ajl * jac[l].dfdy[a * n + c];
+                        let (k_coef, g_coef) = (-h * ajl, h * ajl);
+                        for (o, &d) in krow[l * n..(l + 1) * n].iter_mut().zip(&jl.dfdy[a * n..(a + 1) * n]) {
+                            *o = k_coef * d;
                         }
-                        for (jq, &q) in qcols.iter().enumerate() {
-                            ww[r * nu + n + jq] += h * ajl * jac[l].dfdp[a * np + q];
+                        for (o, &q) in wrow[n..].iter_mut().zip(&qcols) {
+                            *o += g_coef * jl.dfdp[a * np + q];
                         }
                     }
-                    kk[r * sn + r] += 1.0;
-                    ww[r * nu + a] = 1.0;
+                    krow[r] += 1.0;
+                    wrow[a] = 1.0;
                 }
             }
             if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
@@ -410,9 +414,16 @@ impl CondensedLu {
             psi.clear();
             psi.resize(n * np, 0.0);
             for a in 0..n {
-                let brow = &bb[a * sn..(a + 1) * sn];
-                for col in 0..nu {
-                    let v: f64 = brow.iter().enumerate().map(|(r, x)| x * ww[r * nu + col]).sum();
+                // B W row by row: each column's sum Σ_r b_ar w_r,col with r ascending from
+                // −0.0 (as `Iterator::sum`), over contiguous rows of W.
+                bw.clear();
+                bw.resize(nu, -0.0);
+                for (&x, wr) in bb[a * sn..(a + 1) * sn].iter().zip(ww.chunks_exact(nu)) {
+                    for (o, &v) in bw.iter_mut().zip(wr) {
+                        *o += x * v;
+                    }
+                }
+                for (col, &v) in bw.iter().enumerate() {
                     if col < n {
                         phi[a * n + col] = v + if col == a { 1.0 } else { 0.0 };
                     } else {
