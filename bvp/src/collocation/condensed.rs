@@ -34,7 +34,9 @@
 //! instead ([`Discretisation::jacobian`] and the sparse LU), so the condensation never
 //! makes a solvable Newton step fail.
 
+use super::abd::BlockLu;
 use super::discretisation::Discretisation;
+use numerics::phases::{timed, Phase};
 use crate::error::BvpError;
 use crate::jacobian::{bc_jacobian, RhsJacobian};
 use crate::newton::SparseLu;
@@ -43,7 +45,7 @@ use crate::problem::{JacobianMode, Problem};
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
 /// pivot is not finite or |u_rr| ≤ 10⁻¹⁴ max |a_ij| (numerically singular).
-fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
+pub(crate) fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
     let scale = a.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
     if !(scale.is_finite() && scale > 0.0) {
         return false;
@@ -84,7 +86,7 @@ fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
 /// independent and run side by side: one dependency chain per row instead of one per
 /// row and column (the W solves of [`CondensedLu::factorize`] were ~15 % of a gauss8
 /// elastica solve as one column at a time).
-fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
+pub(crate) fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
     let x = &mut x[..m * nc];
     for (r, &p) in piv[..m].iter().enumerate() {
         if p != r {
@@ -163,6 +165,11 @@ fn substitute_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
     }
 }
 
+/// Default largest order of the structured LU's final dense system
+/// ([`CondensedLu::max_block_order`]): its dense LU costs O(D³) per Newton iteration, so
+/// problems with many segments (the Cosserat drive) stay on the sparse LU.
+pub(crate) const MAX_BLOCK_ORDER: usize = 64;
+
 /// Where the data of one interval lives in the flat buffers of [`CondensedLu`].
 #[derive(Debug, Clone, Copy)]
 struct Interval {
@@ -179,6 +186,9 @@ struct Interval {
     b: usize,
     /// Start of t = K⁻¹ b_S in the solve scratch (s n).
     t: usize,
+    /// Start of Φ (n × n) and Ψ (n × n_p), row-major.
+    phi: usize,
+    psi: usize,
 }
 
 /// The factorised Newton matrix ∂F/∂z of a [`Discretisation`], condensed to the node
@@ -194,6 +204,19 @@ pub(crate) struct CondensedLu {
     full: SparseLu,
     /// The last factorisation was the full one.
     uncondensed: bool,
+    /// Structured LU of the condensed system ([`BlockLu`]), used when its final dense
+    /// system has order ≤ `max_block_order`; the sparse LU `lu` otherwise or when a
+    /// pivot of the structured elimination vanishes.
+    block: BlockLu,
+    /// The last condensed factorisation was the structured one.
+    structured: bool,
+    /// Largest order Σ_k 2 n_k + n_p of the structured LU's final dense system (default
+    /// [`MAX_BLOCK_ORDER`]; 0 forces the sparse LU).
+    pub max_block_order: Option<usize>,
+    /// Φ_i and Ψ_i of every interval, and the boundary Jacobian dg.
+    phis: Vec<f64>,
+    psis: Vec<f64>,
+    dg: Vec<f64>,
     intervals: Vec<Interval>,
     /// Condensed index of the first node of each segment; `node_offsets[m]` = first
     /// parameter = number of node unknowns.
@@ -226,10 +249,11 @@ impl CondensedLu {
         Self::default()
     }
 
-    /// Numeric factorisations of the condensed and of the full system.
+    /// Numeric factorisations of the condensed system by the sparse LU and of the full
+    /// system, and whether the last one was the structured LU.
     #[cfg(test)]
-    pub fn factorisations(&self) -> (usize, usize) {
-        (self.lu.numeric_factorisations(), self.full.numeric_factorisations())
+    pub fn factorisations(&self) -> (usize, usize, bool) {
+        (self.lu.numeric_factorisations(), self.full.numeric_factorisations(), self.structured)
     }
 
     /// The buffer layout for `disc` (recomputed only when its shape changes).
@@ -248,13 +272,15 @@ impl CondensedLu {
         self.layout = (disc.n, s);
         self.intervals.clear();
         self.node_offsets = vec![0];
-        let (mut lu, mut piv, mut w, mut b, mut t) = (0, 0, 0, 0, 0);
+        let (mut lu, mut piv, mut w, mut b, mut t, mut phi, mut psi) = (0, 0, 0, 0, 0, 0, 0);
         for (k, mesh) in disc.meshes.iter().enumerate() {
             let n = disc.dims[k];
             let sn = s * n;
             self.node_offsets.push(self.node_offsets[k] + mesh.len() * n);
             for i in 0..mesh.len() - 1 {
-                self.intervals.push(Interval { k, i, lu, piv, w, b, t });
+                self.intervals.push(Interval { k, i, lu, piv, w, b, t, phi, psi });
+                phi += n * n;
+                psi += n * np;
                 lu += sn * sn;
                 piv += sn;
                 w += sn * (n + np);
@@ -267,6 +293,8 @@ impl CondensedLu {
         self.w.resize(w, 0.0);
         self.b.resize(b, 0.0);
         self.scratch.resize(t, 0.0);
+        self.phis.resize(phi, 0.0);
+        self.psis.resize(psi, 0.0);
     }
 
     /// Condensed row of the first continuity equation of interval i of segment k.
@@ -280,28 +308,74 @@ impl CondensedLu {
     /// The sparse LU's errors ([`BvpError::SingularJacobian`], [`BvpError::NonFinite`]).
     pub fn factorize<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<(), BvpError> {
         self.set_layout(disc);
-        if self.condense(disc, z, eta)? {
-            self.uncondensed = false;
-            let nc = self.node_offsets[disc.n_segments()] + disc.n_params;
-            self.lu.factorize(nc, &self.rows, &self.cols, &self.vals)
-        } else {
+        if !self.condense(disc, z, eta) {
             self.uncondensed = true;
             disc.jacobian(z, eta, &mut self.rows, &mut self.cols, &mut self.vals, &mut self.jeta);
-            self.full.factorize(disc.n, &self.rows, &self.cols, &self.vals)
+            return self.full.factorize(disc.n, &self.rows, &self.cols, &self.vals);
         }
+        self.uncondensed = false;
+        let order = 2 * disc.dims.iter().sum::<usize>() + disc.n_params;
+        if order <= self.max_block_order.unwrap_or(MAX_BLOCK_ORDER) {
+            let intervals: Vec<usize> = disc.meshes.iter().map(|m| m.len() - 1).collect();
+            let ivs = &self.intervals;
+            let first: Vec<usize> = (0..disc.n_segments()).map(|k| ivs.iter().position(|iv| iv.k == k).unwrap_or(0)).collect();
+            let (phis, psis) = (&self.phis, &self.psis);
+            let dims = &disc.dims;
+            let np = disc.n_params;
+            let block = &mut self.block;
+            let dg = &self.dg;
+            self.structured = timed(Phase::NumericFactorisation, || {
+                block.factorize(
+                    dims,
+                    &intervals,
+                    np,
+                    |k, i| {
+                        let iv = &ivs[first[k] + i];
+                        &phis[iv.phi..iv.phi + dims[k] * dims[k]]
+                    },
+                    |k, i| {
+                        let iv = &ivs[first[k] + i];
+                        &psis[iv.psi..iv.psi + dims[k] * np]
+                    },
+                    dg,
+                )
+            });
+            if self.structured {
+                return Ok(());
+            }
+        }
+        self.structured = false;
+        self.triplets(disc);
+        let nc = self.node_offsets[disc.n_segments()] + disc.n_params;
+        self.lu.factorize(nc, &self.rows, &self.cols, &self.vals)
     }
 
-    /// Build K's LU, W, B per interval and the condensed triplets; false if a K is
-    /// singular (nothing usable then).
-    fn condense<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<bool, BvpError> {
+    /// Build K's LU, W, B, Φ and Ψ per interval and the boundary Jacobian; false if a K
+    /// is singular (nothing usable then).
+    fn condense<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> bool {
         let s = disc.tab.s;
+        let mut jac = std::mem::take(&mut self.jac);
+        jac.resize_with(s, RhsJacobian::default);
+        let singular = self.condense_intervals(disc, z, eta, &mut jac);
+        self.jac = jac;
+        if singular {
+            return false;
+        }
+        // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
+        let (ya, yb) = disc.ends(z);
+        self.dg = bc_jacobian(disc.problem, disc.mode, &ya, &yb, disc.params(z), eta).1;
+        true
+    }
+
+    /// The condensed system as triplets for the sparse LU: per interval the rows
+    /// x_{i+1} − Φ_i x_i − Ψ_i p, then the boundary rows.
+    fn triplets<P: Problem>(&mut self, disc: &Discretisation<'_, P>) {
         let np = disc.n_params;
         let m = disc.n_segments();
         let pofs = self.node_offsets[m];
-        let p = disc.params(z);
-        // The condensed triplets: n (n + 1 + n_p) per interval and n_bc (2 Σ n_k + n_p)
-        // boundary entries, reserved at once (growing them by doubling on every new mesh
-        // was ~3 % of a gauss8 elastica solve in reallocations).
+        // n (n + 1 + n_p) entries per interval and n_bc (2 Σ n_k + n_p) boundary
+        // entries, reserved at once (growing them by doubling on every new mesh was
+        // ~3 % of a gauss8 elastica solve in reallocations).
         let entries: usize = self.intervals.iter().map(|iv| disc.dims[iv.k] * (disc.dims[iv.k] + 1 + np)).sum::<usize>()
             + disc.problem.n_bc() * (2 * disc.dims.iter().sum::<usize>() + np);
         for v in [&mut self.rows, &mut self.cols] {
@@ -310,16 +384,31 @@ impl CondensedLu {
         }
         self.vals.clear();
         self.vals.reserve(entries);
-        let mut jac = std::mem::take(&mut self.jac);
-        jac.resize_with(s, RhsJacobian::default);
-        let singular = self.condense_intervals(disc, z, eta, &mut jac);
-        self.jac = jac;
-        if singular {
-            return Ok(false);
+        for iv in &self.intervals {
+            let n = disc.dims[iv.k];
+            let phi = &self.phis[iv.phi..iv.phi + n * n];
+            let psi = &self.psis[iv.psi..iv.psi + n * np];
+            let r0 = self.condensed_row(&disc.dims, iv.k, iv.i);
+            let c0 = self.node_offsets[iv.k] + iv.i * n;
+            for a in 0..n {
+                for c in 0..n {
+                    self.rows.push(r0 + a);
+                    self.cols.push(c0 + c);
+                    self.vals.push(-phi[a * n + c]);
+                }
+                self.rows.push(r0 + a);
+                self.cols.push(c0 + n + a);
+                self.vals.push(1.0);
+                // every p-column keeps its entry (exact zeros where unused): the pattern,
+                // and with it the sparse LU's ordering and round-off, is that of every
+                // Newton matrix before (catalogue results unchanged to the bit)
+                for q in 0..np {
+                    self.rows.push(r0 + a);
+                    self.cols.push(pofs + q);
+                    self.vals.push(-psi[a * np + q]);
+                }
+            }
         }
-        // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
-        let (ya, yb) = disc.ends(z);
-        let (_, dg) = bc_jacobian(disc.problem, disc.mode, &ya, &yb, p, eta);
         let mut colmap = Vec::new();
         for k in 0..m {
             let n = disc.dims[k];
@@ -335,17 +424,15 @@ impl CondensedLu {
             for (c, &col) in colmap.iter().enumerate() {
                 self.rows.push(r0 + row);
                 self.cols.push(col);
-                self.vals.push(dg[row * nu + c]);
+                self.vals.push(self.dg[row * nu + c]);
             }
         }
-        Ok(true)
     }
 
     /// The interval part of [`Self::condense`]; true if a K is singular.
     fn condense_intervals<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64, jac: &mut [RhsJacobian]) -> bool {
         let s = disc.tab.s;
         let np = disc.n_params;
-        let pofs = self.node_offsets[disc.n_segments()];
         let p = disc.params(z);
         let mut phi = Vec::new();
         let mut psi = Vec::new();
@@ -354,7 +441,7 @@ impl CondensedLu {
         self.used.clear();
         self.used.resize(self.intervals.len() * np, false);
         for iv in 0..self.intervals.len() {
-            let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
+            let Interval { k, i, lu, piv, w, b, phi: iv_phi, psi: iv_psi, .. } = self.intervals[iv];
             let n = disc.dims[k];
             let sn = s * n;
             let mesh = &disc.meshes[k];
@@ -432,26 +519,8 @@ impl CondensedLu {
                     }
                 }
             }
-            let r0 = self.condensed_row(&disc.dims, k, i);
-            let c0 = self.node_offsets[k] + i * n;
-            for a in 0..n {
-                for c in 0..n {
-                    self.rows.push(r0 + a);
-                    self.cols.push(c0 + c);
-                    self.vals.push(-phi[a * n + c]);
-                }
-                self.rows.push(r0 + a);
-                self.cols.push(c0 + n + a);
-                self.vals.push(1.0);
-                // every p-column keeps its entry (exact zeros where unused): the pattern,
-                // and with it the sparse LU's ordering and round-off, is that of every
-                // Newton matrix before (catalogue results unchanged to the bit)
-                for q in 0..np {
-                    self.rows.push(r0 + a);
-                    self.cols.push(pofs + q);
-                    self.vals.push(-psi[a * np + q]);
-                }
-            }
+            self.phis[iv_phi..iv_phi + n * n].copy_from_slice(&phi);
+            self.psis[iv_psi..iv_psi + n * np].copy_from_slice(&psi);
         }
         false
     }
@@ -489,7 +558,13 @@ impl CondensedLu {
         let cbc0 = pofs - disc.dims.iter().sum::<usize>();
         let n_bc = disc.n - bc0;
         self.rhs[cbc0..cbc0 + n_bc].copy_from_slice(&x[bc0..]);
-        self.lu.solve_in_place(&mut self.rhs)?;
+        if self.structured {
+            let block = &mut self.block;
+            let rhs = &mut self.rhs;
+            timed(Phase::LinearSolves, || block.solve(rhs));
+        } else {
+            self.lu.solve_in_place(&mut self.rhs)?;
+        }
         // Back substitution: node values and parameters, then x_Y = t + W [x_i; x_p].
         let full_p = disc.offsets[m];
         x[full_p..].copy_from_slice(&self.rhs[pofs..]);

@@ -22,6 +22,7 @@
 //! control and the MATLAB PSE", ACM TOMS 27, 2001), which uses the 4th-order
 //! Lobatto IIIA scheme with the same residual measure.
 
+mod abd;
 pub(crate) mod condensed;
 pub(crate) mod discretisation;
 pub(crate) mod mesh;
@@ -607,33 +608,39 @@ mod tests {
 
     /// The condensed factorisation solves the Newton system like the sparse LU of the
     /// full Jacobian, for every scheme, at a random state with a random right-hand side
-    /// (two segments, a parameter, interface conditions). Both are backward stable
-    /// solves of a system of order ~50 with condition ≲ 10⁴ here, so they agree to
-    /// ~10⁻¹², 10⁻⁹ relative to the largest entry; a wrong block or sign gives O(1).
+    /// (two segments, a parameter, interface conditions), by the structured LU of the
+    /// condensed system and by its sparse LU. All are backward stable solves of a
+    /// system of order ~50 with condition ≲ 10⁴ here, so they agree to ~10⁻¹², 10⁻⁹
+    /// relative to the largest entry; a wrong block, sign or pivot gives O(1). Meshes
+    /// of one interval (no elimination step) and of several are both in it.
     #[test]
     fn condensed_solve_matches_full_lu() {
         let mut state = 11u64;
         for scheme in Scheme::ALL {
-            let meshes = vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]];
-            let disc = Discretisation::new(&Test2, scheme, JacobianMode::Ad, meshes).unwrap();
-            let n = disc.n;
-            let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
-            let eta = 0.8;
-            let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
-            let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
-            disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
-            let mut full = SparseLu::new();
-            full.factorize(n, &rows, &cols, &vals).unwrap();
-            let mut x_full = b.clone();
-            full.solve_in_place(&mut x_full).unwrap();
-            let mut cond = CondensedLu::new();
-            cond.factorize(&disc, &z, eta).unwrap();
-            let mut x = b.clone();
-            cond.solve(&disc, &mut x).unwrap();
-            assert_eq!(cond.factorisations(), (1, 0), "{scheme}: condensed, not the fallback");
-            let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(err < 1e-9 * scale, "{scheme}: max |x − x_full| = {err:e} (scale {scale})");
+            for meshes in [vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]], vec![vec![0.0, 1.0], vec![0.0, 0.3, 1.0]]] {
+                let disc = Discretisation::new(&Test2, scheme, JacobianMode::Ad, meshes).unwrap();
+                let n = disc.n;
+                let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
+                let eta = 0.8;
+                let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
+                let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
+                disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
+                let mut full = SparseLu::new();
+                full.factorize(n, &rows, &cols, &vals).unwrap();
+                let mut x_full = b.clone();
+                full.solve_in_place(&mut x_full).unwrap();
+                let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                for (max_order, expected) in [(None, (0, 0, true)), (Some(0), (1, 0, false))] {
+                    let mut cond = CondensedLu::new();
+                    cond.max_block_order = max_order;
+                    cond.factorize(&disc, &z, eta).unwrap();
+                    let mut x = b.clone();
+                    cond.solve(&disc, &mut x).unwrap();
+                    assert_eq!(cond.factorisations(), expected, "{scheme}: structured or sparse as asked, not the fallback");
+                    let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+                    assert!(err < 1e-9 * scale, "{scheme} {max_order:?}: max |x − x_full| = {err:e} (scale {scale})");
+                }
+            }
         }
     }
 
