@@ -28,7 +28,7 @@
 //! finite) makes [`BlockLu::factorize`] return false; the caller then factorises with
 //! the general sparse LU.
 
-use super::condensed::dense_lu;
+use super::condensed::{dense_lu, eliminate};
 
 /// One segment's part of the factorisation.
 #[derive(Debug, Clone, Copy)]
@@ -68,43 +68,6 @@ pub(crate) struct BlockLu {
 /// [x_0] + n_p [p]).
 fn width(n: usize, np: usize) -> usize {
     3 * n + np
-}
-
-/// Partial-pivoting elimination of the first `k` columns of the row-major
-/// `rows` × `cols` block `a` (all columns updated; multipliers stored below the
-/// diagonal of the first k columns); `piv[r]` is the row swapped with r at step r.
-/// False if a pivot is not finite or |u_rr| ≤ 10⁻¹⁴ times the largest |entry| of the
-/// first k columns.
-fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: &mut [usize]) -> bool {
-    let scale = (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()));
-    if !(scale.is_finite() && scale > 0.0) {
-        return false;
-    }
-    for r in 0..k {
-        let p = (r..rows).fold(r, |best, i| if a[i * cols + r].abs() > a[best * cols + r].abs() { i } else { best });
-        piv[r] = p;
-        if p != r {
-            for c in 0..cols {
-                a.swap(r * cols + c, p * cols + c);
-            }
-        }
-        let d = a[r * cols + r];
-        if !(d.is_finite() && d.abs() > 1e-14 * scale) {
-            return false;
-        }
-        let (head, below) = a.split_at_mut((r + 1) * cols);
-        let pivot_row = &head[r * cols + r + 1..(r + 1) * cols];
-        for row in below[..(rows - r - 1) * cols].chunks_exact_mut(cols) {
-            let f = row[r] / d;
-            row[r] = f;
-            if f != 0.0 {
-                for (o, &u) in row[r + 1..].iter_mut().zip(pivot_row) {
-                    *o -= f * u;
-                }
-            }
-        }
-    }
-    true
 }
 
 impl BlockLu {

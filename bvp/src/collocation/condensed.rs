@@ -23,10 +23,13 @@
 //!
 //! These n rows per interval and the boundary rows (which only see the segment ends and
 //! p) form the condensed system in the node values and p; it is factorised by the
-//! sparse LU ([`SparseLu`], symbolic factorisation kept while the mesh does not
-//! change), and the stage values follow from x_Y = t + W [x_i; x_p]. The work per
-//! interval is that of one dense LU of order s n, independent of the mesh, and the
-//! sparse LU is (s + 1) times smaller than that of the full system.
+//! structured LU of [`super::abd`] (row pivoting inside 2n-row windows, no symbolic
+//! analysis) when its final dense system, of order 2 Σ n_k + n_p, is small
+//! ([`MAX_BLOCK_ORDER`]), else — and when a pivot of the structured elimination
+//! vanishes — by the sparse LU ([`SparseLu`], symbolic factorisation kept while the
+//! mesh does not change); the stage values follow from x_Y = t + W [x_i; x_p]. The
+//! work per interval is that of one dense LU of order s n, independent of the mesh,
+//! and the condensed system is (s + 1) times smaller than the full one.
 //!
 //! K is nonsingular for h ‖J‖ small enough (it is the matrix of one implicit
 //! Runge–Kutta step). Where a pivot of K vanishes (|u_rr| ≤ 10⁻¹⁴ max |K|, or not
@@ -46,27 +49,36 @@ use crate::problem::{JacobianMode, Problem};
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
 /// pivot is not finite or |u_rr| ≤ 10⁻¹⁴ max |a_ij| (numerically singular).
 pub(crate) fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
-    let scale = a.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+    eliminate(a, m, m, m, piv)
+}
+
+/// Partial-pivoting elimination of the first `k` columns of the row-major
+/// `rows` × `cols` block `a` (rows ≥ k; all columns updated, whole rows swapped;
+/// multipliers stored below the diagonal of the first k columns); `piv[r]` is the row
+/// swapped with r at step r. False if a pivot is not finite or |u_rr| ≤ 10⁻¹⁴ times
+/// the largest |entry| of the first k columns. With rows = cols = k it is the LU of a
+/// square matrix ([`dense_lu`]); [`super::abd`] eliminates 2n × n column blocks.
+pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: &mut [usize]) -> bool {
+    let scale = (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()));
     if !(scale.is_finite() && scale > 0.0) {
         return false;
     }
-    for r in 0..m {
-        let p = (r..m).fold(r, |best, i| if a[i * m + r].abs() > a[best * m + r].abs() { i } else { best });
+    for r in 0..k {
+        let p = (r..rows).fold(r, |best, i| if a[i * cols + r].abs() > a[best * cols + r].abs() { i } else { best });
         piv[r] = p;
         if p != r {
-            for c in 0..m {
-                a.swap(r * m + c, p * m + c);
+            for c in 0..cols {
+                a.swap(r * cols + c, p * cols + c);
             }
         }
-        let d = a[r * m + r];
+        let d = a[r * cols + r];
         if !(d.is_finite() && d.abs() > 1e-14 * scale) {
             return false;
         }
-        // Row slices instead of indices: the same operations in the same order, without
-        // a bounds check per multiply–add.
-        let (head, below) = a.split_at_mut((r + 1) * m);
-        let pivot_row = &head[r * m + r + 1..];
-        for row in below.chunks_exact_mut(m) {
+        // Row slices instead of indices: a bounds check per row, not per multiply–add.
+        let (head, below) = a.split_at_mut((r + 1) * cols);
+        let pivot_row = &head[r * cols + r + 1..(r + 1) * cols];
+        for row in below[..(rows - r - 1) * cols].chunks_exact_mut(cols) {
             let f = row[r] / d;
             row[r] = f;
             if f != 0.0 {

@@ -4,7 +4,9 @@
 //! 1. sample the guess's dense output on its own mesh (node and stage values),
 //! 2. solve the collocation equations (implicit Runge–Kutta form with node and stage
 //!    values as unknowns, all segments and the parameters in one sparse system) by the
-//!    damped Newton method of [`crate::newton`] on faer's sparse LU,
+//!    damped Newton method of [`crate::newton`], each Newton matrix condensed to the
+//!    mesh-node values ([`condensed`]) and factorised by a structured LU of that
+//!    almost-block-diagonal system (faer's sparse LU for many segments),
 //! 3. estimate the residual on every interval ([`CollocationOptions::tolerance`]),
 //! 4. insert nodes where it exceeds the tolerance, remove nodes where it is far below
 //!    (rules below), carry the solution over with its dense output, and repeat.
