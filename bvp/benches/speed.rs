@@ -45,6 +45,17 @@ fn speed(c: &mut Criterion) {
             b.iter(|| collocation::solve(black_box(&problem), black_box(&guess), &opts).expect("elastica solves"))
         });
     }
+
+    // The engine's cost of one mesh, without the adaptation around it: the converged
+    // gauss8 elastica (213 nodes) solved again on its own mesh, mesh adaptation off —
+    // one Newton iteration (the condensation, the sparse LU with its symbolic analysis
+    // of a new pattern, the solves) and one residual estimate.
+    let opts = CollocationOptions { scheme: Scheme::Gauss8, tolerance: 1e-8, ..Default::default() };
+    let converged = collocation::solve(&problem, &guess, &opts).expect("elastica solves");
+    let fixed = CollocationOptions { adapt_mesh: false, ..opts };
+    g.bench_function(format!("elastica-one-mesh/gauss8/{}-nodes", converged.stats.mesh_nodes), |b| {
+        b.iter(|| collocation::solve(black_box(&problem), black_box(&converged), &fixed).expect("elastica solves"))
+    });
     g.finish();
 }
 

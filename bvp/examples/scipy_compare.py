@@ -41,12 +41,19 @@ REPEATS = 3
 S = np.linspace(0.0, 1.0, 2001)
 
 
+def best_time(run, repeats, clock=time.process_time):
+    """Best time by `clock` (default: process CPU time) of `repeats` calls of `run`,
+    and the last result."""
+    best, out = np.inf, None
+    for _ in range(repeats):
+        t0 = clock()
+        out = run()
+        best = min(best, clock() - t0)
+    return best, out
+
+
 def timed(run):
-    best, sol = np.inf, None
-    for _ in range(REPEATS):
-        t0 = time.perf_counter()
-        sol = run()
-        best = min(best, time.perf_counter() - t0)
+    best, sol = best_time(run, REPEATS, time.perf_counter)
     return sol, best
 
 
@@ -156,11 +163,7 @@ def cpu_table(name, run, error, exact, tolerances=(1e-7, 1e-8), repeats=5):
     `cargo run --release -p bvp --example speed`, which reports CPU time too)."""
     print(f"{name:<22} {'tol':>8} {'nodes':>7} {'max error':>11} {'status':>6} {'cpu [ms]':>11}")
     for tol in tolerances:
-        best = np.inf
-        for _ in range(repeats):
-            c0 = time.process_time()
-            sol = run(tol)
-            best = min(best, time.process_time() - c0)
+        best, sol = best_time(lambda: run(tol), repeats)
         err = error(sol, exact) if sol.success else float("nan")
         print(f"{name:<22} {tol:>8.0e} {sol.x.size:>7} {err:>11.3e} {sol.status:>6} {best * 1e3:>11.3f}")
     print()

@@ -123,7 +123,13 @@ pub struct RhsJacobian {
 }
 
 impl RhsJacobian {
-    /// Evaluate f_k and its derivatives at (x, y, p, η) into the buffers.
+    /// Evaluate f_k and its derivatives at (x, y, p, η) into the buffers; the column
+    /// ∂f/∂η only with `eta_column` (else `dfdeta` is left zero: the condensed Newton
+    /// matrix at fixed η needs ∂f/∂y and ∂f/∂p alone, and the η pass was one of the
+    /// n + n_p + 2 right-hand-side calls per collocation point).
+    ///
+    /// In AD mode f is the value part of the first dual pass — the same f64 operations
+    /// as a plain call of `rhs`, so the same bits — instead of one more call.
     #[allow(clippy::too_many_arguments)]
     pub fn evaluate<P: Problem>(
         &mut self,
@@ -134,6 +140,7 @@ impl RhsJacobian {
         y: &[f64],
         p: &[f64],
         eta: f64,
+        eta_column: bool,
     ) {
         if matches!(mode, JacobianMode::FiniteDifference) {
             (self.f, self.dfdy, self.dfdp, self.dfdeta) = rhs_jacobian(problem, mode, k, x, y, p, eta);
@@ -141,10 +148,7 @@ impl RhsJacobian {
         }
         let n = y.len();
         let np = p.len();
-        self.f.clear();
-        self.f.resize(n, 0.0);
-        problem.rhs(k, x, y, p, eta, &mut self.f);
-        for (v, len) in [(&mut self.dfdy, n * n), (&mut self.dfdp, n * np), (&mut self.dfdeta, n)] {
+        for (v, len) in [(&mut self.f, n), (&mut self.dfdy, n * n), (&mut self.dfdp, n * np), (&mut self.dfdeta, n)] {
             v.clear();
             v.resize(len, 0.0);
         }
@@ -154,7 +158,8 @@ impl RhsJacobian {
         self.pd.extend(p.iter().map(|&v| Dual64::from_re(v)));
         let declared = problem.rhs_params(k);
         let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
-        for j in (0..n + np + 1).filter(|&j| j < n || j == n + np || reads(j - n)) {
+        let columns = (0..n + np + 1).filter(|&j| if j < n { true } else if j < n + np { reads(j - n) } else { eta_column });
+        for (pass, j) in columns.enumerate() {
             let mut ed = Dual64::from_re(eta);
             if j < n {
                 self.yd[j].eps = 1.0;
@@ -163,9 +168,14 @@ impl RhsJacobian {
             } else {
                 ed.eps = 1.0;
             }
-            self.out.clear();
             self.out.resize(n, Dual64::from_re(0.0));
+            self.out.fill(Dual64::from_re(0.0));
             problem.rhs(k, x, &self.yd, &self.pd, ed, &mut self.out);
+            if pass == 0 {
+                for (o, v) in self.f.iter_mut().zip(&self.out) {
+                    *o = v.re;
+                }
+            }
             for (i, v) in self.out.iter().enumerate() {
                 if j < n {
                     self.dfdy[i * n + j] = v.eps;

@@ -23,10 +23,13 @@
 //!
 //! These n rows per interval and the boundary rows (which only see the segment ends and
 //! p) form the condensed system in the node values and p; it is factorised by the
-//! sparse LU ([`SparseLu`], symbolic factorisation kept while the mesh does not
-//! change), and the stage values follow from x_Y = t + W [x_i; x_p]. The work per
-//! interval is that of one dense LU of order s n, independent of the mesh, and the
-//! sparse LU is (s + 1) times smaller than that of the full system.
+//! structured LU of [`super::abd`] (row pivoting inside 2n-row windows, no symbolic
+//! analysis) when its final dense system, of order 2 Σ n_k + n_p, is small
+//! ([`MAX_BLOCK_ORDER`]), else — and when a pivot of the structured elimination
+//! vanishes — by the sparse LU ([`SparseLu`], symbolic factorisation kept while the
+//! mesh does not change); the stage values follow from x_Y = t + W [x_i; x_p]. The
+//! work per interval is that of one dense LU of order s n, independent of the mesh,
+//! and the condensed system is (s + 1) times smaller than the full one.
 //!
 //! K is nonsingular for h ‖J‖ small enough (it is the matrix of one implicit
 //! Runge–Kutta step). Where a pivot of K vanishes (|u_rr| ≤ 10⁻¹⁴ max |K|, or not
@@ -34,7 +37,9 @@
 //! instead ([`Discretisation::jacobian`] and the sparse LU), so the condensation never
 //! makes a solvable Newton step fail.
 
+use super::abd::BlockLu;
 use super::discretisation::Discretisation;
+use numerics::phases::{timed, Phase};
 use crate::error::BvpError;
 use crate::jacobian::{bc_jacobian, RhsJacobian};
 use crate::newton::SparseLu;
@@ -43,29 +48,42 @@ use crate::problem::{JacobianMode, Problem};
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
 /// pivot is not finite or |u_rr| ≤ 10⁻¹⁴ max |a_ij| (numerically singular).
-fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
-    let scale = a.iter().fold(0.0_f64, |acc, v| acc.max(v.abs()));
+pub(crate) fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
+    eliminate(a, m, m, m, piv)
+}
+
+/// Partial-pivoting elimination of the first `k` columns of the row-major
+/// `rows` × `cols` block `a` (rows ≥ k; all columns updated, whole rows swapped;
+/// multipliers stored below the diagonal of the first k columns); `piv[r]` is the row
+/// swapped with r at step r. False if a pivot is not finite or |u_rr| ≤ 10⁻¹⁴ times
+/// the largest |entry| of the first k columns. With rows = cols = k it is the LU of a
+/// square matrix ([`dense_lu`]); [`super::abd`] eliminates 2n × n column blocks.
+pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: &mut [usize]) -> bool {
+    let scale = (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()));
     if !(scale.is_finite() && scale > 0.0) {
         return false;
     }
-    for r in 0..m {
-        let p = (r..m).fold(r, |best, i| if a[i * m + r].abs() > a[best * m + r].abs() { i } else { best });
+    for r in 0..k {
+        let p = (r..rows).fold(r, |best, i| if a[i * cols + r].abs() > a[best * cols + r].abs() { i } else { best });
         piv[r] = p;
         if p != r {
-            for c in 0..m {
-                a.swap(r * m + c, p * m + c);
+            for c in 0..cols {
+                a.swap(r * cols + c, p * cols + c);
             }
         }
-        let d = a[r * m + r];
+        let d = a[r * cols + r];
         if !(d.is_finite() && d.abs() > 1e-14 * scale) {
             return false;
         }
-        for i in r + 1..m {
-            let f = a[i * m + r] / d;
-            a[i * m + r] = f;
+        // Row slices instead of indices: a bounds check per row, not per multiply–add.
+        let (head, below) = a.split_at_mut((r + 1) * cols);
+        let pivot_row = &head[r * cols + r + 1..(r + 1) * cols];
+        for row in below[..(rows - r - 1) * cols].chunks_exact_mut(cols) {
+            let f = row[r] / d;
+            row[r] = f;
             if f != 0.0 {
-                for c in r + 1..m {
-                    a[i * m + c] -= f * a[r * m + c];
+                for (o, &u) in row[r + 1..].iter_mut().zip(pivot_row) {
+                    *o -= f * u;
                 }
             }
         }
@@ -80,7 +98,7 @@ fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
 /// independent and run side by side: one dependency chain per row instead of one per
 /// row and column (the W solves of [`CondensedLu::factorize`] were ~15 % of a gauss8
 /// elastica solve as one column at a time).
-fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
+pub(crate) fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
     let x = &mut x[..m * nc];
     for (r, &p) in piv[..m].iter().enumerate() {
         if p != r {
@@ -89,11 +107,22 @@ fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
             }
         }
     }
+    match nc {
+        1 => return substitute_fixed::<1>(lu, m, x),
+        2 => return substitute_fixed::<2>(lu, m, x),
+        3 => return substitute_fixed::<3>(lu, m, x),
+        4 => return substitute_fixed::<4>(lu, m, x),
+        5 => return substitute_fixed::<5>(lu, m, x),
+        6 => return substitute_fixed::<6>(lu, m, x),
+        7 => return substitute_fixed::<7>(lu, m, x),
+        8 => return substitute_fixed::<8>(lu, m, x),
+        _ => {}
+    }
     for r in 1..m {
         let (done, rest) = x.split_at_mut(r * nc);
         let xr = &mut rest[..nc];
-        for (k, &l) in lu[r * m..r * m + r].iter().enumerate() {
-            for (o, v) in xr.iter_mut().zip(&done[k * nc..(k + 1) * nc]) {
+        for (&l, xk) in lu[r * m..r * m + r].iter().zip(done.chunks_exact(nc)) {
+            for (o, v) in xr.iter_mut().zip(xk) {
                 *o -= l * v;
             }
         }
@@ -101,8 +130,8 @@ fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
     for r in (0..m).rev() {
         let (head, tail) = x.split_at_mut((r + 1) * nc);
         let xr = &mut head[r * nc..];
-        for (k, &u) in lu[r * m + r + 1..(r + 1) * m].iter().enumerate() {
-            for (o, v) in xr.iter_mut().zip(&tail[k * nc..(k + 1) * nc]) {
+        for (&u, xk) in lu[r * m + r + 1..(r + 1) * m].iter().zip(tail.chunks_exact(nc)) {
+            for (o, v) in xr.iter_mut().zip(xk) {
                 *o -= u * v;
             }
         }
@@ -112,6 +141,46 @@ fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
         }
     }
 }
+
+/// The substitutions of [`dense_solve`] (after the row swaps) for a compile-time
+/// number NC of right-hand sides: each row's NC sums are accumulated in registers
+/// (vectorised over the columns), in the same order as the general loop (x_r − l_r0 x_0
+/// − l_r1 x_1 − …, then (x_r − Σ u_rk x_k)/u_rr with k ascending), so the result is the
+/// same to the bit at a fraction of its loop overhead (the W and t solves were 23 % of
+/// the instructions of a gauss8 elastica solve with the general loop).
+fn substitute_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
+    let (rows, _) = x.as_chunks_mut::<NC>();
+    let rows = &mut rows[..m];
+    for r in 1..m {
+        let (done, rest) = rows.split_at_mut(r);
+        let mut acc = rest[0];
+        for (&l, xk) in lu[r * m..r * m + r].iter().zip(done.iter()) {
+            for c in 0..NC {
+                acc[c] -= l * xk[c];
+            }
+        }
+        rest[0] = acc;
+    }
+    for r in (0..m).rev() {
+        let (head, tail) = rows.split_at_mut(r + 1);
+        let mut acc = head[r];
+        for (&u, xk) in lu[r * m + r + 1..(r + 1) * m].iter().zip(tail.iter()) {
+            for c in 0..NC {
+                acc[c] -= u * xk[c];
+            }
+        }
+        let d = lu[r * m + r];
+        for a in acc.iter_mut() {
+            *a /= d;
+        }
+        head[r] = acc;
+    }
+}
+
+/// Default largest order of the structured LU's final dense system
+/// ([`CondensedLu::max_block_order`]): its dense LU costs O(D³) per Newton iteration, so
+/// problems with many segments (the Cosserat drive) stay on the sparse LU.
+pub(crate) const MAX_BLOCK_ORDER: usize = 64;
 
 /// Where the data of one interval lives in the flat buffers of [`CondensedLu`].
 #[derive(Debug, Clone, Copy)]
@@ -129,6 +198,9 @@ struct Interval {
     b: usize,
     /// Start of t = K⁻¹ b_S in the solve scratch (s n).
     t: usize,
+    /// Start of Φ (n × n) and Ψ (n × n_p), row-major.
+    phi: usize,
+    psi: usize,
 }
 
 /// The factorised Newton matrix ∂F/∂z of a [`Discretisation`], condensed to the node
@@ -144,6 +216,19 @@ pub(crate) struct CondensedLu {
     full: SparseLu,
     /// The last factorisation was the full one.
     uncondensed: bool,
+    /// Structured LU of the condensed system ([`BlockLu`]), used when its final dense
+    /// system has order ≤ `max_block_order`; the sparse LU `lu` otherwise or when a
+    /// pivot of the structured elimination vanishes.
+    block: BlockLu,
+    /// The last condensed factorisation was the structured one.
+    structured: bool,
+    /// Largest order Σ_k 2 n_k + n_p of the structured LU's final dense system (default
+    /// [`MAX_BLOCK_ORDER`]; 0 forces the sparse LU).
+    pub max_block_order: Option<usize>,
+    /// Φ_i and Ψ_i of every interval, and the boundary Jacobian dg.
+    phis: Vec<f64>,
+    psis: Vec<f64>,
+    dg: Vec<f64>,
     intervals: Vec<Interval>,
     /// Condensed index of the first node of each segment; `node_offsets[m]` = first
     /// parameter = number of node unknowns.
@@ -176,10 +261,11 @@ impl CondensedLu {
         Self::default()
     }
 
-    /// Numeric factorisations of the condensed and of the full system.
+    /// Numeric factorisations of the condensed system by the sparse LU and of the full
+    /// system, and whether the last one was the structured LU.
     #[cfg(test)]
-    pub fn factorisations(&self) -> (usize, usize) {
-        (self.lu.numeric_factorisations(), self.full.numeric_factorisations())
+    pub fn factorisations(&self) -> (usize, usize, bool) {
+        (self.lu.numeric_factorisations(), self.full.numeric_factorisations(), self.structured)
     }
 
     /// The buffer layout for `disc` (recomputed only when its shape changes).
@@ -198,13 +284,15 @@ impl CondensedLu {
         self.layout = (disc.n, s);
         self.intervals.clear();
         self.node_offsets = vec![0];
-        let (mut lu, mut piv, mut w, mut b, mut t) = (0, 0, 0, 0, 0);
+        let (mut lu, mut piv, mut w, mut b, mut t, mut phi, mut psi) = (0, 0, 0, 0, 0, 0, 0);
         for (k, mesh) in disc.meshes.iter().enumerate() {
             let n = disc.dims[k];
             let sn = s * n;
             self.node_offsets.push(self.node_offsets[k] + mesh.len() * n);
             for i in 0..mesh.len() - 1 {
-                self.intervals.push(Interval { k, i, lu, piv, w, b, t });
+                self.intervals.push(Interval { k, i, lu, piv, w, b, t, phi, psi });
+                phi += n * n;
+                psi += n * np;
                 lu += sn * sn;
                 piv += sn;
                 w += sn * (n + np);
@@ -217,6 +305,8 @@ impl CondensedLu {
         self.w.resize(w, 0.0);
         self.b.resize(b, 0.0);
         self.scratch.resize(t, 0.0);
+        self.phis.resize(phi, 0.0);
+        self.psis.resize(psi, 0.0);
     }
 
     /// Condensed row of the first continuity equation of interval i of segment k.
@@ -230,38 +320,107 @@ impl CondensedLu {
     /// The sparse LU's errors ([`BvpError::SingularJacobian`], [`BvpError::NonFinite`]).
     pub fn factorize<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<(), BvpError> {
         self.set_layout(disc);
-        if self.condense(disc, z, eta)? {
-            self.uncondensed = false;
-            let nc = self.node_offsets[disc.n_segments()] + disc.n_params;
-            self.lu.factorize(nc, &self.rows, &self.cols, &self.vals)
-        } else {
+        if !self.condense(disc, z, eta) {
             self.uncondensed = true;
             disc.jacobian(z, eta, &mut self.rows, &mut self.cols, &mut self.vals, &mut self.jeta);
-            self.full.factorize(disc.n, &self.rows, &self.cols, &self.vals)
+            return self.full.factorize(disc.n, &self.rows, &self.cols, &self.vals);
         }
+        self.uncondensed = false;
+        let order = 2 * disc.dims.iter().sum::<usize>() + disc.n_params;
+        if order <= self.max_block_order.unwrap_or(MAX_BLOCK_ORDER) {
+            let intervals: Vec<usize> = disc.meshes.iter().map(|m| m.len() - 1).collect();
+            let ivs = &self.intervals;
+            let first: Vec<usize> = (0..disc.n_segments()).map(|k| ivs.iter().position(|iv| iv.k == k).unwrap_or(0)).collect();
+            let (phis, psis) = (&self.phis, &self.psis);
+            let dims = &disc.dims;
+            let np = disc.n_params;
+            let block = &mut self.block;
+            let dg = &self.dg;
+            self.structured = timed(Phase::NumericFactorisation, || {
+                block.factorize(
+                    dims,
+                    &intervals,
+                    np,
+                    |k, i| {
+                        let iv = &ivs[first[k] + i];
+                        &phis[iv.phi..iv.phi + dims[k] * dims[k]]
+                    },
+                    |k, i| {
+                        let iv = &ivs[first[k] + i];
+                        &psis[iv.psi..iv.psi + dims[k] * np]
+                    },
+                    dg,
+                )
+            });
+            if self.structured {
+                return Ok(());
+            }
+        }
+        self.structured = false;
+        self.triplets(disc);
+        let nc = self.node_offsets[disc.n_segments()] + disc.n_params;
+        self.lu.factorize(nc, &self.rows, &self.cols, &self.vals)
     }
 
-    /// Build K's LU, W, B per interval and the condensed triplets; false if a K is
-    /// singular (nothing usable then).
-    fn condense<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> Result<bool, BvpError> {
+    /// Build K's LU, W, B, Φ and Ψ per interval and the boundary Jacobian; false if a K
+    /// is singular (nothing usable then).
+    fn condense<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64) -> bool {
         let s = disc.tab.s;
-        let np = disc.n_params;
-        let m = disc.n_segments();
-        let pofs = self.node_offsets[m];
-        let p = disc.params(z);
-        self.rows.clear();
-        self.cols.clear();
-        self.vals.clear();
         let mut jac = std::mem::take(&mut self.jac);
         jac.resize_with(s, RhsJacobian::default);
         let singular = self.condense_intervals(disc, z, eta, &mut jac);
         self.jac = jac;
         if singular {
-            return Ok(false);
+            return false;
         }
         // Boundary rows: columns of dg are [y_0(0), y_0(1), y_1(0), y_1(1), …, p, η].
         let (ya, yb) = disc.ends(z);
-        let (_, dg) = bc_jacobian(disc.problem, disc.mode, &ya, &yb, p, eta);
+        self.dg = bc_jacobian(disc.problem, disc.mode, &ya, &yb, disc.params(z), eta).1;
+        true
+    }
+
+    /// The condensed system as triplets for the sparse LU: per interval the rows
+    /// x_{i+1} − Φ_i x_i − Ψ_i p, then the boundary rows.
+    fn triplets<P: Problem>(&mut self, disc: &Discretisation<'_, P>) {
+        let np = disc.n_params;
+        let m = disc.n_segments();
+        let pofs = self.node_offsets[m];
+        // n (n + 1 + n_p) entries per interval and n_bc (2 Σ n_k + n_p) boundary
+        // entries, reserved at once (growing them by doubling on every new mesh was
+        // ~3 % of a gauss8 elastica solve in reallocations).
+        let entries: usize = self.intervals.iter().map(|iv| disc.dims[iv.k] * (disc.dims[iv.k] + 1 + np)).sum::<usize>()
+            + disc.problem.n_bc() * (2 * disc.dims.iter().sum::<usize>() + np);
+        for v in [&mut self.rows, &mut self.cols] {
+            v.clear();
+            v.reserve(entries);
+        }
+        self.vals.clear();
+        self.vals.reserve(entries);
+        for iv in &self.intervals {
+            let n = disc.dims[iv.k];
+            let phi = &self.phis[iv.phi..iv.phi + n * n];
+            let psi = &self.psis[iv.psi..iv.psi + n * np];
+            let r0 = self.condensed_row(&disc.dims, iv.k, iv.i);
+            let c0 = self.node_offsets[iv.k] + iv.i * n;
+            for a in 0..n {
+                for c in 0..n {
+                    self.rows.push(r0 + a);
+                    self.cols.push(c0 + c);
+                    self.vals.push(-phi[a * n + c]);
+                }
+                self.rows.push(r0 + a);
+                self.cols.push(c0 + n + a);
+                self.vals.push(1.0);
+                // every p-column keeps its entry (exact zeros where unused): the pattern,
+                // and with it the sparse LU's ordering and round-off, is that of every
+                // Newton matrix before (catalogue results unchanged to the bit)
+                for q in 0..np {
+                    self.rows.push(r0 + a);
+                    self.cols.push(pofs + q);
+                    self.vals.push(-psi[a * np + q]);
+                }
+            }
+        }
         let mut colmap = Vec::new();
         for k in 0..m {
             let n = disc.dims[k];
@@ -277,32 +436,31 @@ impl CondensedLu {
             for (c, &col) in colmap.iter().enumerate() {
                 self.rows.push(r0 + row);
                 self.cols.push(col);
-                self.vals.push(dg[row * nu + c]);
+                self.vals.push(self.dg[row * nu + c]);
             }
         }
-        Ok(true)
     }
 
     /// The interval part of [`Self::condense`]; true if a K is singular.
     fn condense_intervals<P: Problem>(&mut self, disc: &Discretisation<'_, P>, z: &[f64], eta: f64, jac: &mut [RhsJacobian]) -> bool {
         let s = disc.tab.s;
         let np = disc.n_params;
-        let pofs = self.node_offsets[disc.n_segments()];
         let p = disc.params(z);
         let mut phi = Vec::new();
         let mut psi = Vec::new();
+        let mut bw = Vec::new();
         let mut qcols = Vec::with_capacity(np);
         self.used.clear();
         self.used.resize(self.intervals.len() * np, false);
         for iv in 0..self.intervals.len() {
-            let Interval { k, i, lu, piv, w, b, .. } = self.intervals[iv];
+            let Interval { k, i, lu, piv, w, b, phi: iv_phi, psi: iv_psi, .. } = self.intervals[iv];
             let n = disc.dims[k];
             let sn = s * n;
             let mesh = &disc.meshes[k];
             let h = mesh[i + 1] - mesh[i];
             for (j, jj) in jac.iter_mut().enumerate() {
                 let at = disc.stage(k, i, j);
-                jj.evaluate(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta);
+                jj.evaluate(disc.problem, disc.mode, k, mesh[i] + disc.tab.c[j] * h, &z[at..at + n], p, eta, false);
             }
             disc.count(s * per_call(disc.mode, n, np));
             let used = &mut self.used[iv * np..(iv + 1) * np];
@@ -321,17 +479,20 @@ impl CondensedLu {
             for j in 0..s {
                 for a in 0..n {
                     let r = j * n + a;
-                    for l in 0..s {
+                    let krow = &mut kk[r * sn..(r + 1) * sn];
+                    let wrow = &mut ww[r * nu..(r + 1) * nu];
+                    for (l, jl) in jac.iter().enumerate() {
                         let ajl = disc.tab.a[j * s + l];
-                        for c in 0..n {
-                            kk[r * sn + l * n + c] = -h * ajl * jac[l].dfdy[a * n + c];
+                        let (k_coef, g_coef) = (-h * ajl, h * ajl);
+                        for (o, &d) in krow[l * n..(l + 1) * n].iter_mut().zip(&jl.dfdy[a * n..(a + 1) * n]) {
+                            *o = k_coef * d;
                         }
-                        for (jq, &q) in qcols.iter().enumerate() {
-                            ww[r * nu + n + jq] += h * ajl * jac[l].dfdp[a * np + q];
+                        for (o, &q) in wrow[n..].iter_mut().zip(&qcols) {
+                            *o += g_coef * jl.dfdp[a * np + q];
                         }
                     }
-                    kk[r * sn + r] += 1.0;
-                    ww[r * nu + a] = 1.0;
+                    krow[r] += 1.0;
+                    wrow[a] = 1.0;
                 }
             }
             if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
@@ -352,9 +513,16 @@ impl CondensedLu {
             psi.clear();
             psi.resize(n * np, 0.0);
             for a in 0..n {
-                let brow = &bb[a * sn..(a + 1) * sn];
-                for col in 0..nu {
-                    let v: f64 = brow.iter().enumerate().map(|(r, x)| x * ww[r * nu + col]).sum();
+                // B W row by row: each column's sum Σ_r b_ar w_r,col with r ascending from
+                // −0.0 (as `Iterator::sum`), over contiguous rows of W.
+                bw.clear();
+                bw.resize(nu, -0.0);
+                for (&x, wr) in bb[a * sn..(a + 1) * sn].iter().zip(ww.chunks_exact(nu)) {
+                    for (o, &v) in bw.iter_mut().zip(wr) {
+                        *o += x * v;
+                    }
+                }
+                for (col, &v) in bw.iter().enumerate() {
                     if col < n {
                         phi[a * n + col] = v + if col == a { 1.0 } else { 0.0 };
                     } else {
@@ -363,26 +531,8 @@ impl CondensedLu {
                     }
                 }
             }
-            let r0 = self.condensed_row(&disc.dims, k, i);
-            let c0 = self.node_offsets[k] + i * n;
-            for a in 0..n {
-                for c in 0..n {
-                    self.rows.push(r0 + a);
-                    self.cols.push(c0 + c);
-                    self.vals.push(-phi[a * n + c]);
-                }
-                self.rows.push(r0 + a);
-                self.cols.push(c0 + n + a);
-                self.vals.push(1.0);
-                // every p-column keeps its entry (exact zeros where unused): the pattern,
-                // and with it the sparse LU's ordering and round-off, is that of every
-                // Newton matrix before (catalogue results unchanged to the bit)
-                for q in 0..np {
-                    self.rows.push(r0 + a);
-                    self.cols.push(pofs + q);
-                    self.vals.push(-psi[a * np + q]);
-                }
-            }
+            self.phis[iv_phi..iv_phi + n * n].copy_from_slice(&phi);
+            self.psis[iv_psi..iv_psi + n * np].copy_from_slice(&psi);
         }
         false
     }
@@ -420,7 +570,13 @@ impl CondensedLu {
         let cbc0 = pofs - disc.dims.iter().sum::<usize>();
         let n_bc = disc.n - bc0;
         self.rhs[cbc0..cbc0 + n_bc].copy_from_slice(&x[bc0..]);
-        self.lu.solve_in_place(&mut self.rhs)?;
+        if self.structured {
+            let block = &mut self.block;
+            let rhs = &mut self.rhs;
+            timed(Phase::LinearSolves, || block.solve(rhs));
+        } else {
+            self.lu.solve_in_place(&mut self.rhs)?;
+        }
         // Back substitution: node values and parameters, then x_Y = t + W [x_i; x_p].
         let full_p = disc.offsets[m];
         x[full_p..].copy_from_slice(&self.rhs[pofs..]);
@@ -498,24 +654,45 @@ mod tests {
         assert!(!dense_lu(&mut singular, 2, &mut [0; 2]));
     }
 
-    /// Three right-hand sides solved side by side give each column exactly (to the
-    /// bit) what its own solve gives: the block solve only interleaves independent
+    /// Right-hand sides solved side by side give each column exactly (to the bit) what
+    /// its own solve gives — for the fixed-width kernels (3 and 8 columns) and for the
+    /// general loop (11 columns): the block solve only interleaves independent
     /// operations, so the condensed Newton matrices are those of the column-by-column
-    /// solves before it.
+    /// solves before it. The one-column solve is checked against a plain
+    /// row-by-row substitution written out here.
     #[test]
     fn block_solve_equals_column_solves_to_the_bit() {
         let m = 5;
         let mut a: Vec<f64> = (0..m * m).map(|i| ((i * 7 + 3) % 11) as f64 - 5.0 + if i % (m + 1) == 0 { 0.5 } else { 0.0 }).collect();
         let mut piv = vec![0; m];
         assert!(dense_lu(&mut a, m, &mut piv));
-        let cols: Vec<Vec<f64>> = (0..3).map(|c| (0..m).map(|r| 1.0 / (1.0 + (r * 3 + c) as f64)).collect()).collect();
-        let mut block: Vec<f64> = (0..m).flat_map(|r| cols.iter().map(move |col| col[r])).collect();
-        dense_solve(&a, m, &piv, &mut block, 3);
-        for (c, col) in cols.iter().enumerate() {
-            let mut x = col.clone();
-            dense_solve(&a, m, &piv, &mut x, 1);
-            for r in 0..m {
-                assert_eq!(block[r * 3 + c].to_bits(), x[r].to_bits(), "row {r}, column {c}");
+        assert!(piv.iter().enumerate().any(|(r, &p)| p != r), "the test matrix needs pivoting");
+        for nc in [3, 8, 11] {
+            let cols: Vec<Vec<f64>> = (0..nc).map(|c| (0..m).map(|r| 1.0 / (1.0 + (r * 3 + c) as f64)).collect()).collect();
+            let mut block: Vec<f64> = (0..m).flat_map(|r| cols.iter().map(move |col| col[r])).collect();
+            dense_solve(&a, m, &piv, &mut block, nc);
+            for (c, col) in cols.iter().enumerate() {
+                let mut x = col.clone();
+                dense_solve(&a, m, &piv, &mut x, 1);
+                let mut y = col.clone();
+                for (r, &p) in piv.iter().enumerate() {
+                    y.swap(r, p);
+                }
+                for r in 0..m {
+                    for k in 0..r {
+                        y[r] -= a[r * m + k] * y[k];
+                    }
+                }
+                for r in (0..m).rev() {
+                    for k in r + 1..m {
+                        y[r] -= a[r * m + k] * y[k];
+                    }
+                    y[r] /= a[r * m + r];
+                }
+                for r in 0..m {
+                    assert_eq!(x[r].to_bits(), y[r].to_bits(), "one column: row {r}, column {c}");
+                    assert_eq!(block[r * nc + c].to_bits(), x[r].to_bits(), "{nc} columns: row {r}, column {c}");
+                }
             }
         }
     }

@@ -488,17 +488,20 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             let mut u = vec![0.0; n];
             let mut f = vec![0.0; n];
             let mut rk = Vec::with_capacity(mesh.len() - 1);
+            // ℓ_l(t) at the quadrature points, the same for every interval.
+            let basis: Vec<[f64; 5]> =
+                self.tab.lagrange.iter().map(|lag| LOBATTO5_T.map(|t| horner(lag, t))).collect();
             for i in 0..mesh.len() - 1 {
                 let h = mesh[i + 1] - mesh[i];
                 let mut acc = 0.0;
-                for (&t, &w) in LOBATTO5_T.iter().zip(&LOBATTO5_W) {
+                for (q, (&t, &w)) in LOBATTO5_T.iter().zip(&LOBATTO5_W).enumerate() {
                     for a in 0..n {
                         u[a] = horner(&polys[i][a], t);
                     }
                     self.problem.rhs(k, mesh[i] + t * h, &u, p, eta, &mut f);
                     for a in 0..n {
                         let du: f64 =
-                            (0..s).map(|l| slopes[(i * s + l) * n + a] * horner(&self.tab.lagrange[l], t)).sum();
+                            (0..s).map(|l| slopes[(i * s + l) * n + a] * basis[l][q]).sum();
                         let r = (du - f[a]) / (1.0 + f[a].abs());
                         acc += w * r * r;
                     }

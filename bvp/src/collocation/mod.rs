@@ -4,7 +4,9 @@
 //! 1. sample the guess's dense output on its own mesh (node and stage values),
 //! 2. solve the collocation equations (implicit Runge–Kutta form with node and stage
 //!    values as unknowns, all segments and the parameters in one sparse system) by the
-//!    damped Newton method of [`crate::newton`] on faer's sparse LU,
+//!    damped Newton method of [`crate::newton`], each Newton matrix condensed to the
+//!    mesh-node values ([`condensed`]) and factorised by a structured LU of that
+//!    almost-block-diagonal system (faer's sparse LU for many segments),
 //! 3. estimate the residual on every interval ([`CollocationOptions::tolerance`]),
 //! 4. insert nodes where it exceeds the tolerance, remove nodes where it is far below
 //!    (rules below), carry the solution over with its dense output, and repeat.
@@ -22,6 +24,7 @@
 //! control and the MATLAB PSE", ACM TOMS 27, 2001), which uses the 4th-order
 //! Lobatto IIIA scheme with the same residual measure.
 
+mod abd;
 pub(crate) mod condensed;
 pub(crate) mod discretisation;
 pub(crate) mod mesh;
@@ -607,33 +610,66 @@ mod tests {
 
     /// The condensed factorisation solves the Newton system like the sparse LU of the
     /// full Jacobian, for every scheme, at a random state with a random right-hand side
-    /// (two segments, a parameter, interface conditions). Both are backward stable
-    /// solves of a system of order ~50 with condition ≲ 10⁴ here, so they agree to
-    /// ~10⁻¹², 10⁻⁹ relative to the largest entry; a wrong block or sign gives O(1).
+    /// (two segments, a parameter, interface conditions), by the structured LU of the
+    /// condensed system and by its sparse LU. All are backward stable solves of a
+    /// system of order ~50 with condition ≲ 10⁴ here, so they agree to ~10⁻¹², 10⁻⁹
+    /// relative to the largest entry; a wrong block, sign or pivot gives O(1). Meshes
+    /// of one interval (no elimination step) and of several are both in it.
     #[test]
     fn condensed_solve_matches_full_lu() {
         let mut state = 11u64;
         for scheme in Scheme::ALL {
-            let meshes = vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]];
-            let disc = Discretisation::new(&Test2, scheme, JacobianMode::Ad, meshes).unwrap();
-            let n = disc.n;
-            let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
-            let eta = 0.8;
-            let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
-            let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
-            disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
-            let mut full = SparseLu::new();
-            full.factorize(n, &rows, &cols, &vals).unwrap();
-            let mut x_full = b.clone();
-            full.solve_in_place(&mut x_full).unwrap();
-            let mut cond = CondensedLu::new();
-            cond.factorize(&disc, &z, eta).unwrap();
-            let mut x = b.clone();
-            cond.solve(&disc, &mut x).unwrap();
-            assert_eq!(cond.factorisations(), (1, 0), "{scheme}: condensed, not the fallback");
-            let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
-            let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-            assert!(err < 1e-9 * scale, "{scheme}: max |x − x_full| = {err:e} (scale {scale})");
+            for meshes in [vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]], vec![vec![0.0, 1.0], vec![0.0, 0.3, 1.0]]] {
+                let disc = Discretisation::new(&Test2, scheme, JacobianMode::Ad, meshes).unwrap();
+                let n = disc.n;
+                let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
+                let eta = 0.8;
+                let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
+                let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
+                disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
+                let mut full = SparseLu::new();
+                full.factorize(n, &rows, &cols, &vals).unwrap();
+                let mut x_full = b.clone();
+                full.solve_in_place(&mut x_full).unwrap();
+                let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                for (max_order, expected) in [(None, (0, 0, true)), (Some(0), (1, 0, false))] {
+                    let mut cond = CondensedLu::new();
+                    cond.max_block_order = max_order;
+                    cond.factorize(&disc, &z, eta).unwrap();
+                    let mut x = b.clone();
+                    cond.solve(&disc, &mut x).unwrap();
+                    assert_eq!(cond.factorisations(), expected, "{scheme}: structured or sparse as asked, not the fallback");
+                    let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+                    assert!(err < 1e-9 * scale, "{scheme} {max_order:?}: max |x − x_full| = {err:e} (scale {scale})");
+                }
+            }
+        }
+    }
+
+    /// The reusable stage Jacobian of the condensation gives the values of the
+    /// allocating [`crate::jacobian::rhs_jacobian`] to the bit — f from the first dual
+    /// pass instead of a plain call — and without the η column leaves ∂f/∂η zero
+    /// (Test2's segment 0 depends on η, so a skipped or stale column shows).
+    #[test]
+    fn stage_jacobian_buffers_equal_the_allocating_version_to_the_bit() {
+        use crate::jacobian::{rhs_jacobian, RhsJacobian};
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut state = 5u64;
+        let mut jac = RhsJacobian::default();
+        for k in 0..2 {
+            let y = [lcg(&mut state), lcg(&mut state)];
+            let p = [1.0 + 0.3 * lcg(&mut state)];
+            let (x, eta) = (0.37, 0.8);
+            let (f, dfdy, dfdp, dfdeta) = rhs_jacobian(&Test2, JacobianMode::Ad, k, x, &y, &p, eta);
+            assert!(k == 1 || dfdeta.iter().any(|&v| v != 0.0), "segment 0 depends on η");
+            for eta_column in [true, false] {
+                jac.evaluate(&Test2, JacobianMode::Ad, k, x, &y, &p, eta, eta_column);
+                assert_eq!(bits(&jac.f), bits(&f), "f, segment {k}");
+                assert_eq!(bits(&jac.dfdy), bits(&dfdy), "∂f/∂y, segment {k}");
+                assert_eq!(bits(&jac.dfdp), bits(&dfdp), "∂f/∂p, segment {k}");
+                let expected = if eta_column { bits(&dfdeta) } else { bits(&[0.0, 0.0]) };
+                assert_eq!(bits(&jac.dfdeta), expected, "∂f/∂η, segment {k}, η column {eta_column}");
+            }
         }
     }
 
