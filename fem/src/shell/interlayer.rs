@@ -8,9 +8,10 @@
 //! untilted drum axes = k). The kernel ([`super::kernel::Shell`]) forms the position r
 //! of (S1) and the material offset δs of (S13) from its point values and hands them in.
 //!
-//! **History state per point** ([`STATE`] values): u (3), the converged position r_n
-//! (3), its material derivative ∂̊_s r_n (3), the periodic part S̃_n of the material
-//! coordinate, and a contact flag (1: the point was in contact in the converged
+//! **History state per point** ([`STATE`] values): u (3), the converged position r_n as
+//! (ν_n, z_n) off the contour (and a spare 0), its material derivative ∂̊_s r_n by its
+//! components on the contour frame (t_g, n_g, k) (3), the periodic part S̃_n of the
+//! material coordinate, and a contact flag (1: the point was in contact in the converged
 //! configuration). A point whose foot was not in contact starts with u = 0 (the brush
 //! model: u = 0 where contact is established [T l.329]); the initial zeros of the core
 //! are such states (the configuration is recorded by
@@ -19,14 +20,17 @@
 //! reads at σ the state of σ_r = σ − cΔt, and (S13) corrects the foot by the material
 //! offset δs = S_{n+1}(σ) − S_n(σ_r):
 //!
-//!   r_n(foot) ≈ r_n(σ_r) + ∂̊_s r_n(σ_r) δs,
+//!   r_n(foot) ≈ r_n(σ_r) + ∂̊_s r_n(σ_r) δs   ([`Interlayer::foot`]),
 //!   u_{n+1} = [ũ + r_{n+1} − r_n(foot) − (M_i r_n(foot) − r_n(foot))]_⊥,
 //!
 //! M_i the drum's rigid motion over the step (tilt and spin, [`Drum::motion`]), ⊥ the
 //! projection on the drum's tangent plane at r_{n+1}. A belt that rolls rigidly with the
 //! drum has u ≡ 0 exactly (the drum point under the material point is moved, not a
 //! linearised velocity). The gradient of ũ along the foot offset is neglected
-//! (second order: δs is the deviation of the material's travel from cΔt).
+//! (second order: δs is the deviation of the material's travel from cΔt). r_n and
+//! ∂̊_s r_n are interpolated by the advection as (ν, z) and frame components and rebuilt
+//! with the exact contour at σ_r: interpolating the global position across a
+//! line/arc transition makes an O(h³/R²) position error that would enter u directly.
 
 use crate::Scalar;
 
@@ -214,14 +218,17 @@ impl Interlayer {
     }
 
     /// The tangential deformation u_{n+1} against drum `drum` of a point at r (module
-    /// documentation), from the (advected) state, the material offset δs, at the end
+    /// documentation), from the (advected) state and r_n(foot) ([`Interlayer::foot`]), at the end
     /// `time` of a step `dt` (`(time, dt)`); e the drum's radial direction at r. Zero where the foot was
-    /// not in contact (flag < ½ after the advection's interpolation).
-    pub fn slip<D: Scalar>(&self, drum: &Drum, r: &[D; 3], e: &[D; 3], offset: D, (time, dt): (f64, f64), state: &[f64]) -> [D; 3] {
-        if state[CONTACT] < 0.5 {
+    /// not in contact (flag < ½ after the advection's interpolation, or the foot outside
+    /// the drum at t_n: the flag's cubic interpolation spreads it upstream of an entry).
+    pub fn slip<D: Scalar>(&self, drum: &Drum, r: &[D; 3], e: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 3] {
+        // the foot in contact: the committed flag (interpolated by the advection, so
+        // also ≥ ½ just upstream of a contact's entry) and the gap of r_n(σ_r) at t_n (not
+        // of r_n(foot): its tangential extrapolation leaves the drum by δs²/2R)
+        if state[CONTACT] < 0.5 || drum.gap(self.radius, &upstream, time - dt).0 <= 0.0 {
             return [D::zero(); 3];
         }
-        let foot: [D; 3] = std::array::from_fn(|k| offset * state[SLOPE + k] + state[POSITION + k]);
         let c = drum.centre3();
         let m = drum.motion(time - dt, time);
         let moved = apply(&m, &std::array::from_fn(|k| foot[k] - c[k]));
@@ -231,42 +238,64 @@ impl Interlayer {
         std::array::from_fn(|k| raw[k] - normal * e[k])
     }
 
-    /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS; V_⊥ only with a state (the
-    /// static evaluation has none) and P_⊥ > 0.
-    pub fn density<D: Scalar>(&self, r: &[D; 3], offset: D, jacobian: D, time: f64, dt: f64, state: &[f64]) -> D {
+    /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS. V_γ where γ > 0 (C¹ in the
+    /// unknowns); V_⊥ where the foot of the point was in contact at the last commit (the
+    /// contact flag of the advected state), against the drum nearest to r, and only with
+    /// a state (the static evaluation has none) and P_⊥ > 0. Taking the V_⊥ region from
+    /// the committed contact keeps each step's energy continuous: with the current
+    /// γ > 0 a point at the contact's edge (the tangent point of a tight belt) switches
+    /// ½P_⊥u² on and off between Newton iterates and the iteration chatters.
+    pub fn density<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), jacobian: D, (time, dt): (f64, f64), state: &[f64]) -> D {
         let mut w = D::zero();
-        for drum in &self.drums {
+        let mut nearest: Option<(f64, usize, [D; 3])> = None;
+        for (i, drum) in self.drums.iter().enumerate() {
             let (gamma, e) = drum.gap(self.radius, r, time);
-            if gamma.re() <= 0.0 {
-                continue;
+            if gamma.re() > 0.0 {
+                w += gamma * gamma * (0.5 * self.normal);
             }
-            w += gamma * gamma * (0.5 * self.normal);
-            if !state.is_empty() && self.shear > 0.0 {
-                let u = self.slip(drum, r, &e, offset, (time, dt), state);
-                w += dot(&u, &u) * (0.5 * self.shear);
+            if nearest.as_ref().is_none_or(|n| gamma.re() > n.0) {
+                nearest = Some((gamma.re(), i, e));
             }
+        }
+        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty(), self.shear > 0.0) {
+            let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
+            w += dot(&u, &u) * (0.5 * self.shear);
         }
         w * jacobian
     }
 
-    /// The state after a converged step: u of the drum in contact (0 out of contact),
-    /// r, ∂̊_s r (`(r, slope)`) and S̃ of the converged configuration, the contact flag.
-    pub fn advance(&self, (r, slope): (&[f64; 3], &[f64; 3]), material: f64, offset: f64, (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
+    /// The state after a converged step: u of the drum in contact (0 out of contact; r
+    /// the position, `foot` = r_n(foot)), the `record` (ν, z, ∂̊_s r on (t_g, n_g, k), S̃)
+    /// of the converged configuration, the contact flag.
+    pub fn advance(&self, r: &[f64; 3], (foot, upstream): (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
         let (mut u, mut contact) = ([0.0; 3], 0.0);
         for drum in &self.drums {
             let (gamma, e) = drum.gap(self.radius, r, time);
             if gamma > 0.0 {
                 contact = 1.0;
                 if self.shear > 0.0 {
-                    u = self.slip(drum, r, &e, offset, (time, dt), previous);
+                    u = self.slip(drum, r, &e, (foot, upstream), (time, dt), previous);
                 }
             }
         }
         next[U..U + 3].copy_from_slice(&u);
-        next[POSITION..POSITION + 3].copy_from_slice(r);
-        next[SLOPE..SLOPE + 3].copy_from_slice(slope);
-        next[MATERIAL] = material;
+        next[POSITION..POSITION + 2].copy_from_slice(&record[..2]);
+        next[POSITION + 2] = 0.0;
+        next[SLOPE..SLOPE + 3].copy_from_slice(&record[2..5]);
+        next[MATERIAL] = record[5];
         next[CONTACT] = contact;
+    }
+
+    /// r_n(foot) = r_n(σ_r) + ∂̊_s r_n(σ_r) δs (global) from an (advected) state, the
+    /// contour's [g, t_g, n_g] at σ_r and the material offset δs.
+    /// Also r_n(σ_r) itself (the second value).
+    pub fn foot<D: Scalar>(state: &[f64], upstream: &[[f64; 2]; 3], offset: D) -> ([D; 3], [f64; 3]) {
+        let [g, t, n] = upstream;
+        let (nu, z) = (state[POSITION], state[POSITION + 1]);
+        let a = &state[SLOPE..SLOPE + 3];
+        let position = [g[0] + nu * n[0], g[1] + nu * n[1], z];
+        let slope = [a[0] * t[0] + a[1] * n[0], a[0] * t[1] + a[1] * n[1], a[2]];
+        (std::array::from_fn(|k| offset * slope[k] + position[k]), position)
     }
 
     /// S̃_n of an (advected) state.

@@ -205,21 +205,17 @@ impl Shell {
         [v[2] * n[0] + g[0], v[2] * n[1] + g[1], v[14]]
     }
 
-    /// ∂̊_s r (37) of the point, global, from the point values.
-    pub fn material_slope(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> [f64; 3] {
-        let [a, _] = material_derivatives(self.column(at.element).alpha, &self.fields(v));
-        let [_, t, n] = self.frame(at.sigma);
-        [a[0] * t[0] + a[1] * n[0], a[0] * t[1] + a[1] * n[1], a[2]]
-    }
-
-    /// The material offset δs = S_{n+1}(σ) − S_n(σ − cΔt) of (S13) at the point from the
-    /// (advected) interlayer state: S̃ − S̃_n + c₀cΔt.
-    fn offset<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
-        let transport = self.interlayer.as_ref().map_or(0.0, |i| i.transport);
+    /// r_n(foot) of (S13) at the point from the (advected) interlayer state: the
+    /// upstream point σ_r = σ − cΔt and the material offset
+    /// δs = S_{n+1}(σ) − S_n(σ_r) = S̃ − S̃_n + c₀cΔt ([`Interlayer::foot`]); zeros
+    /// without a state.
+    fn foot<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> ([D; 3], [f64; 3]) {
         if state.is_empty() {
-            return D::zero();
+            return ([D::zero(); 3], [0.0; 3]);
         }
-        v[13] - Interlayer::material(state) + self.gauge * transport * at.dt
+        let shift = self.belt_speed(at.time) * at.dt;
+        let offset = v[13] - Interlayer::material(state) + self.gauge * shift;
+        Interlayer::foot(state, &self.frame(at.sigma - shift), offset)
     }
 
     /// Green's membrane strain [E_ss, E_sζ, E_ζζ] in the initial frame (S8) at `at`.
@@ -296,7 +292,8 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
         if term == INTERLAYER {
             let interlayer = self.interlayer.as_ref().expect("the term exists with an interlayer");
-            return interlayer.density(&self.position(at, v), self.offset(at, v, state), v[0] + self.gauge, at.time, at.dt, state);
+            let (foot, upstream) = self.foot(at, v, state);
+            return interlayer.density(&self.position(at, v), (&foot, upstream), v[0] + self.gauge, (at.time, at.dt), state);
         }
         let area = (v[0] + self.gauge) * self.fibre_length(at.zeta);
         if term == MEMBRANE {
@@ -323,8 +320,10 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     fn advance(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], previous: &[f64], next: &mut [f64]) {
         match (&self.interlayer, term) {
             (Some(interlayer), INTERLAYER) => {
-                let offset = self.offset(at, v, previous);
-                interlayer.advance((&self.position(at, v), &self.material_slope(at, v)), v[13], offset, (at.time, at.dt), previous, next);
+                let [a, _] = material_derivatives(self.column(at.element).alpha, &self.fields(v));
+                let record = [v[2], v[14], a[0], a[1], a[2], v[13]];
+                let (foot, upstream) = self.foot(at, v, previous);
+                interlayer.advance(&self.position(at, v), (&foot, upstream), &record, (at.time, at.dt), previous, next);
             }
             _ => next.copy_from_slice(previous),
         }
