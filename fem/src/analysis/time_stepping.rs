@@ -349,6 +349,14 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
         Ok(StepReport { step, time: end, energy, newton })
     }
 
+    /// Set the history from the current unknowns as after a converged step of length 0:
+    /// [`SurfaceKernel::advance`] at every point (e.g. the shell's interlayer records the
+    /// configuration its tangential deformation is measured from; docs/fem-shell.md §7).
+    pub fn prime_history(&mut self) {
+        let ev = Evaluation { time: self.time, dt: 0.0, history: Some(&self.history) };
+        self.history = self.history.advance(&self.asm, &self.z, &ev);
+    }
+
     /// `steps` steps of Δt = `dt`, recording channels and frames.
     ///
     /// # Errors

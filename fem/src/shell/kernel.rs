@@ -18,18 +18,21 @@ use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, Su
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
+use super::interlayer::{Interlayer, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
 
 /// Number of point values the shell reads ([`Shell::variables`]).
-pub const SHELL_VALUES: usize = 13;
+pub const SHELL_VALUES: usize = 15;
 
 /// The point values in the densities' argument order: S̃ (∂σ, ∂ζ), ν (all six rows),
-/// z (∂σ, ∂ζ, ∂²σ, ∂σ∂ζ, ∂²ζ) — the rows of [`crate::element::SURFACE_DERIVATIVES`]
-/// the energy needs: neither S nor z itself enters (the energy is invariant to a
-/// material shift and a lateral translation), nor the second derivatives of S (their
-/// terms of the second material derivatives are tangential and drop out of (S6)).
+/// z (∂σ, ∂ζ, ∂²σ, ∂σ∂ζ, ∂²ζ), then S̃ and z themselves — the rows of
+/// [`crate::element::SURFACE_DERIVATIVES`] the energy needs. S̃ and z enter the
+/// interlayer only (the position against a tilted drum, the material offset of (S13));
+/// membrane, bending and gravity are invariant to a material shift and a lateral
+/// translation. The second derivatives of S never enter (their terms of the second
+/// material derivatives are tangential and drop out of (S6)).
 const VARIABLES: [(Field, PointDerivative); SHELL_VALUES] = [
     (Field::S, PointDerivative::DSigma),
     (Field::S, PointDerivative::DZeta),
@@ -44,12 +47,16 @@ const VARIABLES: [(Field, PointDerivative); SHELL_VALUES] = [
     (Field::Z, PointDerivative::DSigmaSigma),
     (Field::Z, PointDerivative::DSigmaZeta),
     (Field::Z, PointDerivative::DZetaZeta),
+    (Field::S, PointDerivative::Value),
+    (Field::Z, PointDerivative::Value),
 ];
 
 /// Index of the membrane term in [`Shell::terms`].
 pub const MEMBRANE: usize = 0;
 /// Index of the bending and gravity term in [`Shell::terms`].
 pub const BENDING_GRAVITY: usize = 1;
+/// Index of the interlayer term in [`Shell::terms`] (present with an interlayer).
+pub const INTERLAYER: usize = 2;
 
 /// Where the shell lies, for the heights of gravity: on the contour (g_y(σ), n_g,y(σ) of
 /// eq. 27), or a flat horizontal strip at y = 0 with n_g = +j.
@@ -70,6 +77,8 @@ pub struct Shell {
     placement: Placement,
     /// ρ_s h g: weight per initial area, N/m² (0: no gravity).
     weight: f64,
+    /// The elastic interlayer with the drums (§7), if any.
+    interlayer: Option<Interlayer>,
 }
 
 impl Shell {
@@ -113,7 +122,7 @@ impl Shell {
         if sides.columns() != mesh.sigma_elements() {
             return Err(ShellError::BadParameter { what: "columns of the transition sides", value: sides.columns() as f64 });
         }
-        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements(), placement: Placement::Strip, weight: 0.0 })
+        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements(), placement: Placement::Strip, weight: 0.0, interlayer: None })
     }
 
     /// The shell with gravity: ρ_s h g, weight per initial area (N/m², ≥ 0).
@@ -125,6 +134,31 @@ impl Shell {
             return Err(ShellError::BadParameter { what: "weight per area ρ_s h g", value: weight });
         }
         Ok(Shell { weight, ..self })
+    }
+
+    /// The shell with the elastic interlayer `interlayer` against its drums (§7, §8):
+    /// a third term ([`INTERLAYER`], trapezoidal × Gauss 2, [`STATE`] history values per
+    /// point); the core advects its history by `interlayer.transport`.
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`]: the shell is not on a contour, or the interlayer's
+    /// numbers ([`Interlayer::validate`]).
+    pub fn with_interlayer(self, interlayer: Interlayer) -> Result<Shell, ShellError> {
+        if self.placement == Placement::Strip {
+            return Err(ShellError::BadParameter { what: "interlayer on a shell that is not on a contour (columns)", value: self.sides.columns() as f64 });
+        }
+        interlayer.validate()?;
+        Ok(Shell { interlayer: Some(interlayer), ..self })
+    }
+
+    /// The interlayer, if any.
+    pub fn interlayer(&self) -> Option<&Interlayer> {
+        self.interlayer.as_ref()
+    }
+
+    /// c₀ of the gauge (S2).
+    pub fn gauge(&self) -> f64 {
+        self.gauge
     }
 
     /// The section.
@@ -151,7 +185,37 @@ impl Shell {
         fields[S][1] += self.gauge;
         fields[NU].copy_from_slice(&v[2..8]);
         fields[Z][1..].copy_from_slice(&v[8..13]);
+        fields[S][0] = v[13];
+        fields[Z][0] = v[14];
         fields
+    }
+
+    /// g(σ), t_g(σ), n_g(σ) in the drawing plane: of the contour, or of the flat strip
+    /// (g = (σ, 0), t_g = i, n_g = j).
+    fn frame(&self, sigma: f64) -> [[f64; 2]; 3] {
+        match &self.placement {
+            Placement::Contour(contour) => [contour.g(sigma), contour.t_g(sigma), contour.n_g(sigma)],
+            Placement::Strip => [[sigma, 0.0], [1.0, 0.0], [0.0, 1.0]],
+        }
+    }
+
+    /// The position r = g + ν n_g + z k (S1) of the point, global (x, y, z), m.
+    pub fn position<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
+        let [g, _, n] = self.frame(at.sigma);
+        [v[2] * n[0] + g[0], v[2] * n[1] + g[1], v[14]]
+    }
+
+    /// r_n(foot) of (S13) at the point from the (advected) interlayer state: the
+    /// upstream point σ_r = σ − cΔt and the material offset
+    /// δs = S_{n+1}(σ) − S_n(σ_r) = S̃ − S̃_n + c₀cΔt ([`Interlayer::foot`]); zeros
+    /// without a state.
+    fn foot<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> ([D; 3], [f64; 3]) {
+        if state.is_empty() {
+            return ([D::zero(); 3], [0.0; 3]);
+        }
+        let shift = self.belt_speed(at.time) * at.dt;
+        let offset = v[13] - Interlayer::material(state) + self.gauge * shift;
+        Interlayer::foot(state, &self.frame(at.sigma - shift), offset)
     }
 
     /// Green's membrane strain [E_ss, E_sζ, E_ζζ] in the initial frame (S8) at `at`.
@@ -215,13 +279,22 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     /// [`MEMBRANE`]: Simpson × Gauss 3 (§7.3); [`BENDING_GRAVITY`]: Gauss 3 × 3
     /// (docs/fem-shell.md §6: the text is silent, the rod's choice).
     fn terms(&self) -> Vec<SurfaceTerm> {
-        vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(3)], history: 0 }]
+        let mut terms = vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(3)], history: 0 }];
+        if self.interlayer.is_some() {
+            terms.push(SurfaceTerm { rule: [Rule::Trapezoidal, Rule::Gauss(2)], history: STATE });
+        }
+        terms
     }
 
     /// (S10) per dσ dζ, each per initial area times dA*/(dσ dζ) = ∂σS ℓ*:
     /// [`MEMBRANE`] W_m = ½(A₁ (tr E)² + A₂ E··E); [`BENDING_GRAVITY`]
     /// W_b + W_g = ½(D₁ (tr K)² + D₂ K··K) + ρ_s h g (r·j).
-    fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], _state: &[f64]) -> D {
+    fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
+        if term == INTERLAYER {
+            let interlayer = self.interlayer.as_ref().expect("the term exists with an interlayer");
+            let (foot, upstream) = self.foot(at, v, state);
+            return interlayer.density(&self.position(at, v), (&foot, upstream), v[0] + self.gauge, (at.time, at.dt), state);
+        }
         let area = (v[0] + self.gauge) * self.fibre_length(at.zeta);
         if term == MEMBRANE {
             return quadratic_energy(self.section.a1, self.section.a2, &self.strain(at, v)) * area;
@@ -243,6 +316,24 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         membrane::dot(&cross, &cross) > 0.0
     }
 
+    /// The interlayer's state from the converged point values (module [`super::interlayer`]).
+    fn advance(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], previous: &[f64], next: &mut [f64]) {
+        match (&self.interlayer, term) {
+            (Some(interlayer), INTERLAYER) => {
+                let [a, _] = material_derivatives(self.column(at.element).alpha, &self.fields(v));
+                let record = [v[2], v[14], a[0], a[1], a[2], v[13]];
+                let (foot, upstream) = self.foot(at, v, previous);
+                interlayer.advance(&self.position(at, v), (&foot, upstream), &record, (at.time, at.dt), previous, next);
+            }
+            _ => next.copy_from_slice(previous),
+        }
+    }
+
+    /// The interlayer's transport speed c (0 without one).
+    fn belt_speed(&self, _time: f64) -> f64 {
+        self.interlayer.as_ref().map_or(0.0, |i| i.transport)
+    }
+
     /// The augmented map (S12) on the columns with transition edges.
     fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
         let column = self.column(element);
@@ -258,7 +349,9 @@ mod tests {
     use super::*;
     use crate::element::SurfaceElement;
     use crate::shell::transition::contour_mesh;
+    use crate::shell::interlayer::Drum;
     use crate::surface::assembly::{Evaluation, SurfaceAssembler};
+    use crate::surface::history::SurfaceHistory;
     use crate::test_rng::Rng;
 
     /// Eh = 1000 N/m, ν_P = 0.3, h = 0.01 m.
@@ -280,8 +373,13 @@ mod tests {
     /// round-off ε|E|/h ≲ 1e-9 of the entries' scale; tolerance 1e-6 of the largest
     /// entry (of the directional derivative: of max(|slope|, 1e-3 U)).
     fn check_derivatives(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], seed: u64, n: usize) {
+        check_derivatives_at(asm, z, &static_ev(), seed, n);
+    }
+
+    /// [`check_derivatives`] in the evaluation `ev` (time, step, history).
+    fn check_derivatives_at(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], ev: &Evaluation, seed: u64, n: usize) {
         let mut rng = Rng(seed);
-        let ev = static_ev();
+        let ev = *ev;
         let assembled = asm.assemble(z, &ev).unwrap();
         let (rows, cols) = asm.pattern();
         let step = 1e-6;
@@ -547,6 +645,114 @@ mod tests {
                     let shifted = asm.energy(&moved, &static_ev()).unwrap();
                     assert!((shifted - energy).abs() < 1e-13 * energy, "bending: {field:?} + const changes U: {shifted} vs {energy}");
                 }
+            }
+        }
+    }
+
+    /// The interlayer of a shell on `contour`: P = 1e5 N/m³, P_⊥ = `shear`, both drums
+    /// at ω = 2 rad/s (transport ωR), the driver tilted by ramps of β_x, β_y.
+    fn interlayer(contour: &Contour, shear: f64) -> Interlayer {
+        let omega = 2.0;
+        let tilted = Drum {
+            centre: contour.pulley_centre(drive::contour::Pulley::Driver),
+            speed: omega,
+            tilt_x: crate::shell::interlayer::Schedule::new(vec![(0.0, 0.0), (1.0, 0.04)]).unwrap(),
+            tilt_y: crate::shell::interlayer::Schedule::new(vec![(0.0, 0.0), (1.0, -0.06)]).unwrap(),
+        };
+        let driven = Drum::aligned(contour.pulley_centre(drive::contour::Pulley::Driven), omega);
+        Interlayer { normal: 1.0e5, shear, drums: [tilted, driven], radius: contour.radius(), transport: omega * contour.radius() }
+    }
+
+    /// V-6 for the interlayer alone (A = D = 0, no gravity): closed contour with camber,
+    /// every transition element augmented, a random state pressed into the drums
+    /// (ν ≈ −0.01 ± 0.005, so the arcs and the span ends next to them are in contact),
+    /// the driver drum tilted (β_x, β_y ramping), the history recorded at a random state
+    /// and advected by a non-integer shift: gradient and Hessian against central
+    /// differences. The tangential part is active (V_⊥ changes the energy by > 1 %) and
+    /// depends on S̃ (the implicit foot of (S13)) and on z (tilted axis).
+    #[test]
+    fn interlayer_derivatives_match_central_differences_in_contact_at_transitions_with_tilt() {
+        let contour = contour();
+        let zero = ShellSection { a1: 0.0, a2: 0.0, d1: 0.0, d2: 0.0 };
+        for per_region in [[2, 2, 2, 1], [3, 1, 2, 2]] {
+            let mesh = contour_mesh(&contour, per_region, 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+            let shell = Shell::on_contour(zero, 1.03, 0.4, &contour, &mesh).unwrap().with_interlayer(interlayer(&contour, 3.0e4)).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+            let mut rng = Rng(0x1a7e_7a11);
+            let mut r = |scale: f64| scale * (2.0 * rng.next() - 1.0);
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
+            let before: Vec<f64> = reference.iter().map(|v| v + r(0.005)).collect();
+            let z: Vec<f64> = before.iter().map(|v| v + r(0.005)).collect();
+            let (t0, dt) = (0.3, 0.04);
+            let history = SurfaceHistory::new(&asm, t0).unwrap();
+            let recorded = history.advance(&asm, &before, &Evaluation { time: t0, dt: 0.0, history: Some(&history) });
+            let advected = recorded.advected(asm.kernel().belt_speed(t0 + 0.5 * dt) * dt);
+            let ev = Evaluation { time: t0 + dt, dt, history: Some(&advected) };
+            check_derivatives_at(&asm, &z, &ev, 0xfeed, 6);
+            let energy = asm.energy(&z, &ev).unwrap();
+            let normal_only = asm.energy(&z, &Evaluation { history: None, ..ev }).unwrap();
+            assert!(energy - normal_only > 1e-2 * energy, "V_⊥ inactive: {energy} vs V_γ {normal_only}");
+            for field in [Field::S, Field::Z] {
+                let constant = asm.interpolate(&[(field, &|_: f64, _: f64| [0.003, 0.0, 0.0, 0.0])]);
+                let moved: Vec<f64> = z.iter().zip(&constant).map(|(a, b)| a + b).collect();
+                let shifted = asm.energy(&moved, &ev).unwrap();
+                assert!((shifted - energy).abs() > 1e-4 * energy, "{field:?} + const does not change V_⊥ + V_γ: {shifted} vs {energy}");
+            }
+        }
+    }
+
+    /// Rigid rolling (module `interlayer`): the belt pressed into the drums (ν = −0.01
+    /// everywhere, c₀ = 1) turns with them: after a step of exactly one arc element
+    /// (cΔt = h_arc, uniform arcs: the advection is exact), S̃ lowered by c₀cΔt (each
+    /// material point moved by cΔt), the tangential deformation is zero to round-off at
+    /// every arc point whose foot was on the arc — the drum point under the material is
+    /// moved by the exact rotation — and zero by the entry rule where the foot was on the
+    /// span. With a lateral step of the belt by d (z + d) the arcs carry u = d k exactly
+    /// (the lateral deformation of the layer). Held back (S̃ unchanged: the drums turn,
+    /// the belt does not) the arcs carry the drum's travel, |u| ≈ cΔt.
+    #[test]
+    fn belt_rolling_rigidly_with_the_drums_has_no_tangential_deformation() {
+        let contour = contour();
+        let per_region = [4, 6, 4, 6];
+        let mesh = contour_mesh(&contour, per_region, 0.0, vec![-0.2, 0.0, 0.2]).unwrap();
+        let mut layer = interlayer(&contour, 1.0e4);
+        layer.drums[0] = Drum::aligned(layer.drums[0].centre, layer.drums[0].speed);
+        let shell = Shell::on_contour(section(), 1.0, 0.0, &contour, &mesh).unwrap().with_interlayer(layer).unwrap();
+        let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
+        let c = asm.kernel().belt_speed(0.0);
+        let h_arc = std::f64::consts::PI * contour.radius() / 6.0;
+        let dt = h_arc / c;
+        let start = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
+        let history = SurfaceHistory::new(&asm, 0.0).unwrap();
+        let recorded = history.advance(&asm, &start, &Evaluation { time: 0.0, dt: 0.0, history: Some(&history) });
+        let advected = recorded.advected(c * dt);
+        let ev = Evaluation { time: dt, dt, history: Some(&advected) };
+        for (lateral, rolling) in [(0.0, true), (0.004, true), (0.0, false)] {
+            let travel = if rolling { -c * dt } else { 0.0 };
+            let moved = asm.interpolate(&[(Field::S, &move |_: f64, _: f64| [travel, 0.0, 0.0, 0.0]), (Field::Z, &move |_: f64, zeta: f64| [zeta + lateral, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
+            let next = advected.advance(&asm, &moved, &ev);
+            let states = next.term(INTERLAYER).unwrap();
+            let (rows, columns) = states.shape();
+            let t = contour.transitions();
+            let (mut on_arcs, mut held) = (0, f64::INFINITY);
+            for (column, &sigma) in states.column_sigma().iter().enumerate() {
+                let arc = (t[1] + h_arc * 0.5 < sigma && sigma < t[2] + 1e-9) || (t[3] + h_arc * 0.5 < sigma);
+                for row in 0..rows {
+                    let u = Interlayer::deformation(states.get(row, column));
+                    if arc {
+                        on_arcs += 1;
+                        let want = [0.0, 0.0, lateral];
+                        if rolling {
+                            assert!((0..3).all(|k| (u[k] - want[k]).abs() < 1e-15), "σ = {sigma}: u = {u:?}, want {want:?}");
+                        } else {
+                            held = held.min(u[0].hypot(u[1]));
+                        }
+                    }
+                }
+            }
+            assert!(on_arcs >= 4 * 2 * 5 && columns > 0, "{on_arcs} arc points");
+            if !rolling {
+                assert!(held > 0.9 * c * dt, "a belt held back: |u| = {held:e} on the arcs, drum travel {:e}", c * dt);
             }
         }
     }

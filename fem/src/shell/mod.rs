@@ -7,9 +7,12 @@
 //!   (docs/fem-shell.md (S11)–(S12)) and the material derivatives (37) of the position;
 //! - [`membrane`]: the stiffness coefficients of (19), Green's membrane strain with
 //!   camber and the quadratic energy density of (19);
+//! - [`interlayer`]: the elastic interlayer (40)–(41) with the drums, their tilt and the
+//!   per-point tangential deformation (docs/fem-shell.md §7–§8);
 //! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
 //!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
+pub mod interlayer;
 pub mod kernel;
 pub mod membrane;
 pub mod transition;

@@ -1,0 +1,341 @@
+//! The elastic interlayer between belt and drums (eqs. 40–41; docs/fem-shell.md §7
+//! (S13), §8): normal potential V_γ = ½∬_{γ>0} P γ² J and tangential potential
+//! V_⊥ = ½∬_{γ>0} P_⊥ u·u J per dσ dζ (J = ∂σS, per reference area), with the gap γ to a
+//! possibly tilted drum axis and the tangential deformation u carried as per-point
+//! history ([`Interlayer::slip`], [`Interlayer::advance`]).
+//!
+//! Everything here is in the global frame (x, y in the drawing plane, z along the
+//! untilted drum axes = k). The kernel ([`super::kernel::Shell`]) forms the position r
+//! of (S1) and the material offset δs of (S13) from its point values and hands them in.
+//!
+//! **History state per point** ([`STATE`] values): u (3), the converged position r_n as
+//! (ν_n, z_n) off the contour (and a spare 0), its material derivative ∂̊_s r_n by its
+//! components on the contour frame (t_g, n_g, k) (3), the periodic part S̃_n of the
+//! material coordinate, and a contact flag (1: the point was in contact in the converged
+//! configuration). A point whose foot was not in contact starts with u = 0 (the brush
+//! model: u = 0 where contact is established [T l.329]); the initial zeros of the core
+//! are such states (the configuration is recorded by
+//! [`crate::analysis::time_stepping::TimeStepping::prime_history`]).
+//! The core advects the state by the belt speed c (`belt_speed`); the density then
+//! reads at σ the state of σ_r = σ − cΔt, and (S13) corrects the foot by the material
+//! offset δs = S_{n+1}(σ) − S_n(σ_r):
+//!
+//!   r_n(foot) ≈ r_n(σ_r) + ∂̊_s r_n(σ_r) δs   ([`Interlayer::foot`]),
+//!   u_{n+1} = [ũ + r_{n+1} − r_n(foot) − (M_i r_n(foot) − r_n(foot))]_⊥,
+//!
+//! M_i the drum's rigid motion over the step (tilt and spin, [`Drum::motion`]), ⊥ the
+//! projection on the drum's tangent plane at r_{n+1}. A belt that rolls rigidly with the
+//! drum has u ≡ 0 exactly (the drum point under the material point is moved, not a
+//! linearised velocity). The gradient of ũ along the foot offset is neglected
+//! (second order: δs is the deviation of the material's travel from cΔt). r_n and
+//! ∂̊_s r_n are interpolated by the advection as (ν, z) and frame components and rebuilt
+//! with the exact contour at σ_r: interpolating the global position across a
+//! line/arc transition makes an O(h³/R²) position error that would enter u directly.
+
+use crate::Scalar;
+
+use super::membrane::dot;
+use super::ShellError;
+
+/// Number of history values per interlayer point.
+pub const STATE: usize = 11;
+/// Offsets in the state: u, r_n, ∂̊_s r_n (three each), S̃_n, the contact flag.
+const U: usize = 0;
+const POSITION: usize = 3;
+const SLOPE: usize = 6;
+const MATERIAL: usize = 9;
+const CONTACT: usize = 10;
+
+/// A piecewise-linear history β(t) (rad), constant before its first and after its last
+/// point.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Schedule {
+    points: Vec<(f64, f64)>,
+}
+
+impl Schedule {
+    /// A constant value.
+    pub fn constant(value: f64) -> Schedule {
+        Schedule { points: vec![(0.0, value)] }
+    }
+
+    /// The history through `points` (t, β), times strictly increasing.
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`]: no point, a value that is not finite, times not
+    /// increasing.
+    pub fn new(points: Vec<(f64, f64)>) -> Result<Schedule, ShellError> {
+        if points.is_empty() {
+            return Err(ShellError::BadParameter { what: "points of a tilt schedule", value: 0.0 });
+        }
+        if let Some(&(t, v)) = points.iter().find(|(t, v)| !(t.is_finite() && v.is_finite())) {
+            return Err(ShellError::BadParameter { what: "tilt schedule point (time or angle not finite)", value: if t.is_finite() { v } else { t } });
+        }
+        if let Some(w) = points.windows(2).find(|w| w[1].0 <= w[0].0) {
+            return Err(ShellError::BadParameter { what: "tilt schedule time (not increasing)", value: w[1].0 });
+        }
+        Ok(Schedule { points })
+    }
+
+    /// β(t).
+    pub fn at(&self, time: f64) -> f64 {
+        let p = &self.points;
+        let k = p.partition_point(|&(t, _)| t <= time);
+        if k == 0 {
+            return p[0].1;
+        }
+        if k == p.len() {
+            return p[k - 1].1;
+        }
+        let ((t0, v0), (t1, v1)) = (p[k - 1], p[k]);
+        v0 + (v1 - v0) * (time - t0) / (t1 - t0)
+    }
+}
+
+/// 3 × 3 matrix, rows.
+type Matrix = [[f64; 3]; 3];
+
+fn product(a: &Matrix, b: &Matrix) -> Matrix {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+fn transpose(a: &Matrix) -> Matrix {
+    std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))
+}
+
+/// The rotation by `angle` about coordinate axis `axis` (0 = x, 1 = y, 2 = z).
+fn rotation(axis: usize, angle: f64) -> Matrix {
+    let (s, c) = angle.sin_cos();
+    let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+    let mut m = [[0.0; 3]; 3];
+    m[axis][axis] = 1.0;
+    m[i][i] = c;
+    m[j][j] = c;
+    m[j][i] = s;
+    m[i][j] = -s;
+    m
+}
+
+fn apply<D: Scalar>(m: &Matrix, v: &[D; 3]) -> [D; 3] {
+    std::array::from_fn(|i| v[0] * m[i][0] + v[1] * m[i][1] + v[2] * m[i][2])
+}
+
+/// A drum: centre in the drawing plane, angular speed (clockwise positive: the drum
+/// surface moves in +σ), and the tilt of its axis (docs/fem-shell.md §8): axis
+/// a(t) = Rot_x(β_x(t)) Rot_y(β_y(t)) k through the centre.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drum {
+    /// (x, y) of the centre, m.
+    pub centre: [f64; 2],
+    /// ω, rad/s (clockwise > 0).
+    pub speed: f64,
+    /// β_x(t): rotation about the span direction x, rad.
+    pub tilt_x: Schedule,
+    /// β_y(t): rotation in the plane of the axes (swivel), rad.
+    pub tilt_y: Schedule,
+}
+
+impl Drum {
+    /// An aligned drum (no tilt).
+    pub fn aligned(centre: [f64; 2], speed: f64) -> Drum {
+        Drum { centre, speed, tilt_x: Schedule::constant(0.0), tilt_y: Schedule::constant(0.0) }
+    }
+
+    /// The tilt Q(t) = Rot_x(β_x) Rot_y(β_y).
+    fn tilt(&self, time: f64) -> Matrix {
+        product(&rotation(0, self.tilt_x.at(time)), &rotation(1, self.tilt_y.at(time)))
+    }
+
+    /// The unit axis a(t) = Q(t) k.
+    pub fn axis(&self, time: f64) -> [f64; 3] {
+        let q = self.tilt(time);
+        [q[0][2], q[1][2], q[2][2]]
+    }
+
+    fn centre3(&self) -> [f64; 3] {
+        [self.centre[0], self.centre[1], 0.0]
+    }
+
+    /// The drum's rigid motion from t₀ to t₁ about its centre: a drum point p goes to
+    /// C + M (p − C), M = Q(t₁) Rot_z(−ω(t₁ − t₀)) Q(t₀)ᵀ (spin about the body axis, then
+    /// the change of tilt).
+    pub fn motion(&self, from: f64, to: f64) -> Matrix {
+        product(&product(&self.tilt(to), &rotation(2, -self.speed * (to - from))), &transpose(&self.tilt(from)))
+    }
+
+    /// (γ, e): the penetration γ = R − dist(r, axis) of a point at r into the cylinder of
+    /// radius R about the axis at `time`, and the unit radial direction e at r.
+    pub fn gap<D: Scalar>(&self, radius: f64, r: &[D; 3], time: f64) -> (D, [D; 3]) {
+        let a = self.axis(time);
+        let c = self.centre3();
+        let d: [D; 3] = std::array::from_fn(|k| r[k] - c[k]);
+        let along = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+        let radial: [D; 3] = std::array::from_fn(|k| d[k] - along * a[k]);
+        let dist = dot(&radial, &radial).sqrt();
+        (-dist + radius, radial.map(|c| c / dist))
+    }
+}
+
+/// The interlayer: stiffnesses, the drums, the contact radius and the transport speed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Interlayer {
+    /// P, N/m³ (normal stiffness per area).
+    pub normal: f64,
+    /// P_⊥, N/m³ (tangential stiffness per area; 0: no V_⊥).
+    pub shear: f64,
+    /// The driver and the driven drum.
+    pub drums: [Drum; 2],
+    /// R = R_d + h/2: the cylinder the belt's mid-surface touches, m.
+    pub radius: f64,
+    /// c: the σ-speed by which the core advects the history, m/s (the drums' ωR).
+    pub transport: f64,
+}
+
+impl Interlayer {
+    /// Checks the numbers.
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`]: P not finite and positive, P_⊥ not finite and ≥ 0, R
+    /// not positive, a speed or the transport speed not finite.
+    pub fn validate(&self) -> Result<(), ShellError> {
+        let bad = |what: &'static str, value: f64| Err(ShellError::BadParameter { what, value });
+        if !(self.normal.is_finite() && self.normal > 0.0) {
+            return bad("interlayer normal stiffness P", self.normal);
+        }
+        if !(self.shear.is_finite() && self.shear >= 0.0) {
+            return bad("interlayer shear stiffness P_⊥", self.shear);
+        }
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return bad("interlayer contact radius", self.radius);
+        }
+        if !self.transport.is_finite() {
+            return bad("transport speed", self.transport);
+        }
+        if let Some(d) = self.drums.iter().find(|d| !(d.speed.is_finite() && d.centre.iter().all(|c| c.is_finite()))) {
+            return bad("drum speed", d.speed);
+        }
+        Ok(())
+    }
+
+    /// The tangential deformation u_{n+1} against drum `drum` of a point at r (module
+    /// documentation), from the (advected) state and r_n(foot) ([`Interlayer::foot`]), at the end
+    /// `time` of a step `dt` (`(time, dt)`); e the drum's radial direction at r. Zero where the foot was
+    /// not in contact (flag < ½ after the advection's interpolation, or the foot outside
+    /// the drum at t_n: the flag's cubic interpolation spreads it upstream of an entry).
+    pub fn slip<D: Scalar>(&self, drum: &Drum, r: &[D; 3], e: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 3] {
+        // the foot in contact: the committed flag (interpolated by the advection, so
+        // also ≥ ½ just upstream of a contact's entry) and the gap of r_n(σ_r) at t_n (not
+        // of r_n(foot): its tangential extrapolation leaves the drum by δs²/2R)
+        if state[CONTACT] < 0.5 || drum.gap(self.radius, &upstream, time - dt).0 <= 0.0 {
+            return [D::zero(); 3];
+        }
+        let c = drum.centre3();
+        let m = drum.motion(time - dt, time);
+        let moved = apply(&m, &std::array::from_fn(|k| foot[k] - c[k]));
+        // ũ + r_{n+1} − r_n(foot) − (R_{n+1} − R_n), R_n = r_n(foot)
+        let raw: [D; 3] = std::array::from_fn(|k| r[k] - moved[k] - c[k] + state[U + k]);
+        let normal = dot(&raw, e);
+        std::array::from_fn(|k| raw[k] - normal * e[k])
+    }
+
+    /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS. V_γ where γ > 0 (C¹ in the
+    /// unknowns); V_⊥ where the foot of the point was in contact at the last commit (the
+    /// contact flag of the advected state), against the drum nearest to r, and only with
+    /// a state (the static evaluation has none) and P_⊥ > 0. Taking the V_⊥ region from
+    /// the committed contact keeps each step's energy continuous: with the current
+    /// γ > 0 a point at the contact's edge (the tangent point of a tight belt) switches
+    /// ½P_⊥u² on and off between Newton iterates and the iteration chatters.
+    pub fn density<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), jacobian: D, (time, dt): (f64, f64), state: &[f64]) -> D {
+        let mut w = D::zero();
+        let mut nearest: Option<(f64, usize, [D; 3])> = None;
+        for (i, drum) in self.drums.iter().enumerate() {
+            let (gamma, e) = drum.gap(self.radius, r, time);
+            if gamma.re() > 0.0 {
+                w += gamma * gamma * (0.5 * self.normal);
+            }
+            if nearest.as_ref().is_none_or(|n| gamma.re() > n.0) {
+                nearest = Some((gamma.re(), i, e));
+            }
+        }
+        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty(), self.shear > 0.0) {
+            let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
+            w += dot(&u, &u) * (0.5 * self.shear);
+        }
+        w * jacobian
+    }
+
+    /// The state after a converged step: u of the drum in contact (0 out of contact; r
+    /// the position, `foot` = r_n(foot)), the `record` (ν, z, ∂̊_s r on (t_g, n_g, k), S̃)
+    /// of the converged configuration, the contact flag.
+    pub fn advance(&self, r: &[f64; 3], (foot, upstream): (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
+        let (mut u, mut contact) = ([0.0; 3], 0.0);
+        for drum in &self.drums {
+            let (gamma, e) = drum.gap(self.radius, r, time);
+            if gamma > 0.0 {
+                contact = 1.0;
+                if self.shear > 0.0 {
+                    u = self.slip(drum, r, &e, (foot, upstream), (time, dt), previous);
+                }
+            }
+        }
+        next[U..U + 3].copy_from_slice(&u);
+        next[POSITION..POSITION + 2].copy_from_slice(&record[..2]);
+        next[POSITION + 2] = 0.0;
+        next[SLOPE..SLOPE + 3].copy_from_slice(&record[2..5]);
+        next[MATERIAL] = record[5];
+        next[CONTACT] = contact;
+    }
+
+    /// r_n(foot) = r_n(σ_r) + ∂̊_s r_n(σ_r) δs (global) from an (advected) state, the
+    /// contour's [g, t_g, n_g] at σ_r and the material offset δs.
+    /// Also r_n(σ_r) itself (the second value).
+    pub fn foot<D: Scalar>(state: &[f64], upstream: &[[f64; 2]; 3], offset: D) -> ([D; 3], [f64; 3]) {
+        let [g, t, n] = upstream;
+        let (nu, z) = (state[POSITION], state[POSITION + 1]);
+        let a = &state[SLOPE..SLOPE + 3];
+        let position = [g[0] + nu * n[0], g[1] + nu * n[1], z];
+        let slope = [a[0] * t[0] + a[1] * n[0], a[0] * t[1] + a[1] * n[1], a[2]];
+        (std::array::from_fn(|k| offset * slope[k] + position[k]), position)
+    }
+
+    /// S̃_n of an (advected) state.
+    pub fn material(state: &[f64]) -> f64 {
+        state[MATERIAL]
+    }
+
+    /// u of a state.
+    pub fn deformation(state: &[f64]) -> [f64; 3] {
+        [state[U], state[U + 1], state[U + 2]]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn drum_motion_is_a_rotation_about_the_tilted_axis_and_the_schedule_interpolates() {
+        let tilt = Schedule::new(vec![(0.0, 0.0), (2.0, 0.02)]).unwrap();
+        assert_eq!(tilt.at(-1.0), 0.0);
+        assert!((tilt.at(0.5) - 0.005).abs() < 1e-15);
+        assert_eq!(tilt.at(3.0), 0.02);
+        assert!(Schedule::new(vec![(1.0, 0.0), (1.0, 0.1)]).is_err());
+        assert!(Schedule::new(vec![]).is_err());
+        let drum = Drum { centre: [0.5, 0.0], speed: 2.0, tilt_x: Schedule::constant(0.03), tilt_y: Schedule::constant(-0.02) };
+        let (a, m) = (drum.axis(1.0), drum.motion(1.0, 1.1));
+        // the axis is fixed by the motion, |a| = 1, M orthogonal, spin angle ω Δt
+        let ma = apply(&m, &a);
+        assert!((0..3).all(|k| (ma[k] - a[k]).abs() < 1e-15));
+        assert!((dot(&a, &a) - 1.0).abs() < 1e-15);
+        let mmt = product(&m, &transpose(&m));
+        assert!((0..3).all(|i| (0..3).all(|j| (mmt[i][j] - f64::from(u8::from(i == j))).abs() < 1e-15)));
+        let trace = m[0][0] + m[1][1] + m[2][2];
+        assert!((((trace - 1.0) / 2.0).acos() - 0.2).abs() < 1e-12);
+        // the top of an aligned drum moves in +x when it turns clockwise; the gap
+        let aligned = Drum::aligned([0.5, 0.0], 1.0);
+        let top = apply(&aligned.motion(0.0, 0.1), &[0.0, 0.3, 0.0]);
+        assert!(top[0] > 0.0 && top[1] < 0.3);
+        let (gamma, e): (f64, _) = aligned.gap(0.3, &[0.5f64, 0.29, 0.7], 0.0);
+        assert!((gamma - 0.01).abs() < 1e-15 && (e[1] - 1.0).abs() < 1e-15);
+    }
+}
