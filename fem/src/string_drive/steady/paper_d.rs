@@ -19,7 +19,11 @@
 //! first zero (Brent) would return any point of it. The scheme locates each band by a
 //! scalar search per pulley in the travel coordinate ([`Band`]: steps, regula falsi,
 //! then bisection of both edges), both pulleys advanced by each solve, and takes the
-//! band centres.
+//! band centres — for the Cosserat element. On the string (nodal normal) the points are
+//! instead the roots of a smooth matching function, the front speed G_k = s_k·v(B_k⁺)
+//! (`PaperD::fronts`, [`Root`]), and the slip rows' bound is the drum's reaction from
+//! the belt's radial equilibrium (`SteadyProblem::equilibrium_normal`): docs/fem-drive.md
+//! §12, "Fourth round".
 
 use std::cell::RefCell;
 
