@@ -485,6 +485,60 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         }
     }
 
+    /// The normal traction of a Paper D point of the string loop (a [`Fixed`] row on an
+    /// element with [`FrictionNormal::Nodal`]) from the belt's radial equilibrium on the
+    /// drum, as the BVP's: p = (N − ρc²λ)/R + (ρg/λ) ŷ·e_r with N = EA(λ − 1), λ the
+    /// half-weighted mean of the two edges' stretch at the node and e_r the drum's outward
+    /// normal at the node's contour point, per contour length (the drum's arc per σ:
+    /// 1 on the pulley's arc region, |g − c|/R ≈ 1/cos θ on a span's straight contour θ
+    /// past the tangent point), times the share of the node's weight on elements in
+    /// contact (midpoint gap < 0: half at a fitted contact boundary); zero
+    /// where the nodal gap does not press. With its gradient in (q_left, q_right) and its
+    /// derivative in c. The stiff penalty's nodal gap is no measure of the pressure where
+    /// the contact runs into a span's Cartesian part (the cubic meets the drum only at the
+    /// contact rule's points): there the nodal bound μP⟨−γ̄⟩ shifts the slip zone's
+    /// tension by O(μp) × a share of an element, measured 2.3e-3 N at 1024 elements on
+    /// the low-tension drive (docs/fem-drive.md §12).
+    fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64) -> (f64, [f64; P], f64) {
+        let layout = self.asm.kernel().layout();
+        let node_weight = pt.left.1 + pt.right.1;
+        let (mut lam, mut dlam) = (0.0, [0.0; P]);
+        let mut share = 0.0;
+        for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
+            let (l, dl) = point_stretch(layout, &el, &qv, xi);
+            let f = we / node_weight;
+            lam += f * l;
+            for k in 0..N {
+                dlam[side * N + k] += f * dl[k];
+            }
+            if point_gap(layout, &el, &q, 0.0).is_some_and(|(g, _)| g < 0.0) {
+                share += f;
+            }
+        }
+        if share == 0.0 || self.nodal_normal(pt, z).0 <= 0.0 {
+            return (0.0, [0.0; P], 0.0);
+        }
+        let contour = *self.asm.mesh().contour();
+        let r = self.sp.radius;
+        let centre = contour.pulley_centre(pt.pulley);
+        let x = contour.position(pt.sigma, 0.0);
+        let (ex, ey) = (x[0] - centre[0], x[1] - centre[1]);
+        let dist = (ex * ex + ey * ey).sqrt();
+        let ey = ey / dist;
+        // per contour length: the drum's arc per σ, 1 on the pulley's arc, 1/cos θ ≈ |g − c|/R
+        // (to O(θ⁴)) where the contact runs into a span's straight contour at θ past it
+        let share = share * dist.max(r) / r;
+        let rho = self.sp.inertia.unwrap_or(0.0);
+        let weight = self.params.weight.unwrap_or(0.0);
+        let ea = self.params.axial_stiffness;
+        let p = (ea * (lam - 1.0) - rho * c * c * lam) / r + weight * ey / lam;
+        let dp_dlam = (ea - rho * c * c) / r - weight * ey / (lam * lam);
+        (share * p, dlam.map(|d| share * dp_dlam * d), -share * 2.0 * rho * c * lam / r)
+    }
+
     /// The normal traction of a friction point of the open layout, and of the loop for an
     /// element with [`FrictionNormal::Tributary`] (docs/fem-cosserat.md §11.1, §12.3): the mean penalty pressure P⟨−γ⟩ of the two elements at the node over the
     /// contact rule's points, weighted by the elements' halves at the node — the pressure
@@ -538,7 +592,15 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             (l, d)
         };
         // the element's rule on the loop; the open layout's is the tributary pressure
+        let mut eq_dc = 0.0;
         let (normal, dnormal) = match (sp.ends, self.asm.kernel().friction_normal()) {
+            // Paper D's fixed topology on the string: the drum's reaction from the belt's
+            // radial equilibrium (docs/fem-drive.md §12, fourth round)
+            (Ends::Loop, FrictionNormal::Nodal) if pt.fixed.is_some() => {
+                let (p, dp, dpc) = self.equilibrium_normal(pt, z, c);
+                eq_dc = dpc;
+                (p, dp)
+            }
             (Ends::Loop, FrictionNormal::Nodal) => self.nodal_normal(pt, z),
             (Ends::Loop, FrictionNormal::Tributary) | (Ends::Open { .. }, _) => self.tributary_normal(pt, z),
         };
@@ -570,6 +632,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             for k in 0..2 * N {
                 j[it][k] = -w * s * sp.mu * dnormal[k];
             }
+            j[it][ic] = -w * s * sp.mu * eq_dc;
         } else {
             r[it] = -w * sp.kappa * v;
             for k in 0..2 * N {

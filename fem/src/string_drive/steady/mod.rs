@@ -306,12 +306,23 @@ mod tests {
 
     /// The check on `scene` with the element `kernel` and the bending stiffness `bending`
     /// of its term parameters.
-    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends) {
+    /// `fixed`: the points carry Paper D's fixed rows instead (alternately stick and slip,
+    /// both slip senses; the string's slip bound is then the equilibrium normal).
+    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
         let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
-        let points = friction_points(&asm, &[], Direction::Clockwise);
+        let mut points = friction_points(&asm, &[], Direction::Clockwise);
+        if fixed {
+            for (i, p) in points.iter_mut().enumerate() {
+                p.fixed = Some(match i % 4 {
+                    0 | 2 => Fixed::Stick,
+                    1 => Fixed::Slip(1.0),
+                    _ => Fixed::Slip(-1.0),
+                });
+            }
+        }
         let b = &scene.belt;
         // a soft penalty keeps the FD of the normal term well conditioned
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
@@ -376,7 +387,9 @@ mod tests {
         let scene = drive::Scene::from_json_str(SCENE).unwrap();
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, false);
+        // Paper D's fixed rows with the equilibrium normal (its λ, c and e_r terms)
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop, true);
     }
 
     /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
@@ -390,7 +403,7 @@ mod tests {
         let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
         let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
         assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
-        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop);
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false);
     }
 
     /// The open layout's rows (docs/fem-cosserat.md §12.3, §12.7) on the same Cosserat
@@ -405,7 +418,7 @@ mod tests {
         for pulley_speed in [None, Some(9.95)] {
             let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
             let ends = Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed };
-            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends);
+            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false);
         }
     }
 

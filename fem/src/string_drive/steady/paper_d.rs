@@ -19,7 +19,11 @@
 //! first zero (Brent) would return any point of it. The scheme locates each band by a
 //! scalar search per pulley in the travel coordinate ([`Band`]: steps, regula falsi,
 //! then bisection of both edges), both pulleys advanced by each solve, and takes the
-//! band centres.
+//! band centres — for the Cosserat element. On the string (nodal normal) the points are
+//! instead the roots of a smooth matching function, the front speed G_k = s_k·v(B_k⁺)
+//! (`PaperD::fronts`, [`Root`]), and the slip rows' bound is the drum's reaction from
+//! the belt's radial equilibrium (`SteadyProblem::equilibrium_normal`): docs/fem-drive.md
+//! §12, "Fourth round".
 
 use std::cell::RefCell;
 
@@ -43,8 +47,13 @@ pub struct PaperDReport {
     /// The prescribed stick→slip points at the result, σ on the contour, m.
     pub transition_sigma: [f64; 2],
     /// Width of the band of prescribed points whose fixed topology is Coulomb-admissible
-    /// (E = 0) per pulley, m: the result is its centre.
+    /// (E = 0) per pulley, m: the result is its centre (the Cosserat element). On the
+    /// string, whose points are the roots of the front speeds, the width of each root's
+    /// last bracket (0 when the secant ended before bracketing it).
     pub band_width: [f64; 2],
+    /// The front speeds G₁, G₂ at the result (driver, driven; `PaperD::fronts`: the slip
+    /// run's relative velocity extrapolated to its prescribed start), m/s.
+    pub front_speed: [f64; 2],
     /// Wall time of the scheme (after the load continuation), s.
     pub seconds: f64,
 }
@@ -60,6 +69,7 @@ struct Aux<const N: usize, K: LayoutElement<N> + ?Sized> {
     at: [f64; 2],
     state: State<N, K>,
     defects: [f64; 2],
+    fronts: [f64; 2],
 }
 
 /// The scheme's fixed parts and its solved states.
@@ -88,7 +98,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             arc_weight,
             slip_sign: [s, -s],
             mu,
-            solved: RefCell::new(vec![Aux { at: [f64::NAN; 2], state: start, defects }]),
+            solved: RefCell::new(vec![Aux { at: [f64::NAN; 2], state: start, defects, fronts: [f64::NAN; 2] }]),
             report: RefCell::new(PaperDReport::default()),
             newton_iterations: RefCell::new(0),
             _sizes: std::marker::PhantomData,
@@ -126,11 +136,52 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         e
     }
 
+    /// The front speeds G₁, G₂ of a solved state at the transitions `at`: on each pulley
+    /// ŝ·v(B⁺), the relative velocity of the slip run extrapolated to its prescribed start B
+    /// by the quadratic through its first three distinct velocity samples (each
+    /// element's v at its midpoint). A concentrated stick traction J at B makes the
+    /// tension jump by J there, so v(B⁺) = cJ/EA: G is a smooth signed measure of J
+    /// with a simple root at the transition of Coulomb's law (the clipped excess E is
+    /// zero on a band about an element wide, module documentation).
+    fn fronts(&self, results: &[PointResult], at: [f64; 2]) -> [f64; 2] {
+        let contour = self.contour();
+        let sign = self.data.direction.sign();
+        [Pulley::Driver, Pulley::Driven].map(|pulley| {
+            let k = usize::from(pulley == Pulley::Driven);
+            let u = |sigma: f64| sign * unwrapped(&contour, pulley, sigma);
+            let mut slip: Vec<&PointResult> = results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0 && matches!(p.point.fixed, Some(Fixed::Slip(_)))).collect();
+            slip.sort_by(|a, b| (u(a.point.sigma), sign * a.point.part.offset()).partial_cmp(&(u(b.point.sigma), sign * b.point.part.offset())).unwrap_or(std::cmp::Ordering::Equal));
+            let mut samples: Vec<(f64, f64)> = Vec::with_capacity(3);
+            for p in slip {
+                let x = u(p.point.velocity_sigma());
+                if samples.last().is_none_or(|q| (x - q.0).abs() > 1e-12) {
+                    samples.push((x, p.velocity));
+                }
+                if samples.len() == 3 {
+                    break;
+                }
+            }
+            let b = u(at[k]);
+            let v = match samples[..] {
+                [(x0, y0), (x1, y1), (x2, y2)] => {
+                    let d1 = (y1 - y0) / (x1 - x0);
+                    let d2 = ((y2 - y1) / (x2 - x1) - d1) / (x2 - x0);
+                    y0 + d1 * (b - x0) + d2 * (b - x0) * (b - x1)
+                }
+                [(x0, y0), (x1, y1)] => y0 + (y1 - y0) / (x1 - x0) * (b - x0),
+                [(_, y0)] => y0,
+                _ => f64::NAN,
+            };
+            // 0 without a slip sample (reported; the root search then stops there)
+            if v.is_finite() { self.slip_sign[k] * v } else { 0.0 }
+        })
+    }
+
     /// Solve the fixed topology at the transitions `at` from the solved state nearest to
     /// it: a mesh with a node at each contact boundary located on that state and at each
     /// transition, then refits to the boundaries located on the new state (at most
     /// `passes`, until they are within `tolerance` of their nodes).
-    fn solve_at(&self, at: [f64; 2]) -> Result<[f64; 2], FemError> {
+    fn solve_at(&self, at: [f64; 2]) -> Result<([f64; 2], [f64; 2]), FemError> {
         let contour = self.contour();
         let d = &self.data;
         let lc = contour.length();
@@ -189,8 +240,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         }
         let state = state.expect("one pass");
         let defects = self.defects(&state.results);
-        self.solved.borrow_mut().push(Aux { at, state, defects });
-        Ok(defects)
+        let fronts = self.fronts(&state.results, at);
+        self.solved.borrow_mut().push(Aux { at, state, defects, fronts });
+        Ok((defects, fronts))
     }
 }
 
@@ -213,33 +265,106 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let sign = self.data.direction.sign();
         // u = ς·σ unwrapped: the coordinate running with the belt
         let u_of = |k: usize, sigma: f64| sign * unwrapped(&contour, [Pulley::Driver, Pulley::Driven][k], sigma);
-        let sigma_of = |u: f64| contour.wrap(sign * u);
-        let signed = |e: [f64; 2]| [self.slip_sign[0] * e[0], self.slip_sign[1] * e[1]];
         let arc_element = {
             let s = self.solved.borrow();
             let mesh = s[0].state.asm.mesh();
             PI * self.data.r / mesh.elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1) as f64
         };
-        let mut bands = [Band::new(u_of(0, b1), 0.1 * arc_element), Band::new(u_of(1, b2), 0.1 * arc_element)];
+        let start = [u_of(0, b1), u_of(1, b2)];
+        // the string (nodal normal): the roots of the front speeds; the Cosserat element
+        // (tributary normal): the centres of the bands of E = 0 (module documentation)
+        let (at, widths) = match self.data.kernel.friction_normal() {
+            FrictionNormal::Nodal => self.front_roots(start, arc_element)?,
+            FrictionNormal::Tributary => self.band_centres(start, arc_element)?,
+        };
+        let e = {
+            let s = self.solved.borrow();
+            let last = s.last().expect("solved");
+            if last.at == at {
+                last.defects
+            } else {
+                drop(s);
+                self.solve_at(at)?.0
+            }
+        };
+        if e != [0.0; 2] {
+            return Err(FemError::PaperDFailed {
+                outer: self.report.borrow().outer_iterations,
+                residual: e[0].abs().max(e[1].abs()),
+                reason: format!("the located stick→slip points σ_B = ({}, {}) m leave a concentrated stick traction E = ({}, {}) N", Sig(at[0]), Sig(at[1]), Sig(e[0]), Sig(e[1])),
+            });
+        }
+        let best = self.solved.into_inner().pop().expect("solved");
+        let mut report = self.report.into_inner();
+        report.matching_residual = best.defects;
+        report.transition_sigma = best.at;
+        report.band_width = widths;
+        report.front_speed = best.fronts;
+        report.seconds = clock.elapsed().as_secs_f64();
+        Ok((best.state, report, self.newton_iterations.into_inner()))
+    }
+
+    /// The outer iteration's failure after `MAX_OUTER` solves: `what` was not located,
+    /// the last points `u` (along the travel) and measures `last` (in `unit`).
+    fn outer_limit(&self, what: &str, u: [f64; 2], last: [f64; 2], unit: &str) -> FemError {
+        let contour = self.contour();
+        let sign = self.data.direction.sign();
+        FemError::PaperDFailed {
+            outer: self.report.borrow().outer_iterations,
+            residual: last[0].abs().max(last[1].abs()),
+            reason: format!(
+                "{what} not located within {MAX_OUTER} fixed-topology solves (last σ_B = ({}, {}) m, measures ({}, {}) {unit})",
+                Sig(contour.wrap(sign * u[0])),
+                Sig(contour.wrap(sign * u[1])),
+                Sig(last[0]),
+                Sig(last[1])
+            ),
+        }
+    }
+
+    /// The roots of the front speeds G₁, G₂ (`fronts`) from `start` (u along the travel):
+    /// secant steps of at most one arc element, then a safeguarded regula falsi once
+    /// bracketed, to 10⁻⁴ of an arc element. The points (σ) and the final brackets (m).
+    fn front_roots(&self, start: [f64; 2], arc_element: f64) -> Result<([f64; 2], [f64; 2]), FemError> {
+        let contour = self.contour();
+        let sign = self.data.direction.sign();
+        let sigma_of = |u: f64| contour.wrap(sign * u);
+        let tolerance = 1e-4 * arc_element;
+        let mut roots = [Root::new(), Root::new()];
+        let mut u = start;
+        loop {
+            if self.report.borrow().outer_iterations >= MAX_OUTER {
+                return Err(self.outer_limit("the stick→slip points whose slip run starts at rest (front speeds G = 0) were", u, [roots[0].last, roots[1].last], "m/s"));
+            }
+            let (_, g) = self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?;
+            for k in 0..2 {
+                roots[k].record(u[k], g[k]);
+            }
+            match (roots[0].next(tolerance, arc_element), roots[1].next(tolerance, arc_element)) {
+                (None, None) => break,
+                (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
+            }
+        }
+        Ok(([sigma_of(u[0]), sigma_of(u[1])], [roots[0].bracket(), roots[1].bracket()]))
+    }
+
+    /// The centres of the bands of E = 0 from `start` (u along the travel), both edges to
+    /// 0.5 % of an arc element. The points (σ) and the bands' widths (m).
+    fn band_centres(&self, start: [f64; 2], arc_element: f64) -> Result<([f64; 2], [f64; 2]), FemError> {
+        let contour = self.contour();
+        let sign = self.data.direction.sign();
+        let sigma_of = |u: f64| contour.wrap(sign * u);
+        let signed = |e: [f64; 2]| [self.slip_sign[0] * e[0], self.slip_sign[1] * e[1]];
+        let mut bands = [Band::new(0.1 * arc_element), Band::new(0.1 * arc_element)];
         // the band edges to 0.5 % of an arc element (measured bands: ≈ 0.1 arc element)
         let tolerance = 5e-3 * arc_element;
-        let mut u = [bands[0].start, bands[1].start];
+        let mut u = start;
         loop {
-            let outer = self.report.borrow().outer_iterations;
-            if outer >= MAX_OUTER {
-                return Err(FemError::PaperDFailed {
-                    outer,
-                    residual: bands.iter().map(|b| b.last.abs()).fold(0.0, f64::max),
-                    reason: format!(
-                        "the band of stick→slip points without a concentrated stick traction was not located within {MAX_OUTER} fixed-topology solves (last σ_B = ({}, {}) m, ŝE = ({}, {}) N)",
-                        Sig(sigma_of(u[0])),
-                        Sig(sigma_of(u[1])),
-                        Sig(bands[0].last),
-                        Sig(bands[1].last)
-                    ),
-                });
+            if self.report.borrow().outer_iterations >= MAX_OUTER {
+                return Err(self.outer_limit("the band of stick→slip points without a concentrated stick traction was", u, [bands[0].last, bands[1].last], "N"));
             }
-            let e = signed(self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?);
+            let (e, _) = self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?;
+            let e = signed(e);
             for k in 0..2 {
                 bands[k].record(u[k], e[k]);
             }
@@ -250,22 +375,78 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         }
         // the band centres, solved: Coulomb-admissible on both pulleys (E = 0)
         let centre = [bands[0].centre(), bands[1].centre()];
-        let e = self.solve_at([sigma_of(centre[0]), sigma_of(centre[1])])?;
-        if e != [0.0; 2] {
-            return Err(FemError::PaperDFailed {
-                outer: self.report.borrow().outer_iterations,
-                residual: e[0].abs().max(e[1].abs()),
-                reason: format!("the centres σ_B = ({}, {}) m of the located bands leave a concentrated stick traction E = ({}, {}) N", Sig(sigma_of(centre[0])), Sig(sigma_of(centre[1])), Sig(e[0]), Sig(e[1])),
-            });
+        let at = [sigma_of(centre[0]), sigma_of(centre[1])];
+        self.solve_at(at)?;
+        Ok((at, [bands[0].width(), bands[1].width()]))
+    }
+}
+
+/// The root search of one pulley's front speed G(u) in u (m, along the travel).
+#[derive(Debug, Clone)]
+struct Root {
+    /// (u, G) of every solve, in order.
+    history: Vec<(f64, f64)>,
+    /// The nearest points with G < 0 and G > 0.
+    below: Option<(f64, f64)>,
+    above: Option<(f64, f64)>,
+    last: f64,
+}
+
+impl Root {
+    fn new() -> Self {
+        Root { history: Vec::new(), below: None, above: None, last: f64::NAN }
+    }
+
+    fn record(&mut self, u: f64, g: f64) {
+        self.last = g;
+        if self.history.last().is_some_and(|h| h.0 == u) {
+            return;
         }
-        let widths = [bands[0].width(), bands[1].width()];
-        let best = self.solved.into_inner().pop().expect("solved");
-        let mut report = self.report.into_inner();
-        report.matching_residual = best.defects;
-        report.transition_sigma = best.at;
-        report.band_width = widths;
-        report.seconds = clock.elapsed().as_secs_f64();
-        Ok((best.state, report, self.newton_iterations.into_inner()))
+        self.history.push((u, g));
+        let closer = |b: Option<(f64, f64)>| b.is_none_or(|b: (f64, f64)| g.abs() < b.1.abs());
+        if g < 0.0 && closer(self.below) {
+            self.below = Some((u, g));
+        } else if g > 0.0 && closer(self.above) {
+            self.above = Some((u, g));
+        }
+    }
+
+    /// Width of the bracket of the root (m), or 0 when it is not bracketed.
+    fn bracket(&self) -> f64 {
+        match (self.below, self.above) {
+            (Some(b), Some(a)) => (a.0 - b.0).abs(),
+            _ => 0.0,
+        }
+    }
+
+    /// The next point, `None` once the last step was below `tolerance` or G = 0.
+    fn next(&mut self, tolerance: f64, max_step: f64) -> Option<f64> {
+        let &(u1, g1) = self.history.last().expect("a point is recorded before the next");
+        if g1 == 0.0 || !g1.is_finite() {
+            return None;
+        }
+        let secant = match self.history[..] {
+            [.., (u0, g0), _] if g1 != g0 => Some(u1 - g1 * (u1 - u0) / (g1 - g0)),
+            _ => None,
+        };
+        let next = match (self.below, self.above) {
+            (Some(b), Some(a)) => {
+                let (lo, hi) = (b.0.min(a.0), b.0.max(a.0));
+                let falsi = b.0 - b.1 * (a.0 - b.0) / (a.1 - b.1);
+                // the secant if it stays in the bracket's inner 80 %, else the regula falsi
+                // of the bracket's ends, kept off them by a tenth
+                let inner = |x: f64| x > lo + 0.1 * (hi - lo) && x < hi - 0.1 * (hi - lo);
+                match secant.filter(|&x| inner(x)) {
+                    Some(x) => x,
+                    None => falsi.clamp(lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo)),
+                }
+            }
+            _ => match secant {
+                Some(x) => u1 + (x - u1).clamp(-max_step, max_step),
+                None => u1 + 0.1 * max_step,
+            },
+        };
+        ((next - u1).abs() > tolerance).then_some(next)
     }
 }
 
@@ -273,7 +454,6 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
 /// travel): ŝE < 0 upstream of it, 0 in it, > 0 downstream (ŝ the slip direction).
 #[derive(Debug, Clone, Copy)]
 struct Band {
-    start: f64,
     /// Largest u with ŝE < 0, smallest and largest with ŝE = 0, smallest with ŝE > 0.
     below: Option<f64>,
     inside: Option<(f64, f64)>,
@@ -288,8 +468,8 @@ struct Band {
 }
 
 impl Band {
-    fn new(start: f64, step: f64) -> Self {
-        Band { start, below: None, inside: None, above: None, e_below: 0.0, e_above: 0.0, step, last: f64::NAN }
+    fn new(step: f64) -> Self {
+        Band { below: None, inside: None, above: None, e_below: 0.0, e_above: 0.0, step, last: f64::NAN }
     }
 
     fn record(&mut self, u: f64, e: f64) {
@@ -369,7 +549,7 @@ mod tests {
         let measure = |u: f64| if u < lo { 40.0 * (u - lo) } else if u > hi { 25.0 * (u - hi) } else { 0.0 };
         let tolerance = 5e-5;
         for start in [0.005, 0.0125, 0.02] {
-            let mut band = Band::new(start, 1e-3);
+            let mut band = Band::new(1e-3);
             let mut u = start;
             let mut solves = 0;
             loop {
