@@ -673,6 +673,66 @@ mod tests {
         }
     }
 
+    /// Test2 with its boundary residuals multiplied by a factor: the same solution,
+    /// boundary rows of another scale.
+    struct ScaledBc(f64);
+
+    impl Problem for ScaledBc {
+        fn n_segments(&self) -> usize {
+            Test2.n_segments()
+        }
+        fn dim(&self, k: usize) -> usize {
+            Test2.dim(k)
+        }
+        fn n_params(&self) -> usize {
+            Test2.n_params()
+        }
+        fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
+            Test2.rhs(k, x, y, p, eta, f);
+        }
+        fn bc<D: Scalar>(&self, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, r: &mut [D]) {
+            Test2.bc(ya, yb, p, eta, r);
+            for v in r.iter_mut() {
+                *v *= self.0;
+            }
+        }
+    }
+
+    /// The structured LU's fallback: boundary rows scaled by 1e-20 leave the last pivots
+    /// of its final dense system (~1e-20) below 10⁻¹⁴ times its largest entry (O(1),
+    /// the interval rows), so it reports a vanishing pivot and the condensed system goes
+    /// to the sparse LU (one numeric factorisation, not the structured one) — whose
+    /// solution must still be the full uncondensed LU's: the scaling changes no
+    /// unknown, only the size of some equations. Same tolerance as
+    /// `condensed_solve_matches_full_lu`; unscaled (factor 1), the structured LU is used.
+    #[test]
+    fn structured_lu_falls_back_to_the_sparse_lu_on_a_vanishing_pivot() {
+        let mut state = 13u64;
+        for (factor, expected) in [(1.0, (0, 0, true)), (1e-20, (1, 0, false))] {
+            let problem = ScaledBc(factor);
+            let meshes = vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]];
+            let disc = Discretisation::new(&problem, Scheme::Gauss8, JacobianMode::Ad, meshes).unwrap();
+            let n = disc.n;
+            let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
+            let eta = 0.8;
+            let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
+            let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
+            disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
+            let mut full = SparseLu::new();
+            full.factorize(n, &rows, &cols, &vals).unwrap();
+            let mut x_full = b.clone();
+            full.solve_in_place(&mut x_full).unwrap();
+            let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let mut cond = CondensedLu::new();
+            cond.factorize(&disc, &z, eta).unwrap();
+            let mut x = b.clone();
+            cond.solve(&disc, &mut x).unwrap();
+            assert_eq!(cond.factorisations(), expected, "factor {factor}: structured LU, or the sparse LU after a vanishing pivot");
+            let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(err < 1e-9 * scale, "factor {factor}: max |x − x_full| = {err:e} (scale {scale})");
+        }
+    }
+
     #[test]
     fn options_are_validated() {
         let guess = Solution::from_fn(2, 3, vec![1.0], 0.5, |_, _| vec![0.0, 0.0]);
