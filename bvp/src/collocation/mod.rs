@@ -620,30 +620,48 @@ mod tests {
         let mut state = 11u64;
         for scheme in Scheme::ALL {
             for meshes in [vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]], vec![vec![0.0, 1.0], vec![0.0, 0.3, 1.0]]] {
-                let disc = Discretisation::new(&Test2, scheme, JacobianMode::Ad, meshes).unwrap();
-                let n = disc.n;
-                let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(&mut state)).collect();
-                let eta = 0.8;
-                let b: Vec<f64> = (0..n).map(|_| lcg(&mut state)).collect();
-                let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
-                disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
-                let mut full = SparseLu::new();
-                full.factorize(n, &rows, &cols, &vals).unwrap();
-                let mut x_full = b.clone();
-                full.solve_in_place(&mut x_full).unwrap();
-                let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
                 for (max_order, expected) in [(None, (0, 0, true)), (Some(0), (1, 0, false))] {
-                    let mut cond = CondensedLu::new();
-                    cond.max_block_order = max_order;
-                    cond.factorize(&disc, &z, eta).unwrap();
-                    let mut x = b.clone();
-                    cond.solve(&disc, &mut x).unwrap();
-                    assert_eq!(cond.factorisations(), expected, "{scheme}: structured or sparse as asked, not the fallback");
-                    let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-                    assert!(err < 1e-9 * scale, "{scheme} {max_order:?}: max |x − x_full| = {err:e} (scale {scale})");
+                    let what = format!("{scheme} {max_order:?}, structured or sparse as asked, not the fallback");
+                    check_condensed_solve(&Test2, scheme, meshes.clone(), &mut state, max_order, expected, &what);
                 }
             }
         }
+    }
+
+    /// At a random state, factorise and solve a random right-hand side with a
+    /// [`CondensedLu`] (largest structured order `max_order`) and assert that the
+    /// factorisations it used are `expected` and that its solution is the full
+    /// uncondensed LU's to 1e-9 relative to the largest unknown (the two eliminations
+    /// differ in round-off only, ~10⁻¹² here; a wrong block, sign or pivot gives O(1)).
+    fn check_condensed_solve<P: Problem>(
+        problem: &P,
+        scheme: Scheme,
+        meshes: Vec<Vec<f64>>,
+        state: &mut u64,
+        max_order: Option<usize>,
+        expected: (usize, usize, bool),
+        what: &str,
+    ) {
+        let disc = Discretisation::new(problem, scheme, JacobianMode::Ad, meshes).unwrap();
+        let n = disc.n;
+        let z: Vec<f64> = (0..n).map(|_| 0.5 * lcg(state)).collect();
+        let eta = 0.8;
+        let b: Vec<f64> = (0..n).map(|_| lcg(state)).collect();
+        let (mut rows, mut cols, mut vals, mut jeta) = (vec![], vec![], vec![], vec![]);
+        disc.jacobian(&z, eta, &mut rows, &mut cols, &mut vals, &mut jeta);
+        let mut full = SparseLu::new();
+        full.factorize(n, &rows, &cols, &vals).unwrap();
+        let mut x_full = b.clone();
+        full.solve_in_place(&mut x_full).unwrap();
+        let scale = x_full.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let mut cond = CondensedLu::new();
+        cond.max_block_order = max_order;
+        cond.factorize(&disc, &z, eta).unwrap();
+        let mut x = b;
+        cond.solve(&disc, &mut x).unwrap();
+        assert_eq!(cond.factorisations(), expected, "{what}");
+        let err = x.iter().zip(&x_full).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(err < 1e-9 * scale, "{what}: max |x − x_full| = {err:e} (scale {scale})");
     }
 
     /// The reusable stage Jacobian of the condensation gives the values of the
@@ -670,6 +688,48 @@ mod tests {
                 let expected = if eta_column { bits(&dfdeta) } else { bits(&[0.0, 0.0]) };
                 assert_eq!(bits(&jac.dfdeta), expected, "∂f/∂η, segment {k}, η column {eta_column}");
             }
+        }
+    }
+
+    /// Test2 with its boundary residuals multiplied by a factor: the same solution,
+    /// boundary rows of another scale.
+    struct ScaledBc(f64);
+
+    impl Problem for ScaledBc {
+        fn n_segments(&self) -> usize {
+            Test2.n_segments()
+        }
+        fn dim(&self, k: usize) -> usize {
+            Test2.dim(k)
+        }
+        fn n_params(&self) -> usize {
+            Test2.n_params()
+        }
+        fn rhs<D: Scalar>(&self, k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
+            Test2.rhs(k, x, y, p, eta, f);
+        }
+        fn bc<D: Scalar>(&self, ya: &[&[D]], yb: &[&[D]], p: &[D], eta: D, r: &mut [D]) {
+            Test2.bc(ya, yb, p, eta, r);
+            for v in r.iter_mut() {
+                *v *= self.0;
+            }
+        }
+    }
+
+    /// The structured LU's fallback: boundary rows scaled by 1e-20 leave the last pivots
+    /// of its final dense system (~1e-20) below 10⁻¹⁴ times its largest entry (O(1),
+    /// the interval rows), so it reports a vanishing pivot and the condensed system goes
+    /// to the sparse LU (one numeric factorisation, not the structured one) — whose
+    /// solution must still be the full uncondensed LU's: the scaling changes no
+    /// unknown, only the size of some equations. Same tolerance as
+    /// `condensed_solve_matches_full_lu`; unscaled (factor 1), the structured LU is used.
+    #[test]
+    fn structured_lu_falls_back_to_the_sparse_lu_on_a_vanishing_pivot() {
+        let mut state = 13u64;
+        for (factor, expected) in [(1.0, (0, 0, true)), (1e-20, (1, 0, false))] {
+            let meshes = vec![vec![0.0, 0.2, 0.5, 1.0], vec![0.0, 0.5, 0.6, 1.0]];
+            let what = format!("boundary rows × {factor}: structured LU, or the sparse LU after a vanishing pivot");
+            check_condensed_solve(&ScaledBc(factor), Scheme::Gauss8, meshes, &mut state, None, expected, &what);
         }
     }
 
