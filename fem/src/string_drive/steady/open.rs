@@ -167,17 +167,20 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     let w = variable_weights(&asm, d, r, omega0.abs(), f_ref, points.len());
     let scales = row_scales(&asm, f_ref, points.len());
     let base = SteadyParams { mu, penalty, kappa, radius: r, omega1: omega0, torque: 0.0, damping: 0.0, inertia: rho, ends: Ends::Loop };
-    let setup = OpenSetup::<N, P, E, K> { asm: &asm, points: &points, params, base, w: &w, scales: &scales, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, kernel: &kernel, transport_rate: c0, axial_stiffness: b1, chi, _sizes: std::marker::PhantomData };
+    // the fit (§12.5): a node at the contact start A, the stick→slip point B and the
+    // contact end C, the mesh graded towards them over the shear layer √(a/(b₂ − ρc²))
+    let fit = settings.contact_fitting.then(|| OpenFit { settings, drive_settings, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness().map(|b2| b2 - chi)), element: PI * r / arc_elements as f64 });
+    let setup = OpenSetup::<N, P, E, K> { asm: &asm, points: &points, params, base, w: &w, scales: &scales, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, kernel: &kernel, transport_rate: c0, axial_stiffness: b1, chi, rho, end_distance: d, f_ref, _sizes: std::marker::PhantomData };
     let mut report = SteadyReport { friction_points: points.len(), ..Default::default() };
     let flux = |n: f64| end_flux(n, b1, chi);
-    let (x, results, sp) = match mode {
+    let (mut state, sp) = match mode {
         OpenMode::Tensions { tension_in, tension_out } => {
             let (from, to) = (setup.ends(flux(tension_in), flux(tension_in), None), setup.ends(flux(tension_in), flux(tension_out), None));
             // nested: the continuation on a coarse mesh, carried up by doublings
             // (nested.rs); on this mesh if a rung fails
             let sp_to = setup.sp(to);
             let sp_at = move |_: f64| sp_to;
-            let base = SteadyFitData { params, length: 0.0, kernel: &kernel, sp_at: &sp_at, strain_rule: kernel.rules().strain, h: d, r, omega1: omega0, f_ref, slot_weight: None, direction: Direction::Clockwise, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, grading: None };
+            let base = setup.fit_data(&sp_at, None, None);
             let data = nested::NestedData { base: &base, arc_weight: settings.arc_weight, inertia: None, start_rates: [c0, omega0] };
             let levels = nested::coarse_levels_from(opts.elements, nested::MIN_COARSE_OPEN);
             let (x, results) = match setup.nested(&levels, contour, tension_in, (from, to), &data, &mut report) {
@@ -188,7 +191,7 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
                     setup.path(stick, from, to, &w, &mut report)?
                 }
             };
-            (x, results, sp_to)
+            (State { rho, asm: setup.assembler(), x, results }, sp_to)
         }
         OpenMode::PulleySpeed { pulley_speed, tension_out } => {
             // the pure-stick state of N_in = N_out has ω_stick in its ω-slot; from it, the
@@ -202,36 +205,16 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
             w_speed[nz + 1] = f_ref;
             let to = setup.ends(f64::NAN, h_out, Some(pulley_speed));
             let (x, results) = setup.path(stick, setup.ends(f64::NAN, h_out, Some(omega_stick)), to, &w_speed, &mut report).map_err(|e| FemError::Prescription { name: "pulley_speed", value: pulley_speed, reason: format!("no steady state found between the pure-stick speed {omega_stick:.9} rad/s and the given ({e}); beyond the friction capacity there is none") })?;
-            (x, results, setup.sp(to))
+            (State { rho, asm: setup.assembler(), x, results }, setup.sp(to))
         }
-        OpenMode::Transition { stick_slip_angle, given, tension } => setup.transition(stick_slip_angle, given, tension, estimate[if given == End::In { 1 } else { 0 }], &mut report)?,
+        // fitted per evaluation of its root find (§12.7), so no fit after it
+        OpenMode::Transition { stick_slip_angle, given, tension } => setup.transition(stick_slip_angle, given, tension, estimate[if given == End::In { 1 } else { 0 }], fit.as_ref(), &mut report)?,
     };
     report.continuation_seconds = clock.elapsed().as_secs_f64();
-    let mut state = State { rho, asm, x, results };
-    // the loop's fitting (§12.5): a node at the contact start A, the stick→slip point B
-    // and the contact end C, the mesh graded towards them over the shear layer
-    // √(a/(b₂ − ρc²)). Not in mode `stick_slip_angle`, whose root find holds φ_B on one
-    // mesh (a mesh refitted per evaluation would move B with the tension it varies).
-    if settings.contact_fitting && !matches!(mode, OpenMode::Transition { .. }) {
+    // the loop's fitting (§12.5)
+    if let Some(fit) = fit.as_ref().filter(|_| !matches!(mode, OpenMode::Transition { .. })) {
         let sp_at = move |_: f64| sp;
-        let shear = kernel.shear_stiffness().map(|b2| b2 - chi);
-        let data = SteadyFitData {
-            params,
-            length: 0.0,
-            kernel: &kernel,
-            sp_at: &sp_at,
-            strain_rule: kernel.rules().strain,
-            h: d,
-            r,
-            omega1: omega0,
-            f_ref,
-            slot_weight: matches!(mode, OpenMode::PulleySpeed { .. }).then_some(f_ref),
-            direction: Direction::Clockwise,
-            tolerance: settings.update_tolerance,
-            max_iterations: drive_settings.max_newton_iterations,
-            grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, shear),
-        };
-        state = super::fit_steady::<N, P, E, K>(state, data, settings, drive_settings, PI * r / arc_elements as f64, &mut report)?;
+        state = setup.fit(state, &sp_at, matches!(mode, OpenMode::PulleySpeed { .. }).then_some(f_ref), fit, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - report.continuation_seconds;
     let (nz, x) = (state.asm.len(), &state.x);
@@ -260,12 +243,27 @@ struct OpenSetup<'a, const N: usize, const P: usize, const E: usize, K: LayoutEl
     transport_rate: f64,
     axial_stiffness: f64,
     chi: f64,
+    /// ρ of the transport inertia (kg/m), if any.
+    rho: Option<f64>,
+    /// D (m) and F_ref (N) of the variable weights and row scales.
+    end_distance: f64,
+    f_ref: f64,
     _sizes: std::marker::PhantomData<([f64; P], [f64; E])>,
 }
 
-/// A solved state of mode `stick_slip_angle`'s root find: the free tension N_f, X and
-/// the point results.
-type Solved = (f64, Vec<f64>, Vec<PointResult>);
+/// A solved state of mode `stick_slip_angle`'s root find: the free tension N_f, X and the
+/// point results on the setup's mesh (the continuation's), and the state fitted from it
+/// (with the fit on).
+type Solved<const N: usize, K> = (f64, Vec<f64>, Vec<PointResult>, Option<State<N, K>>);
+
+/// What the fit to A, B, C (§12.5) needs besides the state: the settings, the grading
+/// over the shear layer and the arc element of the uniform mesh.
+struct OpenFit<'s> {
+    settings: &'s crate::options::SolverSettings,
+    drive_settings: &'s super::super::DriveSettings,
+    grading: Option<crate::mesh::Grading>,
+    element: f64,
+}
 
 /// Ends `a` + η(`b` − `a`) (fluxes and the given ω; `a`, `b` of one mode).
 fn blend(a: Ends, b: Ends, eta: f64) -> Ends {
@@ -287,6 +285,37 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
 
     fn sp(&self, ends: Ends) -> SteadyParams {
         SteadyParams { ends, ..self.base }
+    }
+
+    /// An assembler of this setup's mesh.
+    fn assembler(&self) -> Assembler<N, K> {
+        Assembler::with_kernel(self.asm.mesh().clone(), self.kernel.clone())
+    }
+
+    /// The fitting's data at the parameters `sp_at` (ω-slot weight `slot_weight`, grading
+    /// `grading`).
+    fn fit_data<'f>(&'f self, sp_at: &'f dyn Fn(f64) -> SteadyParams, slot_weight: Option<f64>, grading: Option<crate::mesh::Grading>) -> SteadyFitData<'f, K> {
+        SteadyFitData {
+            params: self.params,
+            length: 0.0,
+            kernel: self.kernel,
+            sp_at,
+            strain_rule: self.kernel.rules().strain,
+            h: self.end_distance,
+            r: self.base.radius,
+            omega1: self.base.omega1,
+            f_ref: self.f_ref,
+            slot_weight,
+            direction: Direction::Clockwise,
+            tolerance: self.tolerance,
+            max_iterations: self.max_iterations,
+            grading,
+        }
+    }
+
+    /// The loop's fitting (`fit_steady`, §12.5) of the converged `state` at `sp_at`.
+    fn fit(&self, state: State<N, K>, sp_at: &dyn Fn(f64) -> SteadyParams, slot_weight: Option<f64>, fit: &OpenFit<'_>, report: &mut SteadyReport) -> Result<State<N, K>, FemError> {
+        super::fit_steady::<N, P, E, K>(state, self.fit_data(sp_at, slot_weight, fit.grading), fit.settings, fit.drive_settings, fit.element, report)
     }
 
     fn problem(&self, ends: Ends) -> SteadyProblem<'a, N, P, E, K> {
@@ -367,9 +396,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
 
     /// φ_B of a converged state: the polar angle of the located zero of v on the slip
     /// run (as the summary's), the contact end φ_C when nothing slips (slip arc 0).
-    fn stick_slip_angle(&self, x: &[f64], results: &[PointResult]) -> Option<f64> {
-        let contour = *self.asm.mesh().contour();
-        let sol = FemSolution::new(self.asm.mesh().clone(), self.asm.dofs(), &x[..self.asm.len()], self.params, 0.0, self.kernel.clone());
+    fn stick_slip_angle_of(&self, asm: &Assembler<N, K>, x: &[f64], results: &[PointResult]) -> Option<f64> {
+        let contour = *asm.mesh().contour();
+        let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &x[..asm.len()], self.params, 0.0, self.kernel.clone());
         let angle = |sigma: f64| contour.polar_angle(Pulley::Driven, sol.position(sigma));
         match results.iter().any(|p| p.slip) {
             true => transition(results, &contour, Pulley::Driven).map(angle),
@@ -381,8 +410,12 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// φ_B(N_f) = `phi` (the pulley driving the belt), the tension of `given` fixed. Each
     /// evaluation is a mode-`tensions` solve continued from the nearest one done; string
     /// steps (∂φ_B/∂N_f ≈ ±1/(μT̃_f), the capstan's) until φ_B − φ brackets a root, then
-    /// Brent's method on the bracket to 10⁻¹⁰ relative in N_f.
-    fn transition(&self, phi: f64, given: End, tension: f64, estimate: f64, report: &mut SteadyReport) -> Result<(Vec<f64>, Vec<PointResult>, SteadyParams), FemError> {
+    /// Brent's method on the bracket to 10⁻¹⁰ relative in N_f. Each evaluation continues on
+    /// this setup's mesh; with `fit`, a copy of its state is then fitted to A, B, C and φ_B
+    /// is the fitted solve's (smooth in N_f, §12.7). (Continuing on the nearest state's
+    /// fitted mesh, whose split node sits at the old B, gave a different fitted state: 64
+    /// elements, N_out given, a wrong bracket at N_in = 14.948 N with φ_B 0.012 rad off.)
+    fn transition(&self, phi: f64, given: End, tension: f64, estimate: f64, fit: Option<&OpenFit<'_>>, report: &mut SteadyReport) -> Result<(State<N, K>, SteadyParams), FemError> {
         let (b1, chi) = (self.axial_stiffness, self.chi);
         let h_given = end_flux(tension, b1, chi);
         let ends_of = |free: f64| match given {
@@ -391,17 +424,27 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         };
         let stick = self.stick(tension, report)?;
         // solved states by N_f; a new one continues from the nearest
-        let solved: std::cell::RefCell<Vec<Solved>> = std::cell::RefCell::new(vec![(tension, stick, Vec::new())]);
+        let solved: std::cell::RefCell<Vec<Solved<N, K>>> = std::cell::RefCell::new(vec![(tension, stick, Vec::new(), None)]);
         let report = std::cell::RefCell::new(report);
         let solve = |free: f64| -> Result<f64, FemError> {
             let (from, x) = {
                 let s = solved.borrow();
-                let (n, x, _) = s.iter().min_by(|a, b| (a.0 - free).abs().total_cmp(&(b.0 - free).abs())).expect("the stick state");
+                let (n, x, ..) = s.iter().min_by(|a, b| (a.0 - free).abs().total_cmp(&(b.0 - free).abs())).expect("the stick state");
                 (*n, x.clone())
             };
             let (x, results) = self.path(x, ends_of(from), ends_of(free), self.w, &mut report.borrow_mut())?;
-            let angle = self.stick_slip_angle(&x, &results).ok_or_else(|| FemError::Prescription { name: "stick_slip_angle", value: phi, reason: format!("no contact zone at the free tension {free:.9} N") })?;
-            solved.borrow_mut().push((free, x, results));
+            let state = State { rho: self.rho, asm: self.assembler(), x, results };
+            let (x, results, fitted) = match fit {
+                Some(fit) => {
+                    let sp = self.sp(ends_of(free));
+                    let (x, results) = (state.x.clone(), state.results.clone());
+                    (x, results, Some(self.fit(state, &move |_: f64| sp, None, fit, &mut report.borrow_mut())?))
+                }
+                None => (state.x, state.results, None),
+            };
+            let on = fitted.as_ref();
+            let angle = on.map_or_else(|| self.stick_slip_angle_of(self.asm, &x, &results), |s| self.stick_slip_angle_of(&s.asm, &s.x, &s.results)).ok_or_else(|| FemError::Prescription { name: "stick_slip_angle", value: phi, reason: format!("no contact zone at the free tension {free:.9} N") })?;
+            solved.borrow_mut().push((free, x, results, fitted));
             Ok(angle - phi)
         };
         // driving: N_in > N_out; φ_B grows with N_in and falls with N_out
@@ -452,8 +495,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 solved.borrow().len() - 1
             }
         };
-        let (_, x, results) = solved.into_inner().swap_remove(i);
-        Ok((x, results, self.sp(ends_of(root))))
+        let (_, x, results, fitted) = solved.into_inner().swap_remove(i);
+        let state = fitted.unwrap_or_else(|| State { rho: self.rho, asm: self.assembler(), x, results });
+        Ok((state, self.sp(ends_of(root))))
     }
 }
 
