@@ -172,8 +172,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 [(_, y0)] => y0,
                 _ => f64::NAN,
             };
-            // 0 without a slip sample (reported; the root search then stops there)
-            if v.is_finite() { self.slip_sign[k] * v } else { 0.0 }
+            // NaN without a slip sample: the root search stops there and `front_roots`
+            // refuses it (a missing measure is not a root)
+            if v.is_finite() { self.slip_sign[k] * v } else { f64::NAN }
         })
     }
 
@@ -345,6 +346,28 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
             }
         }
+        // the search ends on its step; the point is a root only if G there is what that
+        // step leaves of it: |G| ≤ |∂G/∂u| × 10 × the step tolerance (∂G/∂u from the
+        // bracket, else the last secant); a missing or non-finite G is no root
+        for (k, root) in roots.iter().enumerate() {
+            let g = root.last;
+            let slope = root.slope();
+            if !(g == 0.0 || (g.is_finite() && slope.is_finite() && g.abs() <= slope.abs() * 10.0 * tolerance)) {
+                let pulley = if k == 0 { "driver" } else { "driven" };
+                return Err(FemError::PaperDFailed {
+                    outer: self.report.borrow().outer_iterations,
+                    residual: g.abs(),
+                    reason: format!(
+                        "the {pulley}'s stick→slip point σ_B = {} m is no root of its front speed: G = {} m/s (slope {} 1/s, step tolerance {} m){}",
+                        Sig(sigma_of(u[k])),
+                        Sig(g),
+                        Sig(slope),
+                        Sig(tolerance),
+                        if g.is_finite() { "" } else { " — no slip point downstream of it to measure G" }
+                    ),
+                });
+            }
+        }
         Ok(([sigma_of(u[0]), sigma_of(u[1])], [roots[0].bracket(), roots[1].bracket()]))
     }
 
@@ -399,15 +422,30 @@ impl Root {
 
     fn record(&mut self, u: f64, g: f64) {
         self.last = g;
-        if self.history.last().is_some_and(|h| h.0 == u) {
+        // a point that did not move this solve keeps its place in the history with the
+        // new G: the other pulley's move changes it, and the next step must see that
+        match self.history.last_mut() {
+            Some(h) if h.0 == u => h.1 = g,
+            _ => self.history.push((u, g)),
+        }
+        if !g.is_finite() {
             return;
         }
-        self.history.push((u, g));
         let closer = |b: Option<(f64, f64)>| b.is_none_or(|b: (f64, f64)| g.abs() < b.1.abs());
         if g < 0.0 && closer(self.below) {
             self.below = Some((u, g));
         } else if g > 0.0 && closer(self.above) {
             self.above = Some((u, g));
+        }
+    }
+
+    /// ∂G/∂u (1/s): across the bracket once the root is bracketed, else the secant of the
+    /// last two points; NaN with fewer than two.
+    fn slope(&self) -> f64 {
+        match (self.below, self.above, &self.history[..]) {
+            (Some(b), Some(a), _) => (a.1 - b.1) / (a.0 - b.0),
+            (_, _, [.., (u0, g0), (u1, g1)]) => (g1 - g0) / (u1 - u0),
+            _ => f64::NAN,
         }
     }
 
@@ -537,7 +575,48 @@ impl Band {
 
 #[cfg(test)]
 mod tests {
-    use super::Band;
+    use super::{Band, Root};
+
+    /// Two coupled front speeds, as the joint fixed-topology solve gives them: each
+    /// pulley's G depends weakly on the other's point (through the tension level). The
+    /// searches run as `front_roots` runs them (both recorded after every joint solve, a
+    /// pulley whose step ended stays put, its G refreshed) and end at the joint root with
+    /// |G| within the check `front_roots` applies. With strong coupling the per-pulley
+    /// searches can stop off the root: then that check must refuse the point (it is what
+    /// turns such an end into `PaperDFailed` rather than a result).
+    #[test]
+    fn coupled_front_roots_end_at_the_root_or_fail_the_root_check() {
+        let (r1, r2) = (0.0213, 0.0371);
+        let (tolerance, max_step) = (1e-7, 1e-3);
+        let search = |c12: f64, c21: f64| {
+            let g = |u: [f64; 2]| [3.0 * (u[0] - r1) + c12 * (u[1] - r2), 1.5 * (u[1] - r2) + c21 * (u[0] - r1)];
+            let mut roots = [Root::new(), Root::new()];
+            let mut u = [0.0205, 0.0390];
+            for _ in 0..60 {
+                let gu = g(u);
+                for k in 0..2 {
+                    roots[k].record(u[k], gu[k]);
+                }
+                match (roots[0].next(tolerance, max_step), roots[1].next(tolerance, max_step)) {
+                    (None, None) => break,
+                    (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
+                }
+            }
+            let passes = roots.iter().all(|r| r.last == 0.0 || r.last.abs() <= r.slope().abs() * 10.0 * tolerance);
+            (u, passes)
+        };
+        let (u, passes) = search(0.1, -0.05);
+        assert!(passes, "weak coupling: the root check fails at {u:?}");
+        assert!((u[0] - r1).abs() < 1e-6 && (u[1] - r2).abs() < 1e-6, "weak coupling: ended at {u:?}, roots ({r1}, {r2})");
+        let (u, passes) = search(2.0, -0.8);
+        let off = (u[0] - r1).abs().max((u[1] - r2).abs());
+        assert!(passes == (off < 1e-5), "strong coupling: ended {off:.1e} m off the root, root check {passes}");
+        // a missing measure is no root: NaN stops the search without a slope to pass
+        let mut lone = Root::new();
+        lone.record(0.01, f64::NAN);
+        assert_eq!(lone.next(tolerance, max_step), None);
+        assert!(!lone.last.is_finite() && lone.slope().is_nan());
+    }
 
     /// The band search on a measure of the FE's shape (negative and growing up to the
     /// band, zero on it, positive after): from either side and from inside, it ends
