@@ -295,6 +295,18 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 reason: format!("the located stick→slip points σ_B = ({}, {}) m leave a concentrated stick traction E = ({}, {}) N", Sig(at[0]), Sig(at[1]), Sig(e[0]), Sig(e[1])),
             });
         }
+        if let Some(r) = lifted_prescribed(&self.solved.borrow().last().expect("solved").state.results) {
+            return Err(FemError::PaperDFailed {
+                outer: self.report.borrow().outer_iterations,
+                residual: r.normal.abs(),
+                reason: format!(
+                    "the prescribed point at σ = {} m on the {} presses by the penalty but its drum reaction from the radial balance is {} N/m < 0 (the span's tension below ρc²λ there): its row would be dropped to τ = 0, so the fixed topology has no admissible state",
+                    Sig(r.point.sigma),
+                    r.point.pulley.name(),
+                    Sig(r.normal)
+                ),
+            });
+        }
         let best = self.solved.into_inner().pop().expect("solved");
         let mut report = self.report.into_inner();
         report.matching_residual = best.defects;
@@ -402,6 +414,15 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         self.solve_at(at)?;
         Ok((at, [bands[0].width(), bands[1].width()]))
     }
+}
+
+/// A point whose row the fixed topology prescribes while its normal traction is negative:
+/// the radial-balance reaction of the string (`equilibrium_normal`) is below zero where the
+/// penalty still says the node presses, and the prescribed row is then dropped for τ = 0
+/// (equations.rs) — a state Paper D's scheme must not return. Out of contact the normal
+/// is 0, not negative, and τ = 0 is right there.
+fn lifted_prescribed(results: &[PointResult]) -> Option<&PointResult> {
+    results.iter().find(|r| r.point.fixed.is_some() && r.normal < 0.0)
 }
 
 /// The root search of one pulley's front speed G(u) in u (m, along the travel).
@@ -575,7 +596,22 @@ impl Band {
 
 #[cfg(test)]
 mod tests {
-    use super::{Band, Root};
+    use super::{lifted_prescribed, Band, Root};
+    use super::super::topology::{Fixed, FrictionPoint, Part, PointResult};
+    use drive::contour::{Direction, Pulley};
+
+    /// Only a prescribed point with a negative normal is refused: a free point with a
+    /// negative normal (the semismooth rows never see one: the penalty is ≥ 0) and a
+    /// prescribed point out of contact (normal 0) are not.
+    #[test]
+    fn a_prescribed_point_with_a_negative_reaction_is_found() {
+        let point = FrictionPoint { sigma: 0.3, pulley: Pulley::Driver, weight: 0.01, node: 7, left: (6, 0.005), right: (7, 0.005), part: Part::Whole, direction: Direction::Clockwise, fixed: None };
+        let result = |fixed: Option<Fixed>, normal: f64| PointResult { point: FrictionPoint { fixed, ..point }, traction: 0.0, normal, velocity: 0.0, slip: false };
+        let ok = [result(Some(Fixed::Stick), 12.0), result(Some(Fixed::Slip(1.0)), 0.0), result(None, -3.0)];
+        assert_eq!(lifted_prescribed(&ok), None);
+        let bad = [result(Some(Fixed::Stick), 12.0), result(Some(Fixed::Slip(-1.0)), -0.5)];
+        assert_eq!(lifted_prescribed(&bad).map(|r| r.normal), Some(-0.5));
+    }
 
     /// Two coupled front speeds, as the joint fixed-topology solve gives them: each
     /// pulley's G depends weakly on the other's point (through the tension level). The
