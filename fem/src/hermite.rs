@@ -60,6 +60,36 @@ pub fn second_weights(xi: f64, h: f64) -> [f64; 4] {
     [a * d[0], b * d[1], a * d[2], b * d[3]]
 }
 
+/// Adds one point's energy derivatives in its V point values u_a = Σ_k w_a[k] q[i_a[k]]
+/// (`rows`: the unknowns i_a and weights w_a of each value, [`weights`]) to an element's:
+/// ∂/∂q += `scale` Σ_a (∂/∂u_a) w_a and ∂²/∂q² += `scale` Σ_ab w_aᵀ (∂²/∂u_a∂u_b) w_b.
+/// `hessian` is `None` for the gradient alone.
+#[inline]
+pub fn add_point_derivatives<const V: usize, const N: usize>(
+    rows: &[([usize; 4], [f64; 4]); V],
+    scale: f64,
+    g: impl Fn(usize) -> f64,
+    h: impl Fn(usize, usize) -> f64,
+    gradient: &mut [f64; N],
+    mut hessian: Option<&mut [[f64; N]; N]>,
+) {
+    for (a, (ia, wa)) in rows.iter().enumerate() {
+        for k in 0..4 {
+            let row = ia[k];
+            let sa = scale * wa[k];
+            gradient[row] += sa * g(a);
+            if let Some(hess) = hessian.as_deref_mut() {
+                for (b, (ib, wb)) in rows.iter().enumerate() {
+                    let hab = sa * h(a, b);
+                    for l in 0..4 {
+                        hess[row][ib[l]] += hab * wb[l];
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// Weights of (u, ∂σu, ∂²σu) at a generic ξ (a dual number in post-processing, to
 /// differentiate a field along the element exactly): the same polynomials as
 /// [`weights`] and [`second_weights`].

@@ -347,20 +347,7 @@ impl CosseratVisitor<D5> for PointHessian<'_> {
             let g = f.v1.unwrap_generic(U1, Const::<POINT_VALUES>);
             let h = f.v2.unwrap_generic(Const::<POINT_VALUES>, Const::<POINT_VALUES>);
             self.out.energy += scale * f.re;
-            let rows = point_rows(xi, el.geometry.h);
-            for (a, (ia, wa)) in rows.iter().enumerate() {
-                for k in 0..4 {
-                    let row = ia[k];
-                    let sa = scale * wa[k];
-                    self.out.gradient[row] += sa * g[a];
-                    for (b, (ib, wb)) in rows.iter().enumerate() {
-                        let hab = sa * h[(a, b)];
-                        for l in 0..4 {
-                            self.out.hessian[row][ib[l]] += hab * wb[l];
-                        }
-                    }
-                }
-            }
+            crate::hermite::add_point_derivatives(&point_rows(xi, el.geometry.h), scale, |a| g[a], |a, b| h[(a, b)], &mut self.out.gradient, Some(&mut self.out.hessian));
         }
     }
 }
@@ -395,11 +382,7 @@ impl CosseratVisitor<G5> for PointGradient<'_> {
             let scale = wt * jac;
             let g = f.eps.unwrap_generic(Const::<POINT_VALUES>, U1);
             self.energy += scale * f.re;
-            for (a, (ia, wa)) in point_rows(xi, el.geometry.h).iter().enumerate() {
-                for k in 0..4 {
-                    self.gradient[ia[k]] += scale * wa[k] * g[a];
-                }
-            }
+            crate::hermite::add_point_derivatives(&point_rows(xi, el.geometry.h), scale, |a| g[a], |_, _| 0.0, &mut self.gradient, None);
         }
     }
 }

@@ -112,18 +112,8 @@ pub(super) fn inertia_derivatives<const N: usize>(layout: ElementLayout, el: &El
         let g = f.v1.unwrap_generic(nalgebra::U1, nalgebra::Const::<3>);
         let hu = f.v2.unwrap_generic(nalgebra::Const::<3>, nalgebra::Const::<3>);
         let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-        let rows: [(&[usize; 4], &[f64; 4]); 3] = [(&is, &wd), (&inu, &wv), (&inu, &wd)];
-        for (a, (ia, wa)) in rows.iter().enumerate() {
-            for k in 0..4 {
-                gq[ia[k]] += wa[k] * g[a];
-                for (b, (ib, wb)) in rows.iter().enumerate() {
-                    let hab = wa[k] * hu[(a, b)];
-                    for l in 0..4 {
-                        h[ia[k]][ib[l]] += hab * wb[l];
-                    }
-                }
-            }
-        }
+        let rows = [(is, wd), (inu, wv), (inu, wd)];
+        crate::hermite::add_point_derivatives(&rows, 1.0, |a| g[a], |a, b| hu[(a, b)], &mut gq, Some(&mut h));
     }
     let gc = if c != 0.0 { gq.map(|v| 2.0 * v / c) } else { [0.0; N] };
     (gq, gc, h)
