@@ -176,42 +176,58 @@ pub fn standard_terms<D: Scalar>(
     sum.total
 }
 
-/// Energy and gradient of a standard element, per point by `DualSVec64<3>` as
-/// [`pointwise_derivatives`] (the visitor over the element's terms).
-struct PointGradient<'a> {
+/// Energy and gradient of a standard element summed over its terms and their points
+/// with the density differentiated per point by `DualSVec64<V>` (first order) with
+/// respect to the V point values, as [`PointHessian`] without the second derivatives:
+/// the residual-only pass of a Newton line search.
+struct PointGradient<'a, const V: usize> {
     el: &'a ElementContext,
     q: &'a [f64; NDOF],
     energy: f64,
     grad: [f64; NDOF],
 }
 
-impl TermVisitor<DualSVec64<3>> for PointGradient<'_> {
-    #[inline]
-    fn visit<T: EnergyTerm<DualSVec64<3>>>(&mut self, term: &T) {
-        let (el, jac) = (self.el, self.el.jacobian());
-        for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
-            let p = el.fields(self.q, xi);
-            let var = |v: f64, i: usize| DualSVec64::<3>::from_re(v).derivative(i);
-            let pd = PointFields { sigma: p.sigma, s: DualSVec64::<3>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu: DualSVec64::<3>::from_re(p.d2nu) };
-            let f = term.density(el, &pd, k);
-            let scale = wt * jac;
-            let g3 = f.eps.unwrap_generic(Const::<3>, U1);
-            self.energy += scale * f.re;
-            let (wv, wd) = crate::hermite::weights(xi, el.geometry.h);
-            for (k, &i) in S_DOFS.iter().enumerate() {
-                self.grad[i] += scale * wd[k] * g3[0];
-            }
-            for (k, &i) in NU_DOFS.iter().enumerate() {
-                self.grad[i] += scale * (wv[k] * g3[1] + wd[k] * g3[2]);
+/// The two first-order visitors, V = 3 (∂²σν a constant) and V = 4 (a variable).
+macro_rules! point_gradient {
+    ($v:literal, curvature: $curvature:literal) => {
+        impl TermVisitor<DualSVec64<$v>> for PointGradient<'_, $v> {
+            #[inline]
+            fn visit<T: EnergyTerm<DualSVec64<$v>>>(&mut self, term: &T) {
+                let (el, jac) = (self.el, self.el.jacobian());
+                for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
+                    let p = el.fields(self.q, xi);
+                    let var = |v: f64, i: usize| DualSVec64::<$v>::from_re(v).derivative(i);
+                    let d2nu = if $curvature { var(p.d2nu, 3) } else { DualSVec64::<$v>::from_re(p.d2nu) };
+                    let pd = PointFields { sigma: p.sigma, s: DualSVec64::<$v>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu };
+                    let f = term.density(el, &pd, k);
+                    let scale = wt * jac;
+                    self.energy += scale * f.re;
+                    let g = f.eps.unwrap_generic(Const::<$v>, U1);
+                    let g: [f64; $v] = std::array::from_fn(|a| g[a]);
+                    add_point_gradient(&point_map::<$v>(xi, el.geometry.h), &g, scale, &mut self.grad);
+                }
             }
         }
-    }
+    };
 }
 
+point_gradient!(3, curvature: false);
+point_gradient!(4, curvature: true);
+
 fn pointwise_gradient(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(DualSVec64<3>) -> DualSVec64<3>) -> (f64, [f64; NDOF]) {
-    let mut v = PointGradient { el, q, energy: 0.0, grad: [0.0; NDOF] };
+    let mut v = PointGradient::<3> { el, q, energy: 0.0, grad: [0.0; NDOF] };
     StandardTerms::new(&el.params, rules, w).visit(&mut v);
     (v.energy, v.grad)
+}
+
+/// [`pointwise_derivatives_rod`] without the Hessian: g̃ per point by `DualSVec64<4>`
+/// in the effective unknowns, then g = J_mᵀ g̃ — the same arithmetic as the gradient of
+/// the Hessian path.
+fn pointwise_gradient_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(DualSVec64<4>) -> DualSVec64<4>) -> (f64, [f64; NDOF]) {
+    let qe = el.effective(q);
+    let mut v = PointGradient::<4> { el, q: &qe, energy: 0.0, grad: [0.0; NDOF] };
+    StandardTerms::new(&el.params, rules, w).visit(&mut v);
+    (v.energy, map_transpose_times(&map_jacobian(el, q), &v.grad))
 }
 
 /// The linear map B (V × 8) from an element's unknowns to the point values
@@ -243,13 +259,13 @@ fn point_map<const V: usize>(xi: f64, h: f64) -> [[f64; NDOF]; V] {
 #[inline]
 #[allow(clippy::needless_range_loop)] // the V × 8 products read clearer with indices
 fn add_point<const V: usize>(b: &[[f64; NDOF]; V], g: &[f64; V], h: &[[f64; V]; V], scale: f64, grad: &mut [f64; NDOF], hess: &mut [[f64; NDOF]; NDOF]) {
+    add_point_gradient(b, g, scale, grad);
     // Bᵀ H, then (Bᵀ H) B
     let mut bth = [[0.0; V]; NDOF];
     for i in 0..NDOF {
         for a in 0..V {
             let bi = b[a][i];
             if bi != 0.0 {
-                grad[i] += scale * bi * g[a];
                 for c in 0..V {
                     bth[i][c] += bi * h[a][c];
                 }
@@ -263,6 +279,20 @@ fn add_point<const V: usize>(b: &[[f64; NDOF]; V], g: &[f64; V], h: &[[f64; V]; 
                 s += bt[a] * b[a][j];
             }
             *hv += scale * s;
+        }
+    }
+}
+
+/// The gradient share of [`add_point`]: grad += s Bᵀ g.
+#[inline]
+#[allow(clippy::needless_range_loop)] // the V × 8 product reads clearer with indices
+fn add_point_gradient<const V: usize>(b: &[[f64; NDOF]; V], g: &[f64; V], scale: f64, grad: &mut [f64; NDOF]) {
+    for i in 0..NDOF {
+        for a in 0..V {
+            let bi = b[a][i];
+            if bi != 0.0 {
+                grad[i] += scale * bi * g[a];
+            }
         }
     }
 }
@@ -342,26 +372,16 @@ fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermR
     let ElementDerivatives { energy, gradient: ge, hessian: he } = v.out;
     // chain rule through the augmented map (K9)
     let alpha = el.alpha();
-    let mut jm = [[0.0; NDOF]; NDOF];
-    for (i, row) in jm.iter_mut().enumerate() {
-        row[i] = 1.0;
-    }
+    let jm = map_jacobian(el, q);
     let mut second: Vec<(usize, usize, f64)> = Vec::new(); // (i, j, g̃ₖ α) symmetric pairs
     for (flag, end) in el.augmented.iter().zip([0usize, 2]) {
         if *flag {
-            let nu = NU_DOFS[end];
-            let fac = 1.0 + alpha * q[nu];
             for k in [S_DOFS[end + 1], NU_DOFS[end + 1]] {
-                jm[k][k] = fac;
-                jm[k][nu] = alpha * q[k];
-                second.push((k, nu, ge[k] * alpha));
+                second.push((k, NU_DOFS[end], ge[k] * alpha));
             }
         }
     }
-    let mut out = ElementDerivatives { energy, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
-    for j in 0..NDOF {
-        out.gradient[j] = (0..NDOF).map(|k| jm[k][j] * ge[k]).sum();
-    }
+    let mut out = ElementDerivatives { energy, gradient: map_transpose_times(&jm, &ge), hessian: [[0.0; NDOF]; NDOF] };
     // Jᵀ K̃ J
     let mut kj = [[0.0; NDOF]; NDOF];
     for a in 0..NDOF {
@@ -379,6 +399,33 @@ fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermR
         out.hessian[j][i] += v;
     }
     out
+}
+
+/// J_m = ∂m/∂q of the augmented map (K9) ([`pointwise_derivatives_rod`]): the identity
+/// but for the rows o+1, o+3 of a flagged node, (1 + α q_{o+2}) on the diagonal and
+/// α q_k in the column o+2.
+fn map_jacobian(el: &ElementContext, q: &[f64; NDOF]) -> [[f64; NDOF]; NDOF] {
+    let alpha = el.alpha();
+    let mut jm = [[0.0; NDOF]; NDOF];
+    for (i, row) in jm.iter_mut().enumerate() {
+        row[i] = 1.0;
+    }
+    for (flag, end) in el.augmented.iter().zip([0usize, 2]) {
+        if *flag {
+            let nu = NU_DOFS[end];
+            let fac = 1.0 + alpha * q[nu];
+            for k in [S_DOFS[end + 1], NU_DOFS[end + 1]] {
+                jm[k][k] = fac;
+                jm[k][nu] = alpha * q[k];
+            }
+        }
+    }
+    jm
+}
+
+/// J_mᵀ g̃: the gradient in q from the one in the effective unknowns.
+fn map_transpose_times(jm: &[[f64; NDOF]; NDOF], ge: &[f64; NDOF]) -> [f64; NDOF] {
+    std::array::from_fn(|j| (0..NDOF).map(|k| jm[k][j] * ge[k]).sum())
 }
 
 /// The labels of the centreline terms every formulation shares, in assembly order:
@@ -474,8 +521,7 @@ impl<F: Formulation> Kernel for F {
             if plain(el) {
                 return pointwise_gradient(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
             }
-            let d = pointwise_derivatives_rod(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
-            return (d.energy, d.gradient);
+            return pointwise_gradient_rod(el, q, &Formulation::rules(self), |l| self.strain_energy_density(l, ea));
         }
         let x = SVector::<f64, NDOF>::from_column_slice(q);
         let (e, g) = gradient(

@@ -119,8 +119,13 @@ pub struct Evaluated {
 /// Variables of an element's friction load: q (8), c, ω₂, τ_a, τ_b.
 pub(super) const NEV: usize = element_size(NDOF);
 
-/// Residual entries and Jacobian block of an element's friction load.
-pub(super) type ElementLoad<const E: usize> = ([f64; E], [[f64; E]; E]);
+/// Residual entries and, for a Jacobian pass, the Jacobian block of an element's
+/// friction load (of a friction point: [`PointTerms`]).
+pub(super) type ElementLoad<const E: usize> = ([f64; E], Option<Box<[[f64; E]; E]>>);
+
+/// Residual entries, the Jacobian block (a Jacobian pass only) and the results of a
+/// friction point.
+pub(super) type PointTerms<const P: usize> = ([f64; P], Option<Box<[[f64; P]; P]>>, PointResult);
 
 /// Quadrature of the friction load (DS1)–(DS3): 4-point Gauss–Legendre (τ linear × λ ×
 /// a cubic shape function).
@@ -213,33 +218,35 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// linear between its edge values: −∫ τ λ ∂S/∂q dσ on the S-rows (values and
     /// slopes), +∫ τ λ dσ on the c-row, −∫ τ dσ on the ω₂-row of a driven element
     /// (open ends, §12.3 of docs/fem-cosserat.md: +∫ τ λ dσ on the ω-row, nothing else);
-    /// with its Jacobian in (q, c, ω₂, τ_a, τ_b).
-    pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool) -> ElementLoad<E> {
+    /// with, if `jacobian`, its Jacobian in (q, c, ω₂, τ_a, τ_b) (else the values alone,
+    /// by plain f64 evaluation).
+    pub(super) fn element_friction(&self, e: usize, z: &[f64], tau: [f64; 2], driven: bool, jacobian: bool) -> ElementLoad<E> {
         let el = self.asm.context(e, &self.params);
         let layout = self.asm.kernel().layout();
         let q = self.asm.dofs().gather(e, z, self.length);
-        let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
         let jac = el.jacobian();
         let h = el.geometry.h;
         let (ic, iw, ia) = (N, N + 1, N + 2);
         let mut r = [0.0; E];
-        let mut j = [[0.0; E]; E];
+        let mut block = jacobian.then(|| Box::new([[0.0; E]; E]));
         for &(xi, wg) in FRICTION_RULE.points() {
-            let (lam, dl) = point_stretch(layout, &el, &qv, xi);
+            let (lam, dl) = point_stretch(layout, &el, &q, xi, jacobian);
             let shape = [0.5 * (1.0 - xi), 0.5 * (1.0 + xi)];
             let t = shape[0] * tau[0] + shape[1] * tau[1];
             let w = wg * jac;
-            match material_derivatives(layout, &el, &q, xi) {
+            match material_derivatives(layout, &el, &q, xi, jacobian) {
                 (_, None) => {
                     let (vw, _) = crate::hermite::weights(xi, h);
                     // S = Σ vw_k (s_a, s'_a, s_b, s'_b): the s unknowns of the layout
                     for (k, &loc) in layout.hermite_indices(0).iter().enumerate() {
                         r[loc] -= w * t * lam * vw[k];
-                        for m in 0..N {
-                            j[loc][m] -= w * t * dl[m] * vw[k];
-                        }
-                        for a in 0..2 {
-                            j[loc][ia + a] -= w * shape[a] * lam * vw[k];
+                        if let Some(j) = block.as_deref_mut() {
+                            for m in 0..N {
+                                j[loc][m] -= w * t * dl[m] * vw[k];
+                            }
+                            for a in 0..2 {
+                                j[loc][ia + a] -= w * shape[a] * lam * vw[k];
+                            }
                         }
                     }
                 }
@@ -247,11 +254,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 (ds, Some(d2s)) => {
                     for loc in 0..N {
                         r[loc] -= w * t * lam * ds[loc];
-                        for m in 0..N {
-                            j[loc][m] -= w * t * (dl[m] * ds[loc] + lam * d2s[loc][m]);
-                        }
-                        for a in 0..2 {
-                            j[loc][ia + a] -= w * shape[a] * lam * ds[loc];
+                        if let Some(j) = block.as_deref_mut() {
+                            for m in 0..N {
+                                j[loc][m] -= w * t * (dl[m] * ds[loc] + lam * d2s[loc][m]);
+                            }
+                            for a in 0..2 {
+                                j[loc][ia + a] -= w * shape[a] * lam * ds[loc];
+                            }
                         }
                     }
                 }
@@ -259,20 +268,23 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             // the material balance (DS2)/(C21): the c-row on a loop, the ω-row open
             let ib = if self.sp.ends == Ends::Loop { ic } else { iw };
             r[ib] += w * t * lam;
-            for m in 0..N {
-                j[ib][m] += w * t * dl[m];
-            }
-            for a in 0..2 {
-                j[ib][ia + a] += w * shape[a] * lam;
-            }
-            if driven && self.sp.ends == Ends::Loop {
+            let on_loop = driven && self.sp.ends == Ends::Loop;
+            if on_loop {
                 r[iw] -= w * t;
+            }
+            if let Some(j) = block.as_deref_mut() {
+                for m in 0..N {
+                    j[ib][m] += w * t * dl[m];
+                }
                 for a in 0..2 {
-                    j[iw][ia + a] -= w * shape[a];
+                    j[ib][ia + a] += w * shape[a] * lam;
+                    if on_loop {
+                        j[iw][ia + a] -= w * shape[a];
+                    }
                 }
             }
         }
-        (r, j)
+        (r, block)
     }
 
     /// Slip dissipation D = ∫ τ v dσ, v = cλ − Rω_k, with the quadrature and the
@@ -359,23 +371,29 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // transport inertia (D8) with c an unknown: rows q, columns (q, c)
         if let Some(rho) = sp.inertia {
             let layout = self.asm.kernel().layout();
-            let per: Vec<InertiaBlock<N>> = (0..self.asm.mesh().len())
-                .into_par_iter()
-                .map(|e| {
-                    let el = self.asm.context(e, &self.params);
-                    let q = self.asm.dofs().gather(e, z, self.length);
-                    inertia_derivatives(layout, &el, &q, c, rho, self.strain_rule)
-                })
-                .collect();
-            for (e, (g, gc, h)) in per.iter().enumerate() {
-                // the c column after each row's q columns
-                scatter(self.asm.dofs().element(e), g, &|i, j| if j == N { gc[i] } else { h[i][j] }, Some(N), &mut residual, with_jacobian.then_some(&mut values));
+            if with_jacobian {
+                let per: Vec<InertiaBlock<N>> = (0..self.asm.mesh().len())
+                    .into_par_iter()
+                    .map(|e| inertia_derivatives(layout, &self.asm.context(e, &self.params), &self.asm.dofs().gather(e, z, self.length), c, rho, self.strain_rule))
+                    .collect();
+                for (e, (g, gc, h)) in per.iter().enumerate() {
+                    // the c column after each row's q columns
+                    scatter(self.asm.dofs().element(e), g, &|i, j| if j == N { gc[i] } else { h[i][j] }, Some(N), &mut residual, Some(&mut values));
+                }
+            } else {
+                let per: Vec<[f64; N]> = (0..self.asm.mesh().len())
+                    .into_par_iter()
+                    .map(|e| inertia_gradient(layout, &self.asm.context(e, &self.params), &self.asm.dofs().gather(e, z, self.length), c, rho, self.strain_rule))
+                    .collect();
+                for (e, g) in per.iter().enumerate() {
+                    scatter(self.asm.dofs().element(e), g, &|_, _| 0.0, None, &mut residual, None);
+                }
             }
         }
         // friction points (DS1)–(DS4)
-        let mut per: Vec<([f64; P], [[f64; P]; P], PointResult)> = (0..self.points.len())
+        let mut per: Vec<PointTerms<P>> = (0..self.points.len())
             .into_par_iter()
-            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false))
+            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false, with_jacobian))
             .collect();
         // a pulley whose contact points all slide leaves c or ω₂ without an equation
         // (no steady creep state has that: each contact zone sticks at entry); within
@@ -392,7 +410,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 ((res.traction + sp.kappa * res.velocity).abs() - sp.mu * res.normal) / (sp.mu * res.normal)
             };
             if let Some(&k) = idx.iter().min_by(|a, b| margin(**a).total_cmp(&margin(**b))) {
-                per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true);
+                per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true, with_jacobian);
             }
         }
         // both halves of a split node sticking would be two multipliers on one node
@@ -404,14 +422,16 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 let w = self.points[i].weight;
                 let it = 2 * N + 2;
                 per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
-                per[i].1[it] = [0.0; P];
-                per[i].1[it][it] = w;
-                per[i].1[it][P - 1] = -w;
+                if let Some(jac) = per[i].1.as_deref_mut() {
+                    jac[it] = [0.0; P];
+                    jac[it][it] = w;
+                    jac[it][P - 1] = -w;
+                }
             }
         }
         let mut results = Vec::with_capacity(self.points.len());
         for (i, (r, j, res)) in per.into_iter().enumerate() {
-            scatter(&self.variables(i), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
+            scatter(&self.variables(i), &r, &|a, b| j.as_ref().map_or(0.0, |j| j[a][b]), None, &mut residual, with_jacobian.then_some(&mut values));
             results.push(res);
         }
         // (DS1)–(DS3): the consistent friction load of every element with friction points
@@ -422,12 +442,12 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             .map(|(e, o)| {
                 let first = o[0].or(o[1])?;
                 let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
-                Some(self.element_friction(e, z, tau, self.points[first].pulley == Pulley::Driven))
+                Some(self.element_friction(e, z, tau, self.points[first].pulley == Pulley::Driven, with_jacobian))
             })
             .collect();
         for (e, load) in loads.into_iter().enumerate() {
             let Some((r, j)) = load else { continue };
-            scatter(&self.element_variables(e, owners[e]), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
+            scatter(&self.element_variables(e, owners[e]), &r, &|a, b| j.as_ref().map_or(0.0, |j| j[a][b]), None, &mut residual, with_jacobian.then_some(&mut values));
         }
         match sp.ends {
             // the driven pulley's torque balance (DS3) divided by R: + (M₂ + d₂ω₂)/R
@@ -460,14 +480,15 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// The normal traction P⟨−γ̄⟩ of a friction point and its gradient in (q_left,
     /// q_right): γ̄ the trapezoidal mean of the gaps at the node's two element edges (the
     /// loop's for an element with [`FrictionNormal::Nodal`], docs/fem-drive.md §12).
-    fn nodal_normal(&self, pt: FrictionPoint, z: &[f64]) -> (f64, [f64; P]) {
+    /// The gradient only if `grad` (else zero), here and in the other normal rules.
+    fn nodal_normal(&self, pt: FrictionPoint, z: &[f64], grad: bool) -> (f64, [f64; P]) {
         let layout = self.asm.kernel().layout();
         let mut gap: Option<(f64, [f64; P])> = Some((0.0, [0.0; P]));
         let node_weight = pt.left.1 + pt.right.1;
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let g = point_gap(layout, &el, &q, xi);
+            let g = point_gap(layout, &el, &q, xi, grad);
             let f = we / node_weight;
             gap = match (gap, g) {
                 (Some((acc, mut dacc)), Some((gv, dg))) => {
@@ -499,7 +520,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// contact rule's points): there the nodal bound μP⟨−γ̄⟩ shifts the slip zone's
     /// tension by O(μp) × a share of an element, measured 2.3e-3 N at 1024 elements on
     /// the low-tension drive (docs/fem-drive.md §12).
-    fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64) -> (f64, [f64; P], f64) {
+    fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64, grad: bool) -> (f64, [f64; P], f64) {
         let layout = self.asm.kernel().layout();
         let node_weight = pt.left.1 + pt.right.1;
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
@@ -507,18 +528,17 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
-            let (l, dl) = point_stretch(layout, &el, &qv, xi);
+            let (l, dl) = point_stretch(layout, &el, &q, xi, grad);
             let f = we / node_weight;
             lam += f * l;
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
             }
-            if point_gap(layout, &el, &q, 0.0).is_some_and(|(g, _)| g < 0.0) {
+            if point_gap(layout, &el, &q, 0.0, false).is_some_and(|(g, _)| g < 0.0) {
                 share += f;
             }
         }
-        if share == 0.0 || self.nodal_normal(pt, z).0 <= 0.0 {
+        if share == 0.0 || self.nodal_normal(pt, z, false).0 <= 0.0 {
             return (0.0, [0.0; P], 0.0);
         }
         let contour = *self.asm.mesh().contour();
@@ -546,7 +566,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// Cosserat element at the default penalty: the penalty, sampled at the rule's points
     /// only, leaves the cubic ν above the pulley at the nodes by ~10 times the
     /// penetration, measured.)
-    fn tributary_normal(&self, pt: FrictionPoint, z: &[f64]) -> (f64, [f64; P]) {
+    fn tributary_normal(&self, pt: FrictionPoint, z: &[f64], grad: bool) -> (f64, [f64; P]) {
         let layout = self.asm.kernel().layout();
         let rule = self.asm.kernel().rules().contact;
         let node_weight = pt.left.1 + pt.right.1;
@@ -556,7 +576,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             let q = self.asm.dofs().gather(e, z, self.length);
             let f = we / node_weight;
             for &(xi, wg) in rule.points() {
-                let Some((g, dg)) = point_gap(layout, &el, &q, xi) else { continue };
+                let Some((g, dg)) = point_gap(layout, &el, &q, xi, grad) else { continue };
                 if g < 0.0 {
                     // the element mean: Σ w_g ⟨−γ_g⟩ / 2
                     p -= f * 0.5 * wg * self.sp.penalty * g;
@@ -573,7 +593,8 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// (q_left, q_right, c, ω₂, τ_i): (DS1) −wτλ̄ on the S-row of the node, (DS2)
     /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
     /// b = μp with p the normal load of the element's [`FrictionNormal`] rule (λ̄: the upwind element's mean).
-    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool) -> ([f64; P], [[f64; P]; P], PointResult) {
+    /// The Jacobian block only if `jacobian` (else the values by plain f64 evaluation).
+    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool, jacobian: bool) -> PointTerms<P> {
         let pt = self.points[i];
         let sp = &self.sp;
         let w = pt.weight;
@@ -584,7 +605,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             let e = pt.velocity_element();
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let (l, dl) = element_stretch(layout, &el, &q);
+            let (l, dl) = element_stretch(layout, &el, &q, jacobian);
             // (q_left, q_right) in the first 2N entries
             let mut d = [0.0; P];
             let off = if pt.velocity_from_right() { N } else { 0 };
@@ -597,16 +618,16 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             // Paper D's fixed topology on the string: the drum's reaction from the belt's
             // radial equilibrium (docs/fem-drive.md §12, fourth round)
             (Ends::Loop, FrictionNormal::Nodal) if pt.fixed.is_some() => {
-                let (p, dp, dpc) = self.equilibrium_normal(pt, z, c);
+                let (p, dp, dpc) = self.equilibrium_normal(pt, z, c, jacobian);
                 eq_dc = dpc;
                 (p, dp)
             }
-            (Ends::Loop, FrictionNormal::Nodal) => self.nodal_normal(pt, z),
-            (Ends::Loop, FrictionNormal::Tributary) | (Ends::Open { .. }, _) => self.tributary_normal(pt, z),
+            (Ends::Loop, FrictionNormal::Nodal) => self.nodal_normal(pt, z, jacobian),
+            (Ends::Loop, FrictionNormal::Tributary) | (Ends::Open { .. }, _) => self.tributary_normal(pt, z, jacobian),
         };
         let (ic, iw, it) = (2 * N, 2 * N + 1, 2 * N + 2);
         let mut r = [0.0; P];
-        let mut j = [[0.0; P]; P];
+        let mut block = jacobian.then(|| Box::new([[0.0; P]; P]));
         // (DS1)–(DS3) are the elements' consistent friction loads (`element_friction`)
         let driven = pt.pulley == Pulley::Driven;
         // (DS4)
@@ -628,22 +649,26 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 _ => 0.0,
             };
             r[it] = w * (tau - b * s);
-            j[it][it] = w;
-            for k in 0..2 * N {
-                j[it][k] = -w * s * sp.mu * dnormal[k];
+            if let Some(j) = block.as_deref_mut() {
+                j[it][it] = w;
+                for k in 0..2 * N {
+                    j[it][k] = -w * s * sp.mu * dnormal[k];
+                }
+                j[it][ic] = -w * s * sp.mu * eq_dc;
             }
-            j[it][ic] = -w * s * sp.mu * eq_dc;
         } else {
             r[it] = -w * sp.kappa * v;
-            for k in 0..2 * N {
-                j[it][k] = -w * sp.kappa * c * dlam[k];
-            }
-            j[it][ic] = -w * sp.kappa * lam;
-            if omega_unknown {
-                j[it][iw] = w * sp.kappa * sp.radius;
+            if let Some(j) = block.as_deref_mut() {
+                for k in 0..2 * N {
+                    j[it][k] = -w * sp.kappa * c * dlam[k];
+                }
+                j[it][ic] = -w * sp.kappa * lam;
+                if omega_unknown {
+                    j[it][iw] = w * sp.kappa * sp.radius;
+                }
             }
         }
-        (r, j, PointResult { point: pt, traction: tau, normal, velocity: v, slip: slip && b > 0.0 })
+        (r, block, PointResult { point: pt, traction: tau, normal, velocity: v, slip: slip && b > 0.0 })
     }
 }
 
