@@ -23,7 +23,15 @@
 //! - `steady_targets/cosserat-pulley/N`: the open one-pulley layout, N = 128, 512;
 //! - `steady_targets/cosserat-drive/N`: semismooth scheme, N = 128, 256;
 //! - `steady_targets/cosserat-drive-paper-d/128`: Paper D's scheme;
-//! - `steady_targets/string-drive-exudyn/N`: N = 128, 512.
+//! - `steady_targets/string-drive-exudyn/N`: N = 128, 512;
+//! - `steady_targets/exudyn-iteration/N` and `steady_targets/exudyn-lu/N`, N = 128, 512:
+//!   one Newton iteration of the steady equations with the Exudyn scene's parameters —
+//!   the Jacobian pass (F and the generalised Jacobian), the bordered LU solve and one
+//!   residual-only pass at the new iterate (a full step's trial) — against one bordered
+//!   LU solve of the same matrix alone (the numeric sparse LU of the inner block, its
+//!   three triangular solves and the 2 × 2 Schur complement): the ratio of issue 17
+//!   (target ≤ 3). The state is the static start with c, ω₂ guessed and zero
+//!   tractions, as in `--example steady_cost`; the cost of a pass does not depend on it.
 //!
 //! Run: `cargo bench -p fem --bench string_drive`. Sample size 10.
 
@@ -33,7 +41,13 @@ use std::time::Duration;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use drive::Scene;
 use fem::string_drive::{self, DriveSettings};
-use fem::{FemOptions, SolverSettings};
+use fem::assembly::Assembler;
+use fem::kinematics::TermParams;
+use fem::linear::BorderedLu;
+use fem::mesh::Mesh;
+use fem::problem::{BeltSection, Geometry};
+use fem::string_drive::steady::{friction_points, Ends, SteadyParams, SteadyProblem};
+use fem::{FemOptions, SolverSettings, StringHanging};
 
 fn scene(name: &str) -> Scene {
     Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes").join(name)).unwrap()
@@ -114,7 +128,53 @@ fn steady_targets(c: &mut Criterion) {
     let drive = catalogue("cosserat-drive.json");
     let ds = DriveSettings { steady_scheme: string_drive::steady::SteadyScheme::PaperD, ..DriveSettings::from_scene(&drive) };
     group.bench_with_input(BenchmarkId::new("cosserat-drive-paper-d", 128), &128, |b, &n| b.iter(|| solve_catalogue(&drive, n, &ds)));
+    iteration_vs_lu(&mut group, &catalogue("string-drive-exudyn.json"));
     group.finish();
+}
+
+/// `exudyn-iteration/N` against `exudyn-lu/N` (module docs): the steady equations of the
+/// scene's string drive on N elements at its static start.
+fn iteration_vs_lu(group: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>, scene: &Scene) {
+    let settings = SolverSettings::default();
+    let kernel = fem::formulation::find(fem::default_formulation()).unwrap();
+    let (d, b) = (&scene.drive, &scene.belt);
+    let (r, ea, rho, g) = (d.pulley_radius, b.axial_stiffness, b.mass_per_length, scene.effects.gravity.unwrap_or(0.0));
+    let penalty = settings.penalty_factor * ea / (r * r);
+    let geometry = Geometry { radius: r, centre_distance: d.centre_distance };
+    let belt = BeltSection { theory: b.theory, length: b.length, axial_stiffness: ea, mass_per_length: rho, bending_stiffness: None, shear_stiffness: None };
+    let data = StringHanging { geometry, belt, gravity: Some(g), penalty: Some(penalty) };
+    for n in [128, 512] {
+        let (start, _, _) = data.solve(Mesh::new(data.contour().unwrap(), n, 1.0).unwrap(), kernel.clone(), &settings).unwrap();
+        let asm = Assembler::new(start.mesh().clone(), kernel.clone());
+        let points = friction_points(&asm, &[], drive::contour::Direction::Clockwise);
+        let params = TermParams { axial_stiffness: ea, weight: Some(g * rho), penalty: Some(penalty), bending_stiffness: None };
+        let sp = SteadyParams { mu: 0.5, penalty, kappa: 1e6, radius: r, omega1: d.driver_speed, torque: d.driven_torque, damping: d.driven_damping, inertia: Some(rho), ends: Ends::Loop };
+        let prob: SteadyProblem = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
+        let mut x = fem::static_homotopy::transfer(&start, &asm);
+        x.extend([0.95 * r * d.driver_speed, d.driver_speed]);
+        x.extend(std::iter::repeat_n(0.0, points.len()));
+        let (rows, cols) = prob.pattern();
+        let mut lu = BorderedLu::new(&rows, &cols, x.len(), [asm.len(), asm.len() + 1]).unwrap();
+        let values = prob.evaluate(&x, true).unwrap().values;
+        let mut rhs = vec![1.0; x.len()];
+        group.bench_with_input(BenchmarkId::new("exudyn-lu", n), &n, |bch, _| {
+            bch.iter(|| {
+                rhs.fill(1.0);
+                lu.solve(&values, &[], &mut rhs).unwrap();
+                rhs[0]
+            })
+        });
+        group.bench_with_input(BenchmarkId::new("exudyn-iteration", n), &n, |bch, _| {
+            bch.iter(|| {
+                let ev = prob.evaluate(&x, true).unwrap();
+                let mut dx: Vec<f64> = ev.residual.iter().map(|v| -v).collect();
+                lu.solve(&ev.values, &[], &mut dx).unwrap();
+                // the trial at a small fraction of the step keeps it admissible
+                let trial: Vec<f64> = x.iter().zip(&dx).map(|(a, b)| a + 1e-6 * b).collect();
+                prob.evaluate(&trial, false).map_or(0.0, |t| t.residual[0])
+            })
+        });
+    }
 }
 
 criterion_group!(benches, to_steady, direct_steady, steady_targets);
