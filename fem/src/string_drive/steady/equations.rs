@@ -401,7 +401,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // friction points (DS1)–(DS4)
         let mut per: Vec<PointTerms<P>> = (0..self.points.len())
             .into_par_iter()
-            .map(|i| self.point_terms(i, z, c, w2, x[self.it(i)], false, with_jacobian))
+            .map(|i| self.point_terms(i, x, false, with_jacobian))
             .collect();
         // a pulley whose contact points all slide leaves c or ω₂ without an equation
         // (no steady creep state has that: each contact zone sticks at entry); within
@@ -418,7 +418,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 ((res.traction + sp.kappa * res.velocity).abs() - sp.mu * res.normal) / (sp.mu * res.normal)
             };
             if let Some(&k) = idx.iter().min_by(|a, b| margin(**a).total_cmp(&margin(**b))) {
-                per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true, with_jacobian);
+                per[k] = self.point_terms(k, x, true, with_jacobian);
             }
         }
         // both halves of a split node sticking would be two multipliers on one node
@@ -601,7 +601,8 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// +wτλ̄, (DS3) −wτ (driven), (DS4) w(τ − clip(τ + κv, −b, b)) with v = cλ̄ − Rω_k,
     /// b = μp with p the normal load of the element's [`FrictionNormal`] rule (λ̄: the upwind element's mean).
     /// The Jacobian block only if `jacobian` (else the values by plain f64 evaluation).
-    pub(super) fn point_terms(&self, i: usize, z: &[f64], c: f64, w2: f64, tau: f64, force_stick: bool, jacobian: bool) -> PointTerms<P> {
+    pub(super) fn point_terms(&self, i: usize, x: &[f64], force_stick: bool, jacobian: bool) -> PointTerms<P> {
+        let (z, c, w2, tau) = (&x[..self.asm.len()], x[self.ic()], x[self.iw()], x[self.it(i)]);
         let pt = self.points[i];
         let sp = &self.sp;
         let w = pt.weight;

@@ -373,7 +373,7 @@ mod tests {
         // variable weights: H for node values, 1 for slopes) — a fixed floor of 10⁻¹¹
         // drowns the near-zero ν, ψ and slope columns in round-off on graded meshes,
         // whose shortest elements (1.3 mm next to 124 mm) carry residuals of 3·10⁷
-        let scale = variable_weights(&asm, 0.45, 0.08, 10.0, 1.0, points.len());
+        let scale = variable_weights(asm, 0.45, 0.08, 10.0, 1.0, points.len());
         for j in 0..n {
             let d = 1e-7 * x[j].abs().max(if j < asm.len() { scale[j] } else { 1e-4 });
             let (mut xp, mut xm) = (x.clone(), x.clone());
