@@ -66,7 +66,11 @@ pub(crate) fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
 /// the largest |entry| of the first k columns. With rows = cols = k it is the LU of a
 /// square matrix ([`dense_lu`]); [`super::abd`] eliminates 2n × n column blocks.
 pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: &mut [usize]) -> bool {
-    let scale = (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()));
+    let scale = if k == cols {
+        a[..rows * cols].iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+    } else {
+        (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()))
+    };
     if !(scale.is_finite() && scale > 0.0) {
         return false;
     }
@@ -85,7 +89,12 @@ pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: 
         // Row slices instead of indices: a bounds check per row, not per multiply–add.
         let (head, below) = a.split_at_mut((r + 1) * cols);
         let pivot_row = &head[r * cols + r + 1..(r + 1) * cols];
+        // A zero entry leaves its row as it is (its multiplier 0 / d is zero): no
+        // division (K of a sparse ∂f/∂y has many, e.g. the elastica's x and y columns).
         for row in below[..(rows - r - 1) * cols].chunks_exact_mut(cols) {
+            if row[r] == 0.0 {
+                continue;
+            }
             let f = row[r] / d;
             row[r] = f;
             if f != 0.0 {
