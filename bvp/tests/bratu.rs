@@ -200,3 +200,25 @@ fn natural_checked_rejects_unacceptable_steps() {
     // Without the test the same homotopy reaches λ = 3.
     assert!(continuation::natural(&Bratu, &guess, 0.1, 3.0, &copts, &opts).is_ok());
 }
+
+/// The accuracy-matched solve of the speed comparison with scipy's `solve_bvp`
+/// (`docs/bvp-engine.md`, "Speed"; `bvp/examples/speed.rs`): the lower branch at
+/// λ = 3.51 by gauss8 (the default scheme) at tol 1e-8, started from the closed form at
+/// θ = 4 with 11 nodes, must be at least as accurate as scipy at tol 1e-8 (max error of
+/// y 3.5e-10 with 379 nodes); here the error of y and y′ together is bounded, which is
+/// stricter. Measured 1.5e-10 on 63 nodes; the node bound (190, half of scipy's)
+/// catches an adaptation change that buys the accuracy with many more nodes.
+#[test]
+fn gauss8_at_tol_1e_8_is_as_accurate_as_scipy_with_half_its_nodes() {
+    let exact = Exact::new(LAMBDA, BratuBranch::Lower).unwrap();
+    let mut guess = Exact::from_theta(4.0).guess(11);
+    guess.eta = LAMBDA;
+    for jacobian in [JacobianMode::Ad, JacobianMode::FiniteDifference] {
+        let opts = CollocationOptions { scheme: Scheme::Gauss8, tolerance: 1e-8, jacobian, ..Default::default() };
+        let sol = collocation::solve(&Bratu, &guess, &opts).expect("Bratu by gauss8");
+        let err = exact.max_dense_error(&sol, 2001);
+        eprintln!("gauss8 {jacobian:?}: error {err:.2e}, nodes {}, newton {}", sol.stats.mesh_nodes, sol.stats.newton_iterations);
+        assert!(err <= 3.5e-10, "{jacobian:?}: error {err:e}");
+        assert!(sol.stats.mesh_nodes <= 190, "{jacobian:?}: {:?}", sol.stats);
+    }
+}

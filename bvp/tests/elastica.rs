@@ -146,3 +146,27 @@ fn collocation_recovers_the_exact_mode_at_orders_four_and_six() {
         }
     }
 }
+
+/// The accuracy-matched solve of the speed comparison with scipy's `solve_bvp`
+/// (`docs/bvp-engine.md`, "Speed"; `bvp/examples/speed.rs`): gauss8 (the default
+/// scheme) at tol 1e-8 from the linear mode must be at least as accurate as scipy at
+/// tol 1e-8 on this problem (error 4.5e-11 with 1281 nodes), or the speed ratio would
+/// compare unequal accuracies. Measured 1.38e-11 on 213 nodes with 7 Newton iterations;
+/// the node bound (300, scipy's 1281 / 4) catches a mesh adaptation or Newton change
+/// that buys the accuracy with many more nodes. Both Jacobian modes: the condensation
+/// sees the same matrices up to the finite differences' error.
+#[test]
+fn gauss8_at_tol_1e_8_is_as_accurate_as_scipy_with_a_fifth_of_its_nodes() {
+    let ex = mode();
+    let problem = ex.problem();
+    let g = guess(1.0, 11);
+    for jacobian in [JacobianMode::Ad, JacobianMode::FiniteDifference] {
+        let opts = CollocationOptions { scheme: Scheme::Gauss8, tolerance: 1e-8, jacobian, ..Default::default() };
+        let sol = collocation::solve(&problem, &g, &opts).expect("elastica by gauss8");
+        let err = ex.max_error(&sol, 2000);
+        log_run(&format!("collocation gauss8 {jacobian:?}"), 1e-8, err, &sol);
+        assert!(err <= 4.5e-11, "{jacobian:?}: error {err:e}");
+        assert!(sol.stats.mesh_nodes <= 300, "{jacobian:?}: {:?}", sol.stats);
+        assert!(sol.stats.max_residual <= 1e-8);
+    }
+}
