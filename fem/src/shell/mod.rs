@@ -9,9 +9,12 @@
 //!   camber and the quadratic energy density of (19);
 //! - [`interlayer`]: the elastic interlayer (40)–(41) with the drums, their tilt and the
 //!   per-point tangential deformation (docs/fem-shell.md §7–§8);
+//! - [`hanging`]: stage (0), the static hanging belt with its zero modes constrained
+//!   (docs/fem-shell.md §9.1);
 //! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
 //!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
+pub mod hanging;
 pub mod interlayer;
 pub mod kernel;
 pub mod membrane;
@@ -32,6 +35,15 @@ pub enum ShellError {
     /// The surface mesh cannot be built.
     #[error(transparent)]
     Surface(#[from] crate::surface::SurfaceError),
+    /// Single-node constraints need a ζ-node on the centre line ζ = 0.
+    #[error("no ζ-node at ζ = 0 for the zero-mode constraints (nearest at {nearest} m); use an even number of ζ-elements on a symmetric width")]
+    NoCentreNode { nearest: f64 },
+    /// The planar start (the equivalent rod) failed.
+    #[error("the planar start (equivalent Kirchhoff rod): {0}")]
+    PlanarStart(Box<crate::FemError>),
+    /// The static shell's Newton failed.
+    #[error("the static hanging shell: {0}")]
+    Static(Box<crate::analysis::time_stepping::TimeSteppingError>),
     /// A material or model parameter out of its range.
     #[error("{what} = {value} is out of range")]
     BadParameter { what: &'static str, value: f64 },

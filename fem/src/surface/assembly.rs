@@ -29,7 +29,7 @@ use crate::quadrature::Rule;
 use crate::Scalar;
 
 pub use super::dofs::PointDerivative;
-use super::dofs::{EdgeConstraint, SurfaceDofMap, PER_FIELD};
+use super::dofs::{EdgeConstraint, NodeConstraint, SurfaceDofMap, PER_FIELD};
 use super::history::SurfaceHistory;
 use super::mesh::SurfaceMesh;
 use super::SurfaceError;
@@ -180,10 +180,19 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// # Errors
     /// [`SurfaceError::BadKernel`] (layout not 2-D, a field it lacks, an invalid rule).
     pub fn new(mesh: SurfaceMesh, kernel: K, fixed: &[EdgeConstraint]) -> Result<Self, SurfaceError> {
+        SurfaceAssembler::with_nodes(mesh, kernel, fixed, &[])
+    }
+
+    /// [`Self::new`] with the single-node constraints `nodes` besides the edge
+    /// constraints `fixed` ([`SurfaceDofMap::with_nodes`]).
+    ///
+    /// # Errors
+    /// As [`Self::new`]; a node constraint off the mesh.
+    pub fn with_nodes(mesh: SurfaceMesh, kernel: K, fixed: &[EdgeConstraint], nodes: &[NodeConstraint]) -> Result<Self, SurfaceError> {
         let layout = kernel.layout();
         let variables = kernel.variables();
         let fields: Vec<Field> = variables.iter().map(|v| v.field).collect();
-        let dofs = SurfaceDofMap::new(&mesh, layout, &fields, fixed)?;
+        let dofs = SurfaceDofMap::with_nodes(&mesh, layout, &fields, fixed, nodes)?;
         let terms = kernel.terms();
         if let Some(rule) = terms.iter().flat_map(|t| t.rule).find(|r| r.validate().is_err()) {
             return Err(SurfaceError::BadKernel { layout: format!("{:?}", layout.fields), reason: format!("rule {}", rule.name()) });

@@ -68,6 +68,23 @@ pub struct EdgeConstraint {
     pub nodal: PointDerivative,
 }
 
+/// A nodal unknown fixed to zero at one node: σ-node `sigma_node`, ζ-node `zeta_node`.
+/// Meant for one unknown of a zero mode of the energy (a rigid translation, the gauge
+/// of a material coordinate): the gradient along the mode vanishes identically, so at an
+/// equilibrium of the other unknowns the fixed one carries no reaction
+/// (docs/fem-shell.md §9.1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct NodeConstraint {
+    /// σ-node index (0 … n_σ − 1).
+    pub sigma_node: usize,
+    /// ζ-node index (0 … n_ζ).
+    pub zeta_node: usize,
+    /// The field.
+    pub field: Field,
+    /// The unknown (one of [`PointDerivative::NODAL`]).
+    pub nodal: PointDerivative,
+}
+
 /// The numbering of the used fields' unknowns on a surface mesh.
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceDofMap {
@@ -88,6 +105,16 @@ impl SurfaceDofMap {
     /// [`SurfaceError::BadKernel`]: a layout that is not 2-D, a field it does not carry,
     /// no field, or a constraint on a field not numbered.
     pub fn new(mesh: &SurfaceMesh, layout: ElementLayout, fields: &[Field], fixed: &[EdgeConstraint]) -> Result<SurfaceDofMap, SurfaceError> {
+        SurfaceDofMap::with_nodes(mesh, layout, fields, fixed, &[])
+    }
+
+    /// [`Self::new`] with the single-node constraints `nodes` besides the edge
+    /// constraints `fixed`.
+    ///
+    /// # Errors
+    /// As [`Self::new`]; [`SurfaceError::BadKernel`] also for a node constraint off the
+    /// mesh or on a field not numbered.
+    pub fn with_nodes(mesh: &SurfaceMesh, layout: ElementLayout, fields: &[Field], fixed: &[EdgeConstraint], nodes_fixed: &[NodeConstraint]) -> Result<SurfaceDofMap, SurfaceError> {
         let bad = |reason: String| SurfaceError::BadKernel { layout: format!("{:?}", layout.fields), reason };
         if layout.dimension != Dimension::Two {
             return Err(bad("not a 2-D layout".into()));
@@ -97,6 +124,9 @@ impl SurfaceDofMap {
         }
         if let Some(c) = fixed.iter().find(|c| !fields.contains(&c.field) || c.nodal.nodal().is_none()) {
             return Err(bad(format!("constraint on {:?} {:?}, which is not a numbered nodal unknown", c.field, c.nodal)));
+        }
+        if let Some(c) = nodes_fixed.iter().find(|c| !fields.contains(&c.field) || c.nodal.nodal().is_none() || c.sigma_node >= mesh.sigma_elements() || c.zeta_node > mesh.zeta_elements()) {
+            return Err(bad(format!("node constraint on {:?} {:?} at node ({}, {}), which is not a numbered nodal unknown of the mesh", c.field, c.nodal, c.sigma_node, c.zeta_node)));
         }
         let used: Vec<Field> = layout.fields.iter().copied().filter(|f| fields.contains(f)).collect();
         if used.is_empty() {
@@ -116,7 +146,7 @@ impl SurfaceDofMap {
                                 ZetaEdge::Upper => j == top,
                             };
                             on && c.field == *field && c.nodal == d
-                        });
+                        }) || nodes_fixed.iter().any(|c| c.sigma_node == i && c.zeta_node == j && c.field == *field && c.nodal == d);
                         if !held {
                             nodes[(mesh.node(i, j) * nf + slot) * 4 + k] = Some(len);
                             len += 1;
@@ -179,6 +209,26 @@ impl SurfaceDofMap {
         self.nodes[(node * self.fields.len() + slot) * 4 + nodal.nodal()?]
     }
 
+    /// The global vector of `to` (a numbering of the same mesh and fields, with other
+    /// constraints) holding the values of `z` (numbered by `self`); unknowns fixed here
+    /// are 0 there.
+    ///
+    /// # Errors
+    /// [`SurfaceError::BadKernel`] if the two numberings differ in fields or nodes, or
+    /// `z` is not numbered by `self`.
+    pub fn transfer(&self, z: &[f64], to: &SurfaceDofMap) -> Result<Vec<f64>, SurfaceError> {
+        if self.fields != to.fields || self.nodes.len() != to.nodes.len() || z.len() != self.len {
+            return Err(SurfaceError::BadKernel { layout: format!("{:?}", self.layout.fields), reason: format!("transfer of {} values between numberings of {:?} ({} slots) and {:?} ({} slots)", z.len(), self.fields, self.nodes.len(), to.fields, to.nodes.len()) });
+        }
+        let mut out = vec![0.0; to.len];
+        for (from, into) in self.nodes.iter().zip(&to.nodes) {
+            if let (Some(a), Some(b)) = (from, into) {
+                out[*b] = z[*a];
+            }
+        }
+        Ok(out)
+    }
+
     /// Element e's local unknowns from the global vector z (0 where fixed).
     pub fn gather(&self, e: usize, z: &[f64]) -> Vec<f64> {
         self.element(e).iter().map(|g| g.map_or(0.0, |g| z[g])).collect()
@@ -229,5 +279,37 @@ mod tests {
         let second = EdgeConstraint { edge: ZetaEdge::Lower, field: Field::Nu, nodal: PointDerivative::DZetaZeta };
         assert!(matches!(SurfaceDofMap::new(&mesh, SHELL, &[Field::Nu], &[second]), Err(SurfaceError::BadKernel { .. })));
         assert!(matches!(SurfaceDofMap::new(&mesh, crate::element::STRING, &[Field::Nu], &[]), Err(SurfaceError::BadKernel { .. })));
+    }
+
+    /// A node constraint removes exactly its one unknown; a transfer to the
+    /// unconstrained numbering puts every value where it was and 0 at the fixed one, and
+    /// back again; constraints off the mesh and mismatched transfers are refused.
+    #[test]
+    fn node_constraints_remove_one_unknown_and_transfer_keeps_values() {
+        let mesh = SurfaceMesh::mapped(1.0, 5, |u| u, [0.0, 0.2], 2).unwrap();
+        let fields = [Field::Nu, Field::Z];
+        let pin = [NodeConstraint { sigma_node: 3, zeta_node: 1, field: Field::Z, nodal: PointDerivative::Value }];
+        let free = SurfaceDofMap::new(&mesh, SHELL, &fields, &[]).unwrap();
+        let held = SurfaceDofMap::with_nodes(&mesh, SHELL, &fields, &[], &pin).unwrap();
+        assert_eq!(held.len(), free.len() - 1);
+        let node = mesh.node(3, 1);
+        assert_eq!(held.node_unknown(node, 1, PointDerivative::Value), None);
+        assert!(held.node_unknown(node, 1, PointDerivative::DSigma).is_some() && held.node_unknown(node, 0, PointDerivative::Value).is_some());
+        assert!(held.node_unknown(mesh.node(3, 0), 1, PointDerivative::Value).is_some());
+        let z: Vec<f64> = (0..held.len()).map(|i| 1.0 + i as f64).collect();
+        let wide = held.transfer(&z, &free).unwrap();
+        assert_eq!(wide[free.node_unknown(node, 1, PointDerivative::Value).unwrap()], 0.0);
+        assert_eq!(wide.iter().filter(|&&v| v == 0.0).count(), 1);
+        assert_eq!(free.transfer(&wide, &held).unwrap(), z);
+        for e in 0..mesh.len() {
+            assert_eq!(held.gather(e, &z), free.gather(e, &wide));
+        }
+        let off = NodeConstraint { sigma_node: 5, zeta_node: 0, field: Field::Z, nodal: PointDerivative::Value };
+        assert!(matches!(SurfaceDofMap::with_nodes(&mesh, SHELL, &fields, &[], &[off]), Err(SurfaceError::BadKernel { .. })));
+        let unused = NodeConstraint { field: Field::S, ..pin[0] };
+        assert!(matches!(SurfaceDofMap::with_nodes(&mesh, SHELL, &fields, &[], &[unused]), Err(SurfaceError::BadKernel { .. })));
+        let other = SurfaceDofMap::new(&mesh, SHELL, &[Field::Nu], &[]).unwrap();
+        assert!(matches!(held.transfer(&z, &other), Err(SurfaceError::BadKernel { .. })));
+        assert!(matches!(held.transfer(&z[1..], &free), Err(SurfaceError::BadKernel { .. })));
     }
 }
