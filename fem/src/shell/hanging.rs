@@ -82,7 +82,9 @@ pub struct StaticShell {
 
 /// The width-integrated state at a station σ: height y of the mid-surface's centre
 /// (m, the width average), tension T = ∫ λ N_ss dζ (N, the physical force along the
-/// belt: N_ss is per initial width, λ = |∂̊_s r|), bending moment M = −∫ M_ss dζ (N m,
+/// belt: N_ss is the second Piola–Kirchhoff force per initial width, λ = |F e_s| =
+/// √(1 + 2E_ss) the stretch of the initial fibre, so λN_ss is the first Piola–Kirchhoff
+/// force along the fibre), bending moment M = −∫ M_ss dζ (N m,
 /// the rod's sign: positive where the rod's θ′ > 0, docs/fem-shell.md §9.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Station {
@@ -295,7 +297,7 @@ impl StaticShell {
                 let weight = 0.5 * (pair[1] - pair[0]) * w;
                 let (at, v) = point_values(asm, z, sigma, at_zeta).ok_or(ShellError::BadParameter { what: "station σ", value: sigma })?;
                 let r = shell.position(&at, &v);
-                let stretch = (1.0 + 2.0 * shell.strain(&at, &v)[0]).sqrt() * shell.fibre_length(at_zeta);
+                let stretch = (1.0 + 2.0 * shell.strain(&at, &v)[0]).sqrt();
                 out.height += r[1] * weight / width;
                 out.tension += stretch * shell.forces(&at, &v)[0] * weight;
                 out.moment -= shell.moments(&at, &v)[0] * weight;
