@@ -1136,20 +1136,30 @@ mod tests {
     /// for two collocation solutions on their own adapted meshes) in no more Newton
     /// iterations. Source: the catalogue's `string-drive` (cheap: a string drive) along
     /// its driven torque, 10 → 10.5 → 11 N·m.
-    #[test]
-    fn the_secant_predictor_extrapolates_and_changes_only_the_guess() {
+    /// The catalogue's `string-drive` (cheap: a string drive) swept along its driven
+    /// torque, 10 → 10.5 → 11 N·m.
+    fn torque_line() -> SweepPlan {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/string-drive.json");
         let scene = Scene::from_path(std::path::Path::new(path)).expect("catalogue scene");
         let range: ParamRange = "drive.driven_torque=10:11:3".parse().unwrap();
-        let plan = SweepPlan::new(&scene, vec![range], 0).unwrap();
-        let run = |v: f64, warm: Option<&WarmStart>| {
-            let s = plan.scene_at(&[v]).unwrap();
-            let opts = plan.bvp_options(&s).unwrap();
-            match warm {
-                Some(w) => bvp::scene::solve_scene_from(&s, &opts, w).unwrap(),
-                None => bvp::scene::solve_scene(&s, &opts).unwrap(),
-            }
-        };
+        SweepPlan::new(&scene, vec![range], 0).unwrap()
+    }
+
+    /// The BVP run of `plan` at the value `v`, cold or from `warm`.
+    fn run_at(plan: &SweepPlan, v: f64, warm: Option<&WarmStart>) -> Result<BvpRun, PointStatus> {
+        let s = plan.scene_at(&[v]).unwrap();
+        let opts = plan.bvp_options(&s).unwrap();
+        match warm {
+            Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
+            None => bvp::scene::solve_scene(&s, &opts),
+        }
+        .map_err(|e| PointStatus::Failed { error: e.to_string() })
+    }
+
+    #[test]
+    fn the_secant_predictor_extrapolates_and_changes_only_the_guess() {
+        let plan = torque_line();
+        let run = |v: f64, warm: Option<&WarmStart>| run_at(&plan, v, warm).unwrap();
         let first = run(10.0, None);
         let second = run(10.5, first.warm.as_ref());
         let converged = |t: f64, r: &BvpRun| Converged { t, warm: r.warm.clone(), scalars: r.summary.scalars() };
@@ -1186,23 +1196,11 @@ mod tests {
     /// step still solves, from the last solution, to its plain warm start's summary (the
     /// same solve: to 1e-12); without the retry the step fails. A failure of both is
     /// the step's failure (two solves); an invalid scene is not retried (one); without a
-    /// predictor there is one solve from the plain start. Source: the catalogue's
-    /// `string-drive` along its driven torque, 10 → 10.5 → 11 N·m.
+    /// predictor there is one solve from the plain start. Source: [`torque_line`].
     #[test]
     fn a_failed_predicted_start_is_retried_from_the_last_solution() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/string-drive.json");
-        let scene = Scene::from_path(std::path::Path::new(path)).expect("catalogue scene");
-        let range: ParamRange = "drive.driven_torque=10:11:3".parse().unwrap();
-        let plan = SweepPlan::new(&scene, vec![range], 0).unwrap();
-        let run = |v: f64, warm: Option<&WarmStart>| {
-            let s = plan.scene_at(&[v]).unwrap();
-            let opts = plan.bvp_options(&s).unwrap();
-            match warm {
-                Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
-                None => bvp::scene::solve_scene(&s, &opts),
-            }
-            .map_err(|e| PointStatus::Failed { error: e.to_string() })
-        };
+        let plan = torque_line();
+        let run = |v: f64, warm: Option<&WarmStart>| run_at(&plan, v, warm);
         let first = run(10.0, None).unwrap();
         let second = run(10.5, first.warm.as_ref()).unwrap();
         let converged = |t: f64, r: &BvpRun| Converged { t, warm: r.warm.clone(), scalars: r.summary.scalars() };
