@@ -136,8 +136,8 @@ fn cosserat_hanging_is_solved_by_the_bvp_and_by_the_fe() {
 }
 
 /// Every exit 0 is a promise: the FE's Cosserat drive at 128 elements solves (exit 0)
-/// but its slip zones span only 1.4 and 0.6 arc elements, below `SLIP_ELEMENTS` = 2.5
-/// (slip arcs 5 % and 22 % off against the BVP, docs/fem-cosserat.md §11.1) — the run
+/// but its slip zones span only 2.1 and 1.1 mean arc elements, below `SLIP_ELEMENTS` =
+/// 2.5 (slip arcs 2.3 % and 3.1 % off against the BVP, docs/fem-cosserat.md §11.1) — the run
 /// states both in its printout and in the result JSON's `warnings`; the string drive's
 /// resolved FE result carries none (the key is absent).
 #[test]

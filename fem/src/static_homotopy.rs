@@ -34,10 +34,17 @@ pub const GRADING_RATIO: f64 = 8.0;
 /// shear layer ℓ = √(a/b₂) (docs/fem-cosserat.md §9): density
 /// 1 + [`GRADING_RATIO`]·exp(−d/([`GRADING_WIDTH`]·ℓ)) at the distance d from an edge.
 /// `None` (uniform pieces) without a (a string) or without b₂ (a Kirchhoff rod). The
-/// static fit and the steady drive's fit (fem-cosserat.md §11) grade alike.
+/// static fit and the one-pulley drive's fit grade so; the two-pulley steady drive's fit
+/// grades more strongly (`string_drive::steady`, fem-cosserat.md §11.1).
 pub fn shear_layer_grading(bending_stiffness: Option<f64>, shear_stiffness: Option<f64>) -> Option<Grading> {
+    layer_grading(bending_stiffness, shear_stiffness, GRADING_WIDTH, GRADING_RATIO)
+}
+
+/// A grading towards the breakpoints over `width` shear layers ℓ = √(a/b₂) with the peak
+/// refinement `ratio` ([`Grading`]); `None` without a or without b₂.
+pub fn layer_grading(bending_stiffness: Option<f64>, shear_stiffness: Option<f64>, width: f64, ratio: f64) -> Option<Grading> {
     let layer = (bending_stiffness? / shear_stiffness?).sqrt();
-    Some(Grading { width: GRADING_WIDTH * layer, ratio: GRADING_RATIO })
+    Some(Grading { width: width * layer, ratio })
 }
 
 /// The static frictionless problem of a string or Kirchhoff rod on two pulleys: the

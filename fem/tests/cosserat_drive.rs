@@ -92,7 +92,7 @@ type Bounds<'a, const M: usize> = [(&'a str, [f64; M], f64)];
 
 /// Solve `sc` at each of `meshes` and hold the FE against `reference`: power
 /// P_in − P_out − D to 1e-9 P_in with D > 0, creep (|ω₂| < |ω₁|, the driver's sense),
-/// no fitting at its pass limit, the BVP's tight span, the slip zones warned as unresolved exactly on the
+/// no fitting at its pass limit and no refit rejected, the BVP's tight span, the slip zones warned as unresolved exactly on the
 /// pulleys of `warned` per mesh (and every slip arc more than 10 % off warned), each
 /// quantity of `table` within its bound and falling by its ratio per doubling. Returns
 /// the errors per quantity and mesh.
@@ -108,6 +108,7 @@ fn check_meshes<const M: usize>(sc: &Scene, reference: &drive::Summary, meshes: 
         let w2 = r.summary.driven_speed.unwrap();
         assert!(w2 * w1 > 0.0 && w2.abs() < w1.abs(), "{n}: creep, ω₂ = {w2}");
         assert!(!r.notes.iter().any(|w| w.contains("pass limit")), "{n}: {:?}", r.notes);
+        assert_eq!(r.options["drive"]["report"]["rejected_fits"], 0, "{n}: refits rejected");
         let tight = |s: &drive::Summary| s.tension_upper_mid.unwrap() > s.tension_lower_mid.unwrap();
         assert_eq!(tight(&r.summary), tight(reference), "{n}: the tight span is the BVP's");
         for pulley in ["driver", "driven"] {
@@ -135,71 +136,76 @@ fn row<const M: usize>(table: &Bounds<M>, q: &str) -> usize {
     table.iter().position(|(name, _, _)| *name == q).unwrap()
 }
 
-/// The issue's scene by the direct steady solve at 128, 256 and 512 elements (meshes
-/// graded over the shear layer √(a/b₂) = 2.2 mm towards the contact edges and the
-/// transitions; friction points with the tributary penalty pressure of the Cosserat
-/// element, `LayoutElement::friction_normal`) against the BVP at 1e-10,
-/// docs/fem-cosserat.md §11.1. Measured relative errors 128 / 256 / 512 (against the
-/// BVP at 1e-11, `beltcheck converge`): c 2.6e-6 / 1.2e-6 / 5.6e-7, ω₂ 1.8e-7 / 7.0e-8
-/// / 1.5e-8, mid-span tensions ≤ 6.0e-4 / 2.9e-4 / 1.4e-4, T_tight, T_slack (midway
-/// along the stick arcs) ≤ 5.8e-3 / 2.6e-3 / 1.4e-3, heights ≤ 4.1e-5 / 2.0e-5 / 9.8e-6,
-/// moments ≤ 5.9e-4 / 3.0e-4 / 1.4e-4, contact arcs ≤ 7.1e-4 / 2.8e-5 / 7.2e-5 (not
-/// monotone), stick arcs (driver, driven) 3.4e-3, 9.5e-3 / 4.1e-3, 1.6e-3 / 1.9e-3,
-/// 1.4e-3, slip arcs 0.054, 0.22 / 0.054, 0.040 / 0.024, 0.038 (with the nodal gap's
-/// normal load before: 1.16, 3.0 / 0.49, 1.08 / 0.19, 0.35), driver torque 6.5e-7 /
-/// 2.7e-7 / 1.4e-7. Bounds 2× the measured per mesh (rounded up); the smooth quantities
-/// must fall by ≥ 1.4 per doubling (measured 1.9–2.4); the slip arcs at 512 below half
-/// their error at 128 (measured 0.44, 0.17), the contact arcs below a quarter (0.10,
-/// 0.11); y_upper_mid (5e-7 at every mesh), ω₂, the stick arcs: bounds only. Slip zones
-/// warned (`SLIP_ELEMENTS` = 2.5 arc elements): both at 128 (1.4, 0.6 elements), the
-/// driven one at 256 (1.4), none at 512 (5.6, 2.8). Power P_in − P_out − D to 1e-9 P_in
-/// and the driven torque M₂ at every mesh.
+/// The issue's scene by the direct steady solve at 128, 256 and 512 elements (the
+/// drive's meshes: twice the arcs' share of the elements, graded 65:1 over one shear
+/// layer √(a/b₂) = 2.2 mm towards the contact edges and the transitions; friction points
+/// with the tributary penalty pressure of the Cosserat element,
+/// `LayoutElement::friction_normal`) against the BVP at 1e-10, docs/fem-cosserat.md
+/// §11.1. Measured relative errors 128 / 256 / 512 (against the BVP at 1e-11): c 7.5e-7
+/// / 3.1e-7 / 1.6e-7, ω₂ 9.0e-8 / 2.2e-8 / 5.8e-9, mid-span tensions ≤ 4.9e-4 / 5.9e-5 /
+/// 3.0e-5, T_tight, T_slack (midway along the stick arcs) ≤ 2.0e-3 / 7.9e-4 / 3.9e-4,
+/// heights ≤ 1.9e-5 / 2.0e-6 / 2.3e-6 (not monotone), moments ≤ 5.2e-4 / 6.0e-5 /
+/// 3.0e-5, contact arcs ≤ 5.1e-5 / 1.2e-5 / 1.3e-5 (at their floor from 256 on), stick
+/// arcs (driver, driven) 1.7e-3, 1.3e-3 / 8.7e-4, 8.8e-4 / 5.2e-4, 5.7e-4, slip arcs
+/// 0.023, 0.031 / 0.011, 0.022 / 0.0066, 0.014 (on the uniformly weighted meshes graded
+/// 9:1 over 2 layers before: 0.054, 0.22 / 0.054, 0.040 / 0.024, 0.038), driver torque
+/// 1.6e-7 / 7.1e-8 / 3.7e-8. Bounds 2× the measured per mesh (rounded up; the heights
+/// and contact arcs 2× the larger of 256 and 512 there); the smooth quantities, the stick
+/// arcs and the driver's slip arc must fall by ≥ 1.4 per doubling (measured 1.7–8.7),
+/// the driven slip arc by ≥ 1.3 (1.42, 1.53); the slip arcs at 512 below half their error
+/// at 128 (measured 0.29, 0.46), the contact arcs below 0.35 (0.24, 0.27); y_upper_mid,
+/// ω₂: bounds only. Slip zones warned (`SLIP_ELEMENTS` = 2.5 mean arc elements): both at
+/// 128 (2.1, 1.1 elements), the driven one at 256 (2.1), none at 512 (8.2, 4.3). Power
+/// P_in − P_out − D to 1e-9 P_in and the driven torque M₂ at every mesh, and no refit
+/// rejected (3 at 128 before the round-off floor took best trials,
+/// `steady::semismooth`).
 #[test]
 fn issue_scene_converges_to_the_bvp() {
     let sc = issue_scene();
     let reference = bvp_reference(&sc);
     let table: &Bounds<3> = &[
-        ("transport_rate", [5.5e-6, 2.5e-6, 1.2e-6], 1.4),
-        ("driven_speed", [4e-7, 1.5e-7, 3e-8], 0.0),
-        ("tension_upper_mid", [1.3e-3, 6e-4, 3e-4], 1.4),
-        ("tension_lower_mid", [1.1e-3, 5.5e-4, 2.6e-4], 1.4),
-        ("tension_tight", [1.1e-2, 5e-3, 2.4e-3], 1.4),
-        ("tension_slack", [1.2e-2, 5.3e-3, 2.8e-3], 1.4),
-        ("y_upper_mid", [1e-6, 1.1e-6, 1.1e-6], 0.0),
-        ("y_lower_mid", [8.1e-5, 4e-5, 2e-5], 1.4),
-        ("moment_upper_mid", [1.2e-3, 6e-4, 3e-4], 1.4),
-        ("moment_lower_mid", [1.2e-3, 5.5e-4, 2.7e-4], 1.4),
-        ("driver.contact_arc", [1.5e-3, 6e-5, 1.4e-4], 0.0),
-        ("driven.contact_arc", [1.3e-3, 3e-5, 1.5e-4], 0.0),
-        ("driver.stick_arc", [7e-3, 8.3e-3, 3.9e-3], 0.0),
-        ("driven.stick_arc", [1.9e-2, 3.3e-3, 2.9e-3], 0.0),
-        ("driver.slip_arc", [0.11, 0.11, 0.05], 0.0),
-        ("driven.slip_arc", [0.44, 0.081, 0.076], 0.0),
-        ("driver.torque", [1.3e-6, 5.5e-7, 2.7e-7], 1.4),
+        ("transport_rate", [1.5e-6, 6.3e-7, 3.2e-7], 1.4),
+        ("driven_speed", [1.9e-7, 4.4e-8, 1.2e-8], 0.0),
+        ("tension_upper_mid", [1e-3, 1.2e-4, 6e-5], 1.4),
+        ("tension_lower_mid", [8.8e-4, 1.1e-4, 5.4e-5], 1.4),
+        ("tension_tight", [3.2e-3, 1.4e-3, 6.6e-4], 1.4),
+        ("tension_slack", [4.1e-3, 1.6e-3, 7.7e-4], 1.4),
+        ("y_upper_mid", [1.6e-5, 4.1e-6, 6.8e-7], 0.0),
+        ("y_lower_mid", [3.8e-5, 4.7e-6, 4.7e-6], 0.0),
+        ("moment_upper_mid", [7.8e-4, 1.1e-4, 6e-5], 1.4),
+        ("moment_lower_mid", [1.1e-3, 1.3e-4, 5.6e-5], 1.4),
+        ("driver.contact_arc", [1.1e-4, 2.5e-5, 2.5e-5], 0.0),
+        ("driven.contact_arc", [9.4e-5, 2.6e-5, 2.6e-5], 0.0),
+        ("driver.stick_arc", [3.5e-3, 1.8e-3, 1.1e-3], 1.4),
+        ("driven.stick_arc", [2.7e-3, 1.8e-3, 1.2e-3], 1.4),
+        ("driver.slip_arc", [4.6e-2, 2.3e-2, 1.4e-2], 1.4),
+        ("driven.slip_arc", [6.3e-2, 4.4e-2, 2.9e-2], 1.3),
+        ("driver.torque", [3.3e-7, 1.5e-7, 7.3e-8], 1.4),
         ("driven.torque", [1e-9, 1e-9, 1e-9], 0.0),
     ];
     let errors = check_meshes(&sc, &reference, [128, 256, 512], [&["driver", "driven"], &["driven"], &[]], table);
-    for (q, factor) in [("driver.slip_arc", 0.5), ("driven.slip_arc", 0.5), ("driver.contact_arc", 0.25), ("driven.contact_arc", 0.25)] {
+    for (q, factor) in [("driver.slip_arc", 0.5), ("driven.slip_arc", 0.5), ("driver.contact_arc", 0.35), ("driven.contact_arc", 0.35)] {
         let e = errors[row(table, q)];
         assert!(e[2] < factor * e[0], "{q}: errors {e:?}, at 512 not below {factor} of 128");
     }
 }
 
 /// The issue's scene counter-clockwise (ω₁ = −20 rad/s, M₂ = −0.1 N·m: with gravity the
-/// upper span is the tight one, a different problem from the mirror image) at 256 and
-/// 512 elements against the BVP's counter-clockwise solution (collocation at 1e-10).
-/// At 128 (and 120) elements the fit fails: after its 30 passes a transition is still
-/// 8 % of an arc element from its node (limit 5 %; 136 elements solve) — measured,
-/// docs/fem-cosserat.md §11.1. Measured relative errors 256 / 512 (against the BVP at
-/// 1e-11): c 1.2e-6 / 6.0e-7, ω₂ 2.3e-8 / 8.0e-8, mid-span tensions ≤ 2.6e-4 / 1.2e-4,
-/// heights 2.0e-8 / 2.2e-7 (upper), 2.1e-5 / 1.0e-5 (lower), moments ≤ 2.7e-4 /
-/// 1.3e-4, contact arcs ≤ 4.8e-5 / 6.7e-5, T_tight / T_slack 2.3e-3, 2.7e-3 / 1.2e-3,
-/// 1.2e-3, driver torque 2.6e-7 / 1.4e-7, stick arcs ≤ 3.8e-3 / 2.0e-3, slip arcs
-/// (driver, driven) 0.029, 0.044 / 0.014, 0.022 (with the nodal gap's normal load
-/// before, at 128: 0.72, 1.46). Bounds 2× the measured (the heights of the upper span
-/// and ω₂, which sit at the BVP's tolerance and are not monotone: 2× the larger); the
-/// slip arcs must fall by ≥ 1.4 per doubling (measured 2.0), the smooth quantities too
-/// (measured 1.9–2.3). No slip zone is warned (4.6, 2.9 / 9.1, 5.9 arc elements).
+/// upper span is the tight one, a different problem from the mirror image) at 128, 256
+/// and 512 elements against the BVP's counter-clockwise solution (collocation at 1e-10).
+/// At 128 the fit failed on the meshes before (a transition 8 % of an arc element off its
+/// node after 30 passes); on the drive's meshes it converges in 8 passes —
+/// docs/fem-cosserat.md §11.1. Measured relative errors 128 / 256 / 512 (against the BVP
+/// at 1e-11): c 8.6e-7 / 3.4e-7 / 1.7e-7, ω₂ 1.3e-7 / 3.9e-8 / 1.4e-8, mid-span tensions
+/// ≤ 4.7e-4 / 4.9e-5 / 2.6e-5, heights ≤ 2.2e-5 / 1.5e-6 / 2.4e-6 (not monotone),
+/// moments ≤ 5.8e-4 / 5.8e-5 / 2.7e-5, contact arcs ≤ 5.1e-5 / 1.4e-5 / 1.2e-5,
+/// T_tight / T_slack 1.7e-3 / 7.0e-4 / 3.6e-4, driver torque 1.2e-7 / 5.8e-8 / 3.4e-8,
+/// stick arcs ≤ 2.0e-3 / 1.0e-3 / 5.5e-4, slip arcs (driver, driven) 0.015, 0.023 /
+/// 0.0075, 0.012 / 0.0034, 0.0066 (before: fit failed / 0.029, 0.044 / 0.014, 0.022).
+/// Bounds 2× the measured (the heights and contact arcs 2× the larger of 256 and 512);
+/// the slip and stick arcs must fall by ≥ 1.4 per doubling (measured 1.7–2.2), the smooth
+/// quantities too (1.7–10). The driven slip zone is warned at 128 (2.2 arc elements),
+/// none at 256 and 512.
 #[test]
 fn issue_scene_counter_clockwise_against_the_bvp() {
     let mut v: Value = serde_json::from_str(include_str!("../../scenes/cosserat-drive.json")).unwrap();
@@ -208,27 +214,27 @@ fn issue_scene_counter_clockwise_against_the_bvp() {
     v["drive"]["driven_torque"] = json!(-0.1);
     let sc = Scene::from_json_str(&v.to_string()).unwrap();
     let reference = bvp_reference(&sc);
-    let table: &Bounds<2> = &[
-        ("transport_rate", [2.5e-6, 1.2e-6], 1.4),
-        ("driven_speed", [1.6e-7, 1.6e-7], 0.0),
-        ("tension_upper_mid", [4.5e-4, 2.1e-4], 1.4),
-        ("tension_lower_mid", [5.2e-4, 2.5e-4], 1.4),
-        ("tension_tight", [4.6e-3, 2.4e-3], 1.4),
-        ("tension_slack", [5.4e-3, 2.4e-3], 1.4),
-        ("y_upper_mid", [4.5e-7, 4.5e-7], 0.0),
-        ("y_lower_mid", [4.2e-5, 2.1e-5], 1.4),
-        ("moment_upper_mid", [4.5e-4, 2.2e-4], 1.4),
-        ("moment_lower_mid", [5.4e-4, 2.6e-4], 1.4),
-        ("driver.contact_arc", [1.3e-4, 1.3e-4], 0.0),
-        ("driven.contact_arc", [1.4e-4, 1.4e-4], 0.0),
-        ("driver.stick_arc", [7.6e-3, 4e-3], 1.4),
-        ("driven.stick_arc", [7.7e-3, 3.7e-3], 1.4),
-        ("driver.slip_arc", [5.8e-2, 2.9e-2], 1.4),
-        ("driven.slip_arc", [8.9e-2, 4.5e-2], 1.4),
-        ("driver.torque", [5.2e-7, 2.8e-7], 1.4),
+    let table: &Bounds<3> = &[
+        ("transport_rate", [1.8e-6, 7e-7, 3.4e-7], 1.4),
+        ("driven_speed", [2.6e-7, 7.8e-8, 2.8e-8], 0.0),
+        ("tension_upper_mid", [8.2e-4, 8.4e-5, 4.5e-5], 1.4),
+        ("tension_lower_mid", [9.5e-4, 9.8e-5, 5.2e-5], 1.4),
+        ("tension_tight", [3.5e-3, 1.4e-3, 6.7e-4], 1.4),
+        ("tension_slack", [3.5e-3, 1.4e-3, 7.2e-4], 1.4),
+        ("y_upper_mid", [1.4e-5, 3.1e-6, 5e-7], 0.0),
+        ("y_lower_mid", [4.5e-5, 4.9e-6, 4.9e-6], 0.0),
+        ("moment_upper_mid", [7e-4, 7.6e-5, 4.5e-5], 1.4),
+        ("moment_lower_mid", [1.2e-3, 1.2e-4, 5.5e-5], 1.4),
+        ("driver.contact_arc", [1.1e-4, 2.7e-5, 2.7e-5], 0.0),
+        ("driven.contact_arc", [9.8e-5, 2.9e-5, 2.9e-5], 0.0),
+        ("driver.stick_arc", [3.9e-3, 2.1e-3, 9.5e-4], 1.4),
+        ("driven.stick_arc", [4.1e-3, 2e-3, 1.2e-3], 1.4),
+        ("driver.slip_arc", [3e-2, 1.6e-2, 7e-3], 1.4),
+        ("driven.slip_arc", [4.6e-2, 2.4e-2, 1.4e-2], 1.4),
+        ("driver.torque", [2.5e-7, 1.2e-7, 6.8e-8], 1.4),
     ];
     assert!(reference.tension_upper_mid.unwrap() > reference.tension_lower_mid.unwrap(), "counter-clockwise the upper span is the tight one");
-    check_meshes(&sc, &reference, [256, 512], [&[], &[]], table);
+    check_meshes(&sc, &reference, [128, 256, 512], [&["driven"], &[], &[]], table);
 }
 
 /// Paper D's own scheme (spec §3.4–§3.5, `fem.steady_scheme` = `paper-d`;
@@ -238,12 +244,16 @@ fn issue_scene_counter_clockwise_against_the_bvp() {
 /// Tolerances: the two schemes solve the same discrete equations (z-rows, c-row, the
 /// driven torque row) and differ only in where the stick→slip node sits — the semismooth
 /// fit's located zero of v, Paper D's centre of the band of Coulomb-admissible points —
-/// so the global quantities agree to the Newton tolerance times that offset (measured:
-/// ω₂ 1.7e-9, c 1.1e-8, torques ≤ 1.1e-9, tensions ≤ 2.3e-5 relative; bounds 10× those,
-/// tensions 4×), and the transitions to the band: both are Coulomb-admissible states, so
-/// their stick→slip points lie at most one band width apart (measured: 0.15 mm driver,
-/// 0.25 mm driven against bands of 0.75 / 0.63 mm). Against the BVP: 2× the measured
-/// errors (table in the docs).
+/// so the global quantities agree to the Newton tolerance times that offset (measured on
+/// the drive's graded meshes: ω₂ 3.6e-13, c 2.0e-11, torques ≤ 3.1e-11, tensions ≤ 4.7e-8
+/// relative; before, on the uniformly weighted 9:1 meshes: ω₂ 1.7e-9, c 1.1e-8, torques
+/// ≤ 1.1e-9, tensions ≤ 2.3e-5 — the bounds, 10× those, tensions 4×, kept), and the
+/// transitions to the band: both are Coulomb-admissible states, so their stick→slip
+/// points lie at most one band width apart (measured: 6 µm driver, 24 µm driven against
+/// bands of 0.15 / 0.14 mm; before 0.15 / 0.25 mm against 0.75 / 0.63 mm). Against the
+/// BVP: 2× the measured errors (docs/fem-cosserat.md §11.1: ω₂ 2.2e-8, c 3.1e-7, driver
+/// torque 7.1e-8, T_tight / T_slack 6.6e-4 / 7.9e-4, mid-span tensions ≤ 5.9e-5, contact
+/// arcs 1.2e-5, slip arcs 0.012 / 0.019).
 #[test]
 fn paper_d_scheme_agrees_with_semismooth_and_the_bvp() {
     let sc = issue_scene();
@@ -285,17 +295,17 @@ fn paper_d_scheme_agrees_with_semismooth_and_the_bvp() {
     }
     let reference = bvp_reference(&sc);
     for (q, bound) in [
-        ("driven_speed", 2e-7),
-        ("transport_rate", 3e-6),
-        ("driver.torque", 6e-7),
-        ("tension_tight", 5e-3),
-        ("tension_slack", 5e-3),
-        ("tension_upper_mid", 6e-4),
-        ("tension_lower_mid", 6e-4),
-        ("driver.contact_arc", 3e-4),
-        ("driven.contact_arc", 3e-4),
-        ("driver.slip_arc", 0.11),
-        ("driven.slip_arc", 0.15),
+        ("driven_speed", 5e-8),
+        ("transport_rate", 6.3e-7),
+        ("driver.torque", 1.5e-7),
+        ("tension_tight", 1.4e-3),
+        ("tension_slack", 1.6e-3),
+        ("tension_upper_mid", 1.2e-4),
+        ("tension_lower_mid", 1.1e-4),
+        ("driver.contact_arc", 2.5e-5),
+        ("driven.contact_arc", 2.5e-5),
+        ("driver.slip_arc", 0.024),
+        ("driven.slip_arc", 0.038),
     ] {
         let (ep, es) = (relative_error(p, &reference, q), relative_error(s, &reference, q));
         eprintln!("{q}: paper-d {ep:.2e}, semismooth {es:.2e}");
@@ -304,27 +314,38 @@ fn paper_d_scheme_agrees_with_semismooth_and_the_bvp() {
 }
 
 /// The counter-clockwise issue scene (ω₁ = −20 rad/s, M₂ = −0.1 N·m) at 128 elements,
-/// where the semismooth fit fails (`SteadyFitFailed`: a transition 8 % of an arc element
-/// off its node, docs/fem-cosserat.md §11.1): Paper D's scheme prescribes the transitions
-/// and solves it. Bounds 1.5–3× the measured errors against the BVP (ω₂ 6.4e-7, c 2.5e-6,
-/// T_tight 5.0e-3, slip arcs 6.8 % / 8.9 %; the slip zones are 1.4–2.4 arc elements,
-/// warned as unresolved).
+/// where the semismooth fit failed on the meshes before (`SteadyFitFailed`: a transition
+/// 8 % of an arc element off its node) and Paper D's scheme, prescribing the transitions,
+/// solved it: on the drive's graded meshes both solve (docs/fem-cosserat.md §11.1) and
+/// agree — the global quantities to the Newton tolerance times the transitions' offset
+/// (measured: ω₂ 4.9e-10, c 6.0e-10, T_tight / T_slack 5.3e-7 / 9.6e-7; bounds 10×
+/// those, as at 256 clockwise), the transitions within one band width (measured 34 µm
+/// / 13 µm against bands of 0.30 / 0.32 mm). Against the BVP 2× the measured errors
+/// (Paper D: ω₂ 1.3e-7, c 8.6e-7, T_tight / T_slack 1.7e-3, slip arcs 1.6 % / 2.2 %;
+/// before: ω₂ 6.4e-7, c 2.5e-6, T_tight 5.0e-3, slip arcs 6.8 % / 8.9 %).
 #[test]
-fn paper_d_solves_the_counter_clockwise_drive_at_128() {
+fn paper_d_and_semismooth_solve_the_counter_clockwise_drive_at_128() {
     let mut v: Value = serde_json::from_str(include_str!("../../scenes/cosserat-drive.json")).unwrap();
     v["drive"]["driver_speed"] = json!(-20.0);
     v["drive"]["driven_torque"] = json!(-0.1);
     let semismooth = Scene::from_json_str(&v.to_string()).unwrap();
     v["fem"] = json!({"steady_scheme": "paper-d"});
     let paper = Scene::from_json_str(&v.to_string()).unwrap();
-    let opts = FemOptions { elements: 128, formulation: "cosserat-gauss".into(), penalty: None };
-    let failed = fem::solve_scene_with(&semismooth, &opts, &SolverSettings::default());
-    assert!(matches!(failed, Err(fem::FemError::SteadyFitFailed { .. })), "the semismooth fit's regression at 128 (if it is fixed, this test should say so): {:?}", failed.as_ref().err());
+    let s = solve(&semismooth, 128, &SolverSettings::default());
     let pd = solve(&paper, 128, &SolverSettings::default());
     let report = &pd.options["drive"]["report"]["paper_d"];
     assert_eq!(report["matching_residual"], json!([0.0, 0.0]));
     let reference = bvp_reference(&semismooth);
-    for (q, bound) in [("driven_speed", 2e-6), ("transport_rate", 5e-6), ("tension_tight", 1e-2), ("tension_slack", 1e-2), ("driver.slip_arc", 0.15), ("driven.slip_arc", 0.15)] {
+    for (q, bound) in [("driven_speed", 5e-9), ("transport_rate", 6e-9), ("tension_tight", 5.3e-6), ("tension_slack", 9.6e-6)] {
+        let e = relative_error(&pd.summary, &s.summary, q);
+        assert!(e <= bound, "paper-d vs semismooth {q}: {e:.3e} > {bound:e}");
+    }
+    let band: Vec<f64> = report["band_width"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+    for (k, q) in ["driver.slip_arc", "driven.slip_arc"].into_iter().enumerate() {
+        let d = (pd.summary.get(q).unwrap() - s.summary.get(q).unwrap()).abs() * semismooth.drive.pulley_radius;
+        assert!(d <= band[k], "paper-d vs semismooth {q}: transitions {d:.3e} m apart, band {:.3e} m", band[k]);
+    }
+    for (q, bound) in [("driven_speed", 2.6e-7), ("transport_rate", 1.8e-6), ("tension_tight", 3.5e-3), ("tension_slack", 3.5e-3), ("driver.slip_arc", 0.033), ("driven.slip_arc", 0.045)] {
         let e = relative_error(&pd.summary, &reference, q);
         eprintln!("{q}: {e:.2e}");
         assert!(e <= bound, "paper-d vs BVP {q}: {e:.3e} > {bound:e}");

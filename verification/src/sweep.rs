@@ -21,7 +21,10 @@
 //! ([`bvp::scene::solve_scene_from`]: the final solve from the previous solution, no
 //! homotopy), with a secant predictor once two comparable points are accepted
 //! ([`WarmStart::predicted`]: the last solution extrapolated along the line through the
-//! one before, at most [`MAX_PREDICTOR_RATIO`] times the last step). A failed step is halved (Δt/2, Δt/4, … down to
+//! one before, at most [`MAX_PREDICTOR_RATIO`] times the last step); a step that fails
+//! from the predicted start is retried from the last solution itself before it counts
+//! as failed (an extrapolated guess can overshoot into a topology the plain warm start
+//! does not reach). A failed step is halved (Δt/2, Δt/4, … down to
 //! Δt_grid / 2^[`MAX_HALVINGS`]); an accepted intermediate step doubles the next one
 //! (never past t_i). When the halving runs out:
 //!
@@ -552,6 +555,17 @@ fn predictor(path: &[Converged], t: f64) -> Option<WarmStart> {
     here.warm.as_ref()?.predicted(older.warm.as_ref()?, ratio)
 }
 
+/// A continuation step's solve (module docs): from the `predicted` warm start if there is
+/// one, else from `plain` (the last converged solution); a predicted start that fails
+/// ([`PointStatus::Failed`]) is retried from `plain` before the step counts as failed. An
+/// invalid scene is not retried (no warm start changes it).
+fn step_solve<R>(solve: &dyn Fn(Option<&WarmStart>) -> Result<R, PointStatus>, predicted: Option<&WarmStart>, plain: Option<&WarmStart>) -> Result<R, PointStatus> {
+    match (predicted, solve(predicted.or(plain))) {
+        (Some(_), Err(PointStatus::Failed { .. })) => solve(plain),
+        (_, result) => result,
+    }
+}
+
 /// The secant slope ‖Δy‖/|Δt| from `a` to `b`, y the summary scalars relative to
 /// max(|y_a|, |y_b|, 1e-12), ‖·‖ their RMS (module docs).
 fn slope(a: &Converged, b: &Converged) -> f64 {
@@ -646,7 +660,8 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
                 let here = path.last().expect("a converged point");
                 let t = if (target - here.t).abs() <= h.abs() { target } else { here.t + h };
                 let predicted = predictor(&path, t);
-                match solve(if t == target { v } else { p0.value(t) }, predicted.as_ref().or(here.warm.as_ref())) {
+                let value = if t == target { v } else { p0.value(t) };
+                match step_solve(&|warm| solve(value, warm), predicted.as_ref(), here.warm.as_ref()) {
                     Ok(run) => {
                         accept(run, t, &mut path);
                         if t == target {
@@ -1121,20 +1136,30 @@ mod tests {
     /// for two collocation solutions on their own adapted meshes) in no more Newton
     /// iterations. Source: the catalogue's `string-drive` (cheap: a string drive) along
     /// its driven torque, 10 → 10.5 → 11 N·m.
-    #[test]
-    fn the_secant_predictor_extrapolates_and_changes_only_the_guess() {
+    /// The catalogue's `string-drive` (cheap: a string drive) swept along its driven
+    /// torque, 10 → 10.5 → 11 N·m.
+    fn torque_line() -> SweepPlan {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/string-drive.json");
         let scene = Scene::from_path(std::path::Path::new(path)).expect("catalogue scene");
         let range: ParamRange = "drive.driven_torque=10:11:3".parse().unwrap();
-        let plan = SweepPlan::new(&scene, vec![range], 0).unwrap();
-        let run = |v: f64, warm: Option<&WarmStart>| {
-            let s = plan.scene_at(&[v]).unwrap();
-            let opts = plan.bvp_options(&s).unwrap();
-            match warm {
-                Some(w) => bvp::scene::solve_scene_from(&s, &opts, w).unwrap(),
-                None => bvp::scene::solve_scene(&s, &opts).unwrap(),
-            }
-        };
+        SweepPlan::new(&scene, vec![range], 0).unwrap()
+    }
+
+    /// The BVP run of `plan` at the value `v`, cold or from `warm`.
+    fn run_at(plan: &SweepPlan, v: f64, warm: Option<&WarmStart>) -> Result<BvpRun, PointStatus> {
+        let s = plan.scene_at(&[v]).unwrap();
+        let opts = plan.bvp_options(&s).unwrap();
+        match warm {
+            Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
+            None => bvp::scene::solve_scene(&s, &opts),
+        }
+        .map_err(|e| PointStatus::Failed { error: e.to_string() })
+    }
+
+    #[test]
+    fn the_secant_predictor_extrapolates_and_changes_only_the_guess() {
+        let plan = torque_line();
+        let run = |v: f64, warm: Option<&WarmStart>| run_at(&plan, v, warm).unwrap();
         let first = run(10.0, None);
         let second = run(10.5, first.warm.as_ref());
         let converged = |t: f64, r: &BvpRun| Converged { t, warm: r.warm.clone(), scalars: r.summary.scalars() };
@@ -1163,6 +1188,60 @@ mod tests {
             secant.stats.newton_iterations,
             plain.stats.newton_iterations
         );
+    }
+
+    /// A step whose predicted warm start fails is retried from the plain warm start
+    /// (`step_solve`, module docs): here the solver refuses the predicted start (as a
+    /// predictor overshooting into an inadmissible topology would make it fail) and the
+    /// step still solves, from the last solution, to its plain warm start's summary (the
+    /// same solve: to 1e-12); without the retry the step fails. A failure of both is
+    /// the step's failure (two solves); an invalid scene is not retried (one); without a
+    /// predictor there is one solve from the plain start. Source: [`torque_line`].
+    #[test]
+    fn a_failed_predicted_start_is_retried_from_the_last_solution() {
+        let plan = torque_line();
+        let run = |v: f64, warm: Option<&WarmStart>| run_at(&plan, v, warm);
+        let first = run(10.0, None).unwrap();
+        let second = run(10.5, first.warm.as_ref()).unwrap();
+        let converged = |t: f64, r: &BvpRun| Converged { t, warm: r.warm.clone(), scalars: r.summary.scalars() };
+        let path = vec![converged(10.0, &first), converged(10.5, &second)];
+        let predicted = predictor(&path, 11.0).expect("two comparable points");
+        let plain = second.warm.as_ref();
+        let calls = std::cell::RefCell::new(Vec::new());
+        let refusing = |warm: Option<&WarmStart>| {
+            let is_predicted = warm.is_some_and(|w| std::ptr::eq(w, &predicted));
+            calls.borrow_mut().push(is_predicted);
+            if is_predicted {
+                Err(PointStatus::Failed { error: "refused: the predicted start".into() })
+            } else {
+                run(11.0, warm)
+            }
+        };
+        let solved = step_solve(&refusing, Some(&predicted), plain).expect("retried from the plain warm start");
+        assert_eq!(*calls.borrow(), vec![true, false]);
+        let direct = run(11.0, plain).unwrap();
+        for ((name, a), (_, b)) in solved.summary.scalars().iter().zip(direct.summary.scalars()) {
+            assert!((a - b).abs() <= 1e-12 * a.abs().max(1e-3), "{name}: {a} (retried) against {b} (plain)");
+        }
+        // both fail: the step's failure, after two solves
+        calls.borrow_mut().clear();
+        let failing = |warm: Option<&WarmStart>| -> Result<BvpRun, PointStatus> {
+            calls.borrow_mut().push(warm.is_some_and(|w| std::ptr::eq(w, &predicted)));
+            Err(PointStatus::Failed { error: "refused".into() })
+        };
+        assert!(matches!(step_solve(&failing, Some(&predicted), plain), Err(PointStatus::Failed { .. })));
+        assert_eq!(*calls.borrow(), vec![true, false]);
+        // an invalid scene is not retried; no predictor, one solve from the plain start
+        calls.borrow_mut().clear();
+        let invalid = |warm: Option<&WarmStart>| -> Result<BvpRun, PointStatus> {
+            calls.borrow_mut().push(warm.is_some_and(|w| std::ptr::eq(w, &predicted)));
+            Err(PointStatus::InvalidScene { error: "bad".into() })
+        };
+        assert!(matches!(step_solve(&invalid, Some(&predicted), plain), Err(PointStatus::InvalidScene { .. })));
+        assert_eq!(*calls.borrow(), vec![true]);
+        calls.borrow_mut().clear();
+        assert!(matches!(step_solve(&failing, None, plain), Err(PointStatus::Failed { .. })));
+        assert_eq!(*calls.borrow(), vec![false]);
     }
 
     /// Ranges: values equally spaced in the value or its logarithm, ends exact.

@@ -218,7 +218,7 @@ pub fn solve(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings,
 /// As [`solve`].
 pub fn solve_layout<const N: usize, const X: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<K>) -> Result<FemRun, FemError> {
     let clock = Instant::now();
-    let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
+    let DriveStart { mu, omega1, start, report, penalty, t_static, f_ref } = drive_start(problem, opts, settings, drive_settings, kernel.clone(), settings.arc_weight)?;
     // the belt runs along σ (ω₁ > 0) or against it (ω₁ < 0; docs/fem-drive.md §13): the
     // signed quantities (drum advance Rω₁Δt, the upstream reference σ − d_ref, a, φ)
     // carry the sense themselves; the step, the rate (D9) and the capacity take |ω₁|,
@@ -544,12 +544,13 @@ struct DriveStart<const N: usize = NDOF, K: LayoutElement<N> + ?Sized = dyn Kern
     f_ref: f64,
 }
 
-/// The common start of [`solve`] and [`steady::solve`].
+/// The common start of [`solve`] and [`steady::solve`], on a mesh of `opts.elements`
+/// with the arcs weighted by `arc_weight` ([`Mesh::new`]).
 ///
 /// # Errors
 /// [`FemError::InvalidOption`] (drive settings), [`FemError::Unsupported`] (no Coulomb
 /// contact, ω₁ = 0), the static start's errors.
-fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<K>) -> Result<DriveStart<N, K>, FemError> {
+fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProblem, opts: &FemOptions, settings: &SolverSettings, drive_settings: &DriveSettings, kernel: Arc<K>, arc_weight: f64) -> Result<DriveStart<N, K>, FemError> {
     drive_settings.validate()?;
     let ContactLaw::Coulomb { mu } = problem.effects.contact else {
         return Err(FemError::Unsupported("the FE drive needs Coulomb contact".into()));
@@ -565,7 +566,7 @@ fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProble
     let penalty = problem.penalty(opts, settings);
     let data = problem.hanging(penalty);
     let contour = data.contour()?;
-    let mesh = Mesh::new(contour, opts.elements, settings.arc_weight)?;
+    let mesh = Mesh::new(contour, opts.elements, arc_weight)?;
     let (start, report, _) = data.solve(mesh, kernel, settings)?;
     let s0 = start.summary();
     let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());

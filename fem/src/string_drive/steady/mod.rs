@@ -95,6 +95,23 @@ struct State<const N: usize, K: LayoutElement<N> + ?Sized> {
     results: Vec<PointResult>,
 }
 
+/// Peak refinement of the two-pulley steady drive's grading towards its contact edges
+/// and stick→slip transitions (docs/fem-cosserat.md §11.1; the static fit's is
+/// [`crate::static_homotopy::GRADING_RATIO`]).
+pub const DRIVE_GRADING_RATIO: f64 = 64.0;
+/// Decay length of that grading, in shear layers √(a/b₂).
+pub const DRIVE_GRADING_WIDTH: f64 = 1.0;
+/// The arcs' weight in the distribution of the elements of a graded steady drive
+/// ([`Mesh::new`]; a larger `fem` arc weight is kept).
+pub const DRIVE_ARC_WEIGHT: f64 = 2.0;
+
+/// The grading of the two-pulley steady drive's fitted meshes (docs/fem-cosserat.md
+/// §11.1): [`DRIVE_GRADING_RATIO`] over [`DRIVE_GRADING_WIDTH`] shear layers, `None` for a
+/// belt without a shear layer (a string).
+fn drive_grading(bending_stiffness: Option<f64>, shear_stiffness: Option<f64>) -> Option<crate::mesh::Grading> {
+    crate::static_homotopy::layer_grading(bending_stiffness, shear_stiffness, DRIVE_GRADING_WIDTH, DRIVE_GRADING_RATIO)
+}
+
 /// Solve a friction-drive scene (see [`super::applies`]) for its steady state directly
 /// (docs/fem-drive.md §12).
 ///
@@ -118,7 +135,11 @@ pub fn solve(problem: &crate::problem::FemProblem, opts: &crate::options::FemOpt
 /// As [`solve`].
 pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::DriveSettings, kernel: Arc<K>) -> Result<crate::FemRun, FemError> {
     let clock = std::time::Instant::now();
-    let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(problem, opts, settings, drive_settings, kernel.clone())?;
+    // a rod with a shear layer: its fitted meshes graded towards the contact edges and
+    // transitions, twice the arcs' share of the elements (docs/fem-cosserat.md §11.1)
+    let grading = drive_grading(problem.belt.bending_stiffness, kernel.shear_stiffness());
+    let arc_weight = if grading.is_some() { settings.arc_weight.max(DRIVE_ARC_WEIGHT) } else { settings.arc_weight };
+    let super::DriveStart { mu, omega1, start, report: homotopy, penalty, t_static, f_ref } = super::drive_start(problem, opts, settings, drive_settings, kernel.clone(), arc_weight)?;
     let static_seconds = clock.elapsed().as_secs_f64();
     let b = &problem.belt;
     let r = problem.geometry.radius;
@@ -173,10 +194,9 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     // (not for a rod with a graded shear layer: its rungs need 12–23 iterations each on
     // cosserat-drive, no fewer fine-mesh iterations than the continuation on the fine
     // mesh itself, measured)
-    let grading = crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness());
     let levels = if grading.is_none() { nested::coarse_levels(opts.elements) } else { Vec::new() };
     let fit_data = SteadyFitData { params, length, kernel: &kernel, sp_at: &sp_at, strain_rule, h, r, omega1, f_ref, slot_weight: None, direction, tolerance: tol, max_iterations: max_it, grading };
-    let nested_data = nested::NestedData { base: &fit_data, arc_weight: settings.arc_weight, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
+    let nested_data = nested::NestedData { base: &fit_data, arc_weight, inertia: rho, start_rates: [x[asm.len()], x[asm.len() + 1]] };
     let nested = nested::nested_start::<N, P, E, K>(&start, &asm, &points, &levels, &nested_data, &mut report)?;
     let (x, last_results) = match nested {
         Some(solved) => solved,
@@ -195,7 +215,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     let element = PI * r / arc_elements as f64;
     if drive_settings.steady_scheme == SteadyScheme::PaperD {
         // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`)
-        let scheme = PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, settings.arc_weight, mu, load_torque + damping * omega1);
+        let scheme = PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, arc_weight, mu, load_torque + damping * omega1);
         let (solved, pd, iterations) = scheme.run()?;
         state = solved;
         report.newton_iterations += iterations;
@@ -312,7 +332,7 @@ mod tests {
     fn with_state<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, check: impl FnOnce(&SteadyProblem<N, P, E, K>, &[f64])) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
-        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
+        let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone(), settings.arc_weight).unwrap();
         let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
         let mut points = friction_points(&asm, &[], Direction::Clockwise);
         if fixed {

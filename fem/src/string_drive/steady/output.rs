@@ -185,9 +185,10 @@ pub(super) fn view_points<const N: usize, K: LayoutElement<N> + ?Sized>(state: &
 /// with bending stiffness must span for its stick and slip arcs to be trusted
 /// (docs/fem-cosserat.md §11.1): such a slip zone lies inside the bending layer at the
 /// contact exit. Measured on the catalogue's `cosserat-drive`, both rotation senses, at
-/// 64–512 elements against the BVP (the zone's span as the FE gives it): slip-arc errors
-/// 22–76 % at 0.3–1.6 such elements, ≤ 5.4 % from 2.8 on (and 4.0–5.4 % at 1.4, 128 and
-/// 256 elements); 2.5 keeps every error above 10 % warned with a margin over the 1.6.
+/// 64–512 elements against the BVP (the zone's span as the FE gives it, on the drive's
+/// graded meshes, `DRIVE_GRADING_RATIO`): slip-arc errors 3–17 % at 0.5–1.7 such
+/// elements, 2.3–3.1 % at 2.1–2.2, ≤ 1.5 % from 3.4 on; 2.5 keeps every error above 2 %
+/// warned.
 pub const SLIP_ELEMENTS: f64 = 2.5;
 
 /// The stated warning for the slip zone of `pulley` of length `slip` (m along the
@@ -202,7 +203,7 @@ pub fn slip_resolution_warning(pulley: Pulley, slip: f64, element: f64, elements
     (slip > 0.0 && spans < SLIP_ELEMENTS).then(|| {
         let needed = (elements as f64 * SLIP_ELEMENTS / spans).ceil();
         format!(
-            "unresolved slip zone on the {} pulley: {} m long, {:.1} arc elements of {} m (≥ {SLIP_ELEMENTS} needed): its stick and slip arcs are not resolved (measured: 22–76 % off at 0.3–1.6 elements, ≤ 5.4 % from 2.8 on) — refine the mesh beyond {needed} elements",
+            "unresolved slip zone on the {} pulley: {} m long, {:.1} arc elements of {} m (≥ {SLIP_ELEMENTS} needed): its stick and slip arcs are not resolved (measured: 3–17 % off at 0.5–1.7 elements, 2–3 % at 2.1–2.2, ≤ 1.5 % from 3.4 on) — refine the mesh beyond {needed} elements",
             pulley.name(),
             numerics::Sig(slip),
             spans,

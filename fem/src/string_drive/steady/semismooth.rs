@@ -85,6 +85,8 @@ struct Semismooth<'s, 'p, 'a, const N: usize, const P: usize, const E: usize, K:
     small_before: bool,
     /// Steps in a row at the round-off floor.
     floor_count: usize,
+    /// The active set (slip per point) of the iterate before, for the round-off floor.
+    previous_set: Option<Vec<bool>>,
 }
 
 /// Why a call of [`Semismooth`] failed.
@@ -168,8 +170,14 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             && self.trial_results.as_ref().is_some_and(|t| t.iter().zip(&self.results).all(|(a, b)| a.slip == b.slip));
         // the round-off floor: steps within 10³ of the tolerance that no longer reduce
         // the merit by 10 % for 3 iterations on the same active set (fine meshes of a
-        // stiff normal penalty)
-        self.floor_count = if p.correction <= 1e3 * p.tolerance && same_set && p.merit_after > 0.9 * p.merit_before { self.floor_count + 1 } else { 0 };
+        // stiff normal penalty). A best trial (no trial decreased the merit enough, the
+        // line search at its floor) keeps the set if the iterate's is the previous
+        // iterate's: on strongly graded meshes the whole step stalls at 1–2× the
+        // tolerance there (docs/fem-cosserat.md §11.1)
+        let set: Vec<bool> = self.results.iter().map(|r| r.slip).collect();
+        let kept = if p.best_trial { self.previous_set.as_ref() == Some(&set) } else { same_set };
+        self.previous_set = Some(set);
+        self.floor_count = if p.correction <= 1e3 * p.tolerance && kept && p.merit_after > 0.9 * p.merit_before { self.floor_count + 1 } else { 0 };
         // converged: a whole step below the tolerance that kept the active set, or two
         // in a row (a point exactly at its slip bound may flip at round-off)
         if (p.damping == 1.0 && small && (same_set || self.small_before)) || self.floor_count >= 3 {
@@ -205,6 +213,7 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         took_best: false,
         small_before: false,
         floor_count: 0,
+        previous_set: None,
     };
     let opts = NewtonOptions { tolerance, max_iterations, min_damping: 1.0 / 1024.0 };
     let solved = numerics::newton::solve(&mut semismooth, x, &opts);
