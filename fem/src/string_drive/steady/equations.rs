@@ -159,7 +159,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
-        let partner = self.stick_partner(i).map(|j| self.it(j));
+        let partner = self.stick_partner(i).or_else(|| self.entry_neighbour(i)).map(|j| self.it(j));
         std::array::from_fn(|k| match k {
             k if k < N => il[k],
             k if k < 2 * N => ir[k - N],
@@ -176,10 +176,26 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     pub(super) fn stick_partner(&self, i: usize) -> Option<usize> {
         let pt = &self.points[i];
         match (pt.part, pt.direction) {
-            (Part::Right, Direction::Clockwise) => (i > 0 && self.points[i - 1].part == Part::Left).then(|| i - 1),
-            (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right).then_some(i + 1),
+            _ if pt.boundary => None,
+            (Part::Right, Direction::Clockwise) => (i > 0 && self.points[i - 1].part == Part::Left && !self.points[i - 1].boundary).then(|| i - 1),
+            (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right && !self.points[i + 1].boundary).then_some(i + 1),
             _ => None,
         }
+    }
+
+    /// The point whose traction a prescribed stick entry half i carries (Paper D's
+    /// contact-side halves, [`FrictionPoint::is_entry`]): the point at the next node on its
+    /// contact side, downstream in the travel (docs/fem-drive.md §12, "Fifth round");
+    /// `None` for any other point.
+    pub(super) fn entry_neighbour(&self, i: usize) -> Option<usize> {
+        let pt = &self.points[i];
+        if !pt.is_entry() || pt.fixed != Some(Fixed::Stick) {
+            return None;
+        }
+        let (m, n) = (self.points.len(), self.asm.mesh().node_count());
+        let (j, node) = if pt.part == Part::Right { ((i + 1) % m, (pt.node + 1) % n) } else { ((i + m - 1) % m, (pt.node + n - 1) % n) };
+        let q = &self.points[j];
+        (q.node == node && q.pulley == pt.pulley).then_some(j)
     }
 
     /// Per element, the friction points whose tractions hold at its edges ξ = −1, +1
@@ -409,6 +425,22 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 per[i].1[it][P - 1] = -w;
             }
         }
+        // a stick entry half of Paper D's contact-side halves: its upwind element is free,
+        // so it has no kinematic row (v = 0 would pin that free element's mean stretch to
+        // the stick zone's, a concentrated traction at the run-on point, measured); it
+        // carries its downstream neighbour's traction, w (τ_i − τ_j) = 0, and the stick
+        // rows of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
+        for i in 0..per.len() {
+            let Some(j) = self.entry_neighbour(i) else { continue };
+            if !per[i].2.slip && per[i].2.normal > 0.0 {
+                let w = self.points[i].weight;
+                let it = 2 * N + 2;
+                per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
+                per[i].1[it] = [0.0; P];
+                per[i].1[it][it] = w;
+                per[i].1[it][P - 1] = -w;
+            }
+        }
         let mut results = Vec::with_capacity(self.points.len());
         for (i, (r, j, res)) in per.into_iter().enumerate() {
             scatter(&self.variables(i), &r, &|a, b| j[a][b], None, &mut residual, with_jacobian.then_some(&mut values));
@@ -504,12 +536,18 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let node_weight = pt.left.1 + pt.right.1;
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
         let mut share = 0.0;
+        // a contact-side half: its own side's share only (docs/fem-drive.md §12, "Fifth round")
+        let own = |side: usize| !pt.boundary || (side == 1) == (pt.part == Part::Right);
+        let own_weight = if pt.boundary { if pt.part == Part::Right { pt.right.1 } else { pt.left.1 } } else { node_weight };
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            if !own(side) {
+                continue;
+            }
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
             let qv = SVector::<f64, N>::from_fn(|i, _| q[i]);
             let (l, dl) = point_stretch(layout, &el, &qv, xi);
-            let f = we / node_weight;
+            let f = we / own_weight;
             lam += f * l;
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
@@ -518,7 +556,9 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 share += f;
             }
         }
-        if share == 0.0 || self.nodal_normal(pt, z).0 <= 0.0 {
+        // the nodal gap at a contact boundary is the penalty's round-off: a contact-side
+        // half presses when its element does
+        if share == 0.0 || (!pt.boundary && self.nodal_normal(pt, z).0 <= 0.0) {
             return (0.0, [0.0; P], 0.0);
         }
         let contour = *self.asm.mesh().contour();

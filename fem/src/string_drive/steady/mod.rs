@@ -307,8 +307,11 @@ mod tests {
     /// The check on `scene` with the element `kernel` and the bending stiffness `bending`
     /// of its term parameters.
     /// `fixed`: the points carry Paper D's fixed rows instead (alternately stick and slip,
-    /// both slip senses; the string's slip bound is then the equilibrium normal).
-    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool) {
+    /// both slip senses; the string's slip bound is then the equilibrium normal);
+    /// `halves`: with `fixed`, every eighth point a stick entry half and every eighth
+    /// (offset 5) a slip exit half of Paper D's contact-side halves (their own side's
+    /// equilibrium normal, the entry half's tie to its neighbour).
+    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, halves: bool) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone()).unwrap();
@@ -321,6 +324,11 @@ mod tests {
                     1 => Fixed::Slip(1.0),
                     _ => Fixed::Slip(-1.0),
                 });
+                match i % 8 {
+                    0 if halves => *p = FrictionPoint { weight: p.right.1, part: Part::Right, boundary: true, ..*p },
+                    5 if halves => *p = FrictionPoint { weight: p.left.1, part: Part::Left, boundary: true, ..*p },
+                    _ => {}
+                }
             }
         }
         let b = &scene.belt;
@@ -328,6 +336,9 @@ mod tests {
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends };
         let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
+        if halves {
+            assert!((0..points.len()).any(|i| prob.entry_neighbour(i).is_some()), "an entry half's tie is exercised");
+        }
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)
@@ -387,9 +398,11 @@ mod tests {
         let scene = drive::Scene::from_json_str(SCENE).unwrap();
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, false);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, false, false);
         // Paper D's fixed rows with the equilibrium normal (its λ, c and e_r terms)
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop, true);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, true, false);
+        // and with contact-side halves: an entry half's tie, a half's own-side normal
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop, true, true);
     }
 
     /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
@@ -403,7 +416,7 @@ mod tests {
         let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
         let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
         assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
-        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false);
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, false);
     }
 
     /// The open layout's rows (docs/fem-cosserat.md §12.3, §12.7) on the same Cosserat
@@ -418,7 +431,7 @@ mod tests {
         for pulley_speed in [None, Some(9.95)] {
             let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
             let ends = Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed };
-            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false);
+            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false, false);
         }
     }
 

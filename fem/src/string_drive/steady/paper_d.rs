@@ -112,10 +112,15 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// The fixed topology's points on `asm` with the transitions `at`: the node at each
     /// is split, the points of a pulley upstream of its transition (in the travel) stick,
     /// downstream slip.
-    fn points(&self, asm: &Assembler<N, K>, at: [f64; 2]) -> Vec<FrictionPoint> {
+    /// On the string (nodal normal) the nodes at the contact boundaries `zones` (pulley,
+    /// σ_start, σ_end) carry their contact side only ([`contact_side_halves`]).
+    fn points(&self, asm: &Assembler<N, K>, at: [f64; 2], zones: &[(Pulley, f64, f64)]) -> Vec<FrictionPoint> {
         let contour = *asm.mesh().contour();
         let sign = self.data.direction.sign();
         let mut points = friction_points(asm, &at, self.data.direction);
+        if self.data.kernel.friction_normal() == FrictionNormal::Nodal {
+            contact_side_halves(&mut points, zones, contour.length());
+        }
         for p in &mut points {
             let k = usize::from(p.pulley == Pulley::Driven);
             let u = sign * (unwrapped(&contour, p.pulley, p.sigma) - unwrapped(&contour, p.pulley, at[k]));
@@ -219,7 +224,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             breaks.extend(at);
             let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
             let asm = Assembler::with_kernel(mesh, d.kernel.clone());
-            let points = self.points(&asm, at);
+            let zones: Vec<(Pulley, f64, f64)> = [Pulley::Driver, Pulley::Driven].into_iter().filter_map(|p| sol.zone(p).map(|z| (p, contour.wrap(z.sigma_start), contour.wrap(z.sigma_end)))).collect();
+            let points = self.points(&asm, at, &zones);
             let mut x = crate::static_homotopy::transfer(&sol, &asm);
             x.extend([x_from[nz_from], x_from[nz_from + 1]]);
             x.extend(points.iter().map(|p| interpolate_traction(&results_from, &contour, p)));
@@ -605,7 +611,7 @@ mod tests {
     /// prescribed point out of contact (normal 0) are not.
     #[test]
     fn a_prescribed_point_with_a_negative_reaction_is_found() {
-        let point = FrictionPoint { sigma: 0.3, pulley: Pulley::Driver, weight: 0.01, node: 7, left: (6, 0.005), right: (7, 0.005), part: Part::Whole, direction: Direction::Clockwise, fixed: None };
+        let point = FrictionPoint { sigma: 0.3, pulley: Pulley::Driver, weight: 0.01, node: 7, left: (6, 0.005), right: (7, 0.005), part: Part::Whole, direction: Direction::Clockwise, fixed: None, boundary: false };
         let result = |fixed: Option<Fixed>, normal: f64| PointResult { point: FrictionPoint { fixed, ..point }, traction: 0.0, normal, velocity: 0.0, slip: false };
         let ok = [result(Some(Fixed::Stick), 12.0), result(Some(Fixed::Slip(1.0)), 0.0), result(None, -3.0)];
         assert_eq!(lifted_prescribed(&ok), None);
