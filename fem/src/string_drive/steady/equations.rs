@@ -411,28 +411,22 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 per[k] = self.point_terms(k, z, c, w2, x[self.it(k)], true);
             }
         }
-        // both halves of a split node sticking would be two multipliers on one node
-        // (proportional columns): the slip half then carries the stick half's traction,
-        // w_R (τ_R − τ_L) = 0 — the whole node's behaviour (§12)
+        // ties w (τ_i − τ_j) = 0 on the point's row, τ_j in its partner slot:
+        // - both halves of a split node sticking would be two multipliers on one node
+        //   (proportional columns): the slip half then carries the stick half's traction —
+        //   the whole node's behaviour (§12);
+        // - a stick entry half of Paper D's contact-side halves: its upwind element is
+        //   free, so it has no kinematic row (v = 0 would pin that free element's mean
+        //   stretch to the stick zone's, a concentrated traction at the run-on point,
+        //   measured); it carries its downstream neighbour's traction, and the stick rows
+        //   of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
         for i in 0..per.len() {
-            let Some(j) = self.stick_partner(i) else { continue };
-            if !per[i].2.slip && !per[j].2.slip {
-                let w = self.points[i].weight;
-                let it = 2 * N + 2;
-                per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
-                per[i].1[it] = [0.0; P];
-                per[i].1[it][it] = w;
-                per[i].1[it][P - 1] = -w;
-            }
-        }
-        // a stick entry half of Paper D's contact-side halves: its upwind element is free,
-        // so it has no kinematic row (v = 0 would pin that free element's mean stretch to
-        // the stick zone's, a concentrated traction at the run-on point, measured); it
-        // carries its downstream neighbour's traction, w (τ_i − τ_j) = 0, and the stick
-        // rows of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
-        for i in 0..per.len() {
-            let Some(j) = self.entry_neighbour(i) else { continue };
-            if !per[i].2.slip && per[i].2.normal > 0.0 {
+            let tie = match (self.stick_partner(i), self.entry_neighbour(i)) {
+                (Some(j), _) if !per[i].2.slip && !per[j].2.slip => Some(j),
+                (None, Some(j)) if !per[i].2.slip && per[i].2.normal > 0.0 => Some(j),
+                _ => None,
+            };
+            if let Some(j) = tie {
                 let w = self.points[i].weight;
                 let it = 2 * N + 2;
                 per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);

@@ -364,6 +364,34 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
             }
         }
+        // polish: a pulley whose search ended while the other still moved carries a G that
+        // drifted with its partner's point (through the tension level), and its bracket
+        // mixes G of different partner points, so its slope can be far too steep to see
+        // the drift (measured at 1024 elements on the low-tension drive: the driver left
+        // 7.9 µm off its root while the driven moved 17 steps). Judged by the slope across
+        // its whole search, a point more than the step tolerance off takes that Newton
+        // step, and its search restarts from the fresh pair (docs/fem-drive.md §12,
+        // "Fifth round"); at most 3 times.
+        for _ in 0..3 {
+            let off = roots.each_ref().map(|r| r.last.is_finite() && r.span_slope().is_finite() && r.last.abs() > r.span_slope().abs() * tolerance);
+            if off == [false; 2] || self.report.borrow().outer_iterations >= MAX_OUTER {
+                break;
+            }
+            let (before, g_before) = (u, roots.each_ref().map(|r| r.last));
+            for k in (0..2).filter(|&k| off[k]) {
+                u[k] -= roots[k].last / roots[k].span_slope();
+            }
+            let (_, g) = self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?;
+            for k in 0..2 {
+                // a moved point's search restarts from the fresh pair; a point that stayed
+                // keeps its search with the refreshed G
+                if off[k] {
+                    roots[k] = Root::new();
+                    roots[k].record(before[k], g_before[k]);
+                }
+                roots[k].record(u[k], g[k]);
+            }
+        }
         // the search ends on its step; the point is a root only if G there is what that
         // step leaves of it: |G| ≤ |∂G/∂u| × 10 × the step tolerance (∂G/∂u from the
         // bracket, else the last secant); a missing or non-finite G is no root
@@ -472,6 +500,16 @@ impl Root {
         match (self.below, self.above, &self.history[..]) {
             (Some(b), Some(a), _) => (a.1 - b.1) / (a.0 - b.0),
             (_, _, [.., (u0, g0), (u1, g1)]) => (g1 - g0) / (u1 - u0),
+            _ => f64::NAN,
+        }
+    }
+
+    /// ∂G/∂u (1/s) across the whole search: between its first and its last point (NaN
+    /// with fewer than two) — each G of its own partner point, so a drift of G with the
+    /// partner weighs against the whole distance searched, not against one short step.
+    fn span_slope(&self) -> f64 {
+        match &self.history[..] {
+            [(u0, g0), .., (u1, g1)] => (g1 - g0) / (u1 - u0),
             _ => f64::NAN,
         }
     }
