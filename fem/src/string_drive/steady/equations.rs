@@ -164,7 +164,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
-        let partner = self.stick_partner(i).map(|j| self.it(j));
+        let partner = self.stick_partner(i).or_else(|| self.entry_neighbour(i)).map(|j| self.it(j));
         std::array::from_fn(|k| match k {
             k if k < N => il[k],
             k if k < 2 * N => ir[k - N],
@@ -181,10 +181,26 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     pub(super) fn stick_partner(&self, i: usize) -> Option<usize> {
         let pt = &self.points[i];
         match (pt.part, pt.direction) {
-            (Part::Right, Direction::Clockwise) => (i > 0 && self.points[i - 1].part == Part::Left).then(|| i - 1),
-            (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right).then_some(i + 1),
+            _ if pt.boundary => None,
+            (Part::Right, Direction::Clockwise) => (i > 0 && self.points[i - 1].part == Part::Left && !self.points[i - 1].boundary).then(|| i - 1),
+            (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right && !self.points[i + 1].boundary).then_some(i + 1),
             _ => None,
         }
+    }
+
+    /// The point whose traction a prescribed stick entry half i carries (Paper D's
+    /// contact-side halves, [`FrictionPoint::is_entry`]): the point at the next node on its
+    /// contact side, downstream in the travel (docs/fem-drive.md §12, "Fifth round");
+    /// `None` for any other point.
+    pub(super) fn entry_neighbour(&self, i: usize) -> Option<usize> {
+        let pt = &self.points[i];
+        if !pt.is_entry() || pt.fixed != Some(Fixed::Stick) {
+            return None;
+        }
+        let (m, n) = (self.points.len(), self.asm.mesh().node_count());
+        let (j, node) = if pt.part == Part::Right { ((i + 1) % m, (pt.node + 1) % n) } else { ((i + m - 1) % m, (pt.node + n - 1) % n) };
+        let q = &self.points[j];
+        (q.node == node && q.pulley == pt.pulley).then_some(j)
     }
 
     /// Per element, the friction points whose tractions hold at its edges ξ = −1, +1
@@ -421,12 +437,22 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 per[k] = self.point_terms(k, x, true, with_jacobian);
             }
         }
-        // both halves of a split node sticking would be two multipliers on one node
-        // (proportional columns): the slip half then carries the stick half's traction,
-        // w_R (τ_R − τ_L) = 0 — the whole node's behaviour (§12)
+        // ties w (τ_i − τ_j) = 0 on the point's row, τ_j in its partner slot:
+        // - both halves of a split node sticking would be two multipliers on one node
+        //   (proportional columns): the slip half then carries the stick half's traction —
+        //   the whole node's behaviour (§12);
+        // - a stick entry half of Paper D's contact-side halves: its upwind element is
+        //   free, so it has no kinematic row (v = 0 would pin that free element's mean
+        //   stretch to the stick zone's, a concentrated traction at the run-on point,
+        //   measured); it carries its downstream neighbour's traction, and the stick rows
+        //   of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
         for i in 0..per.len() {
-            let Some(j) = self.stick_partner(i) else { continue };
-            if !per[i].2.slip && !per[j].2.slip {
+            let tie = match (self.stick_partner(i), self.entry_neighbour(i)) {
+                (Some(j), _) if !per[i].2.slip && !per[j].2.slip => Some(j),
+                (None, Some(j)) if !per[i].2.slip && per[i].2.normal > 0.0 => Some(j),
+                _ => None,
+            };
+            if let Some(j) = tie {
                 let w = self.points[i].weight;
                 let it = 2 * N + 2;
                 per[i].0[it] = w * (x[self.it(i)] - x[self.it(j)]);
@@ -532,11 +558,17 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let node_weight = pt.left.1 + pt.right.1;
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
         let mut share = 0.0;
+        // a contact-side half: its own side's share only (docs/fem-drive.md §12, "Fifth round")
+        let own = |side: usize| !pt.boundary || (side == 1) == (pt.part == Part::Right);
+        let own_weight = if pt.boundary { if pt.part == Part::Right { pt.right.1 } else { pt.left.1 } } else { node_weight };
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            if !own(side) {
+                continue;
+            }
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
             let (l, dl) = point_stretch(layout, &el, &q, xi, grad);
-            let f = we / node_weight;
+            let f = we / own_weight;
             lam += f * l;
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
@@ -545,7 +577,9 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 share += f;
             }
         }
-        if share == 0.0 || self.nodal_normal(pt, z, false).0 <= 0.0 {
+        // the nodal gap at a contact boundary is the penalty's round-off: a contact-side
+        // half presses when its element does
+        if share == 0.0 || (!pt.boundary && self.nodal_normal(pt, z, false).0 <= 0.0) {
             return (0.0, [0.0; P], 0.0);
         }
         let contour = *self.asm.mesh().contour();

@@ -328,8 +328,12 @@ mod tests {
     /// stiffness `bending` of its term parameters, at a converged drive state with gravity
     /// and inertia perturbed off equilibrium (x).
     /// `fixed`: the points carry Paper D's fixed rows instead (alternately stick and slip,
-    /// both slip senses; the string's slip bound is then the equilibrium normal).
-    fn with_state<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, check: impl FnOnce(&SteadyProblem<N, P, E, K>, &[f64])) {
+    /// both slip senses; the string's slip bound is then the equilibrium normal);
+    /// `halves`: with `fixed`, every eighth point a stick entry half and every eighth
+    /// (offset 5) a slip exit half of Paper D's contact-side halves (their own side's
+    /// equilibrium normal, the entry half's tie to its neighbour).
+    #[allow(clippy::too_many_arguments)]
+    fn with_state<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, halves: bool, check: impl FnOnce(&SteadyProblem<N, P, E, K>, &[f64])) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
         let settings = crate::options::SolverSettings::default();
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone(), settings.arc_weight).unwrap();
@@ -342,6 +346,11 @@ mod tests {
                     1 => Fixed::Slip(1.0),
                     _ => Fixed::Slip(-1.0),
                 });
+                match i % 8 {
+                    0 if halves => *p = FrictionPoint { weight: p.right.1, part: Part::Right, boundary: true, ..*p },
+                    5 if halves => *p = FrictionPoint { weight: p.left.1, part: Part::Left, boundary: true, ..*p },
+                    _ => {}
+                }
             }
         }
         let b = &scene.belt;
@@ -349,6 +358,9 @@ mod tests {
         let params = TermParams { axial_stiffness: b.axial_stiffness, weight: Some(9.81 * b.mass_per_length), penalty: Some(1e-3 * penalty), bending_stiffness: bending };
         let sp = SteadyParams { mu: 0.3, penalty: 1e-3 * penalty, kappa: 10.0, radius: 0.08, omega1: 10.0, torque: 2.0, damping: 0.01, inertia: Some(0.12), ends };
         let prob: SteadyProblem<N, P, E, K> = SteadyProblem { asm: &asm, params, length: b.length, points: &points, sp, strain_rule: kernel.rules().strain };
+        if halves {
+            assert!((0..points.len()).any(|i| prob.entry_neighbour(i).is_some()), "an entry half's tie is exercised");
+        }
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
         // tractions of both signs, some above their bound (slip), some below (stick)
@@ -370,8 +382,8 @@ mod tests {
 
     /// The generalised Jacobian at [`with_state`]'s state against central differences of
     /// the residual.
-    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool) {
-        with_state::<N, P, E, K>(scene, kernel, bending, ends, fixed, |prob, x| jacobian_against_differences(prob, x));
+    fn check_jacobian<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, halves: bool) {
+        with_state::<N, P, E, K>(scene, kernel, bending, ends, fixed, halves, |prob, x| jacobian_against_differences(prob, x));
     }
 
     fn jacobian_against_differences<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(prob: &SteadyProblem<N, P, E, K>, x: &[f64]) {
@@ -421,9 +433,11 @@ mod tests {
         let scene = drive::Scene::from_json_str(SCENE).unwrap();
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let kernel = crate::formulation::find(&opts.formulation).unwrap();
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, false);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, false, false);
         // Paper D's fixed rows with the equilibrium normal (its λ, c and e_r terms)
-        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop, true);
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel.clone(), None, Ends::Loop, true, false);
+        // and with contact-side halves: an entry half's tie, a half's own-side normal
+        check_jacobian::<NDOF, NPV, NEV, dyn Kernel>(&scene, kernel, None, Ends::Loop, true, true);
     }
 
     /// The residual-only pass (`evaluate(x, false)`: first-order or plain f64 terms, no
@@ -457,14 +471,14 @@ mod tests {
         let scene = drive::Scene::from_json_str(SCENE).unwrap();
         let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
         let string = crate::formulation::find(&opts.formulation).unwrap();
-        for (bending, fixed) in [(None, false), (Some(1e-3), false), (None, true)] {
-            with_state::<NDOF, NPV, NEV, dyn Kernel>(&scene, string.clone(), bending, Ends::Loop, fixed, same);
+        for (bending, fixed, halves) in [(None, false, false), (Some(1e-3), false, false), (None, true, false), (None, true, true)] {
+            with_state::<NDOF, NPV, NEV, dyn Kernel>(&scene, string.clone(), bending, Ends::Loop, fixed, halves, same);
         }
         let json = SCENE.replace(r#""theory": "string""#, r#""theory": "cosserat", "bending_stiffness": 0.001, "shear_stiffness": 10000.0"#);
         let scene = drive::Scene::from_json_str(&json).unwrap();
         for ends in [Ends::Loop, Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed: None }, Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed: Some(9.95) }] {
             let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
-            with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false, same);
+            with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false, false, same);
         }
     }
 
@@ -479,7 +493,7 @@ mod tests {
         let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
         let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
         assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
-        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false);
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, false);
     }
 
     /// The open layout's rows (docs/fem-cosserat.md §12.3, §12.7) on the same Cosserat
@@ -494,7 +508,7 @@ mod tests {
         for pulley_speed in [None, Some(9.95)] {
             let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
             let ends = Ends::Open { transport_rate: 0.79, flux_in: 300.0, flux_out: 250.0, pulley_speed };
-            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false);
+            check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false, false);
         }
     }
 

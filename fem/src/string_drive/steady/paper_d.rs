@@ -112,10 +112,15 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// The fixed topology's points on `asm` with the transitions `at`: the node at each
     /// is split, the points of a pulley upstream of its transition (in the travel) stick,
     /// downstream slip.
-    fn points(&self, asm: &Assembler<N, K>, at: [f64; 2]) -> Vec<FrictionPoint> {
+    /// On the string (nodal normal) the nodes at the contact boundaries `zones` (pulley,
+    /// σ_start, σ_end) carry their contact side only ([`contact_side_halves`]).
+    fn points(&self, asm: &Assembler<N, K>, at: [f64; 2], zones: &[(Pulley, f64, f64)]) -> Vec<FrictionPoint> {
         let contour = *asm.mesh().contour();
         let sign = self.data.direction.sign();
         let mut points = friction_points(asm, &at, self.data.direction);
+        if self.data.kernel.friction_normal() == FrictionNormal::Nodal {
+            contact_side_halves(&mut points, zones, contour.length());
+        }
         for p in &mut points {
             let k = usize::from(p.pulley == Pulley::Driven);
             let u = sign * (unwrapped(&contour, p.pulley, p.sigma) - unwrapped(&contour, p.pulley, at[k]));
@@ -219,7 +224,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             breaks.extend(at);
             let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
             let asm = Assembler::with_kernel(mesh, d.kernel.clone());
-            let points = self.points(&asm, at);
+            let zones: Vec<(Pulley, f64, f64)> = [Pulley::Driver, Pulley::Driven].into_iter().filter_map(|p| sol.zone(p).map(|z| (p, contour.wrap(z.sigma_start), contour.wrap(z.sigma_end)))).collect();
+            let points = self.points(&asm, at, &zones);
             let mut x = crate::static_homotopy::transfer(&sol, &asm);
             x.extend([x_from[nz_from], x_from[nz_from + 1]]);
             x.extend(points.iter().map(|p| interpolate_traction(&results_from, &contour, p)));
@@ -358,6 +364,34 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 (a, b) => u = [a.unwrap_or(u[0]), b.unwrap_or(u[1])],
             }
         }
+        // polish: a pulley whose search ended while the other still moved carries a G that
+        // drifted with its partner's point (through the tension level), and its bracket
+        // mixes G of different partner points, so its slope can be far too steep to see
+        // the drift (measured at 1024 elements on the low-tension drive: the driver left
+        // 7.9 µm off its root while the driven moved 17 steps). Judged by the slope across
+        // its whole search, a point more than the step tolerance off takes that Newton
+        // step, and its search restarts from the fresh pair (docs/fem-drive.md §12,
+        // "Fifth round"); at most 3 times.
+        for _ in 0..3 {
+            let off = roots.each_ref().map(|r| r.last.is_finite() && r.span_slope().is_finite() && r.last.abs() > r.span_slope().abs() * tolerance);
+            if off == [false; 2] || self.report.borrow().outer_iterations >= MAX_OUTER {
+                break;
+            }
+            let (before, g_before) = (u, roots.each_ref().map(|r| r.last));
+            for k in (0..2).filter(|&k| off[k]) {
+                u[k] -= roots[k].last / roots[k].span_slope();
+            }
+            let (_, g) = self.solve_at([sigma_of(u[0]), sigma_of(u[1])])?;
+            for k in 0..2 {
+                // a moved point's search restarts from the fresh pair; a point that stayed
+                // keeps its search with the refreshed G
+                if off[k] {
+                    roots[k] = Root::new();
+                    roots[k].record(before[k], g_before[k]);
+                }
+                roots[k].record(u[k], g[k]);
+            }
+        }
         // the search ends on its step; the point is a root only if G there is what that
         // step leaves of it: |G| ≤ |∂G/∂u| × 10 × the step tolerance (∂G/∂u from the
         // bracket, else the last secant); a missing or non-finite G is no root
@@ -466,6 +500,16 @@ impl Root {
         match (self.below, self.above, &self.history[..]) {
             (Some(b), Some(a), _) => (a.1 - b.1) / (a.0 - b.0),
             (_, _, [.., (u0, g0), (u1, g1)]) => (g1 - g0) / (u1 - u0),
+            _ => f64::NAN,
+        }
+    }
+
+    /// ∂G/∂u (1/s) across the whole search: between its first and its last point (NaN
+    /// with fewer than two) — each G of its own partner point, so a drift of G with the
+    /// partner weighs against the whole distance searched, not against one short step.
+    fn span_slope(&self) -> f64 {
+        match &self.history[..] {
+            [(u0, g0), .., (u1, g1)] => (g1 - g0) / (u1 - u0),
             _ => f64::NAN,
         }
     }
@@ -605,7 +649,7 @@ mod tests {
     /// prescribed point out of contact (normal 0) are not.
     #[test]
     fn a_prescribed_point_with_a_negative_reaction_is_found() {
-        let point = FrictionPoint { sigma: 0.3, pulley: Pulley::Driver, weight: 0.01, node: 7, left: (6, 0.005), right: (7, 0.005), part: Part::Whole, direction: Direction::Clockwise, fixed: None };
+        let point = FrictionPoint { sigma: 0.3, pulley: Pulley::Driver, weight: 0.01, node: 7, left: (6, 0.005), right: (7, 0.005), part: Part::Whole, direction: Direction::Clockwise, fixed: None, boundary: false };
         let result = |fixed: Option<Fixed>, normal: f64| PointResult { point: FrictionPoint { fixed, ..point }, traction: 0.0, normal, velocity: 0.0, slip: false };
         let ok = [result(Some(Fixed::Stick), 12.0), result(Some(Fixed::Slip(1.0)), 0.0), result(None, -3.0)];
         assert_eq!(lifted_prescribed(&ok), None);

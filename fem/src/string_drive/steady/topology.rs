@@ -29,6 +29,13 @@ pub struct FrictionPoint {
     /// is in contact, prescribed instead of decided by Coulomb's law; `None` (the direct
     /// semismooth solve): decided per iterate by (DS4).
     pub fixed: Option<Fixed>,
+    /// Paper D's fixed topology on the string (docs/fem-drive.md §12, "Fifth round"): the
+    /// node is a contact boundary and the point is its contact side only — a half
+    /// ([`Part::Left`] or [`Part::Right`], the side in contact) whose traction loads that
+    /// element alone, so no friction acts on the free element beyond the boundary. A
+    /// stick entry half ([`FrictionPoint::is_entry`]) has no kinematic row (its upwind
+    /// element is free): it carries the traction of its downstream neighbour.
+    pub boundary: bool,
 }
 
 /// A friction point's prescribed row in Paper D's fixed topology (spec §3.5): while the
@@ -86,6 +93,13 @@ impl FrictionPoint {
         }
     }
 
+    /// A contact boundary's half whose contact side lies downstream in the travel: where
+    /// the belt runs onto the pulley ([`Part::Right`] clockwise, [`Part::Left`]
+    /// counter-clockwise).
+    pub fn is_entry(&self) -> bool {
+        self.boundary && (self.part == Part::Right) == (self.direction == Direction::Clockwise)
+    }
+
     /// σ where the point's velocity is sampled: the midpoint of its element.
     pub fn velocity_sigma(&self) -> f64 {
         if self.velocity_from_right() {
@@ -131,7 +145,7 @@ pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assem
         let reach = |region: Region| reachable_pulley(contour, region, sigma);
         let pulley = reach(el_r.region).or_else(|| reach(el_l.region));
         let Some(pulley) = pulley.filter(|p| !(mesh.is_open() && *p == Pulley::Driver)) else { continue };
-        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction, fixed: None };
+        let whole = FrictionPoint { sigma, pulley, weight: 0.5 * (el_l.h + el_r.h), node: k, left: (left, 0.5 * el_l.h), right: (k, 0.5 * el_r.h), part: Part::Whole, direction, fixed: None, boundary: false };
         if splits.iter().any(|&t| crate::fitting::periodic_diff(t, sigma, lc).abs() <= 1e-6 * (el_l.h + el_r.h)) {
             out.push(FrictionPoint { weight: 0.5 * el_l.h, part: Part::Left, ..whole });
             out.push(FrictionPoint { weight: 0.5 * el_r.h, part: Part::Right, ..whole });
@@ -145,5 +159,24 @@ pub fn friction_points<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assem
 /// σ of a pulley's prescribed stick→slip point in Paper D's fixed topology (the node split
 /// into a fixed stick and a fixed slip half); `None` without a fixed topology.
 pub fn fixed_transition(results: &[PointResult], pulley: Pulley) -> Option<f64> {
-    results.iter().find(|p| p.point.pulley == pulley && p.point.fixed.is_some() && p.point.part != Part::Whole).map(|p| p.point.sigma)
+    results.iter().find(|p| p.point.pulley == pulley && p.point.fixed.is_some() && p.point.part != Part::Whole && !p.point.boundary).map(|p| p.point.sigma)
+}
+
+/// Paper D's contact-side halves on the string (docs/fem-drive.md §12, "Fifth round"): the
+/// point at a node within 10⁻⁶ of its element lengths of a contact zone's start
+/// (`zones`: per pulley σ_start, σ_end along σ) becomes the half on the zone's side
+/// ([`Part::Right`]), at its end [`Part::Left`], with that side's weight only and
+/// [`FrictionPoint::boundary`] set. A node that is also a stick→slip split is left as it is.
+pub fn contact_side_halves(points: &mut [FrictionPoint], zones: &[(Pulley, f64, f64)], lc: f64) {
+    for p in points.iter_mut().filter(|p| p.part == Part::Whole) {
+        let (sigma, tolerance, pulley) = (p.sigma, 1e-6 * 2.0 * (p.left.1 + p.right.1), p.pulley);
+        let near = |s: f64| crate::fitting::periodic_diff(s, sigma, lc).abs() <= tolerance;
+        for &(_, start, end) in zones.iter().filter(|z| z.0 == pulley) {
+            if near(start) {
+                *p = FrictionPoint { weight: p.right.1, part: Part::Right, boundary: true, ..*p };
+            } else if near(end) {
+                *p = FrictionPoint { weight: p.left.1, part: Part::Left, boundary: true, ..*p };
+            }
+        }
+    }
 }
