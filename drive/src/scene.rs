@@ -802,6 +802,25 @@ pub struct FemSettings {
     /// §3.5, docs/cosserat-drive.md). Default absent = `semismooth`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steady_scheme: Option<SteadyScheme>,
+    /// The FE's normal contact in the direct steady solve of a one-pulley Cosserat scene
+    /// (docs/fem-cosserat.md §12.5): `penalty` — P⟨−γ⟩ — or `augmented-lagrangian` — the
+    /// multipliers of Table 1 updated until the gap closes, the penalty result with a
+    /// stated warning where that does not converge. Default absent = `penalty`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact: Option<NormalContact>,
+}
+
+/// The FE's normal contact (`fem.contact`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum NormalContact {
+    /// The penalty P⟨−γ⟩: a penetration T̃/(RP) and the penalty layer at the contact
+    /// edges.
+    #[default]
+    Penalty,
+    /// The augmented Lagrangian ⟨λ − Pγ⟩₊ with the first-order (Uzawa) update of the
+    /// multipliers λ after each converged solve.
+    AugmentedLagrangian,
 }
 
 /// The FE's scheme for the stick and slip zones of a steady two-pulley drive
@@ -849,6 +868,7 @@ impl Default for FemSettings {
             max_steps: None,
             steady_tolerance: None,
             steady_scheme: None,
+            contact: None,
         }
     }
 }
