@@ -225,7 +225,7 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize>(problem: &crat
         let mut al = AugmentedReport::default();
         match setup.augmented(state, sp, slot_weight, fit.as_ref(), drive_settings, &mut al, &mut report) {
             Ok(s) => state = s,
-            Err((failure, _)) => {
+            Err(failure) => {
                 report.warnings.push(format!("the augmented Lagrangian of the normal contact did not converge ({failure}): the result is the penalty solve's (P = {} N/m²)", numerics::Sig(penalty)));
                 let (mesh, x, results) = penalty_state;
                 state = State { rho, asm: Assembler::with_kernel(mesh, kernel.clone()), x, results };
@@ -273,10 +273,10 @@ impl<const N: usize, const P: usize, const E: usize> OpenSetup<'_, N, P, E, dyn 
     /// rule's points (the first from λ = 0: the penalty pressure), the element rebuilt
     /// with the multipliers as a field over σ, a Newton solve on the mesh and, with `fit`,
     /// the fit to A, B, C (its refits read the field on their meshes); converged when the
-    /// largest multiplier change is ≤ `contact_tolerance` × F_ref/R. The failure and the last
-    /// state otherwise.
+    /// largest multiplier change is ≤ `contact_tolerance` × F_ref/R. The failure
+    /// otherwise (the caller keeps the penalty state).
     #[allow(clippy::too_many_arguments)]
-    fn augmented(&self, mut state: State<N, dyn LayoutElement<N>>, sp: SteadyParams, slot_weight: Option<f64>, fit: Option<&OpenFit<'_>>, drive_settings: &super::super::DriveSettings, al: &mut AugmentedReport, report: &mut SteadyReport) -> Result<State<N, dyn LayoutElement<N>>, (AugmentedFailure, State<N, dyn LayoutElement<N>>)> {
+    fn augmented(&self, mut state: State<N, dyn LayoutElement<N>>, sp: SteadyParams, slot_weight: Option<f64>, fit: Option<&OpenFit<'_>>, drive_settings: &super::super::DriveSettings, al: &mut AugmentedReport, report: &mut SteadyReport) -> Result<State<N, dyn LayoutElement<N>>, AugmentedFailure> {
         let penalty = self.base.penalty;
         al.tolerance = drive_settings.contact_tolerance * self.f_ref / self.base.radius;
         let sp_at = move |_: f64| sp;
@@ -294,24 +294,23 @@ impl<const N: usize, const P: usize, const E: usize> OpenSetup<'_, N, P, E, dyn 
                 break;
             }
             let Some(kernel) = state.asm.kernel().with_contact_multipliers(Some(Arc::new(next))) else {
-                return Err((AugmentedFailure::Unsupported, state));
+                return Err(AugmentedFailure::Unsupported);
             };
             let data = SteadyFitData { kernel: &kernel, ..self.fit_data(&sp_at, slot_weight, fit.and_then(|f| f.grading)) };
             state = match resolve::<N, P, E>(&state, kernel.clone(), &data, report) {
                 Ok(s) => s,
-                Err(e) => return Err((AugmentedFailure::Solve(e.to_string()), state)),
+                Err(e) => return Err(AugmentedFailure::Solve(e.to_string())),
             };
             if let Some(fit) = fit {
                 let grading = fit.grading;
                 let data = SteadyFitData { kernel: &kernel, ..self.fit_data(&sp_at, slot_weight, grading) };
-                let (mesh, x, results) = (state.asm.mesh().clone(), state.x.clone(), state.results.clone());
                 state = match super::fit_steady::<N, P, E, dyn LayoutElement<N>>(state, data, fit.settings, fit.drive_settings, fit.element, report) {
                     Ok(s) => s,
-                    Err(e) => return Err((AugmentedFailure::Solve(e.to_string()), State { rho: self.rho, asm: Assembler::with_kernel(mesh, kernel.clone()), x, results })),
+                    Err(e) => return Err(AugmentedFailure::Solve(e.to_string())),
                 };
             }
         }
-        Err((AugmentedFailure::NotConverged { change: al.multiplier_change, tolerance: al.tolerance, iterations: al.iterations }, state))
+        Err(AugmentedFailure::NotConverged { change: al.multiplier_change, tolerance: al.tolerance, iterations: al.iterations })
     }
 }
 
