@@ -264,6 +264,11 @@ pub(crate) const FEM: &[Field] = &[
         Kind::Choice { what: "steady scheme", variants: &["semismooth", "paper-d"] },
         "how the steady FE finds its stick and slip zones",
     ),
+    opt(
+        "contact",
+        Kind::Choice { what: "normal contact", variants: &["penalty", "augmented-lagrangian"] },
+        "the steady FE's normal contact on one pulley",
+    ),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -706,6 +711,7 @@ mod tests {
             max_steps: Some(100),
             steady_tolerance: Some(1e-6),
             steady_scheme: Some(SteadyScheme::PaperD),
+            contact: Some(NormalContact::AugmentedLagrangian),
             ..Default::default()
         })
         .unwrap();

@@ -240,3 +240,19 @@ fn solvers_refuse_what_they_cannot_solve_yet_naming_the_issue() {
     hanging.as_object_mut().unwrap().remove("bvp");
     assert_eq!(not_yet_solvable(&read(&hanging).unwrap(), Solver::Fem).unwrap().issue, 14);
 }
+
+/// `fem.contact = "augmented-lagrangian"` is read by the steady one-pulley Cosserat solve
+/// only: accepted there, refused by name on every other scene instead of being ignored.
+#[test]
+fn augmented_lagrangian_contact_only_where_it_is_built() {
+    let mut v = one_pulley();
+    v["fem"] = json!({"contact": "augmented-lagrangian"});
+    read(&v).unwrap();
+    for file in [include_str!("../../scenes/cosserat-drive.json"), include_str!("../../scenes/cosserat-hanging.json"), include_str!("../../scenes/string-drive.json")] {
+        let mut v: Value = serde_json::from_str(file).unwrap();
+        v["fem"]["contact"] = json!("augmented-lagrangian");
+        not_allowed(&v, "fem.contact", "one-pulley Cosserat");
+        v["fem"]["contact"] = json!("penalty");
+        read(&v).unwrap();
+    }
+}

@@ -277,7 +277,7 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         if problem.is_one_pulley() {
             refuse_paper_d(drive_settings, "the one-pulley layout (its transition is prescribed by mode `stick_slip_angle`)")?;
             // the open layout (docs/fem-cosserat.md §12)
-            return string_drive::steady::solve_open::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
+            return string_drive::steady::solve_open::<NC, { point_size(NC) }, { element_size(NC) }>(problem, opts, settings, drive_settings, kernel);
         }
         return string_drive::steady::solve_layout::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
     }

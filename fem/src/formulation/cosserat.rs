@@ -20,7 +20,7 @@
 use nalgebra::{Const, SVector, U1};
 use num_dual::{Dual2SVec64, DualSVec64};
 
-use super::terms::{Gravity, PenaltyContact, PointDensity};
+use super::terms::{AugmentedPenalty, ContactMultipliers, Gravity, PenaltyContact, PointDensity};
 use super::layout::{FrictionNormal, LayoutElement};
 use super::{ElementContext, ElementDerivatives, PointFields, Rule, Scalar, TermParams, TermRules, Theory, NDOF};
 use crate::assembly::{ElementKernel, ADMISSIBILITY_POINTS};
@@ -87,7 +87,7 @@ pub enum Transitions {
 /// no b₂ (`None`): the static analysis binds the scene's `belt.shear_stiffness` to them
 /// ([`LayoutElement::for_belt`]) before it assembles; an unbound element assembles a NaN
 /// shear energy, which the solver reports as non-finite.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct CosseratElement {
     /// Shear stiffness b₂, N (> 0); `None` for a registered element, bound to the
     /// scene's b₂ by [`LayoutElement::for_belt`].
@@ -96,6 +96,9 @@ pub struct CosseratElement {
     pub rules: CosseratRules,
     /// Slopes at the transitions.
     pub transitions: Transitions,
+    /// The augmented-Lagrangian multipliers of the normal contact as a field over σ
+    /// ([`AugmentedPenalty`]; docs/fem-cosserat.md §12.5); `None`: the plain penalty.
+    pub contact_multipliers: Option<Arc<ContactMultipliers>>,
 }
 
 /// The fields of a Cosserat element at one point.
@@ -216,13 +219,13 @@ impl CosseratElement {
     /// The element with shear stiffness `shear_stiffness` (N), the rules `rules` and the
     /// augmented transitions.
     pub fn new(shear_stiffness: f64, rules: CosseratRules) -> CosseratElement {
-        CosseratElement { shear_stiffness: Some(shear_stiffness), rules, transitions: Transitions::Augmented }
+        CosseratElement { shear_stiffness: Some(shear_stiffness), rules, transitions: Transitions::Augmented, contact_multipliers: None }
     }
 
     /// The registered element of shear rule `shear`: no b₂ of its own, the scene's is
     /// bound by [`LayoutElement::for_belt`].
     pub const fn from_scene(shear: Rule) -> CosseratElement {
-        CosseratElement { shear_stiffness: None, rules: CosseratRules::with_shear(shear), transitions: Transitions::Augmented }
+        CosseratElement { shear_stiffness: None, rules: CosseratRules::with_shear(shear), transitions: Transitions::Augmented, contact_multipliers: None }
     }
 
     /// Visit the active terms in assembly order: stretch, shear, bending (if
@@ -238,8 +241,10 @@ impl CosseratElement {
         if let Some(w) = params.weight {
             v.visit(r.gravity, &OnCentreline(Gravity(w)));
         }
-        if let Some(p) = params.penalty {
-            v.visit(r.contact, &OnCentreline(PenaltyContact(p)));
+        match (params.penalty, &self.contact_multipliers) {
+            (Some(penalty), Some(m)) => v.visit(r.contact, &OnCentreline(AugmentedPenalty { penalty, multipliers: m })),
+            (Some(p), None) => v.visit(r.contact, &OnCentreline(PenaltyContact(p))),
+            (None, _) => {}
         }
     }
 
@@ -520,7 +525,15 @@ impl LayoutElement<NC> for CosseratElement {
 
     fn for_belt(&self, belt: &BeltSection) -> Option<Arc<dyn LayoutElement<NC>>> {
         let b2 = belt.shear_stiffness?;
-        Some(Arc::new(CosseratElement { shear_stiffness: Some(b2), ..*self }))
+        Some(Arc::new(CosseratElement { shear_stiffness: Some(b2), ..self.clone() }))
+    }
+
+    fn with_contact_multipliers(&self, multipliers: Option<Arc<ContactMultipliers>>) -> Option<Arc<dyn LayoutElement<NC>>> {
+        Some(Arc::new(CosseratElement { contact_multipliers: multipliers, ..self.clone() }))
+    }
+
+    fn contact_multipliers(&self) -> Option<&ContactMultipliers> {
+        self.contact_multipliers.as_deref()
     }
 
     fn shear_stiffness(&self) -> Option<f64> {
@@ -547,7 +560,7 @@ mod tests {
     use crate::assembly::tests::{assert_consistent_jacobian, wave_state};
     use crate::assembly::Assembler;
     use crate::dofs::{augmented_flags, DofKind, DofMap};
-    use crate::formulation::terms::{Bending, Strain};
+    use crate::formulation::terms::{Bending, ContactMultipliers, Strain};
     use crate::formulation::{biot_density, find};
     use crate::mesh::{ElementGeometry, Mesh};
     use crate::test_rng::Rng;
@@ -608,6 +621,43 @@ mod tests {
 
     fn shear_rules() -> [CosseratRules; 3] {
         [Rule::Gauss(3), Rule::Simpson, Rule::Gauss(2)].map(CosseratRules::with_shear)
+    }
+
+    /// The augmented-Lagrangian contact (docs/fem-cosserat.md §12.5): with a zero field the
+    /// element's energy is the penalty element's to round-off (the same ½P⟨−γ⟩²); with a
+    /// field λ(σ) of 0–2·10⁴ N/m (the pressure at P = 3e6 for a gap of −7 mm) the gradient
+    /// agrees with central differences of the energy (step and tolerance as
+    /// [`derivatives_match_finite_differences`]) and the energy differs from the penalty's
+    /// where a contact point carries λ — so the multipliers reach the assembled term.
+    #[test]
+    fn augmented_contact_energy_and_gradient() {
+        let mut rng = Rng(0x0a1c_0a7c_2026_0013);
+        let plain = CosseratElement::new(B2, CosseratRules::with_shear(Rule::Gauss(3)));
+        let zero = CosseratElement { contact_multipliers: Some(Arc::new(ContactMultipliers::default())), ..plain.clone() };
+        let field = ContactMultipliers::from_samples((0..=100).map(|k| (0.015 * k as f64, 1e4 * (1.0 + (7.0 * k as f64).sin()))).collect());
+        let al = CosseratElement { contact_multipliers: Some(Arc::new(field)), ..plain.clone() };
+        let mut differs = 0;
+        for el in elements() {
+            for _ in 0..10 {
+                let q = random_q(&el, &mut rng);
+                let e0 = plain.energy(&el, &q);
+                assert!((zero.energy(&el, &q) - e0).abs() <= 1e-12 * e0.abs().max(1e-12));
+                let d = al.derivatives(&el, &q);
+                let scale = d.gradient.iter().fold(1.0f64, |m, g| m.max(g.abs()));
+                let step = 1e-7;
+                for i in 0..NC {
+                    let (mut qp, mut qm) = (q, q);
+                    qp[i] += step;
+                    qm[i] -= step;
+                    let fd = (al.energy(&el, &qp) - al.energy(&el, &qm)) / (2.0 * step);
+                    assert!((fd - d.gradient[i]).abs() <= 1e-5 * scale, "{:?} grad[{i}]: AD {} FD {fd}", el.geometry.region, d.gradient[i]);
+                }
+                if (d.energy - e0).abs() > 1e-9 * e0.abs() {
+                    differs += 1;
+                }
+            }
+        }
+        assert!(differs >= 10, "the multipliers changed the energy of only {differs} states");
     }
 
     /// Gradient and Hessian (the per-point path, which the kernel uses) against central

@@ -59,6 +59,23 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn for_belt(&self, _belt: &crate::problem::BeltSection) -> Option<std::sync::Arc<dyn LayoutElement<N>>> {
         None
     }
+    /// The element with the augmented-Lagrangian multipliers `multipliers` of its normal
+    /// contact (a field over σ, [`super::ContactMultipliers`]; `None`: the plain penalty),
+    /// or `None` (the default) if it has penalty contact only (docs/fem-cosserat.md §12.5).
+    fn with_contact_multipliers(&self, _multipliers: Option<Arc<super::ContactMultipliers>>) -> Option<Arc<dyn LayoutElement<N>>> {
+        None
+    }
+    /// The multipliers of its normal contact the element holds; `None` (the default):
+    /// the plain penalty, λ ≡ 0.
+    fn contact_multipliers(&self) -> Option<&super::ContactMultipliers> {
+        None
+    }
+    /// The normal contact traction ⟨λ(σ) − Pγ⟩₊ (N per unit contour length) at σ for the
+    /// penalty P and the gap γ (`None`: no pulley in reach): the penalty's P⟨−γ⟩ with
+    /// the multipliers of [`Self::contact_multipliers`].
+    fn contact_traction(&self, penalty: f64, sigma: f64, gap: Option<f64>) -> f64 {
+        super::augmented_traction(self.contact_multipliers().map_or(0.0, |m| m.at(sigma)), penalty, gap)
+    }
     /// The shear stiffness b₂ (N) the element holds (a bound Cosserat element), for the
     /// recovery of its contact edges; `None` (the default) for an unshearable element.
     fn shear_stiffness(&self) -> Option<f64> {

@@ -92,7 +92,7 @@ pub mod terms;
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
 pub use layout::{RegisteredElement, NDOF_COSSERAT};
 pub use drive::scene::Theory;
-pub use terms::{Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
+pub use terms::{augmented_traction, AugmentedPenalty, ContactMultipliers, Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
 use terms::EnergySum;
 
 /// The integration rule of each energy term (§7.3; docs/fem-string.md §6).

@@ -122,6 +122,101 @@ impl<D: Scalar> PointDensity<D> for PenaltyContact {
     }
 }
 
+/// The augmented-Lagrangian normal traction of Table 1 (§6.1, docs/fem-drive.md (D6)):
+/// ⟨λ − Pγ⟩₊ for the multiplier λ (N/m), the penalty P (N/m²) and the gap γ (m, > 0
+/// separated); 0 where no gap is defined. With λ = 0 the penalty's P⟨−γ⟩. It is also the
+/// first-order (Uzawa) update of the multiplier, λ ← ⟨λ − Pγ⟩₊.
+#[inline]
+pub fn augmented_traction(lambda: f64, penalty: f64, gap: Option<f64>) -> f64 {
+    gap.map_or(0.0, |g| (lambda - penalty * g).max(0.0))
+}
+
+/// Normal-contact multipliers λ_γ (N per unit contour length) of the augmented
+/// Lagrangian as a field over the contour coordinate σ (docs/fem-cosserat.md §12.5):
+/// piecewise linear through the values at the contact rule's points of the mesh they were
+/// updated on, 0 outside them — so they survive a refit of the mesh (the refitted mesh's
+/// points read the field where they are). Not periodic: for the open layout, whose σ runs
+/// from 0 to the end section.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactMultipliers {
+    /// (σ, λ), strictly increasing in σ.
+    samples: Vec<(f64, f64)>,
+}
+
+impl ContactMultipliers {
+    /// The field through `samples` (σ, λ): sorted by σ, values at equal σ (an element edge
+    /// that is a point of two elements) averaged.
+    ///
+    /// # Panics
+    /// Never; a non-finite sample is the caller's error and is dropped.
+    pub fn from_samples(mut samples: Vec<(f64, f64)>) -> ContactMultipliers {
+        samples.retain(|s| s.0.is_finite() && s.1.is_finite());
+        samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut out: Vec<(f64, f64, usize)> = Vec::with_capacity(samples.len());
+        for (sigma, lambda) in samples {
+            match out.last_mut() {
+                Some(last) if last.0 == sigma => {
+                    last.1 += lambda;
+                    last.2 += 1;
+                }
+                _ => out.push((sigma, lambda, 1)),
+            }
+        }
+        ContactMultipliers { samples: out.into_iter().map(|(s, l, n)| (s, l / n as f64)).collect() }
+    }
+
+    /// λ(σ), N/m: linear between the samples, 0 outside them.
+    pub fn at(&self, sigma: f64) -> f64 {
+        let k = self.samples.partition_point(|s| s.0 <= sigma);
+        if k == 0 || k == self.samples.len() {
+            return match self.samples.last() {
+                Some(last) if k == self.samples.len() && last.0 == sigma => last.1,
+                _ => 0.0,
+            };
+        }
+        let ((s0, l0), (s1, l1)) = (self.samples[k - 1], self.samples[k]);
+        l0 + (l1 - l0) * (sigma - s0) / (s1 - s0)
+    }
+
+    /// The samples (σ, λ).
+    pub fn samples(&self) -> &[(f64, f64)] {
+        &self.samples
+    }
+
+    /// The largest |λ₁(σ) − λ₂(σ)| over both fields' samples, N/m.
+    pub fn max_change(&self, other: &ContactMultipliers) -> f64 {
+        self.samples.iter().chain(&other.samples).map(|&(s, _)| (self.at(s) - other.at(s)).abs()).fold(0.0, f64::max)
+    }
+}
+
+/// Augmented-Lagrangian normal contact (Table 1, column 1; docs/fem-drive.md (D6)) with
+/// the multipliers as a field over σ: ⟨λ(σ) − Pγ⟩₊² / (2P) per unit σ, whose derivative in
+/// the gap is −⟨λ − Pγ⟩₊ — the penalty V_γ of [`PenaltyContact`] for λ ≡ 0 (the same
+/// energy, ½P⟨−γ⟩²). Equivalently the penalty on the gap shifted by λ/P.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AugmentedPenalty<'a> {
+    /// P, N/m².
+    pub penalty: f64,
+    /// λ(σ).
+    pub multipliers: &'a ContactMultipliers,
+}
+
+impl<D: Scalar> PointDensity<D> for AugmentedPenalty<'_> {
+    fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
+        match el.gap(p) {
+            Some(gap) => {
+                let t = gap * (-self.penalty) + self.multipliers.at(p.sigma);
+                if t.re() > 0.0 {
+                    t * t * (0.5 / self.penalty)
+                } else {
+                    D::zero()
+                }
+            }
+            None => D::zero(),
+        }
+    }
+}
+
 /// Kirchhoff bending energy U_b (docs/fem-rod.md K7): ½ EI θ_σ² / ∂σS with EI in N·m²
 /// and the angle rate θ_σ of [`ElementContext::angle_rate`] (needs ∂²σν).
 #[derive(Debug, Clone, Copy, PartialEq)]

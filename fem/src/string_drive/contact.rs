@@ -146,9 +146,9 @@ impl MappedTerm<2> for AugmentedContact {
     }
 
     fn map(&self, el: &ElementContext, p: &PointFields<f64>, _globals: &[f64; 2], pt: &PointState) -> f64 {
-        match (pt.pulley, el.gap(p)) {
-            (Some(_), Some(gap)) => (pt.lambda_n - self.penalty * gap).max(0.0),
-            _ => 0.0,
+        match pt.pulley {
+            Some(_) => crate::formulation::augmented_traction(pt.lambda_n, self.penalty, el.gap(p)),
+            None => 0.0,
         }
     }
 }

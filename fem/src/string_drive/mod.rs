@@ -100,6 +100,19 @@ pub struct DriveSettings {
     /// docs/fem-drive.md §12) or Paper D's fixed topology ([`steady::SteadyScheme`];
     /// spec §3.5). Not read by the transient.
     pub steady_scheme: steady::SteadyScheme,
+    /// The normal contact of the direct steady solve of a one-pulley scene (the scene's
+    /// `fem.contact`, docs/fem-cosserat.md §12.5): the penalty (default) or the
+    /// augmented Lagrangian, whose outer loop takes `al_tolerance` and
+    /// `max_al_iterations`. Not read by the transient or the loop.
+    pub normal_contact: steady::NormalContact,
+    /// The augmented Lagrangian of `normal_contact` has converged when the largest
+    /// multiplier change is ≤ this × F_ref/R (its iteration limit is
+    /// `max_al_iterations`). Default 1e-3; (0, 1e-2]. Looser than the transient's
+    /// `al_tolerance`: each update is followed by the fit, whose refits read the field on
+    /// moved meshes, and the change then stalls at 0.06–0.13 N/m = (4–9)·10⁻⁴ F_ref/R on
+    /// `cosserat-pulley` (measured) — a gap of ≤ 1.5·10⁻¹² m at P = 1e11 N/m², which moves
+    /// a contact edge (γ ≈ p₀x²/(2b₂) beside it) by ≤ 5·10⁻⁸ m (docs/fem-cosserat.md §12.5).
+    pub contact_tolerance: f64,
 }
 
 impl Default for DriveSettings {
@@ -116,6 +129,8 @@ impl Default for DriveSettings {
             max_newton_iterations: 40,
             max_fits: 30,
             steady_scheme: steady::SteadyScheme::Semismooth,
+            normal_contact: steady::NormalContact::Penalty,
+            contact_tolerance: 1e-3,
         }
     }
 }
@@ -130,6 +145,7 @@ impl DriveSettings {
             max_steps: f.max_steps.unwrap_or(d.max_steps),
             steady_tolerance: f.steady_tolerance.unwrap_or(d.steady_tolerance),
             steady_scheme: f.steady_scheme.unwrap_or_default(),
+            normal_contact: f.contact.unwrap_or_default(),
             ..d
         }
     }
@@ -153,6 +169,9 @@ impl DriveSettings {
         }
         if !(self.al_tolerance > 0.0 && self.al_tolerance <= 1e-2) {
             return bad("al_tolerance", self.al_tolerance.to_string(), "must lie in (0, 1e-2]");
+        }
+        if !(self.contact_tolerance > 0.0 && self.contact_tolerance <= 1e-2) {
+            return bad("contact_tolerance", self.contact_tolerance.to_string(), "must lie in (0, 1e-2]");
         }
         if self.max_al_iterations == 0 {
             return bad("max_al_iterations", "0".into(), "must be ≥ 1");

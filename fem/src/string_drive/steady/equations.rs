@@ -601,7 +601,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     }
 
     /// The normal traction of a friction point of the open layout, and of the loop for an
-    /// element with [`FrictionNormal::Tributary`] (docs/fem-cosserat.md §11.1, §12.3): the mean penalty pressure P⟨−γ⟩ of the two elements at the node over the
+    /// element with [`FrictionNormal::Tributary`] (docs/fem-cosserat.md §11.1, §12.3): the mean contact pressure ⟨λ − Pγ⟩₊ (the penalty's P⟨−γ⟩ without multipliers, §12.5) of the two elements at the node over the
     /// contact rule's points, weighted by the elements' halves at the node — the pressure
     /// the penalty term actually applies. (The nodal gap is no measure of it for the
     /// Cosserat element at the default penalty: the penalty, sampled at the rule's points
@@ -618,9 +618,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             let f = we / node_weight;
             for &(xi, wg) in rule.points() {
                 let Some((g, dg)) = point_gap(layout, &el, &q, xi, grad) else { continue };
-                if g < 0.0 {
-                    // the element mean: Σ w_g ⟨−γ_g⟩ / 2
-                    p -= f * 0.5 * wg * self.sp.penalty * g;
+                let t = self.asm.kernel().contact_traction(self.sp.penalty, el.sigma(xi), Some(g));
+                if t > 0.0 {
+                    // the element mean: Σ w_g ⟨λ_g − Pγ_g⟩₊ / 2
+                    p += f * 0.5 * wg * t;
                     for k in 0..N {
                         dp[side * N + k] -= f * 0.5 * wg * self.sp.penalty * dg[k];
                     }

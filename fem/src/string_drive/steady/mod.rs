@@ -28,6 +28,7 @@ use crate::solution::FemSolution;
 
 use super::contact::reachable_pulley;
 
+mod augmented;
 mod equations;
 mod fitting;
 mod kernels;
@@ -39,6 +40,9 @@ mod paper_d;
 mod semismooth;
 mod topology;
 
+pub use augmented::AugmentedReport;
+pub use drive::scene::NormalContact;
+use augmented::*;
 pub use equations::*;
 pub use fitting::*;
 pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
@@ -81,6 +85,10 @@ pub struct SteadyReport {
     /// its outer iterations and final matching residual.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub paper_d: Option<PaperDReport>,
+    /// The augmented-Lagrangian outer loop of the normal contact (`fem.contact` =
+    /// `augmented-lagrangian`, docs/fem-cosserat.md §12.5).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact: Option<AugmentedReport>,
     /// Stated warnings of the solve (the run's notes; [`slip_resolution_warnings`]).
     #[serde(skip)]
     pub warnings: Vec<String>,

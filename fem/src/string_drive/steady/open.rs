@@ -99,7 +99,7 @@ fn end_tension(flux: f64, axial_stiffness: f64, chi: f64, guess: f64) -> f64 {
 /// [`FemError::InvalidOption`] (D ≤ 2R, element count),
 /// [`FemError::SpeedAtOrAboveCritical`] (T̃ ≤ 0 at a given end or b₁, b₂ ≤ ρc²),
 /// [`FemError::HomotopyStalled`], [`FemError::NonFinite`].
-pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized + 'static>(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::super::DriveSettings, kernel: Arc<K>) -> Result<crate::FemRun, FemError> {
+pub fn solve_open<const N: usize, const P: usize, const E: usize>(problem: &crate::problem::FemProblem, opts: &crate::options::FemOptions, settings: &crate::options::SolverSettings, drive_settings: &super::super::DriveSettings, kernel: Arc<dyn LayoutElement<N>>) -> Result<crate::FemRun, FemError> {
     let clock = std::time::Instant::now();
     let ends = problem.open.ok_or_else(|| FemError::Unsupported("the open FE solves one-pulley scenes only".into()))?;
     let mode = ends.mode()?;
@@ -170,7 +170,7 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     // the fit (§12.5): a node at the contact start A, the stick→slip point B and the
     // contact end C, the mesh graded towards them over the shear layer √(a/(b₂ − ρc²))
     let fit = settings.contact_fitting.then(|| OpenFit { settings, drive_settings, grading: crate::static_homotopy::shear_layer_grading(params.bending_stiffness, kernel.shear_stiffness().map(|b2| b2 - chi)), element: PI * r / arc_elements as f64 });
-    let setup = OpenSetup::<N, P, E, K> { asm: &asm, points: &points, params, base, w: &w, scales: &scales, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, kernel: &kernel, transport_rate: c0, axial_stiffness: b1, chi, rho, end_distance: d, f_ref, _sizes: std::marker::PhantomData };
+    let setup = OpenSetup::<N, P, E, dyn LayoutElement<N>> { asm: &asm, points: &points, params, base, w: &w, scales: &scales, tolerance: settings.update_tolerance, max_iterations: drive_settings.max_newton_iterations, kernel: &kernel, transport_rate: c0, axial_stiffness: b1, chi, rho, end_distance: d, f_ref, _sizes: std::marker::PhantomData };
     let mut report = SteadyReport { friction_points: points.len(), ..Default::default() };
     let flux = |n: f64| end_flux(n, b1, chi);
     let (mut state, sp) = match mode {
@@ -217,6 +217,22 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
         state = setup.fit(state, &sp_at, matches!(mode, OpenMode::PulleySpeed { .. }).then_some(f_ref), fit, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - report.continuation_seconds;
+    // the augmented Lagrangian around the converged penalty state (§12.5); the penalty
+    // result, with a stated warning, where it fails
+    if drive_settings.normal_contact == NormalContact::AugmentedLagrangian {
+        let slot_weight = matches!(mode, OpenMode::PulleySpeed { .. }).then_some(f_ref);
+        let penalty_state = (state.asm.mesh().clone(), state.x.clone(), state.results.clone());
+        let mut al = AugmentedReport::default();
+        match setup.augmented(state, sp, slot_weight, fit.as_ref(), drive_settings, &mut al, &mut report) {
+            Ok(s) => state = s,
+            Err(failure) => {
+                report.warnings.push(format!("the augmented Lagrangian of the normal contact did not converge ({failure}): the result is the penalty solve's (P = {} N/m²)", numerics::Sig(penalty)));
+                let (mesh, x, results) = penalty_state;
+                state = State { rho, asm: Assembler::with_kernel(mesh, kernel.clone()), x, results };
+            }
+        }
+        report.contact = Some(al);
+    }
     let (nz, x) = (state.asm.len(), &state.x);
     let (h_in, omega) = match sp.ends {
         Ends::Open { pulley_speed: Some(w), .. } => (x[nz + 1], w),
@@ -225,7 +241,7 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize, K: LayoutEleme
     };
     let Ends::Open { flux_out: h_out, .. } = sp.ends else { unreachable!("open ends") };
     let tensions = [end_tension(h_in, b1, chi, estimate[0]), end_tension(h_out, b1, chi, estimate[1])];
-    open_finish::<N, P, E, K>(problem, opts, settings, drive_settings, &kernel, &state, OpenRun { ends, tensions, fluxes: [h_in, h_out], omega, params, sp, penalty, kappa, mu, report, clock })
+    open_finish::<N, P, E, dyn LayoutElement<N>>(problem, opts, settings, drive_settings, &state.asm.kernel().clone(), &state, OpenRun { ends, tensions, fluxes: [h_in, h_out], omega, params, sp, penalty, kappa, mu, report, clock })
 }
 
 /// The fixed parts of the open steady problem on one mesh, and its solves.
@@ -249,6 +265,53 @@ struct OpenSetup<'a, const N: usize, const P: usize, const E: usize, K: LayoutEl
     end_distance: f64,
     f_ref: f64,
     _sizes: std::marker::PhantomData<([f64; P], [f64; E])>,
+}
+
+impl<const N: usize, const P: usize, const E: usize> OpenSetup<'_, N, P, E, dyn LayoutElement<N>> {
+    /// The augmented-Lagrangian outer loop (docs/fem-cosserat.md §12.5) from the
+    /// converged penalty `state` at `sp`: the Uzawa update λ ← ⟨λ − Pγ⟩₊ at the contact
+    /// rule's points (the first from λ = 0: the penalty pressure), the element rebuilt
+    /// with the multipliers as a field over σ, a Newton solve on the mesh and, with `fit`,
+    /// the fit to A, B, C (its refits read the field on their meshes); converged when the
+    /// largest multiplier change is ≤ `contact_tolerance` × F_ref/R. The failure
+    /// otherwise (the caller keeps the penalty state).
+    #[allow(clippy::too_many_arguments)]
+    fn augmented(&self, mut state: State<N, dyn LayoutElement<N>>, sp: SteadyParams, slot_weight: Option<f64>, fit: Option<&OpenFit<'_>>, drive_settings: &super::super::DriveSettings, al: &mut AugmentedReport, report: &mut SteadyReport) -> Result<State<N, dyn LayoutElement<N>>, AugmentedFailure> {
+        let penalty = self.base.penalty;
+        al.tolerance = drive_settings.contact_tolerance * self.f_ref / self.base.radius;
+        let sp_at = move |_: f64| sp;
+        for k in 0..=drive_settings.max_al_iterations {
+            let current = state.asm.kernel().contact_multipliers().cloned().unwrap_or_default();
+            let (next, max_gap) = multiplier_update(&state.asm, &state.x, &self.params, penalty);
+            al.iterations = k;
+            al.multiplier_change = next.max_change(&current);
+            al.max_gap = max_gap;
+            if k > 0 && al.multiplier_change <= al.tolerance {
+                al.converged = true;
+                return Ok(state);
+            }
+            if k == drive_settings.max_al_iterations {
+                break;
+            }
+            let Some(kernel) = state.asm.kernel().with_contact_multipliers(Some(Arc::new(next))) else {
+                return Err(AugmentedFailure::Unsupported);
+            };
+            let data = SteadyFitData { kernel: &kernel, ..self.fit_data(&sp_at, slot_weight, fit.and_then(|f| f.grading)) };
+            state = match resolve::<N, P, E>(&state, kernel.clone(), &data, report) {
+                Ok(s) => s,
+                Err(e) => return Err(AugmentedFailure::Solve(e.to_string())),
+            };
+            if let Some(fit) = fit {
+                let grading = fit.grading;
+                let data = SteadyFitData { kernel: &kernel, ..self.fit_data(&sp_at, slot_weight, grading) };
+                state = match super::fit_steady::<N, P, E, dyn LayoutElement<N>>(state, data, fit.settings, fit.drive_settings, fit.element, report) {
+                    Ok(s) => s,
+                    Err(e) => return Err(AugmentedFailure::Solve(e.to_string())),
+                };
+            }
+        }
+        Err(AugmentedFailure::NotConverged { change: al.multiplier_change, tolerance: al.tolerance, iterations: al.iterations })
+    }
 }
 
 /// A solved state of mode `stick_slip_angle`'s root find: the free tension N_f, X and the
@@ -600,6 +663,9 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     let view = OpenView { inner: super::super::DriveSolution::new(base, &per_element, summary.clone()), open: OpenContour::new(r, run.ends.end_distance).map_err(|e| FemError::Unsupported(e.to_string()))?, shift: 0.5 * run.ends.end_distance, summary: summary.clone() };
     let mut terms = kernel.term_labels(&TermParams { penalty: None, ..run.params });
     terms.push(format!("Coulomb contact, direct steady state of the open one-pulley layout (semismooth Newton, μ = {}, P_γ = {:.6e} N/m², friction on the nodes)", run.mu, run.penalty));
+    if kernel.contact_multipliers().is_some() {
+        terms.push("normal contact by the augmented Lagrangian (Table 1; multipliers a field over σ, Uzawa updates, docs/fem-cosserat.md §12.5)".into());
+    }
     terms.push(format!("open ends: c = {c} m/s, N_in = {}, N_out = {} N (end fluxes (C18))", run.tensions[0], run.tensions[1]));
     if problem.effects.inertia {
         terms.push(format!("transport inertia (ρ = {} kg/m)", problem.belt.mass_per_length));
@@ -619,7 +685,8 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
         },
     }));
     let stats = crate::FemStats { wall_seconds: run.clock.elapsed().as_secs_f64(), newton_iterations: report.newton_iterations, unknowns: state.x.len(), elements: opts.elements, homotopy_steps: report.continuation_steps };
-    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: Vec::new() })
+    // the stated warnings (the augmented Lagrangian's fallback to the penalty, §12.5)
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: report.warnings })
 }
 
 /// The loop-frame solution seen on the open contour (docs/fem-cosserat.md §12.1): x
