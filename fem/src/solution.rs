@@ -836,8 +836,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
                 .points()
                 .iter()
                 .map(|&(xi, wt)| {
-                    let gap = el.gap(&self.point(e, xi)).unwrap_or(f64::INFINITY);
-                    wt * el.jacobian() * penalty * (-gap).max(0.0)
+                    wt * el.jacobian() * self.kernel.contact_traction(penalty, el.sigma(xi), el.gap(&self.point(e, xi)))
                 })
                 .sum();
             (f, el.geometry.h)

@@ -160,9 +160,11 @@ pub(super) fn view_points<const N: usize, K: LayoutElement<N> + ?Sized>(state: &
                     let sigma = el.sigma(xi);
                     let p = el.fields(&q, xi);
                     let pulley = reachable_pulley(contour, el.geometry.region, sigma);
-                    let normal = match (pulley, el.gap(&p)) {
-                        (Some(_), Some(g)) => (-penalty * g).max(0.0),
-                        _ => 0.0,
+                    // the traction the contact term applies: ⟨λ − Pγ⟩₊ with the kernel's
+                    // multipliers (augmented Lagrangian), P⟨−γ⟩ without
+                    let normal = match pulley {
+                        Some(_) => kernel.contact_traction(penalty, sigma, el.gap(&p)),
+                        None => 0.0,
                     };
                     let fr = if wf > 0.0 { edge[e][usize::from(xi > 0.0)] } else { None };
                     super::super::ViewPoint {
