@@ -134,6 +134,13 @@ fn augmented_lagrangian_contact_edges_do_not_depend_on_the_penalty() {
             w * r.view.contact_pressure(len * i as f64 / n as f64).unwrap_or(0.0) * len / n as f64
         }).sum::<f64>()
     };
+    // an edge pressure that cannot be read is said in the notes, not left out silently
+    for r in &runs {
+        let q = p(r);
+        for (edge, v) in [("start", q.edge_pressure_start), ("end", q.edge_pressure_end)] {
+            assert!(v.is_some() || r.notes.iter().any(|n| n.contains(&format!("edge_pressure_{edge}"))), "{edge}: absent and not stated: {:?}", r.notes);
+        }
+    }
     let (pa, pp) = (resultant(&runs[0]), resultant(&penalty));
     assert!(pp > 0.0 && ((pa - pp) / pp).abs() < 2e-2, "∫p dσ: augmented {pa} N, penalty {pp} N");
 }

@@ -685,8 +685,17 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
         },
     }));
     let stats = crate::FemStats { wall_seconds: run.clock.elapsed().as_secs_f64(), newton_iterations: report.newton_iterations, unknowns: state.x.len(), elements: opts.elements, homotopy_steps: report.continuation_steps };
-    // the stated warnings (the augmented Lagrangian's fallback to the penalty, §12.5)
-    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: report.warnings })
+    // the stated warnings (the augmented Lagrangian's fallback to the penalty, §12.5; an
+    // edge pressure of a contact zone that could not be read is said, not left out silently)
+    let mut notes = report.warnings;
+    if let (Some(_), Some(p)) = (zone, &summary.pulley) {
+        for (edge, value) in [("start", p.edge_pressure_start), ("end", p.edge_pressure_end)] {
+            if value.is_none() {
+                notes.push(format!("the contact pressure at the zone's {edge} edge could not be read (fewer than three nodes inside the zone, or no positive pressure from the contact forces next to the edge): `pulley.edge_pressure_{edge}` is absent"));
+            }
+        }
+    }
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes })
 }
 
 /// The loop-frame solution seen on the open contour (docs/fem-cosserat.md §12.1): x
