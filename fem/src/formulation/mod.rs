@@ -187,25 +187,34 @@ struct PointGradient<'a, const V: usize> {
     grad: [f64; NDOF],
 }
 
+/// The per-point loop both dual visitors share: at each point of the term's rule the
+/// fields as duals in the V point values (∂σS, ν, ∂σν the variables 0, 1, 2; ∂²σν the
+/// variable 3 when `curvature`, else a constant; σ and S constants), the density there,
+/// and `add(ξ, w·J, density)`.
+#[inline]
+fn for_each_dual_point<D: Scalar, T: EnergyTerm<D>>(el: &ElementContext, q: &[f64; NDOF], term: &T, curvature: bool, var: impl Fn(f64, usize) -> D, mut add: impl FnMut(f64, f64, D)) {
+    let jac = el.jacobian();
+    for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
+        let p = el.fields(q, xi);
+        let d2nu = if curvature { var(p.d2nu, 3) } else { D::from(p.d2nu) };
+        let pd = PointFields { sigma: p.sigma, s: D::from(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu };
+        add(xi, wt * jac, term.density(el, &pd, k));
+    }
+}
+
 /// The two first-order visitors, V = 3 (∂²σν a constant) and V = 4 (a variable).
 macro_rules! point_gradient {
     ($v:literal, curvature: $curvature:literal) => {
         impl TermVisitor<DualSVec64<$v>> for PointGradient<'_, $v> {
             #[inline]
             fn visit<T: EnergyTerm<DualSVec64<$v>>>(&mut self, term: &T) {
-                let (el, jac) = (self.el, self.el.jacobian());
-                for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
-                    let p = el.fields(self.q, xi);
-                    let var = |v: f64, i: usize| DualSVec64::<$v>::from_re(v).derivative(i);
-                    let d2nu = if $curvature { var(p.d2nu, 3) } else { DualSVec64::<$v>::from_re(p.d2nu) };
-                    let pd = PointFields { sigma: p.sigma, s: DualSVec64::<$v>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu };
-                    let f = term.density(el, &pd, k);
-                    let scale = wt * jac;
+                let var = |v: f64, i: usize| DualSVec64::<$v>::from_re(v).derivative(i);
+                for_each_dual_point(self.el, self.q, term, $curvature, var, |xi, scale, f| {
                     self.energy += scale * f.re;
                     let g = f.eps.unwrap_generic(Const::<$v>, U1);
                     let g: [f64; $v] = std::array::from_fn(|a| g[a]);
-                    add_point_gradient(&point_map::<$v>(xi, el.geometry.h), &g, scale, &mut self.grad);
-                }
+                    add_point_gradient(&point_map::<$v>(xi, self.el.geometry.h), &g, scale, &mut self.grad);
+                });
             }
         }
     };
@@ -313,21 +322,15 @@ macro_rules! point_hessian {
         impl TermVisitor<Dual2SVec64<$v>> for PointHessian<'_, $v> {
             #[inline]
             fn visit<T: EnergyTerm<Dual2SVec64<$v>>>(&mut self, term: &T) {
-                let (el, jac) = (self.el, self.el.jacobian());
-                for (k, &(xi, wt)) in term.rule().points().iter().enumerate() {
-                    let p = el.fields(self.q, xi);
-                    let var = |v: f64, i: usize| Dual2SVec64::<$v>::from_re(v).derivative(i);
-                    let d2nu = if $curvature { var(p.d2nu, 3) } else { Dual2SVec64::<$v>::from_re(p.d2nu) };
-                    let pd = PointFields { sigma: p.sigma, s: Dual2SVec64::<$v>::from_re(p.s), ds: var(p.ds, 0), nu: var(p.nu, 1), dnu: var(p.dnu, 2), d2nu };
-                    let f = term.density(el, &pd, k);
-                    let scale = wt * jac;
+                let var = |v: f64, i: usize| Dual2SVec64::<$v>::from_re(v).derivative(i);
+                for_each_dual_point(self.el, self.q, term, $curvature, var, |xi, scale, f| {
                     let g = f.v1.unwrap_generic(U1, Const::<$v>);
                     let h = f.v2.unwrap_generic(Const::<$v>, Const::<$v>);
                     self.out.energy += scale * f.re;
                     let g: [f64; $v] = std::array::from_fn(|a| g[a]);
                     let h: [[f64; $v]; $v] = std::array::from_fn(|a| std::array::from_fn(|c| h[(a, c)]));
-                    add_point(&point_map::<$v>(xi, el.geometry.h), &g, &h, scale, &mut self.out.gradient, &mut self.out.hessian);
-                }
+                    add_point(&point_map::<$v>(xi, self.el.geometry.h), &g, &h, scale, &mut self.out.gradient, &mut self.out.hessian);
+                });
             }
         }
     };
