@@ -38,9 +38,12 @@ fn warm_started_b2_sweep_reproduces_independent_solves() {
     assert!(sweep.failures().is_empty(), "{:?}", sweep.failures());
     let line = &sweep.lines[0];
     for (i, (p, v)) in line.points.iter().zip(range.values()).enumerate() {
-        let PointStatus::Solved { summary, warm, .. } = &p.status else { panic!("point {i} not solved: {:?}", p.status) };
+        let PointStatus::Solved { summary, warm, steps, failed_attempts, wall_seconds, .. } = &p.status else { panic!("point {i} not solved: {:?}", p.status) };
         // the first point is the line's cold start, every later one a warm start
         assert_eq!(*warm, i > 0, "point {i}");
+        // a step is halved only after a failed solve, and the failed ones are counted
+        assert!(*steps <= 1 || *failed_attempts >= 1, "point {i}: {steps} steps with {failed_attempts} failed attempts");
+        assert!(wall_seconds.is_finite() && *wall_seconds > 0.0, "point {i}: wall {wall_seconds}");
         let s = plan.scene_at(&[v]).unwrap();
         let opts = bvp::scene::BvpRunOptions::from_scene(&s).unwrap();
         let cold = bvp::scene::solve_scene(&s, &opts).unwrap().summary.scalars();

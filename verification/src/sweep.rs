@@ -327,10 +327,15 @@ pub enum PointStatus {
         /// Continuation steps taken to reach it (1 = no halving; intermediate points
         /// included).
         steps: usize,
-        /// Newton iterations, over the steps.
+        /// Newton iterations, over the accepted steps.
         newton_iterations: usize,
-        /// Wall time, s, over the steps.
+        /// Wall time, s, over every solve tried for the point: the accepted steps and
+        /// the failed attempts (a predicted start retried from the plain one, a step
+        /// halved, a continuation given up for a cold solve).
         wall_seconds: f64,
+        /// Solves tried for the point that failed (their Newton iterations are not
+        /// known; their wall time is in `wall_seconds`).
+        failed_attempts: usize,
     },
     /// The point's scene fails validation.
     InvalidScene {
@@ -619,14 +624,22 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
     let grid = (p0.coordinate(p0.to) - p0.coordinate(p0.from)) / (p0.points - 1) as f64;
     let h_min = grid.abs() / f64::from(1u32 << MAX_HALVINGS);
     let at = |v: f64| [vec![v], fixed.to_vec()].concat();
+    // the failed solves of the current point and their wall time (the accepted ones
+    // carry theirs in `BvpRun::stats`)
+    let failed = std::cell::Cell::new((0usize, 0.0f64));
     let solve = |v: f64, warm: Option<&WarmStart>| -> Result<BvpRun, PointStatus> {
         let s = plan.scene_at(&at(v)).map_err(|error| PointStatus::InvalidScene { error })?;
         let opts = plan.bvp_options(&s).map_err(|e| PointStatus::Failed { error: e.to_string() })?;
+        let clock = std::time::Instant::now();
         let run = match warm {
             Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
             None => bvp::scene::solve_scene(&s, &opts),
         };
-        run.map_err(|e| PointStatus::Failed { error: e.to_string() })
+        run.map_err(|e| {
+            let (n, wall) = failed.get();
+            failed.set((n + 1, wall + clock.elapsed().as_secs_f64()));
+            PointStatus::Failed { error: e.to_string() }
+        })
     };
     let mut points = Vec::new();
     let mut fold: Option<Fold> = None;
@@ -640,6 +653,7 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
         }
         let target = p0.coordinate(v);
         let (mut steps, mut newton, mut wall) = (0usize, 0usize, 0.0);
+        failed.set((0, 0.0));
         let mut accept = |run: BvpRun, t: f64, path: &mut Vec<Converged>| {
             steps += 1;
             newton += run.stats.newton_iterations;
@@ -665,7 +679,7 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
                     Ok(run) => {
                         accept(run, t, &mut path);
                         if t == target {
-                            status = Some(PointStatus::Solved { summary: path.last().map(|c| c.scalars.clone()).unwrap_or_default(), warm: true, steps: 0, newton_iterations: 0, wall_seconds: 0.0 });
+                            status = Some(PointStatus::Solved { summary: path.last().map(|c| c.scalars.clone()).unwrap_or_default(), warm: true, steps: 0, newton_iterations: 0, wall_seconds: 0.0, failed_attempts: 0 });
                             break;
                         }
                         h *= 2.0;
@@ -690,13 +704,17 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
         // a cold solve: the first point, a model without warm starts, or a point the
         // continuation could not reach (not at a fold)
         let status = match status {
-            Some(PointStatus::Solved { summary, warm, .. }) => PointStatus::Solved { summary, warm, steps, newton_iterations: newton, wall_seconds: wall },
+            Some(PointStatus::Solved { summary, warm, .. }) => {
+                let (failed_attempts, failed_wall) = failed.get();
+                PointStatus::Solved { summary, warm, steps, newton_iterations: newton, wall_seconds: wall + failed_wall, failed_attempts }
+            }
             Some(s @ (PointStatus::InvalidScene { .. } | PointStatus::BeyondFold)) => s,
             None | Some(PointStatus::Failed { .. }) => match solve(v, None) {
                 Ok(run) => {
                     accept(run, target, &mut path);
                     let summary = path.last().map(|c| c.scalars.clone()).unwrap_or_default();
-                    PointStatus::Solved { summary, warm: false, steps, newton_iterations: newton, wall_seconds: wall }
+                    let (failed_attempts, failed_wall) = failed.get();
+                    PointStatus::Solved { summary, warm: false, steps, newton_iterations: newton, wall_seconds: wall + failed_wall, failed_attempts }
                 }
                 Err(e) => e,
             },
@@ -1042,9 +1060,10 @@ pub fn sweep_markdown(sweep: &Sweep, command: &str) -> String {
         for p in &line.points {
             let v = numerics::Sig(p.values[0]);
             match &p.status {
-                PointStatus::Solved { warm, steps, newton_iterations, wall_seconds, .. } => {
+                PointStatus::Solved { warm, steps, newton_iterations, wall_seconds, failed_attempts, .. } => {
                     let vals: Vec<String> = cols.iter().map(|c| p.get(c).map(|x| format!("{}", numerics::Sig(x))).unwrap_or_default()).collect();
-                    let _ = writeln!(md, "| {v} | {} | {steps} | {newton_iterations} | {wall_seconds:.3} | {} |", if *warm { "warm" } else { "cold" }, vals.join(" | "));
+                    let failed = if *failed_attempts > 0 { format!(" (+{failed_attempts} failed)") } else { String::new() };
+                    let _ = writeln!(md, "| {v} | {} | {steps}{failed} | {newton_iterations} | {wall_seconds:.3} | {} |", if *warm { "warm" } else { "cold" }, vals.join(" | "));
                 }
                 PointStatus::InvalidScene { .. } => {
                     let _ = writeln!(md, "| {v} | invalid scene |{}", " |".repeat(3 + cols.len()));
