@@ -176,6 +176,7 @@ impl HangingBelt {
             drums: [Pulley::Driver, Pulley::Driven].map(|p| Drum::aligned(c.pulley_centre(p), 0.0)),
             radius: c.radius(),
             transport: 0.0,
+            start: f64::NEG_INFINITY,
         };
         Shell::on_contour(self.section()?, self.length / c.length(), 0.0, c, mesh)?
             .with_gravity(self.density * self.thickness * self.gravity)?
@@ -332,6 +333,17 @@ impl StaticShell {
         let asm = self.stepping.assembler();
         let layer = asm.kernel().interlayer().ok_or(ShellError::BadParameter { what: "stage (0) without an interlayer", value: 0.0 })?;
         let kernel = asm.kernel().clone().with_interlayer(Interlayer { shear, ..layer.clone() })?;
+        self.released(kernel, newton)
+    }
+
+    /// The analysis of `kernel` (the stage-(0) kernel with data changed: P_⊥, ramps,
+    /// rotation) on the unconstrained numbering from the stage-(0) state at its time,
+    /// its history primed there.
+    ///
+    /// # Errors
+    /// The numbering's; [`ShellError::Static`] for the analysis' set-up.
+    pub(crate) fn released(&self, kernel: Shell, newton: NewtonOptions) -> Result<TimeStepping<Shell, SHELL_VALUES>, ShellError> {
+        let asm = self.stepping.assembler();
         let free = SurfaceAssembler::new(asm.mesh().clone(), kernel, &[])?;
         let z = asm.dofs().transfer(self.stepping.unknowns(), free.dofs())?;
         let mut stepping = TimeStepping::new(free, z, self.stepping.time(), newton).map_err(|e| ShellError::Static(Box::new(e)))?;
@@ -362,7 +374,7 @@ impl StaticShell {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use drive::view::SolutionView;
 
@@ -370,7 +382,7 @@ mod tests {
     /// EI = 1e-3 N m², ρ = 0.12 kg/m, g = 9.81 m/s²) as a shell of width b = 0.05 m,
     /// ν_P = 0: h = √(12 EI/EA) = 0.775 mm, E = EA/(bh), ρ_s = ρ/(bh); interlayer
     /// P = 6e8 N/m³ (Pb = 3e7 N/m², the penetration T/(R P b) ≈ 5e-7 m at T ≈ 1.2 N).
-    fn belt(poisson_ratio: f64) -> HangingBelt {
+    pub(crate) fn belt(poisson_ratio: f64) -> HangingBelt {
         let (ea, ei, rho, b): (f64, f64, f64, f64) = (2.0e4, 1.0e-3, 0.12, 0.05);
         let h = (12.0 * ei / ea).sqrt();
         HangingBelt {
@@ -386,7 +398,7 @@ mod tests {
         }
     }
 
-    fn newton() -> NewtonOptions {
+    pub(crate) fn newton() -> NewtonOptions {
         NewtonOptions { tolerance: 1e-9, max_iterations: 40, ..NewtonOptions::default() }
     }
 
@@ -426,7 +438,7 @@ mod tests {
 
     /// CPU seconds (user + system) of this process so far (Linux /proc; for the
     /// measurement's report only).
-    fn cpu_seconds() -> f64 {
+    pub(crate) fn cpu_seconds() -> f64 {
         let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
         let fields: Vec<&str> = stat.rsplit(')').next().unwrap_or("").split_whitespace().collect();
         let ticks = |i: usize| fields.get(i).and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);

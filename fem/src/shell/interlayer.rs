@@ -18,7 +18,8 @@
 //! [`crate::analysis::time_stepping::TimeStepping::prime_history`]).
 //! The core advects the state by the belt speed c (`belt_speed`); the density then
 //! reads at σ the state of σ_r = σ − cΔt, and (S13) corrects the foot by the material
-//! offset δs = S_{n+1}(σ) − S_n(σ_r):
+//! offset δs = S_{n+1}(σ) − S_n(σ_r) (= S̃ − S̃_n in the gauge transported with the drums,
+//! docs/fem-shell.md (S2′)):
 //!
 //!   r_n(foot) ≈ r_n(σ_r) + ∂̊_s r_n(σ_r) δs   ([`Interlayer::foot`]),
 //!   u_{n+1} = [ũ + r_{n+1} − r_n(foot) − (M_i r_n(foot) − r_n(foot))]_⊥,
@@ -75,6 +76,11 @@ impl Schedule {
             return Err(ShellError::BadParameter { what: "tilt schedule time (not increasing)", value: w[1].0 });
         }
         Ok(Schedule { points })
+    }
+
+    /// The points (t, β).
+    pub fn points(&self) -> &[(f64, f64)] {
+        &self.points
     }
 
     /// β(t).
@@ -158,9 +164,10 @@ impl Drum {
 
     /// The drum's rigid motion from t₀ to t₁ about its centre: a drum point p goes to
     /// C + M (p − C), M = Q(t₁) Rot_z(−ω(t₁ − t₀)) Q(t₀)ᵀ (spin about the body axis, then
-    /// the change of tilt).
-    pub fn motion(&self, from: f64, to: f64) -> Matrix {
-        product(&product(&self.tilt(to), &rotation(2, -self.speed * (to - from))), &transpose(&self.tilt(from)))
+    /// the change of tilt); without the spin (ω taken as 0) if not `turning`.
+    pub fn motion(&self, from: f64, to: f64, turning: bool) -> Matrix {
+        let spin = if turning { self.speed * (to - from) } else { 0.0 };
+        product(&product(&self.tilt(to), &rotation(2, -spin)), &transpose(&self.tilt(from)))
     }
 
     /// (γ, e): the penetration γ = R − dist(r, axis) of a point at r into the cylinder of
@@ -189,6 +196,11 @@ pub struct Interlayer {
     pub radius: f64,
     /// c: the σ-speed by which the core advects the history, m/s (the drums' ωR).
     pub transport: f64,
+    /// The drums turn, and the history is transported, in the steps whose middle is
+    /// after this time, s (stage (2) of docs/fem-shell.md §9; −∞: from the start).
+    /// Before it the drums rest (their tilt may change): quasistatic, only ωΔt counts,
+    /// so the rotation starts at full speed.
+    pub start: f64,
 }
 
 impl Interlayer {
@@ -211,10 +223,28 @@ impl Interlayer {
         if !self.transport.is_finite() {
             return bad("transport speed", self.transport);
         }
+        if self.start.is_nan() || self.start == f64::INFINITY {
+            return bad("start of the rotation", self.start);
+        }
         if let Some(d) = self.drums.iter().find(|d| !(d.speed.is_finite() && d.centre.iter().all(|c| c.is_finite()))) {
             return bad("drum speed", d.speed);
         }
         Ok(())
+    }
+
+    /// Whether the drums turn in the step whose middle is at `time`.
+    pub fn turning(&self, time: f64) -> bool {
+        time > self.start
+    }
+
+    /// The transport speed in the step whose middle is at `time`: c while the drums
+    /// turn, else 0.
+    pub fn transport_at(&self, time: f64) -> f64 {
+        if self.turning(time) {
+            self.transport
+        } else {
+            0.0
+        }
     }
 
     /// The tangential deformation u_{n+1} against drum `drum` of a point at r (module
@@ -230,7 +260,7 @@ impl Interlayer {
             return [D::zero(); 3];
         }
         let c = drum.centre3();
-        let m = drum.motion(time - dt, time);
+        let m = drum.motion(time - dt, time, self.turning(time - 0.5 * dt));
         let moved = apply(&m, &std::array::from_fn(|k| foot[k] - c[k]));
         // ũ + r_{n+1} − r_n(foot) − (R_{n+1} − R_n), R_n = r_n(foot)
         let raw: [D; 3] = std::array::from_fn(|k| r[k] - moved[k] - c[k] + state[U + k]);
@@ -322,7 +352,7 @@ mod tests {
         assert!(Schedule::new(vec![(1.0, 0.0), (1.0, 0.1)]).is_err());
         assert!(Schedule::new(vec![]).is_err());
         let drum = Drum { centre: [0.5, 0.0], speed: 2.0, tilt_x: Schedule::constant(0.03), tilt_y: Schedule::constant(-0.02) };
-        let (a, m) = (drum.axis(1.0), drum.motion(1.0, 1.1));
+        let (a, m) = (drum.axis(1.0), drum.motion(1.0, 1.1, true));
         // the axis is fixed by the motion, |a| = 1, M orthogonal, spin angle ω Δt
         let ma = apply(&m, &a);
         assert!((0..3).all(|k| (ma[k] - a[k]).abs() < 1e-15));
@@ -333,8 +363,11 @@ mod tests {
         assert!((((trace - 1.0) / 2.0).acos() - 0.2).abs() < 1e-12);
         // the top of an aligned drum moves in +x when it turns clockwise; the gap
         let aligned = Drum::aligned([0.5, 0.0], 1.0);
-        let top = apply(&aligned.motion(0.0, 0.1), &[0.0, 0.3, 0.0]);
+        let top = apply(&aligned.motion(0.0, 0.1, true), &[0.0, 0.3, 0.0]);
         assert!(top[0] > 0.0 && top[1] < 0.3);
+        // at rest only the change of tilt moves the drum
+        let resting = drum.motion(1.0, 1.1, false);
+        assert!((0..3).all(|i| (0..3).all(|j| (resting[i][j] - f64::from(u8::from(i == j))).abs() < 1e-15)));
         let (gamma, e): (f64, _) = aligned.gap(0.3, &[0.5f64, 0.29, 0.7], 0.0);
         assert!((gamma - 0.01).abs() < 1e-15 && (e[1] - 1.0).abs() < 1e-15);
     }

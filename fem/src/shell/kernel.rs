@@ -5,10 +5,13 @@
 //! transitions given to the assembler as quadratic products
 //! ([`SurfaceKernel::quadratic_terms`]).
 //!
-//! The unknown S is the periodic part S̃ of the gauge S = c₀σ + S̃ (S2): the kernel reads
-//! the derivatives of S̃ and adds c₀ to ∂σS. Camber enters as the intrinsic strain
+//! The unknown S is the periodic part S̃ of the gauge S = c₀(σ − d(t)) + S̃ (S2, S2′;
+//! d(t) the drums' travel, 0 at rest): the kernel reads the derivatives of S̃ and adds c₀
+//! to ∂σS. Camber enters as the intrinsic strain
 //! F* = diag(f, 1), f = 1/ℓ*(ζ), ℓ* = 1 − κ_c ζ (S9); the initial area element is
-//! dA* = ∂σS ℓ* dσ dζ (S8).
+//! dA* = ∂σS ℓ* dσ dζ (S8). The camber curvature is a piecewise-linear history κ_c(t)
+//! read at the point's time ([`Shell::with_camber`]): stage (1) ramps it at rest
+//! (docs/fem-shell.md §9.2).
 
 use drive::contour::Contour;
 
@@ -18,7 +21,7 @@ use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, Su
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, STATE};
+use super::interlayer::{Interlayer, Schedule, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -71,7 +74,8 @@ enum Placement {
 pub struct Shell {
     section: ShellSection,
     gauge: f64,
-    camber: f64,
+    /// κ_c(t), 1/m.
+    camber: Schedule,
     sides: TransitionSides,
     zeta_elements: usize,
     placement: Placement,
@@ -79,6 +83,8 @@ pub struct Shell {
     weight: f64,
     /// The elastic interlayer with the drums (§7), if any.
     interlayer: Option<Interlayer>,
+    /// ζ of the mesh's two edges, m (the fibre lengths checked there).
+    edges: [f64; 2],
 }
 
 impl Shell {
@@ -113,16 +119,39 @@ impl Shell {
         if !camber.is_finite() {
             return Err(ShellError::BadParameter { what: "camber curvature", value: camber });
         }
-        let zeta = mesh.zeta_nodes();
-        for edge in [zeta[0], zeta[zeta.len() - 1]] {
-            if 1.0 - camber * edge <= 0.0 {
-                return Err(ShellError::BadParameter { what: "initial fibre length 1 − κ_c ζ at an edge", value: 1.0 - camber * edge });
-            }
-        }
         if sides.columns() != mesh.sigma_elements() {
             return Err(ShellError::BadParameter { what: "columns of the transition sides", value: sides.columns() as f64 });
         }
-        Ok(Shell { section, gauge, camber, sides, zeta_elements: mesh.zeta_elements(), placement: Placement::Strip, weight: 0.0, interlayer: None })
+        let zeta = mesh.zeta_nodes();
+        let shell = Shell {
+            section,
+            gauge,
+            camber: Schedule::constant(0.0),
+            sides,
+            zeta_elements: mesh.zeta_elements(),
+            placement: Placement::Strip,
+            weight: 0.0,
+            interlayer: None,
+            edges: [zeta[0], zeta[zeta.len() - 1]],
+        };
+        shell.with_camber(Schedule::constant(camber))
+    }
+
+    /// The shell with the camber curvature κ_c(t) (1/m; piecewise linear, so the
+    /// initial fibre length 1 − κ_c ζ is checked at the schedule's points).
+    ///
+    /// # Errors
+    /// [`ShellError::BadParameter`]: a fibre of non-positive initial length at an edge
+    /// of the mesh's width at some point of the schedule.
+    pub fn with_camber(self, camber: Schedule) -> Result<Shell, ShellError> {
+        for &(_, kappa) in camber.points() {
+            for edge in self.edges {
+                if 1.0 - kappa * edge <= 0.0 {
+                    return Err(ShellError::BadParameter { what: "initial fibre length 1 − κ_c ζ at an edge", value: 1.0 - kappa * edge });
+                }
+            }
+        }
+        Ok(Shell { camber, ..self })
     }
 
     /// The shell with gravity: ρ_s h g, weight per initial area (N/m², ≥ 0).
@@ -166,9 +195,15 @@ impl Shell {
         self.section
     }
 
-    /// ℓ*(ζ) = 1 − κ_c ζ: initial length of the fibre at ζ per reference length (S9).
-    pub fn fibre_length(&self, zeta: f64) -> f64 {
-        1.0 - self.camber * zeta
+    /// ℓ*(ζ) = 1 − κ_c(t) ζ: initial length of the fibre at ζ per reference length (S9)
+    /// at time t.
+    pub fn fibre_length(&self, zeta: f64, time: f64) -> f64 {
+        1.0 - self.camber.at(time) * zeta
+    }
+
+    /// The camber history κ_c(t).
+    pub fn camber(&self) -> &Schedule {
+        &self.camber
     }
 
     /// The column of element e.
@@ -207,21 +242,24 @@ impl Shell {
 
     /// r_n(foot) of (S13) at the point from the (advected) interlayer state: the
     /// upstream point σ_r = σ − cΔt and the material offset
-    /// δs = S_{n+1}(σ) − S_n(σ_r) = S̃ − S̃_n + c₀cΔt ([`Interlayer::foot`]); zeros
-    /// without a state.
+    /// δs = S_{n+1}(σ) − S_n(σ_r) = S̃ − S̃_n ([`Interlayer::foot`]); zeros without a
+    /// state. The gauge is transported with the drums (docs/fem-shell.md (S2′)):
+    /// S = c₀(σ − d(t)) + S̃, d(t) the drums' travel ∫c dt, so the c₀cΔt of one step's
+    /// transport cancels in δs and a belt rolling with the drums keeps S̃ — the step's
+    /// Newton starts at the rigid rolling, not one step's travel (~h_arc) behind it.
     fn foot<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> ([D; 3], [f64; 3]) {
         if state.is_empty() {
             return ([D::zero(); 3], [0.0; 3]);
         }
-        let shift = self.belt_speed(at.time) * at.dt;
-        let offset = v[13] - Interlayer::material(state) + self.gauge * shift;
+        let shift = self.belt_speed(at.time - 0.5 * at.dt) * at.dt;
+        let offset = v[13] - Interlayer::material(state);
         Interlayer::foot(state, &self.frame(at.sigma - shift), offset)
     }
 
     /// Green's membrane strain [E_ss, E_sζ, E_ζζ] in the initial frame (S8) at `at`.
     pub fn strain<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
         let derivatives = material_derivatives(self.column(at.element).alpha, &self.fields(v));
-        membrane::strain(&derivatives, 1.0 / self.fibre_length(at.zeta))
+        membrane::strain(&derivatives, 1.0 / self.fibre_length(at.zeta, at.time))
     }
 
     /// The change of curvature K = F*ᵀ B° F* (S8), [K_ss, K_sζ, K_ζζ] in the initial
@@ -242,7 +280,7 @@ impl Shell {
         let r_zz = [D::zero(), nu[5], z[5]];
         let beta = s[2] / s[1];
         let (b_ss, b_rs, b_zz) = (membrane::dot(&n, &r_ss), membrane::dot(&n, &r_sz), membrane::dot(&n, &r_zz));
-        let f = 1.0 / self.fibre_length(at.zeta);
+        let f = 1.0 / self.fibre_length(at.zeta, at.time);
         [b_ss / (s[1] * s[1]) * (f * f), (b_rs - beta * b_ss) / s[1] * f, b_zz - beta * b_rs * 2.0 + beta * beta * b_ss]
     }
 
@@ -295,7 +333,7 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
             let (foot, upstream) = self.foot(at, v, state);
             return interlayer.density(&self.position(at, v), (&foot, upstream), v[0] + self.gauge, (at.time, at.dt), state);
         }
-        let area = (v[0] + self.gauge) * self.fibre_length(at.zeta);
+        let area = (v[0] + self.gauge) * self.fibre_length(at.zeta, at.time);
         if term == MEMBRANE {
             return quadratic_energy(self.section.a1, self.section.a2, &self.strain(at, v)) * area;
         }
@@ -330,8 +368,8 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     }
 
     /// The interlayer's transport speed c (0 without one).
-    fn belt_speed(&self, _time: f64) -> f64 {
-        self.interlayer.as_ref().map_or(0.0, |i| i.transport)
+    fn belt_speed(&self, time: f64) -> f64 {
+        self.interlayer.as_ref().map_or(0.0, |i| i.transport_at(time))
     }
 
     /// The augmented map (S12) on the columns with transition edges.
@@ -630,7 +668,9 @@ mod tests {
         let full = section();
         let zero = ShellSection { a1: 0.0, a2: 0.0, d1: 0.0, d2: 0.0 };
         for (what, section, weight) in [("membrane", ShellSection { d1: 0.0, d2: 0.0, ..full }, 0.0), ("bending", ShellSection { a1: 0.0, a2: 0.0, ..full }, 0.0), ("gravity", zero, 75.0)] {
-            let shell = Shell::on_contour(section, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(weight).unwrap();
+            // κ_c(t) ramping through 0.4 1/m at t = 0 (stage (1)'s camber)
+            let camber = Schedule::new(vec![(-1.0, 0.0), (1.0, 0.8)]).unwrap();
+            let shell = Shell::on_contour(section, 1.03, 0.0, &contour, &mesh).unwrap().with_camber(camber).unwrap().with_gravity(weight).unwrap();
             let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
             let mut rng = Rng(0x0be_d1e);
             let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
@@ -660,7 +700,7 @@ mod tests {
             tilt_y: crate::shell::interlayer::Schedule::new(vec![(0.0, 0.0), (1.0, -0.06)]).unwrap(),
         };
         let driven = Drum::aligned(contour.pulley_centre(drive::contour::Pulley::Driven), omega);
-        Interlayer { normal: 1.0e5, shear, drums: [tilted, driven], radius: contour.radius(), transport: omega * contour.radius() }
+        Interlayer { normal: 1.0e5, shear, drums: [tilted, driven], radius: contour.radius(), transport: omega * contour.radius(), start: f64::NEG_INFINITY }
     }
 
     /// V-6 for the interlayer alone (A = D = 0, no gravity): closed contour with camber,
@@ -674,9 +714,11 @@ mod tests {
     fn interlayer_derivatives_match_central_differences_in_contact_at_transitions_with_tilt() {
         let contour = contour();
         let zero = ShellSection { a1: 0.0, a2: 0.0, d1: 0.0, d2: 0.0 };
-        for per_region in [[2, 2, 2, 1], [3, 1, 2, 2]] {
+        // the second mesh with the drums at rest (the rotation starts later, stage (1):
+        // only the tilt moves the drum)
+        for (per_region, start) in [([2, 2, 2, 1], f64::NEG_INFINITY), ([3, 1, 2, 2], 10.0)] {
             let mesh = contour_mesh(&contour, per_region, 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
-            let shell = Shell::on_contour(zero, 1.03, 0.4, &contour, &mesh).unwrap().with_interlayer(interlayer(&contour, 3.0e4)).unwrap();
+            let shell = Shell::on_contour(zero, 1.03, 0.4, &contour, &mesh).unwrap().with_interlayer(Interlayer { start, ..interlayer(&contour, 3.0e4) }).unwrap();
             let asm = SurfaceAssembler::new(mesh.clone(), shell, &[]).unwrap();
             let mut rng = Rng(0x1a7e_7a11);
             let mut r = |scale: f64| scale * (2.0 * rng.next() - 1.0);
@@ -703,13 +745,14 @@ mod tests {
 
     /// Rigid rolling (module `interlayer`): the belt pressed into the drums (ν = −0.01
     /// everywhere, c₀ = 1) turns with them: after a step of exactly one arc element
-    /// (cΔt = h_arc, uniform arcs: the advection is exact), S̃ lowered by c₀cΔt (each
-    /// material point moved by cΔt), the tangential deformation is zero to round-off at
+    /// (cΔt = h_arc, uniform arcs: the advection is exact), S̃ unchanged (the gauge
+    /// S = c₀(σ − d(t)) + S̃ moves with the drums: each material point moved by cΔt),
+    /// the tangential deformation is zero to round-off at
     /// every arc point whose foot was on the arc — the drum point under the material is
     /// moved by the exact rotation — and zero by the entry rule where the foot was on the
     /// span. With a lateral step of the belt by d (z + d) the arcs carry u = d k exactly
-    /// (the lateral deformation of the layer). Held back (S̃ unchanged: the drums turn,
-    /// the belt does not) the arcs carry the drum's travel, |u| ≈ cΔt.
+    /// (the lateral deformation of the layer). Held back (S̃ raised by c₀cΔt: the drums
+    /// turn, the belt does not) the arcs carry the drum's travel, |u| ≈ cΔt.
     #[test]
     fn belt_rolling_rigidly_with_the_drums_has_no_tangential_deformation() {
         let contour = contour();
@@ -728,7 +771,7 @@ mod tests {
         let advected = recorded.advected(c * dt);
         let ev = Evaluation { time: dt, dt, history: Some(&advected) };
         for (lateral, rolling) in [(0.0, true), (0.004, true), (0.0, false)] {
-            let travel = if rolling { -c * dt } else { 0.0 };
+            let travel = if rolling { 0.0 } else { c * dt };
             let moved = asm.interpolate(&[(Field::S, &move |_: f64, _: f64| [travel, 0.0, 0.0, 0.0]), (Field::Z, &move |_: f64, zeta: f64| [zeta + lateral, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
             let next = advected.advance(&asm, &moved, &ev);
             let states = next.term(INTERLAYER).unwrap();

@@ -11,6 +11,9 @@
 //!   per-point tangential deformation (docs/fem-shell.md §7–§8);
 //! - [`hanging`]: stage (0), the static hanging belt with its zero modes constrained
 //!   (docs/fem-shell.md §9.1);
+//! - [`runoff`]: stages (1)–(2), the ramps of camber and tilt at rest and the
+//!   transient with rotation, the belt's lateral offset and drift velocity
+//!   (docs/fem-shell.md §9.2–§9.3);
 //! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
 //!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
@@ -18,6 +21,7 @@ pub mod hanging;
 pub mod interlayer;
 pub mod kernel;
 pub mod membrane;
+pub mod runoff;
 pub mod transition;
 
 use thiserror::Error;
