@@ -113,7 +113,7 @@ impl FrictionPoint {
             (true, _) => self.left.1,
             (false, _) => self.left.1 + self.right.1,
         };
-        own.then(|| if side == 0 { self.left.1 } else { self.right.1 } / sides)
+        own.then(|| (if side == 0 { self.left.1 } else { self.right.1 }) / sides)
     }
 
     /// σ where the point's velocity is sampled: the midpoint of its element.
