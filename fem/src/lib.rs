@@ -320,7 +320,7 @@ fn refuse_paper_d(drive_settings: &string_drive::DriveSettings, what: &str) -> R
 /// ([`StringHanging::augment`]): the element with the multipliers, the tolerance
 /// (× F_ref/R) and the largest number of multiplier updates.
 struct StaticAugmented<'a, const N: usize, K: formulation::layout::LayoutElement<N> + ?Sized> {
-    rebuild: &'a dyn Fn(&K, std::sync::Arc<formulation::ContactMultipliers>) -> Option<std::sync::Arc<K>>,
+    rebuild: &'a static_homotopy::WithMultipliers<K>,
     tolerance: f64,
     max_iterations: usize,
 }

@@ -62,6 +62,11 @@ pub struct StringHanging {
     pub penalty: Option<f64>,
 }
 
+/// The element `K` rebuilt with augmented-Lagrangian multipliers
+/// ([`LayoutElement::with_contact_multipliers`] for a `dyn` element); `None`: it has
+/// penalty contact only.
+pub type WithMultipliers<K> = dyn Fn(&K, Arc<ContactMultipliers>) -> Option<Arc<K>>;
+
 /// Work of a homotopy run.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct HomotopyReport {
@@ -296,11 +301,10 @@ impl StringHanging {
     /// The failure (the caller keeps the penalty solution) with the outer loop's work:
     /// no penalty, an element without multipliers (`rebuild` gives `None`), a failed
     /// solve, or `max_iterations` updates above the tolerance.
-    #[allow(clippy::type_complexity)]
     pub fn augment<const N: usize, K: LayoutElement<N> + ?Sized>(
         &self,
         mut sol: FemSolution<N, K>,
-        rebuild: &dyn Fn(&K, Arc<ContactMultipliers>) -> Option<Arc<K>>,
+        rebuild: &WithMultipliers<K>,
         settings: &SolverSettings,
         (contact_tolerance, max_iterations): (f64, usize),
         report: &mut HomotopyReport,
