@@ -1046,17 +1046,18 @@ impl Scene {
     }
 
     /// The driver turns at most [`MAX_STEP_ANGLE`] per transient time step.
-    /// `fem.contact = "augmented-lagrangian"` is built for the direct steady solve of the
-    /// one-pulley Cosserat belt only (docs/fem-cosserat.md §12.5); elsewhere it would be
-    /// ignored, so it is refused by name.
+    /// `fem.contact = "augmented-lagrangian"` is built for the Cosserat belt's direct
+    /// steady solve of the one-pulley layout and its static analysis on two pulleys
+    /// (docs/fem-cosserat.md §12.5); elsewhere it would be ignored, so it is refused by
+    /// name.
     fn validate_normal_contact(&self, f: &FemSettings) -> Result<(), SceneError> {
-        if f.contact == Some(NormalContact::AugmentedLagrangian)
-            && !(self.drive.layout == Layout::OnePulley && self.belt.theory == Theory::Cosserat && self.analysis == Analysis::Steady)
-        {
+        let built = self.belt.theory == Theory::Cosserat
+            && ((self.drive.layout == Layout::OnePulley && self.analysis == Analysis::Steady) || (self.drive.layout != Layout::OnePulley && self.analysis == Analysis::Static));
+        if f.contact == Some(NormalContact::AugmentedLagrangian) && !built {
             return Err(SceneError::NotAllowed {
                 path: "fem.contact".into(),
                 reason: format!(
-                    "the augmented-Lagrangian normal contact is built for the steady one-pulley Cosserat belt only (this scene: layout `{}`, theory `{}`, analysis `{}`); remove it or use `penalty`",
+                    "the augmented-Lagrangian normal contact is built for the Cosserat belt's steady one-pulley solve and its static analysis on two pulleys only (this scene: layout `{}`, theory `{}`, analysis `{}`); remove it or use `penalty`",
                     self.drive.layout.name(),
                     self.belt.theory.name(),
                     self.analysis.name()

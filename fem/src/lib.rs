@@ -294,11 +294,15 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
     }
     // the static analysis, monomorphised for the element's layout
     match element {
-        formulation::RegisteredElement::String(kernel) => solve_static(&data, kernel, opts, settings, clock),
+        formulation::RegisteredElement::String(kernel) => solve_static(&data, kernel, opts, settings, clock, None),
         formulation::RegisteredElement::Cosserat(kernel) => {
             // the scene's shear stiffness b₂ (validated > 0 for theory cosserat)
             let kernel = kernel.for_belt(&problem.belt).unwrap_or(kernel);
-            solve_static(&data, kernel, opts, settings, clock)
+            // the augmented-Lagrangian normal contact around the penalty solution
+            // (docs/fem-cosserat.md §12.5): the element rebuilt with the multipliers
+            let rebuild = |k: &(dyn formulation::layout::LayoutElement<{ formulation::layout::NDOF_COSSERAT }> + 'static), m| k.with_contact_multipliers(Some(m));
+            let augmented = (drive_settings.normal_contact == string_drive::steady::NormalContact::AugmentedLagrangian).then_some(StaticAugmented { rebuild: &rebuild, tolerance: drive_settings.contact_tolerance, max_iterations: drive_settings.max_al_iterations });
+            solve_static(&data, kernel, opts, settings, clock, augmented)
         }
     }
 }
@@ -312,36 +316,67 @@ fn refuse_paper_d(drive_settings: &string_drive::DriveSettings, what: &str) -> R
     Ok(())
 }
 
-/// The static analysis of `data` with the element `kernel` of any 1-D layout, and the
-/// run around its solution (admissibility, summary, terms, options, work).
+/// The augmented-Lagrangian normal contact of a static run
+/// ([`StringHanging::augment`]): the element with the multipliers, the tolerance
+/// (× F_ref/R) and the largest number of multiplier updates.
+struct StaticAugmented<'a, const N: usize, K: formulation::layout::LayoutElement<N> + ?Sized> {
+    rebuild: &'a static_homotopy::WithMultipliers<K>,
+    tolerance: f64,
+    max_iterations: usize,
+}
+
+/// The static analysis of `data` with the element `kernel` of any 1-D layout (with
+/// `augmented`, the augmented-Lagrangian normal contact around the penalty solution, the
+/// penalty's with a stated warning where it fails), and the run around its solution
+/// (admissibility, summary, terms, options, work).
 fn solve_static<const N: usize, K: formulation::layout::LayoutElement<N> + ?Sized + 'static>(
     data: &StringHanging,
     kernel: std::sync::Arc<K>,
     opts: &FemOptions,
     settings: &SolverSettings,
     clock: Instant,
+    augmented: Option<StaticAugmented<'_, N, K>>,
 ) -> Result<FemRun, FemError> {
     let contour = data.contour()?;
     let mesh = mesh::Mesh::new(contour, opts.elements, settings.arc_weight)?;
-    let (solution, report, unknowns) = data.solve(mesh, kernel.clone(), settings)?;
+    let (mut solution, mut report, unknowns) = data.solve(mesh, kernel.clone(), settings)?;
+    let mut warnings = Vec::new();
+    let contact = augmented.map(|a| match data.augment(solution.clone(), a.rebuild, settings, (a.tolerance, a.max_iterations), &mut report) {
+        Ok((s, al)) => {
+            solution = s;
+            al
+        }
+        Err((failure, al)) => {
+            warnings.push(format!("the augmented Lagrangian of the normal contact did not converge ({failure}): the result is the penalty solve's (P = {} N/m²)", numerics::Sig(data.penalty.unwrap_or(f64::NAN))));
+            al
+        }
+    });
     // a converged discrete equilibrium that is no belt-on-pulley state is an error, an
     // unresolved bending layer a warning (docs/fem-rod.md §10)
-    let notes = admissibility::check(&solution)?;
+    let mut notes = admissibility::check(&solution)?;
+    notes.extend(warnings);
     let summary = solution.summary();
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
     }
-    let terms = kernel.term_labels(solution.params());
+    let mut terms = kernel.term_labels(solution.params());
+    if solution.kernel().contact_multipliers().is_some() {
+        terms.push("normal contact by the augmented Lagrangian (Table 1; multipliers a field over σ, periodic on the loop, Uzawa updates, docs/fem-cosserat.md §12.5)".into());
+    }
     let zone = |p: drive::contour::Pulley| {
         solution.zone(p).map(|z| serde_json::json!({"recovered": z.recovered, "gap_sign_intervals": z.intervals}))
     };
-    let options = opts.record(data.penalty, settings, serde_json::json!({
+    let mut work = serde_json::json!({
         "homotopy": report,
         "contact_boundaries": {
             "driver": zone(drive::contour::Pulley::Driver),
             "driven": zone(drive::contour::Pulley::Driven),
         },
-    }));
+    });
+    if let Some(al) = contact {
+        work["contact"] = serde_json::json!(al);
+    }
+    let options = opts.record(data.penalty, settings, work);
     let stats = FemStats {
         wall_seconds: clock.elapsed().as_secs_f64(),
         newton_iterations: report.newton_iterations,

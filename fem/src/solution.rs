@@ -340,6 +340,10 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
             // free side's gap touches zero
             sigma_start = self.touching(sigma_start, 1.0).unwrap_or(sigma_start);
             sigma_end = self.touching(sigma_end, -1.0).unwrap_or(sigma_end);
+            // …which places it to a fraction of an element only (the gap's double zero);
+            // the zone's force places it to the mesh's resolution of the pressure
+            sigma_start = self.force_edge(pulley, sigma_start, 1.0).map_or(sigma_start, |e| e.0);
+            sigma_end = self.force_edge(pulley, sigma_end, -1.0).map_or(sigma_end, |e| e.0);
         }
         Some(ContactZone {
             sigma_start,
@@ -376,6 +380,67 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let curvature = y3 - 2.0 * y2 + y1;
         let vertex = x2 - d * (y3 - y1) / (2.0 * curvature);
         (curvature > 0.0 && vertex.is_finite() && (vertex - sigma).abs() < 4.0 * d).then_some(vertex)
+    }
+
+    /// The contact edge of the augmented-Lagrangian solution from its contact forces
+    /// (docs/fem-cosserat.md §12.5), near the estimate `sigma0` (unwrapped; `inward` =
+    /// +1 at an entry, −1 at an exit). G(x), the contact force ⟨λ − Pγ⟩₊ applied from the
+    /// free side up to x (the points of [`Self::contact_forces`]), is taken at the
+    /// [`FORCE_EDGE_NODES`] nodes that follow the node nearest to `sigma0` inwards; the
+    /// edge is the root of the polynomial through them next to `sigma0` — where the zone's
+    /// force starts: a simple zero with the edge pressure as slope, where the gap has a
+    /// double zero (γ ≈ p₀x²/(2b₂)) that places the edge to a fraction of an element
+    /// only — and the edge pressure per unit contour length is the polynomial's slope
+    /// there. The nearest node is left out: on a mesh fitted to the edge G vanishes
+    /// there by construction (no loaded point outside it) and would pin the root to the
+    /// node; without it a misplaced edge node shows as the surplus (or missing) force the
+    /// first element inside has to carry, which moves the root off the node. Returns
+    /// (σ_b, p_σ); `None` without a penalty, with too few nodes inside, or where the
+    /// polynomial has no rising root within the nodes' reach.
+    fn force_edge(&self, pulley: Pulley, sigma0: f64, inward: f64) -> Option<(f64, f64)> {
+        self.params.penalty?;
+        let (nodes, g_at) = self.inward_forces(pulley, sigma0, inward);
+        let nearest = nodes.iter().copied().min_by(|x, y| x.abs().total_cmp(&y.abs()))?;
+        let floor = 1e-12 * self.mesh.contour().length();
+        let n = FORCE_EDGE_NODES;
+        let x: Vec<f64> = nodes.into_iter().filter(|d| *d > nearest + floor).take(n).collect();
+        if x.len() < n {
+            return None;
+        }
+        let pts: Vec<(f64, f64)> = x.iter().map(|&xj| (xj, g_at(xj))).collect();
+        let slope = |t: f64| {
+            let d = 1e-7 * x[0];
+            (lagrange(&pts, t + d) - lagrange(&pts, t - d)) / (2.0 * d)
+        };
+        // Newton from the estimate: G rises through the edge with the edge pressure
+        let mut t = 0.0;
+        for _ in 0..50 {
+            let step = lagrange(&pts, t) / slope(t);
+            t -= step;
+            if !t.is_finite() || step.abs() < 1e-12 * x[0] {
+                break;
+            }
+        }
+        let p = slope(t);
+        (t.is_finite() && t > -x[n - 1] && t < x[0] && p > 0.0 && lagrange(&pts, t).abs() < 1e-9 * pts[n - 1].1.abs()).then_some((sigma0 + inward * t, p))
+    }
+
+    /// The nodes' distances inward from σ (`inward` = +1 at an entry, −1 at an exit),
+    /// all of them, ascending, each node once — unwrapped, as σ, into the σ-window where
+    /// the gap to `pulley` is defined — and G(x), the sum of the contact forces
+    /// ([`Self::contact_forces`]) at points less than x inward from σ: the force applied
+    /// from the free side up to x (the zone is one interval).
+    fn inward_forces(&self, pulley: Pulley, sigma: f64, inward: f64) -> (Vec<f64>, impl Fn(f64) -> f64) {
+        let forces = self.contact_forces(pulley);
+        let l = self.mesh.contour().length();
+        let (w0, w1, _) = self.contact_window(pulley);
+        let unwrap = |x: f64| [x - l, x, x + l].into_iter().find(|y| *y > w0 && *y < w1).unwrap_or(x);
+        let b = unwrap(sigma);
+        let mut nodes: Vec<f64> = self.mesh.node_sigmas().iter().map(|&n| inward * (unwrap(n) - b)).collect();
+        nodes.sort_by(f64::total_cmp);
+        nodes.dedup();
+        let distances: Vec<(f64, f64)> = forces.into_iter().map(|(s, f)| (inward * (s - b), f)).collect();
+        (nodes, move |x: f64| distances.iter().filter(|f| f.0 < x).map(|f| f.1).sum::<f64>())
     }
 
     /// The contact zone with both boundaries recovered from the free spans (tangency
@@ -740,18 +805,17 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     /// non-positive or non-finite value.
     pub fn edge_pressure(&self, pulley: Pulley, sigma_b: f64, inward: f64) -> Option<f64> {
         self.params.penalty?;
-        let forces = self.contact_forces(pulley);
-        let l = self.mesh.contour().length();
-        // σ_b and the nodes unwrapped into the forces' window, measured inward from σ_b
-        let (w0, w1, _) = self.contact_window(pulley);
-        let unwrap = |x: f64| [x - l, x, x + l].into_iter().find(|y| *y > w0 && *y < w1).unwrap_or(x);
-        let b = unwrap(sigma_b);
-        let mut inside: Vec<f64> = self.mesh.node_sigmas().iter().map(|&n| inward * (unwrap(n) - b)).filter(|d| *d > 1e-12 * l).collect();
-        inside.sort_by(f64::total_cmp);
-        inside.dedup();
+        if self.kernel.contact_multipliers().is_some() {
+            // the augmented Lagrangian: G′ at the edge the zone's force locates
+            let (e, xi) = if inward < 0.0 { self.mesh.locate_left(sigma_b) } else { self.mesh.locate(sigma_b) };
+            let ds = self.context(e).field(self.layout, &self.local[e], 0, xi)[1];
+            return self.force_edge(pulley, sigma_b, inward).map(|(_, p)| p / ds).filter(|p| p.is_finite());
+        }
+        let (nodes, g_at) = self.inward_forces(pulley, sigma_b, inward);
+        let floor = 1e-12 * self.mesh.contour().length();
+        let inside: Vec<f64> = nodes.into_iter().filter(|d| *d > floor).collect();
         let x: [f64; 3] = inside.get(..3)?.try_into().ok()?;
-        // G(x_j): the forces from the free side up to x_j (the zone is one interval)
-        let g = x.map(|xj| forces.iter().filter(|f| inward * (f.0 - b) < xj).map(|f| f.1).sum::<f64>());
+        let g = x.map(&g_at);
         // G′(0) of the cubic through (0, 0), (x_j, G_j): Σ_j G_j L_j′(0), L_j′(0) =
         // Π_{m≠j} (−x_m) / (x_j Π_{m≠j} (x_j − x_m)) over m among the three inside
         let slope: f64 = (0..3)
@@ -949,6 +1013,14 @@ fn lagrange(points: &[(f64, f64)], xi: f64) -> f64 {
     }
     sum
 }
+
+/// The nodes inside a contact zone through whose contact forces the augmented
+/// Lagrangian's edge is located (`FemSolution::force_edge`): G(x) is extrapolated back
+/// over about an element by the polynomial of degree 5 through them. Measured on
+/// `cosserat-pulley` at 256 elements (docs/fem-cosserat.md §12.5), contact-arc error
+/// against the BVP for 4, 5, 6, 7 nodes: 2.1e-4, 9.5e-5, 5.1e-5, 3.1e-5; 6 is the first
+/// at or below the penalty's 6.1e-5, and at 512 elements it gives 1.4e-6.
+const FORCE_EDGE_NODES: usize = 6;
 
 /// Root of a continuous f on [a, b] with f(a), f(b) on different sides of 0 (bisection
 /// to |b − a| < 1e-15 in ξ, i.e. 1e-15·h/2 in σ).

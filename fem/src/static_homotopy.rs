@@ -15,7 +15,7 @@ use numerics::continuation::{self, ContinuationError, Growth, Homotopy, Step, St
 use crate::error::FemError;
 use crate::fitting::{self, Beyond, FitReport, FitRules, Fallback, Fitted, Measure, MoveLimit, Secant};
 use crate::formulation::layout::LayoutElement;
-use crate::formulation::Kernel;
+use crate::formulation::{ContactMultipliers, Kernel};
 use crate::kinematics::{TermParams, NDOF};
 use crate::linear::SparseLu;
 use crate::mesh::{Grading, Mesh};
@@ -23,6 +23,7 @@ use crate::newton::{self, NewtonFailure, NewtonSettings, Scales};
 use crate::options::SolverSettings;
 use crate::problem::{BeltSection, Geometry};
 use crate::solution::FemSolution;
+use crate::string_drive::steady::{multiplier_update, AugmentedFailure, AugmentedReport};
 
 /// Decay length of the Cosserat mesh grading, in shear layers √(a/b₂) (docs/fem-cosserat.md §9).
 pub const GRADING_WIDTH: f64 = 2.0;
@@ -60,6 +61,11 @@ pub struct StringHanging {
     /// P, N/m² (`None`: no contact term).
     pub penalty: Option<f64>,
 }
+
+/// The element `K` rebuilt with augmented-Lagrangian multipliers
+/// ([`LayoutElement::with_contact_multipliers`] for a `dyn` element); `None`: it has
+/// penalty contact only.
+pub type WithMultipliers<K> = dyn Fn(&K, Arc<ContactMultipliers>) -> Option<Arc<K>>;
 
 /// Work of a homotopy run.
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
@@ -279,6 +285,77 @@ impl StringHanging {
         report.min_axial_force_sigma = sigma;
         let _ = f_ref;
         Ok((sol, report, unknowns))
+    }
+
+    /// The augmented-Lagrangian normal contact on the static loop (Table 1, column 1;
+    /// docs/fem-cosserat.md §12.5) around the converged penalty solution `sol` of
+    /// [`Self::solve`]: the Uzawa update λ ← ⟨λ − Pγ⟩₊ at the contact rule's points (the
+    /// first from λ = 0: the penalty pressure), the multipliers a field periodic in σ
+    /// over the closed contour ([`ContactMultipliers::periodic`]) held by the element that
+    /// `rebuild` makes from the solution's, a Newton solve on the mesh and, with
+    /// `settings.contact_fitting`, the fit to the contact boundaries (its refits read the
+    /// field on their meshes); converged when the largest multiplier change is
+    /// ≤ `contact_tolerance` × F_ref/R. The work is added to `report`.
+    ///
+    /// # Errors
+    /// The failure (the caller keeps the penalty solution) with the outer loop's work:
+    /// no penalty, an element without multipliers (`rebuild` gives `None`), a failed
+    /// solve, or `max_iterations` updates above the tolerance.
+    pub fn augment<const N: usize, K: LayoutElement<N> + ?Sized>(
+        &self,
+        mut sol: FemSolution<N, K>,
+        rebuild: &WithMultipliers<K>,
+        settings: &SolverSettings,
+        (contact_tolerance, max_iterations): (f64, usize),
+        report: &mut HomotopyReport,
+    ) -> Result<(FemSolution<N, K>, AugmentedReport), (AugmentedFailure, AugmentedReport)> {
+        let contour = *sol.mesh().contour();
+        let mut al = AugmentedReport::default();
+        let Some(penalty) = self.penalty else { return Err((AugmentedFailure::Unsupported, al)) };
+        let f_ref = match self.start(&contour) {
+            Ok((_, t_start)) => t_start.max(self.weight() * self.belt.length),
+            Err(e) => return Err((AugmentedFailure::Solve(e.to_string()), al)),
+        };
+        al.tolerance = contact_tolerance * f_ref / contour.radius();
+        let (params, length) = (*sol.params(), sol.length());
+        let newton_settings = NewtonSettings { tolerance: settings.update_tolerance, max_iterations: 40 };
+        let mut asm = Assembler::with_kernel(sol.mesh().clone(), sol.kernel().clone());
+        let scales = Scales::new(&asm, contour.centre_distance(), f_ref);
+        let mut lu = SparseLu::new();
+        let (rows, cols) = asm.pattern();
+        if let Err(detail) = lu.set_pattern(asm.len(), rows, cols) {
+            return Err((AugmentedFailure::Solve(detail), al));
+        }
+        for k in 0..=max_iterations {
+            let mut z = transfer(&sol, &asm);
+            let current = sol.kernel().contact_multipliers().cloned().unwrap_or_default();
+            let (next, max_gap) = multiplier_update(&asm, &z, &params, penalty, Some(contour.length()));
+            al.iterations = k;
+            al.multiplier_change = next.max_change(&current);
+            al.max_gap = max_gap;
+            if k > 0 && al.multiplier_change <= al.tolerance {
+                al.converged = true;
+                return Ok((sol, al));
+            }
+            if k == max_iterations {
+                break;
+            }
+            let Some(kernel) = rebuild(sol.kernel(), Arc::new(next)) else { return Err((AugmentedFailure::Unsupported, al)) };
+            asm = Assembler::with_kernel(sol.mesh().clone(), kernel.clone());
+            match newton::solve(&asm, &mut lu, &mut z, &params, length, &scales, &newton_settings) {
+                Ok(r) => {
+                    report.newton_iterations += r.iterations;
+                    report.last = r;
+                }
+                Err(f) => return Err((AugmentedFailure::Solve(to_error(f, 1.0, settings.update_tolerance).to_string()), al)),
+            }
+            sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, params, length, kernel.clone());
+            if settings.contact_fitting {
+                sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &newton_settings, settings, self.grading(), report);
+                asm = Assembler::with_kernel(sol.mesh().clone(), kernel);
+            }
+        }
+        Err((AugmentedFailure::NotConverged { change: al.multiplier_change, tolerance: al.tolerance, iterations: al.iterations }, al))
     }
 
     /// Natural-parameter continuation η: 0 → 1 from the converged start `z` (§9).

@@ -134,18 +134,22 @@ pub fn augmented_traction(lambda: f64, penalty: f64, gap: Option<f64>) -> f64 {
 /// Normal-contact multipliers λ_γ (N per unit contour length) of the augmented
 /// Lagrangian as a field over the contour coordinate σ (docs/fem-cosserat.md §12.5):
 /// piecewise linear through the values at the contact rule's points of the mesh they were
-/// updated on, 0 outside them — so they survive a refit of the mesh (the refitted mesh's
-/// points read the field where they are). Not periodic: for the open layout, whose σ runs
-/// from 0 to the end section.
+/// updated on, so they survive a refit of the mesh (the refitted mesh's points read the
+/// field where they are). Open ([`Self::from_samples`], the one-pulley layout, whose σ
+/// runs from 0 to the end section): 0 outside the samples. Periodic
+/// ([`Self::periodic`], a closed loop of contour length L_c): σ is read modulo L_c and
+/// the field runs on from the last sample to the first one + L_c.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ContactMultipliers {
     /// (σ, λ), strictly increasing in σ.
     samples: Vec<(f64, f64)>,
+    /// L_c of a closed loop; `None`: open.
+    period: Option<f64>,
 }
 
 impl ContactMultipliers {
-    /// The field through `samples` (σ, λ): sorted by σ, values at equal σ (an element edge
-    /// that is a point of two elements) averaged.
+    /// The open field through `samples` (σ, λ): sorted by σ, values at equal σ (an
+    /// element edge that is a point of two elements) averaged.
     ///
     /// # Panics
     /// Never; a non-finite sample is the caller's error and is dropped.
@@ -162,17 +166,34 @@ impl ContactMultipliers {
                 _ => out.push((sigma, lambda, 1)),
             }
         }
-        ContactMultipliers { samples: out.into_iter().map(|(s, l, n)| (s, l / n as f64)).collect() }
+        ContactMultipliers { samples: out.into_iter().map(|(s, l, n)| (s, l / n as f64)).collect(), period: None }
     }
 
-    /// λ(σ), N/m: linear between the samples, 0 outside them.
+    /// The periodic field of a closed loop of contour length `period` (m, > 0) through
+    /// `samples` (σ, λ), σ taken modulo `period` (a non-positive or non-finite period
+    /// gives the open field).
+    pub fn periodic(samples: Vec<(f64, f64)>, period: f64) -> ContactMultipliers {
+        if !(period > 0.0 && period.is_finite()) {
+            return ContactMultipliers::from_samples(samples);
+        }
+        let wrapped = samples.into_iter().map(|(s, l)| (s.rem_euclid(period), l)).collect();
+        ContactMultipliers { period: Some(period), ..ContactMultipliers::from_samples(wrapped) }
+    }
+
+    /// λ(σ), N/m: linear between the samples; open: 0 outside them; periodic: σ modulo
+    /// L_c, linear from the last sample to the first one + L_c.
     pub fn at(&self, sigma: f64) -> f64 {
+        let (Some(&first), Some(&last)) = (self.samples.first(), self.samples.last()) else { return 0.0 };
+        let sigma = self.period.map_or(sigma, |l| sigma.rem_euclid(l));
         let k = self.samples.partition_point(|s| s.0 <= sigma);
         if k == 0 || k == self.samples.len() {
-            return match self.samples.last() {
-                Some(last) if k == self.samples.len() && last.0 == sigma => last.1,
-                _ => 0.0,
-            };
+            if let Some(l) = self.period {
+                // the wrap-around segment, last → first + L_c
+                let (s0, s1) = (last.0, first.0 + l);
+                let x = if sigma >= last.0 { sigma } else { sigma + l };
+                return if s1 > s0 { last.1 + (first.1 - last.1) * (x - s0) / (s1 - s0) } else { last.1 };
+            }
+            return if k == self.samples.len() && last.0 == sigma { last.1 } else { 0.0 };
         }
         let ((s0, l0), (s1, l1)) = (self.samples[k - 1], self.samples[k]);
         l0 + (l1 - l0) * (sigma - s0) / (s1 - s0)

@@ -26,8 +26,9 @@ pub struct AugmentedReport {
 /// The Uzawa update at the contact rule's points of the state `x` on `asm`: the new
 /// multipliers ⟨λ(σ_j) − Pγ_j⟩₊ with λ the element's field (0 for the plain penalty:
 /// the first update is the penalty pressure), and the largest |γ_j| at a point that
-/// carries pressure.
-pub(super) fn multiplier_update<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, x: &[f64], params: &TermParams, penalty: f64) -> (ContactMultipliers, f64) {
+/// carries pressure. `period`: the contour length L_c of a closed loop (the field is
+/// periodic in σ, [`ContactMultipliers::periodic`]); `None`: the open layout.
+pub(crate) fn multiplier_update<const N: usize, K: LayoutElement<N> + ?Sized>(asm: &Assembler<N, K>, x: &[f64], params: &TermParams, penalty: f64, period: Option<f64>) -> (ContactMultipliers, f64) {
     let kernel = asm.kernel();
     let (layout, rule) = (kernel.layout(), kernel.rules().contact);
     let mut samples = Vec::new();
@@ -45,12 +46,16 @@ pub(super) fn multiplier_update<const N: usize, K: LayoutElement<N> + ?Sized>(as
             samples.push((sigma, lambda));
         }
     }
-    (ContactMultipliers::from_samples(samples), max_gap)
+    let field = match period {
+        Some(l) => ContactMultipliers::periodic(samples, l),
+        None => ContactMultipliers::from_samples(samples),
+    };
+    (field, max_gap)
 }
 
 /// Why the outer loop stopped without a result.
 #[derive(Debug, Clone, PartialEq)]
-pub(super) enum AugmentedFailure {
+pub enum AugmentedFailure {
     /// The element has penalty contact only.
     Unsupported,
     /// A solve with the updated multipliers failed.
@@ -113,5 +118,13 @@ mod tests {
         let z = ContactMultipliers::default();
         assert_eq!(m.max_change(&z), 30.0);
         assert_eq!(z.at(1.0), 0.0);
+        // a closed loop's field (L_c = 1) is periodic: σ modulo L_c, and it runs on from
+        // the last sample (0.95) to the first + L_c (1.05) across σ = 0
+        let c = ContactMultipliers::periodic(vec![(0.95, 10.0), (1.05, 30.0), (0.5, 0.0)], 1.0);
+        assert_eq!(c.samples(), &[(1.05f64.rem_euclid(1.0), 30.0), (0.5, 0.0), (0.95, 10.0)]);
+        for (sigma, want) in [(0.0, 20.0), (1.0, 20.0), (-0.02, 16.0), (0.98, 16.0), (2.05, 30.0), (0.75, 10.0 * 0.25 / 0.45)] {
+            assert!((c.at(sigma) - want).abs() < 1e-9, "λ({sigma}) = {} ≠ {want}", c.at(sigma));
+        }
+        assert_eq!(ContactMultipliers::from_samples(vec![(0.95, 10.0), (0.05, 30.0)]).at(1.0), 0.0);
     }
 }

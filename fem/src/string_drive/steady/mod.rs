@@ -40,7 +40,8 @@ mod paper_d;
 mod semismooth;
 mod topology;
 
-pub use augmented::AugmentedReport;
+pub use augmented::{AugmentedFailure, AugmentedReport};
+pub(crate) use augmented::multiplier_update;
 pub use drive::scene::NormalContact;
 use augmented::*;
 pub use equations::*;

@@ -282,7 +282,7 @@ impl<const N: usize, const P: usize, const E: usize> OpenSetup<'_, N, P, E, dyn 
         let sp_at = move |_: f64| sp;
         for k in 0..=drive_settings.max_al_iterations {
             let current = state.asm.kernel().contact_multipliers().cloned().unwrap_or_default();
-            let (next, max_gap) = multiplier_update(&state.asm, &state.x, &self.params, penalty);
+            let (next, max_gap) = multiplier_update(&state.asm, &state.x, &self.params, penalty, None);
             al.iterations = k;
             al.multiplier_change = next.max_change(&current);
             al.max_gap = max_gap;
