@@ -90,17 +90,25 @@ pub fn rhs_jacobian<P: Problem>(
     let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
     for j in (0..n + np + 1).filter(|&j| j < n || j == n + np || reads(j - n)) {
         column(j, &mut col);
-        for i in 0..n {
-            if j < n {
-                dfdy[i * n + j] = col[i];
-            } else if j < n + np {
-                dfdp[i * np + (j - n)] = col[i];
-            } else {
-                dfdeta[i] = col[i];
-            }
+        for (i, &value) in col.iter().enumerate() {
+            put_entry(i, j, n, np, value, &mut dfdy, &mut dfdp, &mut dfdeta);
         }
     }
     (f, dfdy, dfdp, dfdeta)
+}
+
+/// Entry (i, j) of the full derivative [∂f/∂y | ∂f/∂p | ∂f/∂η] (n components, n_p
+/// parameters) written into its part: ∂f/∂y and ∂f/∂p row-major, ∂f/∂η a column.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn put_entry(i: usize, j: usize, n: usize, np: usize, value: f64, dfdy: &mut [f64], dfdp: &mut [f64], dfdeta: &mut [f64]) {
+    if j < n {
+        dfdy[i * n + j] = value;
+    } else if j < n + np {
+        dfdp[i * np + (j - n)] = value;
+    } else {
+        dfdeta[i] = value;
+    }
 }
 
 /// [`rhs_jacobian`] into reusable buffers, allocating nothing once the buffers have
@@ -169,13 +177,7 @@ impl<const W: usize> Lanes<W> {
             // Absent derivative part: every lane zero (the buffers are zero-filled).
             let Some(d) = &v.eps.0 else { continue };
             for (lane, &j) in chunk.iter().enumerate() {
-                if j < n {
-                    dfdy[i * n + j] = d[lane];
-                } else if j < n + np {
-                    dfdp[i * np + (j - n)] = d[lane];
-                } else {
-                    dfdeta[i] = d[lane];
-                }
+                put_entry(i, j, n, np, d[lane], dfdy, dfdp, dfdeta);
             }
         }
     }

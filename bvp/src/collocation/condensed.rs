@@ -60,30 +60,12 @@ use crate::problem::{JacobianMode, Problem};
 macro_rules! small_n {
     ($value:expr, $n:ident => $body:expr) => {
         match $value {
-            1 => {
-                let $n = 1;
-                $body
-            }
-            2 => {
-                let $n = 2;
-                $body
-            }
-            3 => {
-                let $n = 3;
-                $body
-            }
-            4 => {
-                let $n = 4;
-                $body
-            }
-            5 => {
-                let $n = 5;
-                $body
-            }
-            6 => {
-                let $n = 6;
-                $body
-            }
+            1 => { let $n = 1; $body }
+            2 => { let $n = 2; $body }
+            3 => { let $n = 3; $body }
+            4 => { let $n = 4; $body }
+            5 => { let $n = 5; $body }
+            6 => { let $n = 6; $body }
             $n => $body,
         }
     };
