@@ -4,7 +4,7 @@
 //! Matrices are dense, row-major `Vec<f64>`.
 
 use crate::problem::{JacobianMode, Problem};
-use num_dual::Dual64;
+use num_dual::{Dual64, DualSVec64};
 
 /// Central-difference step for argument value `u`: ε^{1/3} · max(1, |u|), ε = 2^-52.
 fn fd_step(u: f64) -> f64 {
@@ -90,23 +90,36 @@ pub fn rhs_jacobian<P: Problem>(
     let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
     for j in (0..n + np + 1).filter(|&j| j < n || j == n + np || reads(j - n)) {
         column(j, &mut col);
-        for i in 0..n {
-            if j < n {
-                dfdy[i * n + j] = col[i];
-            } else if j < n + np {
-                dfdp[i * np + (j - n)] = col[i];
-            } else {
-                dfdeta[i] = col[i];
-            }
+        for (i, &value) in col.iter().enumerate() {
+            put_entry(i, j, n, np, value, &mut dfdy, &mut dfdp, &mut dfdeta);
         }
     }
     (f, dfdy, dfdp, dfdeta)
 }
 
-/// [`rhs_jacobian`] into reusable buffers: in AD mode the dual-number arguments are
-/// seeded in place, one column at a time, so that a Jacobian per collocation point
-/// allocates nothing once the buffers have their sizes (same values as
-/// [`rhs_jacobian`], bit for bit: the same operations on the same dual numbers).
+/// Entry (i, j) of the full derivative [∂f/∂y | ∂f/∂p | ∂f/∂η] (n components, n_p
+/// parameters) written into its part: ∂f/∂y and ∂f/∂p row-major, ∂f/∂η a column.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn put_entry(i: usize, j: usize, n: usize, np: usize, value: f64, dfdy: &mut [f64], dfdp: &mut [f64], dfdeta: &mut [f64]) {
+    if j < n {
+        dfdy[i * n + j] = value;
+    } else if j < n + np {
+        dfdp[i * np + (j - n)] = value;
+    } else {
+        dfdeta[i] = value;
+    }
+}
+
+/// [`rhs_jacobian`] into reusable buffers, allocating nothing once the buffers have
+/// their sizes. In AD mode the Jacobian columns are seeded side by side in vector dual
+/// numbers (`DualSVec64<W>`, W = 2, 4 or 8 lanes): one pass of `rhs` gives up to 8
+/// columns — the elastica's 6 (4 states, 2 loads) in one pass with one sin and one cos
+/// instead of 6 passes of `Dual64`. Each lane carries the operations of the `Dual64`
+/// pass of its column (num-dual's product, quotient and chain rules are the same
+/// formulas for both), so the values are [`rhs_jacobian`]'s; only where a `Dual64`
+/// pass adds an exact zero term (a derivative no seeded argument reaches, which
+/// `DualVec` keeps as absent) can the sign of a zero entry differ.
 #[derive(Debug, Default)]
 pub struct RhsJacobian {
     /// f (n_k).
@@ -117,16 +130,63 @@ pub struct RhsJacobian {
     pub dfdp: Vec<f64>,
     /// ∂f/∂η (n_k).
     pub dfdeta: Vec<f64>,
-    yd: Vec<Dual64>,
-    pd: Vec<Dual64>,
-    out: Vec<Dual64>,
+    /// The columns evaluated: y's, the parameters f_k reads, η (index into (y, p, η)).
+    columns: Vec<usize>,
+    lanes2: Lanes<2>,
+    lanes4: Lanes<4>,
+    lanes8: Lanes<8>,
+}
+
+/// Arguments and result of one AD pass with W derivative lanes.
+#[derive(Debug, Default)]
+struct Lanes<const W: usize> {
+    yd: Vec<DualSVec64<W>>,
+    pd: Vec<DualSVec64<W>>,
+    out: Vec<DualSVec64<W>>,
+}
+
+impl<const W: usize> Lanes<W> {
+    /// One pass of `rhs` with the columns `chunk` (≤ W, indices into (y, p, η)) seeded
+    /// in lanes 0, 1, …; their derivatives written into `jac`, and f too if `first`.
+    #[allow(clippy::too_many_arguments)]
+    fn pass<P: Problem>(&mut self, problem: &P, k: usize, x: f64, y: &[f64], p: &[f64], eta: f64, chunk: &[usize], first: bool, jac: &mut [Vec<f64>; 4]) {
+        let n = y.len();
+        let np = p.len();
+        self.yd.clear();
+        self.yd.extend(y.iter().map(|&v| DualSVec64::from_re(v)));
+        self.pd.clear();
+        self.pd.extend(p.iter().map(|&v| DualSVec64::from_re(v)));
+        let mut ed = DualSVec64::from_re(eta);
+        for (lane, &j) in chunk.iter().enumerate() {
+            if j < n {
+                self.yd[j] = self.yd[j].derivative(lane);
+            } else if j < n + np {
+                self.pd[j - n] = self.pd[j - n].derivative(lane);
+            } else {
+                ed = ed.derivative(lane);
+            }
+        }
+        self.out.clear();
+        self.out.resize(n, DualSVec64::from_re(0.0));
+        problem.rhs(k, x, &self.yd, &self.pd, ed, &mut self.out);
+        let [f, dfdy, dfdp, dfdeta] = jac;
+        for (i, v) in self.out.iter().enumerate() {
+            if first {
+                f[i] = v.re;
+            }
+            // Absent derivative part: every lane zero (the buffers are zero-filled).
+            let Some(d) = &v.eps.0 else { continue };
+            for (lane, &j) in chunk.iter().enumerate() {
+                put_entry(i, j, n, np, d[lane], dfdy, dfdp, dfdeta);
+            }
+        }
+    }
 }
 
 impl RhsJacobian {
     /// Evaluate f_k and its derivatives at (x, y, p, η) into the buffers; the column
     /// ∂f/∂η only with `eta_column` (else `dfdeta` is left zero: the condensed Newton
-    /// matrix at fixed η needs ∂f/∂y and ∂f/∂p alone, and the η pass was one of the
-    /// n + n_p + 2 right-hand-side calls per collocation point).
+    /// matrix at fixed η needs ∂f/∂y and ∂f/∂p alone).
     ///
     /// In AD mode f is the value part of the first dual pass — the same f64 operations
     /// as a plain call of `rhs`, so the same bits — instead of one more call.
@@ -152,45 +212,22 @@ impl RhsJacobian {
             v.clear();
             v.resize(len, 0.0);
         }
-        self.yd.clear();
-        self.yd.extend(y.iter().map(|&v| Dual64::from_re(v)));
-        self.pd.clear();
-        self.pd.extend(p.iter().map(|&v| Dual64::from_re(v)));
         let declared = problem.rhs_params(k);
         let reads = |i: usize| declared.is_none_or(|params| params.binary_search(&i).is_ok());
-        let columns = (0..n + np + 1).filter(|&j| if j < n { true } else if j < n + np { reads(j - n) } else { eta_column });
-        for (pass, j) in columns.enumerate() {
-            let mut ed = Dual64::from_re(eta);
-            if j < n {
-                self.yd[j].eps = 1.0;
-            } else if j < n + np {
-                self.pd[j - n].eps = 1.0;
-            } else {
-                ed.eps = 1.0;
-            }
-            self.out.resize(n, Dual64::from_re(0.0));
-            self.out.fill(Dual64::from_re(0.0));
-            problem.rhs(k, x, &self.yd, &self.pd, ed, &mut self.out);
-            if pass == 0 {
-                for (o, v) in self.f.iter_mut().zip(&self.out) {
-                    *o = v.re;
+        self.columns.clear();
+        self.columns.extend((0..n + np + 1).filter(|&j| if j < n { true } else if j < n + np { reads(j - n) } else { eta_column }));
+        let mut jac = [std::mem::take(&mut self.f), std::mem::take(&mut self.dfdy), std::mem::take(&mut self.dfdp), std::mem::take(&mut self.dfdeta)];
+        let columns = &self.columns;
+        match columns.len() {
+            0..=2 => self.lanes2.pass(problem, k, x, y, p, eta, columns, true, &mut jac),
+            3..=4 => self.lanes4.pass(problem, k, x, y, p, eta, columns, true, &mut jac),
+            _ => {
+                for (c, chunk) in columns.chunks(8).enumerate() {
+                    self.lanes8.pass(problem, k, x, y, p, eta, chunk, c == 0, &mut jac);
                 }
-            }
-            for (i, v) in self.out.iter().enumerate() {
-                if j < n {
-                    self.dfdy[i * n + j] = v.eps;
-                } else if j < n + np {
-                    self.dfdp[i * np + (j - n)] = v.eps;
-                } else {
-                    self.dfdeta[i] = v.eps;
-                }
-            }
-            if j < n {
-                self.yd[j].eps = 0.0;
-            } else if j < n + np {
-                self.pd[j - n].eps = 0.0;
             }
         }
+        [self.f, self.dfdy, self.dfdp, self.dfdeta] = jac;
     }
 }
 

@@ -46,11 +46,30 @@
 
 use super::abd::BlockLu;
 use super::discretisation::Discretisation;
+use super::scheme::Tableau;
 use numerics::phases::{timed, Phase};
 use crate::error::BvpError;
 use crate::jacobian::{bc_jacobian, RhsJacobian};
 use crate::newton::SparseLu;
 use crate::problem::{JacobianMode, Problem};
+
+/// `$body` with `$n` bound to n = `$value` — a literal constant in the arms n = 1 … 6,
+/// so that the loops over the components of an `#[inline(always)]` function called in
+/// `$body` with it unroll (the per-interval work of the condensation and of its solves
+/// with n at run time was dominated by loop and bounds overhead on rows of 4 entries).
+macro_rules! small_n {
+    ($value:expr, $n:ident => $body:expr) => {
+        match $value {
+            1 => { let $n = 1; $body }
+            2 => { let $n = 2; $body }
+            3 => { let $n = 3; $body }
+            4 => { let $n = 4; $body }
+            5 => { let $n = 5; $body }
+            6 => { let $n = 6; $body }
+            $n => $body,
+        }
+    };
+}
 
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
@@ -67,9 +86,9 @@ pub(crate) fn dense_lu(a: &mut [f64], m: usize, piv: &mut [usize]) -> bool {
 /// square matrix ([`dense_lu`]); [`super::abd`] eliminates 2n × n column blocks.
 pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: &mut [usize]) -> bool {
     let scale = if k == cols {
-        a[..rows * cols].iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+        max_abs(a[..rows * cols].iter())
     } else {
-        (0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()).fold(0.0_f64, |m, v| m.max(v.abs()))
+        max_abs((0..rows).flat_map(|r| a[r * cols..r * cols + k].iter()))
     };
     if !(scale.is_finite() && scale > 0.0) {
         return false;
@@ -107,6 +126,21 @@ pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: 
     true
 }
 
+/// max |v| over `values`, NaNs ignored as by `f64::max` (an infinite entry makes it
+/// infinite) — the same value as a fold with `f64::max`, but a comparison that compiles
+/// to `maxpd` instead of `f64::max`'s NaN handling (which was ~22 % of the instructions
+/// of a 16 × 16 LU).
+fn max_abs<'v>(values: impl Iterator<Item = &'v f64>) -> f64 {
+    values.fold(0.0_f64, |m, v| {
+        let a = v.abs();
+        if a > m {
+            a
+        } else {
+            m
+        }
+    })
+}
+
 /// Overwrite the m × nc row-major block `x` (nc right-hand sides side by side) with
 /// A⁻¹ x for the factorisation of [`dense_lu`]. Each column sees the operations of a
 /// row-by-row forward and back substitution in the usual order (x_r − Σ_k l_rk x_k,
@@ -116,13 +150,7 @@ pub(crate) fn eliminate(a: &mut [f64], rows: usize, cols: usize, k: usize, piv: 
 /// elastica solve as one column at a time).
 pub(crate) fn dense_solve(lu: &[f64], m: usize, piv: &[usize], x: &mut [f64], nc: usize) {
     let x = &mut x[..m * nc];
-    for (r, &p) in piv[..m].iter().enumerate() {
-        if p != r {
-            for c in 0..nc {
-                x.swap(r * nc + c, p * nc + c);
-            }
-        }
-    }
+    swap_rows(x, &piv[..m], nc, false);
     match nc {
         1 => return substitute_fixed::<1>(lu, m, x),
         2 => return substitute_fixed::<2>(lu, m, x),
@@ -208,17 +236,31 @@ pub(crate) fn dense_solve_transposed(lu: &[f64], m: usize, piv: &[usize], x: &mu
             }
         }
     }
-    for (r, &p) in piv[..m].iter().enumerate().rev() {
+    swap_rows(x, &piv[..m], nc, true);
+}
+
+/// Apply the row interchanges `piv` of a [`dense_lu`] (row r with `piv[r]`, r
+/// ascending; undone in reverse order with `undo`) to the row-major block `x` of `nc`
+/// columns.
+fn swap_rows(x: &mut [f64], piv: &[usize], nc: usize, undo: bool) {
+    let mut one = |(r, &p): (usize, &usize)| {
         if p != r {
             for c in 0..nc {
                 x.swap(r * nc + c, p * nc + c);
             }
         }
+    };
+    if undo {
+        piv.iter().enumerate().rev().for_each(&mut one);
+    } else {
+        piv.iter().enumerate().for_each(&mut one);
     }
 }
 
 /// The substitutions of [`dense_solve_transposed`] (before the row swaps) for a
 /// compile-time number NC of right-hand sides, the same operations as its general loop.
+/// Inlined, so that [`Kernels`] of a compile-time order m get it unrolled.
+#[inline(always)]
 fn transposed_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
     let (rows, _) = x.as_chunks_mut::<NC>();
     let rows = &mut rows[..m];
@@ -258,7 +300,9 @@ fn transposed_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
 /// (vectorised over the columns), in the same order as the general loop (x_r − l_r0 x_0
 /// − l_r1 x_1 − …, then (x_r − Σ u_rk x_k)/u_rr with k ascending), so the result is the
 /// same to the bit at a fraction of its loop overhead (the W and t solves were 23 % of
-/// the instructions of a gauss8 elastica solve with the general loop).
+/// the instructions of a gauss8 elastica solve with the general loop). Inlined, so that
+/// [`Kernels`] of a compile-time order m get it unrolled.
+#[inline(always)]
 fn substitute_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
     let (rows, _) = x.as_chunks_mut::<NC>();
     let rows = &mut rows[..m];
@@ -286,6 +330,114 @@ fn substitute_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
         }
         head[r] = acc;
     }
+}
+
+/// The dense kernels of one interval's condensation for K of order m = s n with n
+/// columns of V ([`CondensedLu`]): its LU ([`dense_lu`]), the transposed solve of Vᵀ
+/// ([`dense_solve_transposed`], n columns) and the one-column solve of the stage
+/// values ([`dense_solve`]). [`Kernels::new`] picks versions compiled for the order
+/// (fully unrolled; the per-interval work of a gauss8 elastica solve was ~13 k
+/// instructions per 16 × 16 LU for ~1.4 k multiply–adds, short rows of 1–15 entries
+/// with their loop and bounds overhead) where (s, n) is one of the common shapes, the
+/// general loops otherwise. The same results to the bit either way (test
+/// `fixed_kernels_equal_the_general_ones_to_the_bit`).
+#[derive(Clone, Copy)]
+pub(crate) struct Kernels {
+    lu: fn(&mut [f64], usize, &mut [usize]) -> bool,
+    transposed: fn(&[f64], usize, &[usize], &mut [f64], usize),
+    solve: fn(&[f64], usize, &[usize], &mut [f64]),
+    /// Compiled for the order (not the general loops).
+    #[cfg(test)]
+    fixed: bool,
+}
+
+impl Kernels {
+    /// The general loops (any m and n).
+    const GENERAL: Kernels = Kernels { lu: dense_lu, transposed: dense_solve_transposed, solve: |lu, m, piv, x| dense_solve(lu, m, piv, x, 1),
+        #[cfg(test)]
+        fixed: false,
+    };
+
+    /// The kernels for K of order `m` = s `n` (s = 2, 3, 4 stages, n = 1 … 6 components:
+    /// every Gauss scheme on the analytical problems and the belt laws' 2- and
+    /// 5-component segments), the general ones for other shapes.
+    pub fn new(m: usize, n: usize) -> Self {
+        macro_rules! shapes {
+            ($(($m:literal, $n:literal)),*) => {
+                match (m, n) {
+                    $(($m, $n) => Kernels { lu: lu_square::<$m>, transposed: transposed_square::<$m, $n>, solve: solve_square::<$m>,
+                        #[cfg(test)]
+                        fixed: true,
+                    },)*
+                    _ => Self::GENERAL,
+                }
+            };
+        }
+        // (m, n) = (s n, n) for s = 2, 3, 4
+        shapes!((2, 1), (3, 1), (4, 1), (4, 2), (6, 2), (8, 2), (6, 3), (9, 3), (12, 3), (8, 4), (12, 4), (16, 4), (10, 5), (15, 5), (20, 5), (12, 6), (18, 6), (24, 6))
+    }
+}
+
+/// [`dense_lu`] of order M (the argument m = M), the same pivots and the same value
+/// of every entry of the factors: the pivot search and the test are [`eliminate`]'s,
+/// and a row below the pivot is updated over all M columns by the pivot row with
+/// zeros in its first r + 1 columns, which leaves those columns' values unchanged
+/// (x − f·0 = x, up to the sign of a zero multiplier) — fixed-length rows that the
+/// compiler unrolls and vectorises instead of rows of M − r − 1 entries.
+fn lu_square<const M: usize>(a: &mut [f64], _m: usize, piv: &mut [usize]) -> bool {
+    let (rows, _) = a.as_chunks_mut::<M>();
+    let rows = &mut rows[..M];
+    let scale = max_abs(rows.iter().flatten());
+    if !(scale.is_finite() && scale > 0.0) {
+        return false;
+    }
+    for r in 0..M {
+        let mut p = r;
+        for i in r + 1..M {
+            if rows[i][r].abs() > rows[p][r].abs() {
+                p = i;
+            }
+        }
+        piv[r] = p;
+        if p != r {
+            rows.swap(r, p);
+        }
+        let d = rows[r][r];
+        if !(d.is_finite() && d.abs() > 1e-14 * scale) {
+            return false;
+        }
+        let mut u = rows[r];
+        for v in &mut u[..=r] {
+            *v = 0.0;
+        }
+        for row in rows[r + 1..].iter_mut() {
+            if row[r] == 0.0 {
+                continue;
+            }
+            let f = row[r] / d;
+            if f != 0.0 {
+                for (o, &v) in row.iter_mut().zip(&u) {
+                    *o -= f * v;
+                }
+            }
+            row[r] = f;
+        }
+    }
+    true
+}
+
+/// [`dense_solve_transposed`] of order M with NC columns (the arguments m = M, nc = NC).
+fn transposed_square<const M: usize, const NC: usize>(lu: &[f64], _m: usize, piv: &[usize], x: &mut [f64], _nc: usize) {
+    let x = &mut x[..M * NC];
+    transposed_fixed::<NC>(lu, M, x);
+    swap_rows(x, &piv[..M], NC, true);
+}
+
+/// [`dense_solve`] of order M with one column (the argument m = M).
+fn solve_square<const M: usize>(lu: &[f64], _m: usize, piv: &[usize], x: &mut [f64]) {
+    let x = &mut x[..M];
+    swap_rows(x, &piv[..M], 1, false);
+    substitute_fixed::<1>(lu, M, x);
 }
 
 /// Default largest order of the structured LU's final dense system
@@ -578,81 +730,17 @@ impl CondensedLu {
             }
             disc.count(s * per_call(disc.mode, n, np));
             let used = &mut self.used[iv * np..(iv + 1) * np];
-            for (q, u) in used.iter_mut().enumerate() {
-                *u = jac.iter().any(|jl| (0..n).any(|a| jl.dfdp[a * np + q] != 0.0));
-            }
-            qcols.clear();
-            qcols.extend((0..np).filter(|&q| used[q]));
-            let nq = qcols.len();
-            // K = I − h (a_jl J_l), row-major; Vᵀ starts as Bᵀ: row l n + c is
-            // h b_l (J_l)_·c, column c of B's block l.
-            let kk = &mut self.k_lu[lu..lu + sn * sn];
-            coef.clear();
-            coef.extend(disc.tab.a.iter().map(|&a| -h * a));
-            for (j, (kblock, cj)) in kk.chunks_exact_mut(n * sn).zip(coef.chunks_exact(s)).enumerate() {
-                for (a, krow) in kblock.chunks_exact_mut(sn).enumerate() {
-                    for ((kl, jl), &k_coef) in krow.chunks_exact_mut(n).zip(jac.iter()).zip(cj) {
-                        for (o, &d) in kl.iter_mut().zip(&jl.dfdy[a * n..(a + 1) * n]) {
-                            *o = k_coef * d;
-                        }
-                    }
-                    krow[j * n + a] += 1.0;
-                }
-            }
-            let vv = &mut self.v[v..v + sn * n];
-            for (l, jl) in jac.iter().enumerate() {
-                let hb = h * disc.tab.b[l];
-                for c in 0..n {
-                    for (a, o) in vv[(l * n + c) * n..(l * n + c + 1) * n].iter_mut().enumerate() {
-                        *o = hb * jl.dfdy[a * n + c];
-                    }
-                }
-            }
-            // G (row-major sn × n_used): row j n + a, column q: h Σ_l a_jl (P_l)_aq. Every
-            // entry is written (no fill: tiny memsets per row were ~2 % of a solve).
-            let gg = &mut self.g[g..g + sn * nq];
-            for j in 0..s {
-                for a in 0..n {
-                    let grow = &mut gg[(j * n + a) * nq..(j * n + a + 1) * nq];
-                    for (o, &q) in grow.iter_mut().zip(&qcols) {
-                        let mut acc = 0.0;
-                        for (l, jl) in jac.iter().enumerate() {
-                            acc += h * disc.tab.a[j * s + l] * jl.dfdp[a * np + q];
-                        }
-                        *o = acc;
-                    }
-                }
-            }
-            if !dense_lu(kk, sn, &mut self.piv[piv..piv + sn]) {
+            let mut out = Condensation {
+                kk: &mut self.k_lu[lu..lu + sn * sn],
+                piv: &mut self.piv[piv..piv + sn],
+                vv: &mut self.v[v..v + sn * n],
+                gg: &mut self.g[g..g + sn * np],
+                ph: &mut self.phis[phi..phi + n * n],
+                ps: &mut self.psis[psi..psi + n * np],
+            };
+            let regular = small_n!(n, nc => condense_interval(nc, &disc.tab, np, h, jac, used, &mut qcols, &mut coef, &mut out));
+            if !regular {
                 return true;
-            }
-            dense_solve_transposed(kk, sn, &self.piv[piv..piv + sn], vv, n);
-            // Φ = I + Σ_j V_j (V's column blocks), Ψ = h Σ_l b_l P_l + V G (zero in the
-            // columns of unused parameters).
-            let ph = &mut self.phis[phi..phi + n * n];
-            for a in 0..n {
-                for c in 0..n {
-                    let mut acc = if a == c { 1.0 } else { 0.0 };
-                    for j in 0..s {
-                        acc += vv[(j * n + c) * n + a];
-                    }
-                    ph[a * n + c] = acc;
-                }
-            }
-            let ps = &mut self.psis[psi..psi + n * np];
-            let mut qi = 0;
-            for q in 0..np {
-                if !used[q] {
-                    for a in 0..n {
-                        ps[a * np + q] = 0.0;
-                    }
-                    continue;
-                }
-                for a in 0..n {
-                    let vg: f64 = (0..sn).map(|r| vv[r * n + a] * gg[r * nq + qi]).sum();
-                    ps[a * np + q] = vg + h * (0..s).map(|l| disc.tab.b[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
-                }
-                qi += 1;
             }
         }
         false
@@ -682,15 +770,8 @@ impl CondensedLu {
             let bs = &x[row..row + sn];
             self.scratch[iv.t..iv.t + sn].copy_from_slice(bs);
             let out = &mut self.rhs[r0..r0 + n];
-            out.fill(-0.0);
-            for (vrow, &b) in self.v[iv.v..iv.v + sn * n].chunks_exact(n).zip(bs) {
-                for (o, &v) in out.iter_mut().zip(vrow) {
-                    *o += v * b;
-                }
-            }
-            for (o, &c) in out.iter_mut().zip(&x[row + sn..row + sn + n]) {
-                *o += c;
-            }
+            let vv = &self.v[iv.v..iv.v + sn * n];
+            small_n!(n, nc => condensed_rhs(nc, vv, bs, &x[row + sn..row + sn + n], out));
         }
         let bc0 = disc.row_offsets[m];
         let cbc0 = pofs - disc.dims.iter().sum::<usize>();
@@ -727,13 +808,8 @@ impl CondensedLu {
             let xi = self.node_offsets[iv.k] + iv.i * n;
             let xi = &self.rhs[xi..xi + n];
             let gg = &self.g[iv.g..iv.g + sn * nq];
-            for (r, o) in xs.iter_mut().enumerate() {
-                *o += xi[r % n];
-                for (&gv, q) in gg[r * nq..(r + 1) * nq].iter().zip((0..np).filter(|&q| used[q])) {
-                    *o += gv * p[q];
-                }
-            }
-            dense_solve(&self.k_lu[iv.lu..iv.lu + sn * sn], sn, &self.piv[iv.piv..iv.piv + sn], xs, 1);
+            small_n!(n, nc => stage_rhs(nc, xs, xi, gg, used, p));
+            (Kernels::new(sn, n).solve)(&self.k_lu[iv.lu..iv.lu + sn * sn], sn, &self.piv[iv.piv..iv.piv + sn], xs);
         }
         if x.iter().any(|v| !v.is_finite()) {
             return Err(BvpError::SingularJacobian {
@@ -743,6 +819,150 @@ impl CondensedLu {
         }
         Ok(())
     }
+}
+
+/// The condensed right-hand side b_C + V b_S of one interval into `out` (n entries;
+/// `vv` = Vᵀ, s n × n row-major), the products summed over the rows of Vᵀ in order,
+/// then b_C added. Inlined for a constant n ([`small_n`]).
+#[inline(always)]
+fn condensed_rhs(n: usize, vv: &[f64], bs: &[f64], bc: &[f64], out: &mut [f64]) {
+    let out = &mut out[..n];
+    out.fill(-0.0);
+    for (vrow, &b) in vv.chunks_exact(n).zip(bs) {
+        for (o, &v) in out.iter_mut().zip(vrow) {
+            *o += v * b;
+        }
+    }
+    for (o, &c) in out.iter_mut().zip(bc) {
+        *o += c;
+    }
+}
+
+/// b_S + E x_i + G x_p of one interval, added to `xs` (= b_S, s n entries): x_i's
+/// component r mod n, then G's row r times the used parameters in order. Inlined for a
+/// constant n ([`small_n`]).
+#[inline(always)]
+fn stage_rhs(n: usize, xs: &mut [f64], xi: &[f64], gg: &[f64], used: &[bool], p: &[f64]) {
+    let xi = &xi[..n];
+    let nq = gg.len() / xs.len().max(1);
+    for (r, o) in xs.iter_mut().enumerate() {
+        *o += xi[r % n];
+        for (&gv, q) in gg[r * nq..(r + 1) * nq].iter().zip((0..p.len()).filter(|&q| used[q])) {
+            *o += gv * p[q];
+        }
+    }
+}
+
+/// The outputs of [`condense_interval`] for one interval: K's LU and pivots, Vᵀ, G, Φ
+/// and Ψ ([`Interval`]).
+struct Condensation<'b> {
+    kk: &'b mut [f64],
+    piv: &'b mut [usize],
+    vv: &'b mut [f64],
+    gg: &'b mut [f64],
+    ph: &'b mut [f64],
+    ps: &'b mut [f64],
+}
+
+/// One interval of [`CondensedLu::condense_intervals`] from its stage Jacobians `jac`
+/// (width h, n components, n_p parameters): which parameters it uses, K and its LU,
+/// Vᵀ = K⁻ᵀ Bᵀ, G, Φ = I + V E and Ψ = h Σ_l b_l P_l + V G; false if K is singular.
+/// Inlined into a call per small n, so that the loops over the components unroll (the
+/// assembly was ~11 k instructions per interval of the gauss8 elastica with n at run
+/// time); the same operations in the same order for every n.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn condense_interval(
+    n: usize,
+    tab: &Tableau,
+    np: usize,
+    h: f64,
+    jac: &[RhsJacobian],
+    used: &mut [bool],
+    qcols: &mut Vec<usize>,
+    coef: &mut Vec<f64>,
+    out: &mut Condensation<'_>,
+) -> bool {
+    let s = tab.s;
+    let sn = s * n;
+    for (q, u) in used.iter_mut().enumerate() {
+        *u = jac.iter().any(|jl| (0..n).any(|a| jl.dfdp[a * np + q] != 0.0));
+    }
+    qcols.clear();
+    qcols.extend((0..np).filter(|&q| used[q]));
+    let nq = qcols.len();
+    // K = I − h (a_jl J_l), row-major; Vᵀ starts as Bᵀ: row l n + c is
+    // h b_l (J_l)_·c, column c of B's block l.
+    let kk = &mut *out.kk;
+    coef.clear();
+    coef.extend(tab.a.iter().map(|&a| -h * a));
+    for (j, (kblock, cj)) in kk.chunks_exact_mut(n * sn).zip(coef.chunks_exact(s)).enumerate() {
+        for (a, krow) in kblock.chunks_exact_mut(sn).enumerate() {
+            for ((kl, jl), &k_coef) in krow.chunks_exact_mut(n).zip(jac.iter()).zip(cj) {
+                for (o, &d) in kl.iter_mut().zip(&jl.dfdy[a * n..(a + 1) * n]) {
+                    *o = k_coef * d;
+                }
+            }
+            krow[j * n + a] += 1.0;
+        }
+    }
+    let vv = &mut *out.vv;
+    for (l, jl) in jac.iter().enumerate() {
+        let hb = h * tab.b[l];
+        for c in 0..n {
+            for (a, o) in vv[(l * n + c) * n..(l * n + c + 1) * n].iter_mut().enumerate() {
+                *o = hb * jl.dfdy[a * n + c];
+            }
+        }
+    }
+    // G (row-major sn × n_used): row j n + a, column q: h Σ_l a_jl (P_l)_aq. Every
+    // entry is written (no fill: tiny memsets per row were ~2 % of a solve).
+    let gg = &mut out.gg[..sn * nq];
+    for j in 0..s {
+        for a in 0..n {
+            let grow = &mut gg[(j * n + a) * nq..(j * n + a + 1) * nq];
+            for (o, &q) in grow.iter_mut().zip(qcols.iter()) {
+                let mut acc = 0.0;
+                for (l, jl) in jac.iter().enumerate() {
+                    acc += h * tab.a[j * s + l] * jl.dfdp[a * np + q];
+                }
+                *o = acc;
+            }
+        }
+    }
+    let kernels = Kernels::new(sn, n);
+    if !(kernels.lu)(kk, sn, out.piv) {
+        return false;
+    }
+    (kernels.transposed)(kk, sn, out.piv, vv, n);
+    // Φ = I + Σ_j V_j (V's column blocks), Ψ = h Σ_l b_l P_l + V G (zero in the
+    // columns of unused parameters).
+    let ph = &mut *out.ph;
+    for a in 0..n {
+        for c in 0..n {
+            let mut acc = if a == c { 1.0 } else { 0.0 };
+            for j in 0..s {
+                acc += vv[(j * n + c) * n + a];
+            }
+            ph[a * n + c] = acc;
+        }
+    }
+    let ps = &mut *out.ps;
+    let mut qi = 0;
+    for q in 0..np {
+        if !used[q] {
+            for a in 0..n {
+                ps[a * np + q] = 0.0;
+            }
+            continue;
+        }
+        for a in 0..n {
+            let vg: f64 = (0..sn).map(|r| vv[r * n + a] * gg[r * nq + qi]).sum();
+            ps[a * np + q] = vg + h * (0..s).map(|l| tab.b[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
+        }
+        qi += 1;
+    }
+    true
 }
 
 /// Σ_{k' < k} n_k': the condensed rows of segment k start this far before its first
@@ -821,6 +1041,59 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The kernels compiled for an order give the general loops' results to the bit
+    /// (up to the sign of a zero, which the full-row updates of [`lu_square`] may flip
+    /// in an untouched entry): the same pivots, LU entries, Vᵀ and stage solutions, for
+    /// every shape (s, n) they are compiled for, on K-like matrices (identity minus a
+    /// random block with whole zero columns, as K of the elastica, and some zero
+    /// entries below the diagonal) that need pivoting. A shape outside the list gets
+    /// the general loops.
+    #[test]
+    fn fixed_kernels_equal_the_general_ones_to_the_bit() {
+        let bits = |v: &[f64]| v.iter().map(|&x| if x == 0.0 { 0 } else { x.to_bits() }).collect::<Vec<_>>();
+        let mut state = 3u64;
+        let mut next = || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        for s in 2..=4 {
+            for n in 1..=6 {
+                let m = s * n;
+                let fixed = Kernels::new(m, n);
+                assert!(fixed.fixed, "s = {s}, n = {n}: compiled kernels");
+                let a: Vec<f64> = (0..m * m)
+                    .map(|i| {
+                        let (r, c) = (i / m, i % m);
+                        let v = if c % n == 0 && n > 1 || (r + 2 * c) % 7 == 0 { 0.0 } else { 3.0 * next() };
+                        if r == c { 1.0 + 0.1 * v } else { v }
+                    })
+                    .collect();
+                let (mut lu_g, mut piv_g) = (a.clone(), vec![0; m]);
+                let (mut lu_f, mut piv_f) = (a.clone(), vec![0; m]);
+                assert!((Kernels::GENERAL.lu)(&mut lu_g, m, &mut piv_g), "s = {s}, n = {n}: regular");
+                assert!((fixed.lu)(&mut lu_f, m, &mut piv_f));
+                assert!(m < 3 || piv_g.iter().enumerate().any(|(r, &p)| p != r), "s = {s}, n = {n}: pivoting");
+                assert_eq!(piv_f, piv_g, "s = {s}, n = {n}: pivots");
+                assert_eq!(bits(&lu_f), bits(&lu_g), "s = {s}, n = {n}: LU");
+                let rhs: Vec<f64> = (0..m * n).map(|i| if (i / n) % n == 1 { 0.0 } else { next() }).collect();
+                let (mut v_g, mut v_f) = (rhs.clone(), rhs.clone());
+                (Kernels::GENERAL.transposed)(&lu_g, m, &piv_g, &mut v_g, n);
+                (fixed.transposed)(&lu_f, m, &piv_f, &mut v_f, n);
+                assert_eq!(bits(&v_f), bits(&v_g), "s = {s}, n = {n}: transposed solve");
+                let (mut x_g, mut x_f) = (rhs[..m].to_vec(), rhs[..m].to_vec());
+                (Kernels::GENERAL.solve)(&lu_g, m, &piv_g, &mut x_g);
+                (fixed.solve)(&lu_f, m, &piv_f, &mut x_f);
+                assert_eq!(bits(&x_f), bits(&x_g), "s = {s}, n = {n}: solve");
+                // and the general solve solves A x = b (so the comparison is of solutions)
+                let b = &rhs[..m];
+                let res = (0..m).map(|r| ((0..m).map(|c| a[r * m + c] * x_g[c]).sum::<f64>() - b[r]).abs()).fold(0.0, f64::max);
+                let xmax = x_g.iter().fold(0.0_f64, |t, v| t.max(v.abs()));
+                assert!(res < 1e-12 * m as f64 * (1.0 + xmax), "s = {s}, n = {n}: residual {res:e}");
+            }
+        }
+        assert!(!Kernels::new(35, 7).fixed && !Kernels::new(16, 3).fixed, "other shapes: the general loops");
     }
 
     /// Right-hand sides solved side by side give each column exactly (to the bit) what

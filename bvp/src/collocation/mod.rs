@@ -664,30 +664,72 @@ mod tests {
         assert!(err < 1e-9 * scale, "{what}: max |x − x_full| = {err:e} (scale {scale})");
     }
 
-    /// The reusable stage Jacobian of the condensation gives the values of the
-    /// allocating [`crate::jacobian::rhs_jacobian`] to the bit — f from the first dual
-    /// pass instead of a plain call — and without the η column leaves ∂f/∂η zero
-    /// (Test2's segment 0 depends on η, so a skipped or stale column shows).
+    /// n components, n_p parameters, every component and parameter read, η too:
+    /// f_a = sin(y_a) y_{a+1} + p_{a mod n_p} x y_a − η y_a² (cyclic a + 1) — a Jacobian
+    /// with n + n_p + 1 columns, for the lane counts of [`crate::jacobian::RhsJacobian`].
+    struct Wide(usize, usize);
+
+    impl Problem for Wide {
+        fn n_segments(&self) -> usize {
+            1
+        }
+        fn dim(&self, _k: usize) -> usize {
+            self.0
+        }
+        fn n_params(&self) -> usize {
+            self.1
+        }
+        fn rhs<D: Scalar>(&self, _k: usize, x: f64, y: &[D], p: &[D], eta: D, f: &mut [D]) {
+            let n = self.0;
+            for a in 0..n {
+                let load = if self.1 > 0 { p[a % self.1] * x * y[a] } else { y[a] * x };
+                f[a] = y[a].sin() * y[(a + 1) % n] + load - eta * y[a] * y[a];
+            }
+        }
+        fn bc<D: Scalar>(&self, _ya: &[&[D]], _yb: &[&[D]], _p: &[D], _eta: D, _r: &mut [D]) {}
+    }
+
+    /// The reusable stage Jacobian of the condensation (columns side by side in vector
+    /// dual numbers) gives the values of the allocating
+    /// [`crate::jacobian::rhs_jacobian`] (one `Dual64` pass per column) to the bit, up to
+    /// the sign of a zero — f from the first pass instead of a plain call — and without
+    /// the η column leaves ∂f/∂η zero (Test2's segment 0 depends on η, so a skipped or
+    /// stale column shows). Test2 (3 or 4 columns: 4 lanes) and [`Wide`] with 1 + 0 (1
+    /// or 2 columns: 2 lanes), 4 + 2 (the elastica's 6 or 7: one pass of 8) and 7 + 3
+    /// (10 or 11: two passes of 8, the second with f not rewritten) cover every lane
+    /// count and the split into passes; a column in the wrong lane, entry or pass gives
+    /// a different value.
     #[test]
     fn stage_jacobian_buffers_equal_the_allocating_version_to_the_bit() {
         use crate::jacobian::{rhs_jacobian, RhsJacobian};
-        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        // ±0 as one value: a `Dual64` pass may add an exact zero term that the vector
+        // duals leave out, which can only change the sign of a zero.
+        let bits = |v: &[f64]| v.iter().map(|&x| if x == 0.0 { 0 } else { x.to_bits() }).collect::<Vec<_>>();
+        fn check<P: Problem>(problem: &P, k: usize, state: &mut u64, jac: &mut RhsJacobian, bits: &dyn Fn(&[f64]) -> Vec<u64>) {
+            let n = problem.dim(k);
+            let y: Vec<f64> = (0..n).map(|_| lcg(state)).collect();
+            let p: Vec<f64> = (0..problem.n_params()).map(|_| 1.0 + 0.3 * lcg(state)).collect();
+            let (x, eta) = (0.37, 0.8);
+            let (f, dfdy, dfdp, dfdeta) = rhs_jacobian(problem, JacobianMode::Ad, k, x, &y, &p, eta);
+            assert!(dfdeta.iter().any(|&v| v != 0.0), "the test problems depend on η");
+            assert!(dfdy.iter().chain(&dfdp).all(|v| v.is_finite()) && dfdy.iter().filter(|&&v| v != 0.0).count() >= n);
+            for eta_column in [true, false] {
+                jac.evaluate(problem, JacobianMode::Ad, k, x, &y, &p, eta, eta_column);
+                let what = format!("n = {n}, n_p = {}, segment {k}, η column {eta_column}", p.len());
+                assert_eq!(bits(&jac.f), bits(&f), "f, {what}");
+                assert_eq!(bits(&jac.dfdy), bits(&dfdy), "∂f/∂y, {what}");
+                assert_eq!(bits(&jac.dfdp), bits(&dfdp), "∂f/∂p, {what}");
+                let expected = if eta_column { bits(&dfdeta) } else { bits(&vec![0.0; n]) };
+                assert_eq!(bits(&jac.dfdeta), expected, "∂f/∂η, {what}");
+            }
+        }
         let mut state = 5u64;
         let mut jac = RhsJacobian::default();
         for k in 0..2 {
-            let y = [lcg(&mut state), lcg(&mut state)];
-            let p = [1.0 + 0.3 * lcg(&mut state)];
-            let (x, eta) = (0.37, 0.8);
-            let (f, dfdy, dfdp, dfdeta) = rhs_jacobian(&Test2, JacobianMode::Ad, k, x, &y, &p, eta);
-            assert!(k == 1 || dfdeta.iter().any(|&v| v != 0.0), "segment 0 depends on η");
-            for eta_column in [true, false] {
-                jac.evaluate(&Test2, JacobianMode::Ad, k, x, &y, &p, eta, eta_column);
-                assert_eq!(bits(&jac.f), bits(&f), "f, segment {k}");
-                assert_eq!(bits(&jac.dfdy), bits(&dfdy), "∂f/∂y, segment {k}");
-                assert_eq!(bits(&jac.dfdp), bits(&dfdp), "∂f/∂p, segment {k}");
-                let expected = if eta_column { bits(&dfdeta) } else { bits(&[0.0, 0.0]) };
-                assert_eq!(bits(&jac.dfdeta), expected, "∂f/∂η, segment {k}, η column {eta_column}");
-            }
+            check(&Test2, k, &mut state, &mut jac, &bits);
+        }
+        for (n, np) in [(1, 0), (4, 2), (7, 3), (4, 2), (1, 0)] {
+            check(&Wide(n, np), 0, &mut state, &mut jac, &bits);
         }
     }
 
