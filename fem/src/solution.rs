@@ -396,7 +396,8 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     /// node; without it a misplaced edge node shows as the surplus (or missing) force the
     /// first element inside has to carry, which moves the root off the node. Returns
     /// (σ_b, p_σ); `None` without a penalty, with too few nodes inside, or where the
-    /// polynomial has no rising root within the nodes' reach.
+    /// polynomial has no rising root between the first node inside and one element
+    /// outward of the nearest node ([`rising_root`]).
     fn force_edge(&self, pulley: Pulley, sigma0: f64, inward: f64) -> Option<(f64, f64)> {
         self.params.penalty?;
         let (nodes, g_at) = self.inward_forces(pulley, sigma0, inward);
@@ -408,21 +409,11 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
             return None;
         }
         let pts: Vec<(f64, f64)> = x.iter().map(|&xj| (xj, g_at(xj))).collect();
-        let slope = |t: f64| {
-            let d = 1e-7 * x[0];
-            (lagrange(&pts, t + d) - lagrange(&pts, t - d)) / (2.0 * d)
-        };
-        // Newton from the estimate: G rises through the edge with the edge pressure
-        let mut t = 0.0;
-        for _ in 0..50 {
-            let step = lagrange(&pts, t) / slope(t);
-            t -= step;
-            if !t.is_finite() || step.abs() < 1e-12 * x[0] {
-                break;
-            }
-        }
-        let p = slope(t);
-        (t.is_finite() && t > -x[n - 1] && t < x[0] && p > 0.0 && lagrange(&pts, t).abs() < 1e-9 * pts[n - 1].1.abs()).then_some((sigma0 + inward * t, p))
+        // the edge lies between the nearest node and the first one inside, or at most
+        // one element beyond the nearest node outward: a root further out is an
+        // extrapolation of the fit, not an edge
+        let (t, p) = rising_root(&pts, nearest - (x[0] - nearest))?;
+        Some((sigma0 + inward * t, p))
     }
 
     /// The nodes' distances inward from σ (`inward` = +1 at an entry, −1 at an exit),
@@ -440,7 +431,9 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         nodes.sort_by(f64::total_cmp);
         nodes.dedup();
         let distances: Vec<(f64, f64)> = forces.into_iter().map(|(s, f)| (inward * (s - b), f)).collect();
-        (nodes, move |x: f64| distances.iter().filter(|f| f.0 < x).map(|f| f.1).sum::<f64>())
+        // a point on x itself (a rule with points on the nodes) counts half: G(x) is then
+        // the mean of its limits from both sides, as the polynomial through it is
+        (nodes, move |x: f64| distances.iter().map(|f| if f.0 < x { f.1 } else if f.0 == x { 0.5 * f.1 } else { 0.0 }).sum::<f64>())
     }
 
     /// The contact zone with both boundaries recovered from the free spans (tangency
@@ -998,6 +991,29 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     }
 }
 
+/// The rising root of the Lagrange interpolant through `pts` (x ascending, G(x) the
+/// accumulated contact force) next to x = 0, by Newton from 0, and the slope there:
+/// `None` unless the root lies in (`lower`, x₀), the slope is positive and the
+/// polynomial vanishes there to 1e-9 of its last value.
+fn rising_root(pts: &[(f64, f64)], lower: f64) -> Option<(f64, f64)> {
+    let (x0, g_last) = (pts.first()?.0, pts.last()?.1);
+    let slope = |t: f64| {
+        let d = 1e-7 * x0;
+        (lagrange(pts, t + d) - lagrange(pts, t - d)) / (2.0 * d)
+    };
+    // Newton from the estimate: G rises through the edge with the edge pressure
+    let mut t = 0.0;
+    for _ in 0..50 {
+        let step = lagrange(pts, t) / slope(t);
+        t -= step;
+        if !t.is_finite() || step.abs() < 1e-12 * x0 {
+            break;
+        }
+    }
+    let p = slope(t);
+    (t.is_finite() && t > lower && t < x0 && p > 0.0 && lagrange(pts, t).abs() < 1e-9 * g_last.abs()).then_some((t, p))
+}
+
 /// The Lagrange interpolant through the points (ξ_i, v_i), at ξ.
 fn lagrange(points: &[(f64, f64)], xi: f64) -> f64 {
     let mut sum = 0.0;
@@ -1120,5 +1136,29 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<
 
     fn summary(&self) -> Summary {
         self.summary.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rising_root;
+
+    /// The accumulated force G(x) = p·(x − t₀) sampled at the six nodes h … 6h inside a
+    /// mesh whose nearest node to the estimate is x = 0 (the interpolant is exact): the
+    /// root and the edge pressure are found when the edge lies inside the first element
+    /// or within one element outward; an edge 2.5 elements outward is an extrapolation
+    /// of the fit and is refused (it was accepted up to 6 elements out before), as is a
+    /// falling G.
+    #[test]
+    fn the_edge_root_is_accepted_within_one_element_only() {
+        let (h, p) = (1e-3, 250.0);
+        let sample = |t0: f64, p: f64| -> Vec<(f64, f64)> { (1..=6).map(|j| j as f64 * h).map(|x| (x, p * (x - t0))).collect() };
+        for t0 in [0.3 * h, 0.0, -0.7 * h] {
+            let (t, slope) = rising_root(&sample(t0, p), -h).expect("an edge within one element");
+            assert!((t - t0).abs() < 1e-12 * h, "t0 = {t0}: root {t}");
+            assert!((slope - p).abs() < 1e-6 * p, "t0 = {t0}: slope {slope}");
+        }
+        assert_eq!(rising_root(&sample(-2.5 * h, p), -h), None, "2.5 elements outward");
+        assert_eq!(rising_root(&sample(0.3 * h, -p), -h), None, "falling G");
     }
 }

@@ -346,9 +346,20 @@ pub enum PointStatus {
     Failed {
         /// The solver's error (of the cold solve).
         error: String,
+        /// Wall time, s, over every solve tried for the point (all failed).
+        wall_seconds: f64,
+        /// Solves tried for the point (the continuation's steps and the cold solve).
+        failed_attempts: usize,
     },
     /// Beyond a fold of the line's branch (not attempted).
     BeyondFold,
+}
+
+impl PointStatus {
+    /// A failed solve whose time and attempts the line adds up afterwards.
+    fn failed(error: String) -> Self {
+        PointStatus::Failed { error, wall_seconds: 0.0, failed_attempts: 0 }
+    }
 }
 
 /// One point of a line.
@@ -496,7 +507,7 @@ impl Sweep {
                 match &p.status {
                     PointStatus::Solved { .. } | PointStatus::BeyondFold => {}
                     PointStatus::InvalidScene { error } => out.push(format!("{}: invalid scene: {error}", at(p))),
-                    PointStatus::Failed { error } => out.push(format!("{}: {error}", at(p))),
+                    PointStatus::Failed { error, .. } => out.push(format!("{}: {error}", at(p))),
                 }
             }
             if let Some(f) = &line.fold {
@@ -629,7 +640,7 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
     let failed = std::cell::Cell::new((0usize, 0.0f64));
     let solve = |v: f64, warm: Option<&WarmStart>| -> Result<BvpRun, PointStatus> {
         let s = plan.scene_at(&at(v)).map_err(|error| PointStatus::InvalidScene { error })?;
-        let opts = plan.bvp_options(&s).map_err(|e| PointStatus::Failed { error: e.to_string() })?;
+        let opts = plan.bvp_options(&s).map_err(|e| PointStatus::failed(e.to_string()))?;
         let clock = std::time::Instant::now();
         let run = match warm {
             Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
@@ -638,7 +649,7 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
         run.map_err(|e| {
             let (n, wall) = failed.get();
             failed.set((n + 1, wall + clock.elapsed().as_secs_f64()));
-            PointStatus::Failed { error: e.to_string() }
+            PointStatus::failed(e.to_string())
         })
     };
     let mut points = Vec::new();
@@ -691,7 +702,7 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
                     Err(_) if h.abs() / 2.0 >= h_min => h /= 2.0,
                     Err(e) => {
                         let cause = match &e {
-                            PointStatus::Failed { error } => error.as_str(),
+                            PointStatus::Failed { error, .. } => error.as_str(),
                             _ => "",
                         };
                         fold = fold_at(p0, &path, h, grid, cause);
@@ -715,6 +726,11 @@ fn run_line(scene: &Scene, plan: &SweepPlan, fixed: &[f64], tick: &(dyn Fn(Strin
                     let summary = path.last().map(|c| c.scalars.clone()).unwrap_or_default();
                     let (failed_attempts, failed_wall) = failed.get();
                     PointStatus::Solved { summary, warm: false, steps, newton_iterations: newton, wall_seconds: wall + failed_wall, failed_attempts }
+                }
+                Err(PointStatus::Failed { error, .. }) => {
+                    // a point no solve reached still reports the time its attempts took
+                    let (failed_attempts, failed_wall) = failed.get();
+                    PointStatus::Failed { error, wall_seconds: wall + failed_wall, failed_attempts }
                 }
                 Err(e) => e,
             },
@@ -1068,8 +1084,8 @@ pub fn sweep_markdown(sweep: &Sweep, command: &str) -> String {
                 PointStatus::InvalidScene { .. } => {
                     let _ = writeln!(md, "| {v} | invalid scene |{}", " |".repeat(3 + cols.len()));
                 }
-                PointStatus::Failed { .. } => {
-                    let _ = writeln!(md, "| {v} | failed |{}", " |".repeat(3 + cols.len()));
+                PointStatus::Failed { failed_attempts, wall_seconds, .. } => {
+                    let _ = writeln!(md, "| {v} | failed | ({failed_attempts} failed) | | {wall_seconds:.3} |{}", " |".repeat(cols.len()));
                 }
                 PointStatus::BeyondFold => {
                     let _ = writeln!(md, "| {v} | beyond fold |{}", " |".repeat(3 + cols.len()));
@@ -1172,7 +1188,7 @@ mod tests {
             Some(w) => bvp::scene::solve_scene_from(&s, &opts, w),
             None => bvp::scene::solve_scene(&s, &opts),
         }
-        .map_err(|e| PointStatus::Failed { error: e.to_string() })
+        .map_err(|e| PointStatus::failed(e.to_string()))
     }
 
     #[test]
@@ -1231,7 +1247,7 @@ mod tests {
             let is_predicted = warm.is_some_and(|w| std::ptr::eq(w, &predicted));
             calls.borrow_mut().push(is_predicted);
             if is_predicted {
-                Err(PointStatus::Failed { error: "refused: the predicted start".into() })
+                Err(PointStatus::failed("refused: the predicted start".into()))
             } else {
                 run(11.0, warm)
             }
@@ -1246,7 +1262,7 @@ mod tests {
         calls.borrow_mut().clear();
         let failing = |warm: Option<&WarmStart>| -> Result<BvpRun, PointStatus> {
             calls.borrow_mut().push(warm.is_some_and(|w| std::ptr::eq(w, &predicted)));
-            Err(PointStatus::Failed { error: "refused".into() })
+            Err(PointStatus::failed("refused".into()))
         };
         assert!(matches!(step_solve(&failing, Some(&predicted), plain), Err(PointStatus::Failed { .. })));
         assert_eq!(*calls.borrow(), vec![true, false]);
