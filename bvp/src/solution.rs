@@ -53,8 +53,17 @@ impl SegmentSolution {
 
     /// Dense output y(x), x ∈ [0, 1].
     pub fn eval(&self, x: f64) -> Vec<f64> {
+        let mut y = vec![0.0; self.dim()];
+        self.eval_into(x, &mut y);
+        y
+    }
+
+    /// Dense output y(x) into `y` (length n), without allocating.
+    pub fn eval_into(&self, x: f64, y: &mut [f64]) {
         let (poly, _, t) = self.local(x);
-        poly.iter().map(|c| c.iter().rev().fold(0.0, |acc, &cl| acc * t + cl)).collect()
+        for (ya, c) in y.iter_mut().zip(poly) {
+            *ya = c.iter().rev().fold(0.0, |acc, &cl| acc * t + cl);
+        }
     }
 
     /// Dense output of the derivative y'(x), x ∈ [0, 1].

@@ -402,28 +402,33 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     /// Collocation polynomials (dense output) of segment k: power-basis coefficients
     /// `poly[i][a][m]`, u_a(x_i + t h) = Σ_m c_m t^m, degree s.
     fn polys(&self, z: &[f64], slopes: &[f64], k: usize) -> Vec<Vec<Vec<f64>>> {
-        let n = self.dims[k];
-        let s = self.tab.s;
-        let mesh = &self.meshes[k];
-        (0..mesh.len() - 1)
+        let (n, s) = (self.dims[k], self.tab.s);
+        let mut c = vec![0.0; n * (s + 1)];
+        (0..self.meshes[k].len() - 1)
             .map(|i| {
-                let h = mesh[i + 1] - mesh[i];
-                let yi = self.node(k, i);
-                (0..n)
-                    .map(|a| {
-                        let mut c = vec![0.0; s + 1];
-                        c[0] = z[yi + a];
-                        for l in 0..s {
-                            let kl = slopes[(i * s + l) * n + a];
-                            for (m, &lm) in self.tab.lagrange[l].iter().enumerate() {
-                                c[m + 1] += h * kl * lm / (m + 1) as f64;
-                            }
-                        }
-                        c
-                    })
-                    .collect()
+                self.interval_poly(z, slopes, k, i, &mut c);
+                c.chunks(s + 1).map(<[f64]>::to_vec).collect()
             })
             .collect()
+    }
+
+    /// The collocation polynomial of interval i of segment k into `c` (length n (s + 1),
+    /// component a at `c[a (s + 1)..]`): u_a(x_i + t h) = Σ_m c_m t^m.
+    fn interval_poly(&self, z: &[f64], slopes: &[f64], k: usize, i: usize, c: &mut [f64]) {
+        let (n, s) = (self.dims[k], self.tab.s);
+        let mesh = &self.meshes[k];
+        let h = mesh[i + 1] - mesh[i];
+        let yi = self.node(k, i);
+        for (a, ca) in c.chunks_mut(s + 1).take(n).enumerate() {
+            ca.fill(0.0);
+            ca[0] = z[yi + a];
+            for l in 0..s {
+                let kl = slopes[(i * s + l) * n + a];
+                for (m, &lm) in self.tab.lagrange[l].iter().enumerate() {
+                    ca[m + 1] += h * kl * lm / (m + 1) as f64;
+                }
+            }
+        }
     }
 
     /// The discrete solution as a [`Solution`] with the collocation polynomials as
@@ -452,12 +457,12 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             let mesh = &self.meshes[k];
             let seg = &source.segments[k];
             for (i, &x) in mesh.iter().enumerate() {
-                z[self.node(k, i)..self.node(k, i) + n].copy_from_slice(&seg.eval(x));
+                seg.eval_into(x, &mut z[self.node(k, i)..self.node(k, i) + n]);
                 if i + 1 < mesh.len() {
                     let h = mesh[i + 1] - x;
                     for j in 0..self.tab.s {
                         let at = self.stage(k, i, j);
-                        z[at..at + n].copy_from_slice(&seg.eval(x + self.tab.c[j] * h));
+                        seg.eval_into(x + self.tab.c[j] * h, &mut z[at..at + n]);
                     }
                 }
             }
@@ -484,7 +489,9 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             let n = self.dims[k];
             let mesh = &self.meshes[k];
             let slopes = self.slopes(z, eta, k);
-            let polys = self.polys(z, &slopes, k);
+            // one interval's polynomial at a time (the nested dense output of
+            // `polys` was ~5 % of a gauss8 elastica solve in allocations)
+            let mut poly = vec![0.0; n * (s + 1)];
             let mut u = vec![0.0; n];
             let mut f = vec![0.0; n];
             let mut rk = Vec::with_capacity(mesh.len() - 1);
@@ -493,10 +500,11 @@ impl<'a, P: Problem> Discretisation<'a, P> {
                 self.tab.lagrange.iter().map(|lag| LOBATTO5_T.map(|t| horner(lag, t))).collect();
             for i in 0..mesh.len() - 1 {
                 let h = mesh[i + 1] - mesh[i];
+                self.interval_poly(z, &slopes, k, i, &mut poly);
                 let mut acc = 0.0;
                 for (q, (&t, &w)) in LOBATTO5_T.iter().zip(&LOBATTO5_W).enumerate() {
-                    for a in 0..n {
-                        u[a] = horner(&polys[i][a], t);
+                    for (ua, ca) in u.iter_mut().zip(poly.chunks(s + 1)) {
+                        *ua = horner(ca, t);
                     }
                     self.problem.rhs(k, mesh[i] + t * h, &u, p, eta, &mut f);
                     for a in 0..n {
