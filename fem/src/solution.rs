@@ -600,14 +600,15 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
     /// discrete penalty solution the mesh is fitted to — not the edges of its zone,
     /// which lie the penalty layer inside them ([`Self::loaded_zone`]).
     pub fn contact_boundaries(&self) -> Vec<f64> {
+        self.contact_edges().into_iter().flat_map(|(_, start, end)| [start, end]).collect()
+    }
+
+    /// The contact boundaries of [`Self::contact_boundaries`] per zone: (pulley, σ_start,
+    /// σ_end), driver first.
+    pub fn contact_edges(&self) -> Vec<(Pulley, f64, f64)> {
         let c = self.mesh.contour();
         let shift = if self.kernel.theory() == drive::scene::Theory::Cosserat { self.penalty_layer().unwrap_or(0.0) } else { 0.0 };
-        let mut out = Vec::with_capacity(4);
-        for z in self.zones.iter().flatten() {
-            out.push(c.wrap(z.sigma_start - shift));
-            out.push(c.wrap(z.sigma_end + shift));
-        }
-        out
+        [Pulley::Driver, Pulley::Driven].into_iter().zip(self.zones).filter_map(|(p, z)| z.map(|z| (p, c.wrap(z.sigma_start - shift), c.wrap(z.sigma_end + shift)))).collect()
     }
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {

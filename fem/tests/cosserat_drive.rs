@@ -140,51 +140,51 @@ fn row<const M: usize>(table: &Bounds<M>, q: &str) -> usize {
 /// drive's meshes: twice the arcs' share of the elements, graded 65:1 over one shear
 /// layer √(a/b₂) = 2.2 mm towards the contact edges and the transitions; friction points
 /// with the tributary penalty pressure of the Cosserat element,
-/// `LayoutElement::friction_normal`) against the BVP at 1e-10, docs/fem-cosserat.md
-/// §11.1. Measured relative errors 128 / 256 / 512 (against the BVP at 1e-11): c 7.5e-7
-/// / 3.1e-7 / 1.6e-7, ω₂ 9.0e-8 / 2.2e-8 / 5.8e-9, mid-span tensions ≤ 4.9e-4 / 5.9e-5 /
-/// 3.0e-5, T_tight, T_slack (midway along the stick arcs) ≤ 2.0e-3 / 7.9e-4 / 3.9e-4,
-/// heights ≤ 1.9e-5 / 2.0e-6 / 2.3e-6 (not monotone), moments ≤ 5.2e-4 / 6.0e-5 /
-/// 3.0e-5, contact arcs ≤ 5.1e-5 / 1.2e-5 / 1.3e-5 (at their floor from 256 on), stick
-/// arcs (driver, driven) 1.7e-3, 1.3e-3 / 8.7e-4, 8.8e-4 / 5.2e-4, 5.7e-4, slip arcs
-/// 0.023, 0.031 / 0.011, 0.022 / 0.0066, 0.014 (on the uniformly weighted meshes graded
-/// 9:1 over 2 layers before: 0.054, 0.22 / 0.054, 0.040 / 0.024, 0.038), driver torque
-/// 1.6e-7 / 7.1e-8 / 3.7e-8. Bounds 2× the measured per mesh (rounded up; the heights
-/// and contact arcs 2× the larger of 256 and 512 there); the smooth quantities, the stick
-/// arcs and the driver's slip arc must fall by ≥ 1.4 per doubling (measured 1.7–8.7),
-/// the driven slip arc by ≥ 1.3 (1.42, 1.53); the slip arcs at 512 below half their error
-/// at 128 (measured 0.29, 0.46), the contact arcs below 0.35 (0.24, 0.27); y_upper_mid,
-/// ω₂: bounds only. Slip zones warned (`SLIP_ELEMENTS` = 2.5 mean arc elements): both at
-/// 128 (2.1, 1.1 elements), the driven one at 256 (2.1), none at 512 (8.2, 4.3). Power
-/// P_in − P_out − D to 1e-9 P_in and the driven torque M₂ at every mesh, and no refit
-/// rejected (3 at 128 before the round-off floor took best trials,
-/// `steady::semismooth`).
+/// `LayoutElement::friction_normal`, and contact-side halves at the fitted contact
+/// boundaries) against the BVP at 1e-10, docs/fem-cosserat.md §11.1. Measured relative
+/// errors 128 / 256 / 512 (against the BVP at 1e-10): c 2.7e-7 / 1.7e-7 / 1.1e-7, ω₂
+/// 7.6e-9 / 5.1e-9 / 2.8e-9, mid-span tensions ≤ 6.2e-4 / 9.8e-5 / 1.7e-5, T_tight,
+/// T_slack ≤ 6.5e-4 / 3.9e-4 / 2.5e-4, heights ≤ 2.8e-5 / 3.5e-6 / 1.5e-6, moments ≤
+/// 6.4e-4 / 9.6e-5 / 1.7e-5, contact arcs ≤ 6.4e-5 / 8.0e-6 / 1.1e-5 (at their floor
+/// from 256 on), stick arcs (driver, driven) 1.2e-4, 3.3e-4 / 3.4e-4, 3.2e-4 / 3.1e-4,
+/// 2.9e-4, slip arcs 0.0025, 0.0066 / 0.0043, 0.0081 / 0.0039, 0.0073 (without the
+/// contact-side halves: 0.023, 0.031 / 0.011, 0.022 / 0.0066, 0.014 — the run-on node's
+/// stick row pinned the free span element's stretch, a concentrated traction that put
+/// the stick zones 1.2e-2 N above the spans at 128), driver torque 3.7e-8 / 3.4e-8 /
+/// 2.4e-8. Bounds 2× the measured per mesh (rounded up; the heights and contact arcs 2×
+/// the larger of 256 and 512 there), the slip arcs ≤ 1 % at 256 and 512 (the issue's
+/// target); the smooth quantities must fall by ≥ 1.4 per doubling (measured 1.5–6.4);
+/// the stick and slip arcs and the driver torque sit at a floor from 256 on (bounds
+/// only); the contact arcs at 512 below 0.35 of 128 (0.17). Slip zones warned
+/// (`SLIP_ELEMENTS` = 2.5 mean arc elements): both at 128 (2.0, 1.1 elements), the driven
+/// one at 256 (2.2), none at 512. Power P_in − P_out − D to 1e-9 P_in and the driven
+/// torque M₂ at every mesh, and no refit rejected.
 #[test]
 fn issue_scene_converges_to_the_bvp() {
     let sc = issue_scene();
     let reference = bvp_reference(&sc);
     let table: &Bounds<3> = &[
-        ("transport_rate", [1.5e-6, 6.3e-7, 3.2e-7], 1.4),
-        ("driven_speed", [1.9e-7, 4.4e-8, 1.2e-8], 0.0),
-        ("tension_upper_mid", [1e-3, 1.2e-4, 6e-5], 1.4),
-        ("tension_lower_mid", [8.8e-4, 1.1e-4, 5.4e-5], 1.4),
-        ("tension_tight", [3.2e-3, 1.4e-3, 6.6e-4], 1.4),
-        ("tension_slack", [4.1e-3, 1.6e-3, 7.7e-4], 1.4),
-        ("y_upper_mid", [1.6e-5, 4.1e-6, 6.8e-7], 0.0),
-        ("y_lower_mid", [3.8e-5, 4.7e-6, 4.7e-6], 0.0),
-        ("moment_upper_mid", [7.8e-4, 1.1e-4, 6e-5], 1.4),
-        ("moment_lower_mid", [1.1e-3, 1.3e-4, 5.6e-5], 1.4),
-        ("driver.contact_arc", [1.1e-4, 2.5e-5, 2.5e-5], 0.0),
-        ("driven.contact_arc", [9.4e-5, 2.6e-5, 2.6e-5], 0.0),
-        ("driver.stick_arc", [3.5e-3, 1.8e-3, 1.1e-3], 1.4),
-        ("driven.stick_arc", [2.7e-3, 1.8e-3, 1.2e-3], 1.4),
-        ("driver.slip_arc", [4.6e-2, 2.3e-2, 1.4e-2], 1.4),
-        ("driven.slip_arc", [6.3e-2, 4.4e-2, 2.9e-2], 1.3),
-        ("driver.torque", [3.3e-7, 1.5e-7, 7.3e-8], 1.4),
+        ("transport_rate", [5.5e-7, 3.4e-7, 2.2e-7], 1.4),
+        ("driven_speed", [1.6e-8, 1.1e-8, 5.6e-9], 0.0),
+        ("tension_upper_mid", [1.3e-3, 2e-4, 3.5e-5], 1.4),
+        ("tension_lower_mid", [1.1e-3, 1.8e-4, 3.1e-5], 1.4),
+        ("tension_tight", [1.2e-3, 7.1e-4, 4.7e-4], 1.4),
+        ("tension_slack", [1.3e-3, 7.8e-4, 5.1e-4], 1.4),
+        ("y_upper_mid", [1.5e-5, 3.7e-6, 5.7e-7], 0.0),
+        ("y_lower_mid", [5.6e-5, 7e-6, 3e-6], 0.0),
+        ("moment_upper_mid", [1.1e-3, 1.8e-4, 3.5e-5], 1.4),
+        ("moment_lower_mid", [1.3e-3, 2e-4, 3.3e-5], 1.4),
+        ("driver.contact_arc", [1.3e-4, 2.3e-5, 2.3e-5], 0.0),
+        ("driven.contact_arc", [1.3e-4, 2.3e-5, 2.3e-5], 0.0),
+        ("driver.stick_arc", [2.5e-4, 6.7e-4, 6.3e-4], 0.0),
+        ("driven.stick_arc", [6.6e-4, 6.4e-4, 5.7e-4], 0.0),
+        ("driver.slip_arc", [5e-3, 8.5e-3, 7.9e-3], 0.0),
+        ("driven.slip_arc", [1.4e-2, 1e-2, 1e-2], 0.0),
+        ("driver.torque", [7.5e-8, 6.7e-8, 4.9e-8], 0.0),
         ("driven.torque", [1e-9, 1e-9, 1e-9], 0.0),
     ];
     let errors = check_meshes(&sc, &reference, [128, 256, 512], [&["driver", "driven"], &["driven"], &[]], table);
-    for (q, factor) in [("driver.slip_arc", 0.5), ("driven.slip_arc", 0.5), ("driver.contact_arc", 0.35), ("driven.contact_arc", 0.35)] {
+    for (q, factor) in [("driver.contact_arc", 0.35), ("driven.contact_arc", 0.35)] {
         let e = errors[row(table, q)];
         assert!(e[2] < factor * e[0], "{q}: errors {e:?}, at 512 not below {factor} of 128");
     }
@@ -192,20 +192,19 @@ fn issue_scene_converges_to_the_bvp() {
 
 /// The issue's scene counter-clockwise (ω₁ = −20 rad/s, M₂ = −0.1 N·m: with gravity the
 /// upper span is the tight one, a different problem from the mirror image) at 128, 256
-/// and 512 elements against the BVP's counter-clockwise solution (collocation at 1e-10).
-/// At 128 the fit failed on the meshes before (a transition 8 % of an arc element off its
-/// node after 30 passes); on the drive's meshes it converges in 8 passes —
-/// docs/fem-cosserat.md §11.1. Measured relative errors 128 / 256 / 512 (against the BVP
-/// at 1e-11): c 8.6e-7 / 3.4e-7 / 1.7e-7, ω₂ 1.3e-7 / 3.9e-8 / 1.4e-8, mid-span tensions
-/// ≤ 4.7e-4 / 4.9e-5 / 2.6e-5, heights ≤ 2.2e-5 / 1.5e-6 / 2.4e-6 (not monotone),
-/// moments ≤ 5.8e-4 / 5.8e-5 / 2.7e-5, contact arcs ≤ 5.1e-5 / 1.4e-5 / 1.2e-5,
-/// T_tight / T_slack 1.7e-3 / 7.0e-4 / 3.6e-4, driver torque 1.2e-7 / 5.8e-8 / 3.4e-8,
-/// stick arcs ≤ 2.0e-3 / 1.0e-3 / 5.5e-4, slip arcs (driver, driven) 0.015, 0.023 /
-/// 0.0075, 0.012 / 0.0034, 0.0066 (before: fit failed / 0.029, 0.044 / 0.014, 0.022).
-/// Bounds 2× the measured (the heights and contact arcs 2× the larger of 256 and 512);
-/// the slip and stick arcs must fall by ≥ 1.4 per doubling (measured 1.7–2.2), the smooth
-/// quantities too (1.7–10). The driven slip zone is warned at 128 (2.2 arc elements),
-/// none at 256 and 512.
+/// and 512 elements against the BVP's counter-clockwise solution (collocation at 1e-10),
+/// docs/fem-cosserat.md §11.1. Measured relative errors 128 / 256 / 512: c 2.7e-7 /
+/// 1.7e-7 / 1.2e-7, ω₂ 3.3e-9 / 1.7e-8 / 1.5e-8, mid-span tensions ≤ 5.8e-4 / 8.2e-5 /
+/// 1.6e-5, heights ≤ 3.2e-5 / 3.4e-6 / 1.6e-6, moments ≤ 6.9e-4 / 9.2e-5 / 1.7e-5,
+/// contact arcs ≤ 6.2e-5 / 1.0e-5 / 1.1e-5, T_tight / T_slack ≤ 6.3e-4 / 3.6e-4 /
+/// 2.4e-4, driver torque 2.1e-8 / 1.9e-8 / 2.4e-8, stick arcs ≤ 2.4e-4 / 5.4e-4 /
+/// 4.2e-4, slip arcs (driver, driven) 0.0023, 0.0018 / 0.0027, 0.0064 / 0.0025, 0.0051
+/// (without the contact-side halves: 0.015, 0.023 / 0.0075, 0.012 / 0.0034, 0.0066).
+/// Bounds 2× the measured (the heights and contact arcs 2× the larger of 256 and 512),
+/// the slip arcs ≤ 1 % at 256 and 512; the smooth quantities must fall by ≥ 1.4 per
+/// doubling (measured 5.3–8.3), c and T_tight, T_slack by ≥ 1.3 (1.43–1.78); the arcs,
+/// ω₂ and the driver torque bounds only (at their floor from 256 on). The driven slip
+/// zone is warned at 128 (2.2 arc elements), none at 256 and 512.
 #[test]
 fn issue_scene_counter_clockwise_against_the_bvp() {
     let mut v: Value = serde_json::from_str(include_str!("../../scenes/cosserat-drive.json")).unwrap();
@@ -215,23 +214,23 @@ fn issue_scene_counter_clockwise_against_the_bvp() {
     let sc = Scene::from_json_str(&v.to_string()).unwrap();
     let reference = bvp_reference(&sc);
     let table: &Bounds<3> = &[
-        ("transport_rate", [1.8e-6, 7e-7, 3.4e-7], 1.4),
-        ("driven_speed", [2.6e-7, 7.8e-8, 2.8e-8], 0.0),
-        ("tension_upper_mid", [8.2e-4, 8.4e-5, 4.5e-5], 1.4),
-        ("tension_lower_mid", [9.5e-4, 9.8e-5, 5.2e-5], 1.4),
-        ("tension_tight", [3.5e-3, 1.4e-3, 6.7e-4], 1.4),
-        ("tension_slack", [3.5e-3, 1.4e-3, 7.2e-4], 1.4),
-        ("y_upper_mid", [1.4e-5, 3.1e-6, 5e-7], 0.0),
-        ("y_lower_mid", [4.5e-5, 4.9e-6, 4.9e-6], 0.0),
-        ("moment_upper_mid", [7e-4, 7.6e-5, 4.5e-5], 1.4),
-        ("moment_lower_mid", [1.2e-3, 1.2e-4, 5.5e-5], 1.4),
-        ("driver.contact_arc", [1.1e-4, 2.7e-5, 2.7e-5], 0.0),
-        ("driven.contact_arc", [9.8e-5, 2.9e-5, 2.9e-5], 0.0),
-        ("driver.stick_arc", [3.9e-3, 2.1e-3, 9.5e-4], 1.4),
-        ("driven.stick_arc", [4.1e-3, 2e-3, 1.2e-3], 1.4),
-        ("driver.slip_arc", [3e-2, 1.6e-2, 7e-3], 1.4),
-        ("driven.slip_arc", [4.6e-2, 2.4e-2, 1.4e-2], 1.4),
-        ("driver.torque", [2.5e-7, 1.2e-7, 6.8e-8], 1.4),
+        ("transport_rate", [5.4e-7, 3.5e-7, 2.4e-7], 1.3),
+        ("driven_speed", [6.6e-9, 3.4e-8, 3.1e-8], 0.0),
+        ("tension_upper_mid", [1e-3, 1.4e-4, 2.7e-5], 1.4),
+        ("tension_lower_mid", [1.2e-3, 1.7e-4, 3.1e-5], 1.4),
+        ("tension_tight", [1.1e-3, 6.8e-4, 4.8e-4], 1.3),
+        ("tension_slack", [1.3e-3, 7.2e-4, 4.9e-4], 1.3),
+        ("y_upper_mid", [1.3e-5, 2.9e-6, 4.4e-7], 0.0),
+        ("y_lower_mid", [6.3e-5, 6.8e-6, 3.2e-6], 0.0),
+        ("moment_upper_mid", [8.9e-4, 1.4e-4, 2.7e-5], 1.4),
+        ("moment_lower_mid", [1.4e-3, 1.9e-4, 3.3e-5], 1.4),
+        ("driver.contact_arc", [1.3e-4, 2.2e-5, 2.2e-5], 0.0),
+        ("driven.contact_arc", [1.3e-4, 2.2e-5, 2.2e-5], 0.0),
+        ("driver.stick_arc", [4.9e-4, 7.5e-4, 6.9e-4], 0.0),
+        ("driven.stick_arc", [4.5e-4, 1.1e-3, 8.5e-4], 0.0),
+        ("driver.slip_arc", [4.7e-3, 5.5e-3, 5e-3], 0.0),
+        ("driven.slip_arc", [3.7e-3, 1e-2, 1e-2], 0.0),
+        ("driver.torque", [4.3e-8, 3.8e-8, 4.7e-8], 0.0),
     ];
     assert!(reference.tension_upper_mid.unwrap() > reference.tension_lower_mid.unwrap(), "counter-clockwise the upper span is the tight one");
     check_meshes(&sc, &reference, [128, 256, 512], [&["driven"], &[], &[]], table);
@@ -318,8 +317,9 @@ fn paper_d_scheme_agrees_with_semismooth_and_the_bvp() {
 /// 8 % of an arc element off its node) and Paper D's scheme, prescribing the transitions,
 /// solved it: on the drive's graded meshes both solve (docs/fem-cosserat.md §11.1) and
 /// agree — the global quantities to the Newton tolerance times the transitions' offset
-/// (measured: ω₂ 4.9e-10, c 6.0e-10, T_tight / T_slack 5.3e-7 / 9.6e-7; bounds 10×
-/// those, as at 256 clockwise), the transitions within one band width (measured 34 µm
+/// (measured before the contact-side halves: ω₂ 4.9e-10, c 6.0e-10, T_tight / T_slack
+/// 5.3e-7 / 9.6e-7, bounds 10× those as at 256 clockwise; with the halves in both schemes
+/// T_tight 8.4e-6, its bound and T_slack's 10× that), the transitions within one band width (measured 34 µm
 /// / 13 µm against bands of 0.30 / 0.32 mm). Against the BVP 2× the measured errors
 /// (Paper D: ω₂ 1.3e-7, c 8.6e-7, T_tight / T_slack 1.7e-3, slip arcs 1.6 % / 2.2 %;
 /// before: ω₂ 6.4e-7, c 2.5e-6, T_tight 5.0e-3, slip arcs 6.8 % / 8.9 %).
@@ -336,8 +336,9 @@ fn paper_d_and_semismooth_solve_the_counter_clockwise_drive_at_128() {
     let report = &pd.options["drive"]["report"]["paper_d"];
     assert_eq!(report["matching_residual"], json!([0.0, 0.0]));
     let reference = bvp_reference(&semismooth);
-    for (q, bound) in [("driven_speed", 5e-9), ("transport_rate", 6e-9), ("tension_tight", 5.3e-6), ("tension_slack", 9.6e-6)] {
+    for (q, bound) in [("driven_speed", 5e-9), ("transport_rate", 6e-9), ("tension_tight", 8.4e-5), ("tension_slack", 9.6e-5)] {
         let e = relative_error(&pd.summary, &s.summary, q);
+        eprintln!("paper-d vs semismooth {q}: {e:.2e}");
         assert!(e <= bound, "paper-d vs semismooth {q}: {e:.3e} > {bound:e}");
     }
     let band: Vec<f64> = report["band_width"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();

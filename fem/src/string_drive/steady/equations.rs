@@ -194,7 +194,9 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// `None` for any other point.
     pub(super) fn entry_neighbour(&self, i: usize) -> Option<usize> {
         let pt = &self.points[i];
-        if !pt.is_entry() || pt.fixed != Some(Fixed::Stick) {
+        // a stick entry half: Paper D's prescribed one, or the semismooth scheme's while
+        // its (DS4) sticks (the tie is applied then, `evaluate`)
+        if !pt.is_entry() || matches!(pt.fixed, Some(Fixed::Slip(_))) {
             return None;
         }
         let (m, n) = (self.points.len(), self.asm.mesh().node_count());
@@ -555,20 +557,14 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// the low-tension drive (docs/fem-drive.md §12).
     fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64, grad: bool) -> (f64, [f64; P], f64) {
         let layout = self.asm.kernel().layout();
-        let node_weight = pt.left.1 + pt.right.1;
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
         let mut share = 0.0;
         // a contact-side half: its own side's share only (docs/fem-drive.md §12, "Fifth round")
-        let own = |side: usize| !pt.boundary || (side == 1) == (pt.part == Part::Right);
-        let own_weight = if pt.boundary { if pt.part == Part::Right { pt.right.1 } else { pt.left.1 } } else { node_weight };
-        for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
-            if !own(side) {
-                continue;
-            }
+        for (side, (e, _), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
+            let Some(f) = pt.side_share(side) else { continue };
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
             let (l, dl) = point_stretch(layout, &el, &q, xi, grad);
-            let f = we / own_weight;
             lam += f * l;
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
@@ -607,15 +603,15 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// Cosserat element at the default penalty: the penalty, sampled at the rule's points
     /// only, leaves the cubic ν above the pulley at the nodes by ~10 times the
     /// penetration, measured.)
-    fn tributary_normal(&self, pt: FrictionPoint, z: &[f64], grad: bool) -> (f64, [f64; P]) {
+    pub(super) fn tributary_normal(&self, pt: FrictionPoint, z: &[f64], grad: bool) -> (f64, [f64; P]) {
         let layout = self.asm.kernel().layout();
         let rule = self.asm.kernel().rules().contact;
-        let node_weight = pt.left.1 + pt.right.1;
         let (mut p, mut dp) = (0.0, [0.0; P]);
-        for (side, (e, we)) in [(0, pt.left), (1, pt.right)] {
+        // a contact-side half (docs/fem-cosserat.md §11.1): its contact element's mean alone
+        for (side, e) in [(0, pt.left.0), (1, pt.right.0)] {
+            let Some(f) = pt.side_share(side) else { continue };
             let el = self.asm.context(e, &self.params);
             let q = self.asm.dofs().gather(e, z, self.length);
-            let f = we / node_weight;
             for &(xi, wg) in rule.points() {
                 let Some((g, dg)) = point_gap(layout, &el, &q, xi, grad) else { continue };
                 let t = self.asm.kernel().contact_traction(self.sp.penalty, el.sigma(xi), Some(g));

@@ -141,9 +141,10 @@ pub(super) struct SteadyFit<'a, const N: usize, const P: usize, const E: usize, 
     state: State<N, K>,
     /// The accepted state's solution (boundaries, transfer).
     sol: FemSolution<N, K>,
-    /// How many of the located breakpoints are contact boundaries (the rest are
-    /// transitions).
-    boundaries: usize,
+    /// The pulleys of the located contact zones, in the order of their boundaries
+    /// (σ_start, σ_end each) at the head of the located breakpoints; the rest are
+    /// transitions.
+    zones: Vec<Pulley>,
     data: SteadyFitData<'a, K>,
     report: &'a mut SteadyReport,
 }
@@ -151,7 +152,7 @@ pub(super) struct SteadyFit<'a, const N: usize, const P: usize, const E: usize, 
 impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> SteadyFit<'a, N, P, E, K> {
     pub(super) fn new(state: State<N, K>, data: SteadyFitData<'a, K>, report: &'a mut SteadyReport) -> Self {
         let sol = solution(&state, &data);
-        SteadyFit { state, sol, boundaries: 0, data, report }
+        SteadyFit { state, sol, zones: Vec::new(), data, report }
     }
 
     pub(super) fn into_state(self) -> State<N, K> {
@@ -174,8 +175,9 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
 
     fn locate(&mut self) -> Vec<f64> {
         let contour = *self.state.asm.mesh().contour();
-        let mut breaks = self.sol.contact_boundaries();
-        self.boundaries = breaks.len();
+        let edges = self.sol.contact_edges();
+        self.zones = edges.iter().map(|z| z.0).collect();
+        let mut breaks: Vec<f64> = edges.iter().flat_map(|z| [z.1, z.2]).collect();
         breaks.extend([Pulley::Driver, Pulley::Driven].iter().filter_map(|&p| transition(&self.state.results, &contour, p)));
         breaks
     }
@@ -185,7 +187,15 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let contour = *mesh.contour();
         let asm = Assembler::with_kernel(mesh, d.kernel.clone());
         // the node at each fitted transition is split into its stick and slip halves
-        let points = friction_points(&asm, &breaks[self.boundaries..], d.direction);
+        let nb = 2 * self.zones.len();
+        let mut points = friction_points(&asm, &breaks[nb..], d.direction);
+        // the Cosserat loop (tributary normal load): the node at each fitted contact
+        // boundary carries its contact side only (docs/fem-cosserat.md §11.1); the
+        // string's semismooth points keep the whole boundary nodes (fem-drive.md §12)
+        if d.kernel.friction_normal() == FrictionNormal::Tributary && (d.sp_at)(1.0).ends == Ends::Loop {
+            let zones: Vec<(Pulley, f64, f64)> = self.zones.iter().enumerate().map(|(k, &p)| (p, breaks[2 * k], breaks[2 * k + 1])).collect();
+            contact_side_halves(&mut points, &zones, contour.length());
+        }
         let mut x = crate::static_homotopy::transfer(&self.sol, &asm);
         let nz_old = self.state.asm.len();
         x.extend([self.state.x[nz_old], self.state.x[nz_old + 1]]);

@@ -338,9 +338,11 @@ mod tests {
     /// and inertia perturbed off equilibrium (x).
     /// `fixed`: the points carry Paper D's fixed rows instead (alternately stick and slip,
     /// both slip senses; the string's slip bound is then the equilibrium normal);
-    /// `halves`: with `fixed`, every eighth point a stick entry half and every eighth
-    /// (offset 5) a slip exit half of Paper D's contact-side halves (their own side's
-    /// equilibrium normal, the entry half's tie to its neighbour).
+    /// `halves`: every eighth point (every fourth without `fixed`) an entry half and every eighth (offset 5) an exit half
+    /// of the contact-side halves (their own side's normal load — with `fixed` the
+    /// equilibrium normal, a stick entry and a slip exit half; without, the semismooth
+    /// rows, the entry halves' tractions below their bound so that their tie to the
+    /// neighbour holds).
     #[allow(clippy::too_many_arguments)]
     fn with_state<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized>(scene: &drive::Scene, kernel: Arc<K>, bending: Option<f64>, ends: Ends, fixed: bool, halves: bool, check: impl FnOnce(&SteadyProblem<N, P, E, K>, &[f64])) {
         let opts = crate::options::FemOptions::from_scene(scene, crate::default_formulation());
@@ -348,18 +350,18 @@ mod tests {
         let super::super::DriveStart { start, penalty, .. } = super::super::drive_start(&crate::problem::FemProblem::from_scene(scene), &opts, &settings, &super::super::DriveSettings::default(), kernel.clone(), settings.arc_weight).unwrap();
         let asm = Assembler::with_kernel(start.mesh().clone(), kernel.clone());
         let mut points = friction_points(&asm, &[], Direction::Clockwise);
-        if fixed {
-            for (i, p) in points.iter_mut().enumerate() {
+        for (i, p) in points.iter_mut().enumerate() {
+            if fixed {
                 p.fixed = Some(match i % 4 {
                     0 | 2 => Fixed::Stick,
                     1 => Fixed::Slip(1.0),
                     _ => Fixed::Slip(-1.0),
                 });
-                match i % 8 {
-                    0 if halves => *p = FrictionPoint { weight: p.right.1, part: Part::Right, boundary: true, ..*p },
-                    5 if halves => *p = FrictionPoint { weight: p.left.1, part: Part::Left, boundary: true, ..*p },
-                    _ => {}
-                }
+            }
+            match i % 8 {
+                0 | 4 if halves && (i % 8 == 0 || !fixed) => *p = FrictionPoint { weight: p.right.1, part: Part::Right, boundary: true, ..*p },
+                5 if halves => *p = FrictionPoint { weight: p.left.1, part: Part::Left, boundary: true, ..*p },
+                _ => {}
             }
         }
         let b = &scene.belt;
@@ -372,8 +374,9 @@ mod tests {
         }
         let mut x = crate::static_homotopy::transfer(&start, &asm);
         x.extend([0.79, 9.9]);
-        // tractions of both signs, some above their bound (slip), some below (stick)
-        x.extend((0..points.len()).map(|i| if i % 2 == 0 { 3000.0 } else { 10.0 } * ((i as f64) * 1.7).sin()));
+        // tractions of both signs, some above their bound (slip), some below (stick);
+        // the semismooth scheme's entry halves below theirs (their tie active)
+        x.extend((0..points.len()).map(|i| if i % 2 == 0 && !(halves && !fixed && i % 4 == 0) { 3000.0 } else { 10.0 } * ((i as f64) * 1.7).sin()));
         for (i, v) in x.iter_mut().enumerate().take(asm.len()) {
             *v += 1e-7 * ((i as f64) * 0.37).cos();
         }
@@ -489,6 +492,9 @@ mod tests {
             let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
             with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), ends, false, false, same);
         }
+        // the Cosserat loop's contact-side halves in the semismooth rows
+        let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
+        with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, true, same);
     }
 
     /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
@@ -502,7 +508,20 @@ mod tests {
         let kernel: Arc<dyn LayoutElement<NC>> = Arc::new(CosseratElement::new(1e4, CosseratRules::with_shear(Rule::Gauss(3))));
         let mesh = Mesh::new(crate::problem::FemProblem::from_scene(&scene).hanging(1.0).contour().unwrap(), 24, 1.0).unwrap();
         assert!(crate::dofs::augmented_flags(&mesh, kernel.separate_transition_slopes()).iter().flatten().any(|&a| a), "the map (C3) is exercised");
-        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, false);
+        check_jacobian::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel.clone(), Some(1e-3), Ends::Loop, false, false);
+        // the semismooth rows with contact-side halves (docs/fem-cosserat.md §11.1): the
+        // stick entry halves' ties, the halves' own-side tributary normal load
+        with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, true, |prob, x| {
+            let ev = prob.evaluate(x, false).unwrap();
+            let tied = (0..prob.points.len()).filter(|&i| prob.entry_neighbour(i).is_some() && !ev.results[i].slip && ev.results[i].normal > 0.0).count();
+            let exits = ev.results.iter().filter(|r| r.point.boundary && !r.point.is_entry() && r.normal > 0.0).count();
+            assert!(tied >= 2 && exits >= 2, "{tied} tied stick entry halves, {exits} pressed exit halves");
+            // a half's normal load is its own element's mean: not the whole node's
+            let whole = |r: &PointResult| FrictionPoint { part: Part::Whole, boundary: false, weight: r.point.left.1 + r.point.right.1, ..r.point };
+            let differs = ev.results.iter().filter(|r| r.point.boundary).any(|r| (prob.tributary_normal(whole(r), &x[..prob.asm.len()], false).0 - r.normal).abs() > 1e-6 * r.normal);
+            assert!(differs, "the halves' normal load is their own side's");
+            jacobian_against_differences(prob, x);
+        });
     }
 
     /// The open layout's rows (docs/fem-cosserat.md §12.3, §12.7) on the same Cosserat

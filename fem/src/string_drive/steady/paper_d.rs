@@ -112,15 +112,14 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// The fixed topology's points on `asm` with the transitions `at`: the node at each
     /// is split, the points of a pulley upstream of its transition (in the travel) stick,
     /// downstream slip.
-    /// On the string (nodal normal) the nodes at the contact boundaries `zones` (pulley,
-    /// σ_start, σ_end) carry their contact side only ([`contact_side_halves`]).
+    /// The nodes at the contact boundaries `zones` (pulley, σ_start, σ_end) carry their
+    /// contact side only ([`contact_side_halves`]; on the Cosserat rod since
+    /// docs/fem-cosserat.md §11.1, as in the semismooth scheme's refits).
     fn points(&self, asm: &Assembler<N, K>, at: [f64; 2], zones: &[(Pulley, f64, f64)]) -> Vec<FrictionPoint> {
         let contour = *asm.mesh().contour();
         let sign = self.data.direction.sign();
         let mut points = friction_points(asm, &at, self.data.direction);
-        if self.data.kernel.friction_normal() == FrictionNormal::Nodal {
-            contact_side_halves(&mut points, zones, contour.length());
-        }
+        contact_side_halves(&mut points, zones, contour.length());
         for p in &mut points {
             let k = usize::from(p.pulley == Pulley::Driven);
             let u = sign * (unwrapped(&contour, p.pulley, p.sigma) - unwrapped(&contour, p.pulley, at[k]));
@@ -224,7 +223,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             breaks.extend(at);
             let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
             let asm = Assembler::with_kernel(mesh, d.kernel.clone());
-            let zones: Vec<(Pulley, f64, f64)> = [Pulley::Driver, Pulley::Driven].into_iter().filter_map(|p| sol.zone(p).map(|z| (p, contour.wrap(z.sigma_start), contour.wrap(z.sigma_end)))).collect();
+            // the boundaries the mesh is fitted to (a Cosserat rod's: the gap crossings)
+            let zones = sol.contact_edges();
             let points = self.points(&asm, at, &zones);
             let mut x = crate::static_homotopy::transfer(&sol, &asm);
             x.extend([x_from[nz_from], x_from[nz_from + 1]]);

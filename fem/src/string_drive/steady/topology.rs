@@ -29,7 +29,8 @@ pub struct FrictionPoint {
     /// is in contact, prescribed instead of decided by Coulomb's law; `None` (the direct
     /// semismooth solve): decided per iterate by (DS4).
     pub fixed: Option<Fixed>,
-    /// Paper D's fixed topology on the string (docs/fem-drive.md §12, "Fifth round"): the
+    /// Contact-side halves (docs/fem-drive.md §12, "Fifth round": Paper D's fixed topology
+    /// on the string; docs/fem-cosserat.md §11.1: the Cosserat drive's fitted meshes): the
     /// node is a contact boundary and the point is its contact side only — a half
     /// ([`Part::Left`] or [`Part::Right`], the side in contact) whose traction loads that
     /// element alone, so no friction acts on the free element beyond the boundary. A
@@ -100,6 +101,21 @@ impl FrictionPoint {
         self.boundary && (self.part == Part::Right) == (self.direction == Direction::Clockwise)
     }
 
+    /// The share of side `side` (0: the element ending at the node, 1: the one starting
+    /// there) in the point's means over its node's edges (its normal load): that side's
+    /// h/2 over the point's sides' — both sides for a whole node or a split half, the own
+    /// side alone for a contact-side half ([`FrictionPoint::boundary`]); `None` for a
+    /// contact-side half's free side.
+    pub fn side_share(&self, side: usize) -> Option<f64> {
+        let own = !self.boundary || (side == 1) == (self.part == Part::Right);
+        let sides = match (self.boundary, self.part) {
+            (true, Part::Right) => self.right.1,
+            (true, _) => self.left.1,
+            (false, _) => self.left.1 + self.right.1,
+        };
+        own.then(|| (if side == 0 { self.left.1 } else { self.right.1 }) / sides)
+    }
+
     /// σ where the point's velocity is sampled: the midpoint of its element.
     pub fn velocity_sigma(&self) -> f64 {
         if self.velocity_from_right() {
@@ -162,8 +178,8 @@ pub fn fixed_transition(results: &[PointResult], pulley: Pulley) -> Option<f64> 
     results.iter().find(|p| p.point.pulley == pulley && p.point.fixed.is_some() && p.point.part != Part::Whole && !p.point.boundary).map(|p| p.point.sigma)
 }
 
-/// Paper D's contact-side halves on the string (docs/fem-drive.md §12, "Fifth round"): the
-/// point at a node within 10⁻⁶ of its element lengths of a contact zone's start
+/// The contact-side halves (docs/fem-drive.md §12, "Fifth round": Paper D's on the string;
+/// docs/fem-cosserat.md §11.1: both schemes on the Cosserat drive): the point at a node within 10⁻⁶ of its element lengths of a contact zone's start
 /// (`zones`: per pulley σ_start, σ_end along σ) becomes the half on the zone's side
 /// ([`Part::Right`]), at its end [`Part::Left`], with that side's weight only and
 /// [`FrictionPoint::boundary`] set. A node that is also a stick→slip split is left as it is.
