@@ -164,7 +164,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let pt = &self.points[i];
         let il = self.asm.dofs().element(pt.left.0);
         let ir = self.asm.dofs().element(pt.right.0);
-        let partner = self.stick_partner(i).or_else(|| self.entry_neighbour(i)).map(|j| self.it(j));
+        let partner = self.stick_partner(i).map(|j| self.it(j));
         std::array::from_fn(|k| match k {
             k if k < N => il[k],
             k if k < 2 * N => ir[k - N],
@@ -186,21 +186,6 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             (Part::Left, Direction::CounterClockwise) => (i + 1 < self.points.len() && self.points[i + 1].part == Part::Right && !self.points[i + 1].boundary).then_some(i + 1),
             _ => None,
         }
-    }
-
-    /// The point whose traction a prescribed stick entry half i carries (Paper D's
-    /// contact-side halves, [`FrictionPoint::is_entry`]): the point at the next node on its
-    /// contact side, downstream in the travel (docs/fem-drive.md §12, "Fifth round");
-    /// `None` for any other point.
-    pub(super) fn entry_neighbour(&self, i: usize) -> Option<usize> {
-        let pt = &self.points[i];
-        if !pt.is_entry() || pt.fixed != Some(Fixed::Stick) {
-            return None;
-        }
-        let (m, n) = (self.points.len(), self.asm.mesh().node_count());
-        let (j, node) = if pt.part == Part::Right { ((i + 1) % m, (pt.node + 1) % n) } else { ((i + m - 1) % m, (pt.node + n - 1) % n) };
-        let q = &self.points[j];
-        (q.node == node && q.pulley == pt.pulley).then_some(j)
     }
 
     /// Per element, the friction points whose tractions hold at its edges ξ = −1, +1
@@ -437,21 +422,12 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                 per[k] = self.point_terms(k, x, true, with_jacobian);
             }
         }
-        // ties w (τ_i − τ_j) = 0 on the point's row, τ_j in its partner slot:
-        // - both halves of a split node sticking would be two multipliers on one node
-        //   (proportional columns): the slip half then carries the stick half's traction —
-        //   the whole node's behaviour (§12);
-        // - a stick entry half of Paper D's contact-side halves: its upwind element is
-        //   free, so it has no kinematic row (v = 0 would pin that free element's mean
-        //   stretch to the stick zone's, a concentrated traction at the run-on point,
-        //   measured); it carries its downstream neighbour's traction, and the stick rows
-        //   of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
+        // both halves of a split node sticking would be two multipliers on one node
+        // (proportional columns): the slip half then carries the stick half's traction,
+        // w (τ_i − τ_j) = 0 on its row, τ_j in its partner slot — the whole node's
+        // behaviour (§12)
         for i in 0..per.len() {
-            let tie = match (self.stick_partner(i), self.entry_neighbour(i)) {
-                (Some(j), _) if !per[i].2.slip && !per[j].2.slip => Some(j),
-                (None, Some(j)) if !per[i].2.slip && per[i].2.normal > 0.0 => Some(j),
-                _ => None,
-            };
+            let tie = self.stick_partner(i).filter(|&j| !per[i].2.slip && !per[j].2.slip);
             if let Some(j) = tie {
                 let w = self.points[i].weight;
                 let it = 2 * N + 2;
@@ -545,9 +521,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// half-weighted mean of the two edges' stretch at the node and e_r the drum's outward
     /// normal at the node's contour point, per contour length (the drum's arc per σ:
     /// 1 on the pulley's arc region, |g − c|/R ≈ 1/cos θ on a span's straight contour θ
-    /// past the tangent point), times the share of the node's weight on elements in
-    /// contact (midpoint gap < 0: half at a fitted contact boundary); zero
-    /// where the nodal gap does not press. With its gradient in (q_left, q_right) and its
+    /// past the tangent point); a contact boundary's half ([`FrictionPoint::boundary`])
+    /// takes its own side alone, and a point the topology puts out of contact
+    /// ([`Fixed::Free`]) none — the contact set is the prescribed zones', never the sign of
+    /// an iterate's gap (docs/fem-drive.md §12, "Sixth round"). With its gradient in (q_left, q_right) and its
     /// derivative in c. The stiff penalty's nodal gap is no measure of the pressure where
     /// the contact runs into a span's Cartesian part (the cubic meets the drum only at the
     /// contact rule's points): there the nodal bound μP⟨−γ̄⟩ shifts the slip zone's
@@ -555,10 +532,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// the low-tension drive (docs/fem-drive.md §12).
     fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64, grad: bool) -> (f64, [f64; P], f64) {
         let layout = self.asm.kernel().layout();
+        // out of contact by the topology (`in_contact_zone`): no reaction
+        if pt.fixed == Some(Fixed::Free) {
+            return (0.0, [0.0; P], 0.0);
+        }
         let node_weight = pt.left.1 + pt.right.1;
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
-        let mut share = 0.0;
-        // a contact-side half: its own side's share only (docs/fem-drive.md §12, "Fifth round")
+        // a contact-side half: its own side only (docs/fem-drive.md §12, "Fifth round")
         let own = |side: usize| !pt.boundary || (side == 1) == (pt.part == Part::Right);
         let own_weight = if pt.boundary { if pt.part == Part::Right { pt.right.1 } else { pt.left.1 } } else { node_weight };
         for (side, (e, we), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
@@ -573,14 +553,6 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
             }
-            if point_gap(layout, &el, &q, 0.0, false).is_some_and(|(g, _)| g < 0.0) {
-                share += f;
-            }
-        }
-        // the nodal gap at a contact boundary is the penalty's round-off: a contact-side
-        // half presses when its element does
-        if share == 0.0 || (!pt.boundary && self.nodal_normal(pt, z, false).0 <= 0.0) {
-            return (0.0, [0.0; P], 0.0);
         }
         let contour = *self.asm.mesh().contour();
         let r = self.sp.radius;
@@ -591,13 +563,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let ey = ey / dist;
         // per contour length: the drum's arc per σ, 1 on the pulley's arc, 1/cos θ ≈ |g − c|/R
         // (to O(θ⁴)) where the contact runs into a span's straight contour at θ past it
-        let share = share * dist.max(r) / r;
+        let per_contour = dist.max(r) / r;
         let rho = self.sp.inertia.unwrap_or(0.0);
         let weight = self.params.weight.unwrap_or(0.0);
         let ea = self.params.axial_stiffness;
         let p = (ea * (lam - 1.0) - rho * c * c * lam) / r + weight * ey / lam;
         let dp_dlam = (ea - rho * c * c) / r - weight * ey / (lam * lam);
-        (share * p, dlam.map(|d| share * dp_dlam * d), -share * 2.0 * rho * c * lam / r)
+        (per_contour * p, dlam.map(|d| per_contour * dp_dlam * d), -per_contour * 2.0 * rho * c * lam / r)
     }
 
     /// The normal traction of a friction point of the open layout, and of the loop for an
@@ -682,12 +654,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let fixed = pt.fixed.filter(|_| b > 0.0);
         let slip = match fixed {
             Some(Fixed::Stick) => false,
-            Some(Fixed::Slip(_)) => true,
+            Some(Fixed::Slip(_) | Fixed::Free) => true,
             None => y.abs() >= b && !force_stick,
         };
         if slip {
             let s = match fixed {
                 Some(Fixed::Slip(s)) => s,
+                Some(Fixed::Free) => 0.0,
                 _ if b > 0.0 => y.signum(),
                 _ => 0.0,
             };
@@ -698,6 +671,23 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                     j[it][k] = -w * s * sp.mu * dnormal[k];
                 }
                 j[it][ic] = -w * s * sp.mu * eq_dc;
+            }
+        } else if pt.is_entry() && fixed == Some(Fixed::Stick) {
+            // a stick entry half of Paper D's contact-side halves: its own element's
+            // kinematic row is its downstream neighbour's, so its row is the stick zone's
+            // traction at the run-on point, the weight along the belt −(ρg/λ)∂σy on its
+            // contact side (docs/fem-drive.md §12, "Sixth round")
+            let (side, xi) = if pt.part == Part::Right { (1, -1.0) } else { (0, 1.0) };
+            let e = if side == 1 { pt.right.0 } else { pt.left.0 };
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let (t_eq, dt) = tangential_weight(layout, &el, &q, xi, self.params.weight.unwrap_or(0.0), jacobian);
+            r[it] = w * (tau - t_eq);
+            if let Some(j) = block.as_deref_mut() {
+                j[it][it] = w;
+                for k in 0..N {
+                    j[it][side * N + k] = -w * dt[k];
+                }
             }
         } else {
             r[it] = -w * sp.kappa * v;
