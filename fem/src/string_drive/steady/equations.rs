@@ -191,12 +191,18 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// The point whose traction a prescribed stick entry half i carries (Paper D's
     /// contact-side halves, [`FrictionPoint::is_entry`]): the point at the next node on its
     /// contact side, downstream in the travel (docs/fem-drive.md §12, "Fifth round");
-    /// `None` for any other point.
+    /// `None` for any other point, and for Paper D's string (its entry halves have their
+    /// own row).
     pub(super) fn entry_neighbour(&self, i: usize) -> Option<usize> {
         let pt = &self.points[i];
         // a stick entry half: Paper D's prescribed one, or the semismooth scheme's while
         // its (DS4) sticks (the tie is applied then, `evaluate`)
         if !pt.is_entry() || matches!(pt.fixed, Some(Fixed::Slip(_))) {
+            return None;
+        }
+        // Paper D's string: the entry half's own row, the stick zone's traction at the
+        // run-on point (`point_terms`, docs/fem-drive.md §12, "Sixth round")
+        if pt.fixed.is_some() && self.asm.kernel().friction_normal() == FrictionNormal::Nodal {
             return None;
         }
         let (m, n) = (self.points.len(), self.asm.mesh().node_count());
@@ -443,11 +449,12 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // - both halves of a split node sticking would be two multipliers on one node
         //   (proportional columns): the slip half then carries the stick half's traction —
         //   the whole node's behaviour (§12);
-        // - a stick entry half of Paper D's contact-side halves: its upwind element is
-        //   free, so it has no kinematic row (v = 0 would pin that free element's mean
-        //   stretch to the stick zone's, a concentrated traction at the run-on point,
-        //   measured); it carries its downstream neighbour's traction, and the stick rows
-        //   of the contact elements hold the zone (docs/fem-drive.md §12, "Fifth round")
+        // - a stick entry half of the Cosserat rod's contact-side halves: its upwind
+        //   element is free, so it has no kinematic row (v = 0 would pin that free
+        //   element's mean stretch to the stick zone's, a concentrated traction at the
+        //   run-on point, measured); it carries its downstream neighbour's traction, and
+        //   the stick rows of the contact elements hold the zone (docs/fem-cosserat.md
+        //   §11.1; Paper D's string has the entry row of `point_terms` instead)
         for i in 0..per.len() {
             let tie = match (self.stick_partner(i), self.entry_neighbour(i)) {
                 (Some(j), _) if !per[i].2.slip && !per[j].2.slip => Some(j),
@@ -547,9 +554,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// half-weighted mean of the two edges' stretch at the node and e_r the drum's outward
     /// normal at the node's contour point, per contour length (the drum's arc per σ:
     /// 1 on the pulley's arc region, |g − c|/R ≈ 1/cos θ on a span's straight contour θ
-    /// past the tangent point), times the share of the node's weight on elements in
-    /// contact (midpoint gap < 0: half at a fitted contact boundary); zero
-    /// where the nodal gap does not press. With its gradient in (q_left, q_right) and its
+    /// past the tangent point); a contact boundary's half ([`FrictionPoint::boundary`])
+    /// takes its own side alone, and a point the topology puts out of contact
+    /// ([`Fixed::Free`]) none — the contact set is the prescribed zones', never the sign of
+    /// an iterate's gap (docs/fem-drive.md §12, "Sixth round"). With its gradient in (q_left, q_right) and its
     /// derivative in c. The stiff penalty's nodal gap is no measure of the pressure where
     /// the contact runs into a span's Cartesian part (the cubic meets the drum only at the
     /// contact rule's points): there the nodal bound μP⟨−γ̄⟩ shifts the slip zone's
@@ -557,9 +565,12 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// the low-tension drive (docs/fem-drive.md §12).
     fn equilibrium_normal(&self, pt: FrictionPoint, z: &[f64], c: f64, grad: bool) -> (f64, [f64; P], f64) {
         let layout = self.asm.kernel().layout();
+        // out of contact by the topology (`in_contact_zone`): no reaction
+        if pt.fixed == Some(Fixed::Free) {
+            return (0.0, [0.0; P], 0.0);
+        }
         let (mut lam, mut dlam) = (0.0, [0.0; P]);
-        let mut share = 0.0;
-        // a contact-side half: its own side's share only (docs/fem-drive.md §12, "Fifth round")
+        // a contact-side half: its own side only (docs/fem-drive.md §12, "Fifth round")
         for (side, (e, _), xi) in [(0, pt.left, 1.0), (1, pt.right, -1.0)] {
             let Some(f) = pt.side_share(side) else { continue };
             let el = self.asm.context(e, &self.params);
@@ -569,14 +580,6 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
             for k in 0..N {
                 dlam[side * N + k] += f * dl[k];
             }
-            if point_gap(layout, &el, &q, 0.0, false).is_some_and(|(g, _)| g < 0.0) {
-                share += f;
-            }
-        }
-        // the nodal gap at a contact boundary is the penalty's round-off: a contact-side
-        // half presses when its element does
-        if share == 0.0 || (!pt.boundary && self.nodal_normal(pt, z, false).0 <= 0.0) {
-            return (0.0, [0.0; P], 0.0);
         }
         let contour = *self.asm.mesh().contour();
         let r = self.sp.radius;
@@ -587,13 +590,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let ey = ey / dist;
         // per contour length: the drum's arc per σ, 1 on the pulley's arc, 1/cos θ ≈ |g − c|/R
         // (to O(θ⁴)) where the contact runs into a span's straight contour at θ past it
-        let share = share * dist.max(r) / r;
+        let per_contour = dist.max(r) / r;
         let rho = self.sp.inertia.unwrap_or(0.0);
         let weight = self.params.weight.unwrap_or(0.0);
         let ea = self.params.axial_stiffness;
         let p = (ea * (lam - 1.0) - rho * c * c * lam) / r + weight * ey / lam;
         let dp_dlam = (ea - rho * c * c) / r - weight * ey / (lam * lam);
-        (share * p, dlam.map(|d| share * dp_dlam * d), -share * 2.0 * rho * c * lam / r)
+        (per_contour * p, dlam.map(|d| per_contour * dp_dlam * d), -per_contour * 2.0 * rho * c * lam / r)
     }
 
     /// The normal traction of a friction point of the open layout, and of the loop for an
@@ -678,12 +681,13 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         let fixed = pt.fixed.filter(|_| b > 0.0);
         let slip = match fixed {
             Some(Fixed::Stick) => false,
-            Some(Fixed::Slip(_)) => true,
+            Some(Fixed::Slip(_) | Fixed::Free) => true,
             None => y.abs() >= b && !force_stick,
         };
         if slip {
             let s = match fixed {
                 Some(Fixed::Slip(s)) => s,
+                Some(Fixed::Free) => 0.0,
                 _ if b > 0.0 => y.signum(),
                 _ => 0.0,
             };
@@ -694,6 +698,23 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
                     j[it][k] = -w * s * sp.mu * dnormal[k];
                 }
                 j[it][ic] = -w * s * sp.mu * eq_dc;
+            }
+        } else if pt.is_entry() && fixed == Some(Fixed::Stick) && self.asm.kernel().friction_normal() == FrictionNormal::Nodal {
+            // a stick entry half of Paper D's contact-side halves: its own element's
+            // kinematic row is its downstream neighbour's, so its row is the stick zone's
+            // traction at the run-on point, the weight along the belt −(ρg/λ)∂σy on its
+            // contact side (docs/fem-drive.md §12, "Sixth round")
+            let (side, xi) = if pt.part == Part::Right { (1, -1.0) } else { (0, 1.0) };
+            let e = if side == 1 { pt.right.0 } else { pt.left.0 };
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            let (t_eq, dt) = tangential_weight(layout, &el, &q, xi, self.params.weight.unwrap_or(0.0), jacobian);
+            r[it] = w * (tau - t_eq);
+            if let Some(j) = block.as_deref_mut() {
+                j[it][it] = w;
+                for k in 0..N {
+                    j[it][side * N + k] = -w * dt[k];
+                }
             }
         } else {
             r[it] = -w * sp.kappa * v;

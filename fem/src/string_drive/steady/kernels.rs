@@ -61,6 +61,22 @@ pub(super) fn point_stretch<const N: usize>(layout: ElementLayout, el: &ElementC
     value_and_gradient(q, grad, |qq| el.stretch(&el.fields(&centreline(layout, el, qq), xi)), |qq| el.stretch(&el.fields(&centreline(layout, el, qq), xi)))
 }
 
+/// The weight's component along +σ per contour length at ξ of an element,
+/// −(ρg/λ) ∂σy (N/m; `weight` = ρg per unstretched metre, ∂σy = (1 + αν) t_g,y + ∂σν n_g,y
+/// the height's derivative of eq. (27)): the traction a stick zone carries where the belt
+/// keeps its stretch (docs/fem-drive.md §12, "Sixth round").
+fn tangential_weight_of<D: Scalar, const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[D; N], xi: f64, weight: f64) -> D {
+    let p = el.fields(&centreline(layout, el, q), xi);
+    let (t, n) = (el.contour.t_g(p.sigma), el.contour.n_g(p.sigma));
+    let dy = (p.nu * el.alpha() + 1.0) * t[1] + p.dnu * n[1];
+    dy * (-weight) / el.stretch(&p)
+}
+
+/// [`tangential_weight_of`] with, if `grad`, its gradient in q (else zero).
+pub(super) fn tangential_weight<const N: usize>(layout: ElementLayout, el: &ElementContext, q: &[f64; N], xi: f64, weight: f64, grad: bool) -> (f64, [f64; N]) {
+    value_and_gradient(q, grad, |qq| tangential_weight_of(layout, el, qq, xi, weight), |qq| tangential_weight_of(layout, el, qq, xi, weight))
+}
+
 /// ∂S/∂q at ξ, and where the augmented map makes S nonlinear in q `Some(∂²S/∂q²)` —
 /// computed only if `second`, else zero (the residual needs ∂S/∂q alone); `None`: S is
 /// linear in q, ∂S/∂q the Hermite value weights of the s unknowns.

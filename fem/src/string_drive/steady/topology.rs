@@ -48,6 +48,9 @@ pub enum Fixed {
     Stick,
     /// τ = s μ p, s = ±1.
     Slip(f64),
+    /// Out of contact by the topology (the string's Paper D points outside the prescribed
+    /// contact zones, [`in_contact_zone`]): τ = 0, whatever the gap of the iterate.
+    Free,
 }
 
 /// Which share of a node a friction point carries (docs/fem-drive.md §12).
@@ -195,4 +198,48 @@ pub fn contact_side_halves(points: &mut [FrictionPoint], zones: &[(Pulley, f64, 
             }
         }
     }
+}
+
+/// Whether a Paper D point of the string lies in its pulley's prescribed contact zone
+/// (`zones`: per pulley σ_start, σ_end along σ, as [`contact_side_halves`] takes them): a
+/// contact boundary's half ([`FrictionPoint::boundary`]), or a node strictly inside the
+/// zone (beyond 10⁻⁶ of its element lengths of either end). The fixed topology's contact
+/// set (docs/fem-drive.md §12, "Sixth round"): the sign of the gap of an iterate is no
+/// measure of it — the stiff penalty's penetration (≈ 10⁻¹⁰ m) is far below the gap error
+/// of a state transferred to a new mesh (≈ 10⁻⁸ m), so on the first solve at a new mesh
+/// whole stretches of a contact zone read as free (measured on the counter-clockwise
+/// low-tension drive: the driver's whole slip zone).
+pub fn in_contact_zone(p: &FrictionPoint, zones: &[(Pulley, f64, f64)], lc: f64) -> bool {
+    let tolerance = 1e-6 * 2.0 * (p.left.1 + p.right.1);
+    p.boundary
+        || zones.iter().filter(|z| z.0 == p.pulley).any(|&(_, start, end)| {
+            let u = (p.sigma - start).rem_euclid(lc);
+            u > tolerance && u < (end - start).rem_euclid(lc) - tolerance
+        })
+}
+
+/// Breakpoints that divide the part of each contact zone (`zones`: pulley, σ_start, σ_end)
+/// lying on a span's straight contour — between a boundary and its pulley's arc — into
+/// elements no longer than `h_max` (m), equally spaced. There the deflection ν carries the
+/// drum's curvature (ν ≈ u²/2R past the tangent point), which the cubic follows only at
+/// the contact rule's points; a piece left as one element of its own length, which does
+/// not shrink with the mesh, set the stick zone's tension level (docs/fem-drive.md §12,
+/// "Sixth round").
+pub fn span_contact_breaks(contour: &Contour, zones: &[(Pulley, f64, f64)], h_max: f64) -> Vec<f64> {
+    let lc = contour.length();
+    let mut out = Vec::new();
+    for &(pulley, start, end) in zones {
+        let arc = if pulley == Pulley::Driver { Region::DriverArc } else { Region::DrivenArc };
+        let (a0, a1) = contour.region_bounds(arc);
+        let span = (end - start).rem_euclid(lc);
+        // the piece before the arc (start → a0) and after it (a1 → end), along +σ
+        for (from, length) in [(start, (a0 - start).rem_euclid(lc)), (a1, (end - a1).rem_euclid(lc))] {
+            if length <= 0.0 || length >= span {
+                continue;
+            }
+            let n = (length / h_max).ceil().max(1.0) as usize;
+            out.extend((1..n).map(|j| contour.wrap(from + length * j as f64 / n as f64)));
+        }
+    }
+    out
 }
