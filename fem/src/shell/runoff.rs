@@ -385,8 +385,10 @@ mod tests {
     /// taken by least squares over a whole revolution (48 steps ≈ L/(ωRΔt) = 45):
     /// the third and the fourth revolution agree within 10 % (measured 3 %), to −z
     /// (above), between 2 % and 100 % of the stick kinematics' steady −ωRβ_y/2
-    /// (measured 12 %: the coarse belt's elastic layer creeps laterally; V-14 is an
-    /// order-of-magnitude check only).
+    /// (measured 12 %; V-14 is an order-of-magnitude check only). This is a property of
+    /// this coarse mesh (3–4 history points per contact zone), not a converged result:
+    /// on the 64-element rod mesh the long-time drift turns to +z (docs/fem-shell.md
+    /// §9.3) — the test guards the stability and steadiness of the scheme.
     #[test]
     #[ignore]
     fn swivelled_steering_drum_reaches_a_steady_drift() {
