@@ -874,4 +874,82 @@ mod tests {
             }
         }
     }
+
+    /// A spring ½k w² and a history value carried by its own recursion the way the
+    /// shell's interlayer carries u: kept where σ lies in a "contact" zone [a, b], set to
+    /// 0 outside it (released at the exit b), so a point just upstream of the exit is
+    /// re-interpolated every step from a stencil that reaches across the jump to 0.
+    struct Released {
+        zone: [f64; 2],
+        bounded: bool,
+    }
+
+    impl SurfaceKernel<1> for Released {
+        fn layout(&self) -> ElementLayout {
+            SHELL
+        }
+        fn variables(&self) -> [PointVariable; 1] {
+            [nu(PointDerivative::Value)]
+        }
+        fn terms(&self) -> Vec<SurfaceTerm> {
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Trapezoidal, Rule::Gauss(2)], history: 1 }]
+        }
+        fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
+            v[0] * v[0] * if term == 0 { 0.5 } else { 0.0 }
+        }
+        fn initial(&self, _term: usize, at: &SurfacePoint, state: &mut [f64]) {
+            state[0] = f64::from(u8::from(at.sigma >= self.zone[0] && at.sigma <= self.zone[1]));
+        }
+        fn advance(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1], previous: &[f64], next: &mut [f64]) {
+            next[0] = if at.sigma >= self.zone[0] && at.sigma <= self.zone[1] { previous[0] } else { 0.0 };
+        }
+        fn belt_speed(&self, _time: f64) -> f64 {
+            1.0
+        }
+        fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
+            if self.bounded && term == 1 {
+                0..1
+            } else {
+                0..0
+            }
+        }
+    }
+
+    /// The advection of a recursively carried value on a non-uniform arrangement
+    /// (docs/fem-shell.md §9.3): spacing 0.1 with one short element [0.6, 0.61] just
+    /// after the exit of the zone [0.1, 0.6] (its points), shift 0.05 per step. The exit point's foot
+    /// 0.55 has the stencil (0.4, 0.5, 0.6, 0.61), whose cubic Lagrange weight on the
+    /// point itself is 2.25 (and −1.62 on the released point at 0.61): plain cubic
+    /// advection makes the value there grow geometrically (asserted > 1e3 after 20
+    /// steps, from 1); bounded ([`SurfaceKernel::bounded_history`]) every value stays
+    /// within the initial range [0, 1] (the max principle; zeros flow in at the entry).
+    #[test]
+    fn bounded_advection_keeps_a_released_value_within_its_range_on_a_non_uniform_mesh() {
+        let mut sigma: Vec<f64> = (0..7).map(|k| 0.1 * f64::from(k)).collect();
+        sigma.extend([0.61, 0.7, 0.8, 0.9]);
+        let mesh = SurfaceMesh::new(1.0, sigma, vec![0.0, 0.1]).unwrap();
+        let mut peaks = vec![];
+        for bounded in [false, true] {
+            let asm = SurfaceAssembler::new(mesh.clone(), Released { zone: [0.05, 0.605], bounded }, &[]).unwrap();
+            let n = asm.unknowns();
+            let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
+            let mut peak = 0.0f64;
+            for _ in 0..20 {
+                stepper.step(0.05).unwrap();
+                let states = stepper.history().term(1).unwrap();
+                let (rows, columns) = states.shape();
+                for (i, j) in (0..rows).flat_map(|i| (0..columns).map(move |j| (i, j))) {
+                    let v = states.get(i, j)[0];
+                    peak = peak.max(v.abs());
+                    if bounded {
+                        assert!((-1e-15..=1.0 + 1e-15).contains(&v), "bounded advection left [0, 1]: {v} at σ = {}", states.column_sigma()[j]);
+                    }
+                }
+            }
+            println!("released value, bounded {bounded}: max |h| over 20 steps {peak:e}");
+            peaks.push(peak);
+        }
+        assert!(peaks[0] > 1e3, "plain cubic advection did not grow: {}", peaks[0]);
+        assert!((peaks[1] - 1.0).abs() < 1e-12, "bounded: {}", peaks[1]);
+    }
 }

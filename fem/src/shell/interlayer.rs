@@ -46,6 +46,13 @@ const POSITION: usize = 3;
 const SLOPE: usize = 6;
 const MATERIAL: usize = 9;
 const CONTACT: usize = 10;
+/// The components of u in the state: the only value carried by its own recursion
+/// (u_{n+1} = ũ_n + increment, (S13)); the others are re-recorded from the converged
+/// configuration every step. The advection keeps them between the bracketing points'
+/// values ([`crate::surface::assembly::SurfaceKernel::bounded_history`];
+/// docs/fem-shell.md §9.3: the cubic weights on the rod's non-uniform arc mesh amplified
+/// u at a contact exit by 1.6 per step).
+pub const DEFORMATION: std::ops::Range<usize> = U..U + 3;
 
 /// A piecewise-linear history β(t) (rad), constant before its first and after its last
 /// point.

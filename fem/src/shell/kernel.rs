@@ -21,7 +21,7 @@ use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, Su
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, STATE};
+use super::interlayer::{Interlayer, Schedule, DEFORMATION, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -370,6 +370,15 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     /// The interlayer's transport speed c (0 without one).
     fn belt_speed(&self, time: f64) -> f64 {
         self.interlayer.as_ref().map_or(0.0, |i| i.transport_at(time))
+    }
+
+    /// The interlayer's u ([`super::interlayer::DEFORMATION`]): advected within the
+    /// values of the bracketing points.
+    fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
+        match (&self.interlayer, term) {
+            (Some(_), INTERLAYER) => DEFORMATION,
+            _ => 0..0,
+        }
     }
 
     /// The augmented map (S12) on the columns with transition edges.

@@ -307,27 +307,35 @@ mod tests {
         r.stepping.assembler().field_at(r.stepping.unknowns(), Field::S, 0.0, 0.0).unwrap()[0]
     }
 
-    /// E-3 (V-9): a perfect belt on aligned drums does not run off. The problem is
-    /// mirror symmetric (ζ → −ζ, z → −z) and so is every Newton iterate up to the
-    /// round-off of the LU solves: the mean lateral offset stays at round-off,
-    /// |z̄| < 1e-12 m over all steps (the tilt test's drift after as many steps is
-    /// ~1e-5 m). The drums do transport the belt with them: in the gauge transported
-    /// with the drums (S = c₀(σ − d(t)) + S̃) S̃ at σ = 0 changes by less than 2 % of the
-    /// run's travel c₀ωRΔt × steps — the belt at σ = 0 moves at ωR within 2 % on
-    /// average (held back, S̃ would grow by the whole travel). Measured 0.76 %: not the
-    /// creep of the strain (~1e-4) but the transient's redistribution of material
-    /// between the slack spans (~4 mm over the run).
+    /// Steps of the perfect belt's run: about one revolution of the belt
+    /// (L/(ωRΔt) = 45 steps).
+    const AROUND: usize = 48;
+
+    /// E-3 (V-9): a perfect belt on aligned drums does not run off, over two
+    /// revolutions (96 steps of stage (2); ~25 s CPU). The problem is mirror symmetric
+    /// (ζ → −ζ, z → −z) and so is every Newton iterate up to the round-off of the LU
+    /// solves: the mean lateral offset stays at round-off, |z̄| < 1e-13 m over all steps
+    /// (the tilt test's drift after 10 steps is ~1e-5 m). Before the interlayer's u was
+    /// advected bounded (docs/fem-shell.md §9.3) the lateral mode grew by 1.58 per step
+    /// from round-off: z̄ = 6.6e-11 m after 48 steps (fails). Measured after: ≤ 9.1e-17 m.
+    /// The drums do transport the belt with them: in the gauge transported with the
+    /// drums (S = c₀(σ − d(t)) + S̃) S̃ at σ = 0 changes by less than 2 % of the run's
+    /// travel c₀ωRΔt × steps — the belt at σ = 0 moves at ωR within 2 % on average (held
+    /// back, S̃ would grow by the whole travel). Measured 0.77 %: not the creep of the
+    /// strain (~1e-4) but the transient's redistribution of material between the slack
+    /// spans.
     #[test]
     fn perfect_belt_on_aligned_drums_does_not_run_off() {
-        let (series, r) = drift(0.0, 0.0, TURNING);
+        let steps = 2 * AROUND;
+        let (series, r) = drift(0.0, 0.0, steps);
         let lateral = series.channel("lateral_offset").unwrap();
         let worst = lateral.iter().fold(0.0_f64, |m, z| m.max(z.abs()));
         let c0 = r.stepping.assembler().kernel().gauge();
         let per_step = c0 * 2.0 * belt(0.0).contour.radius() * r.dt;
         let slip = material_at_origin(&r) / per_step;
-        println!("aligned: max |z̄| = {worst:e} m, S̃(0, 0) = {slip:e} of c₀ωRΔt, Newton {:?}", series.channel("newton_iterations").unwrap());
-        assert!(worst < 1e-12, "a perfect belt ran off by {worst:e} m");
-        assert!(slip.abs() < 2e-2 * TURNING as f64, "S̃(0, 0) moved by {slip} × c₀ωRΔt in {TURNING} steps: the belt does not follow the drums");
+        println!("aligned, {steps} steps: max |z̄| = {worst:e} m, S̃(0, 0) = {slip:e} of c₀ωRΔt, Newton {:?}", series.channel("newton_iterations").unwrap());
+        assert!(worst < 1e-13, "a perfect belt ran off by {worst:e} m");
+        assert!(slip.abs() < 2e-2 * steps as f64, "S̃(0, 0) moved by {slip} × c₀ωRΔt in {steps} steps: the belt does not follow the drums");
     }
 
     /// E-4/E-5 for the steering drum's swivel β_y (rotation of its axis in the plane of
@@ -365,6 +373,35 @@ mod tests {
         assert!((velocities[1] / velocities[0] - 2.0).abs() < 2e-2, "v(2β)/v(β) = {}", velocities[1] / velocities[0]);
         let ratio = velocities[0] / kinematic;
         assert!(ratio > 1e-2 && ratio < 1.0, "v_run = {:e} against −ωRβ = {kinematic:e}", velocities[0]);
+    }
+
+    /// The swivelled steering drum (β_y = 1e-3 on the driven drum) over four
+    /// revolutions (192 steps, `--ignored`: ~50 s CPU): every step converges (before the
+    /// bounded advection of u, Newton's line search failed at step 40; docs/fem-shell.md
+    /// §9.3), and the run-off settles to a steady drift. Within the first revolutions z̄
+    /// is modulated with the belt's revolution (the lateral shape of the ramp's start
+    /// carried round by the belt; the least-squares drift over a one-revolution window
+    /// swings by ±35 % in the second revolution, ±5 % in the fourth), so the drift is
+    /// taken by least squares over a whole revolution (48 steps ≈ L/(ωRΔt) = 45):
+    /// the third and the fourth revolution agree within 10 % (measured 3 %), to −z
+    /// (above), between 2 % and 100 % of the stick kinematics' steady −ωRβ_y/2
+    /// (measured 12 %; V-14 is an order-of-magnitude check only). This is a property of
+    /// this coarse mesh (3–4 history points per contact zone), not a converged result:
+    /// on the 64-element rod mesh the long-time drift turns to +z (docs/fem-shell.md
+    /// §9.3) — the test guards the stability and steadiness of the scheme.
+    #[test]
+    #[ignore]
+    fn swivelled_steering_drum_reaches_a_steady_drift() {
+        let beta = 1.0e-3;
+        let (series, _) = drift(0.0, beta, 4 * AROUND);
+        let (t, z) = (&series.time, series.channel("lateral_offset").unwrap());
+        let third = drift_velocity(&t[..3 * AROUND], &z[..3 * AROUND], AROUND).unwrap();
+        let fourth = drift_velocity(t, z, AROUND).unwrap();
+        let kinematic = -belt(0.0).contour.radius() * 2.0 * beta / 2.0;
+        println!("β_y = {beta:e}: drift {third:e} m/s (third revolution), {fourth:e} m/s (fourth); −ωRβ_y/2 = {kinematic:e} m/s, ratio {}", fourth / kinematic);
+        assert!(((fourth / third) - 1.0).abs() < 0.1, "no steady drift: {third:e} vs {fourth:e} m/s");
+        let ratio = fourth / kinematic;
+        assert!(ratio > 2e-2 && ratio < 1.0, "drift {fourth:e} m/s against −ωRβ_y/2 = {kinematic:e}");
     }
 
     /// E-4 for camber: a cambered belt on aligned drums runs off, and the belt of the
@@ -418,5 +455,40 @@ mod tests {
             println!("{:.4} {:+.6e} {}", t[k], z[k], it[k]);
         }
         println!("cpu {cpu} s for {steps} steps; v = {:?}, kinematic −ωRβ/2 = {:e}", drift_velocity(t, z, 5), -2.0 * b.contour.radius() * tilt / 2.0);
+    }
+
+    /// Diagnostic of the lateral mode (docs/fem-shell.md §9.3, `--ignored`; env `STEPS`,
+    /// `TILT`, `ANGLE`, `ROD`): per step z̄, the largest |z(σ, 0)| on the centre line and
+    /// the largest |u_z| of the interlayer history; at the end the centre-line profile
+    /// z(σ, 0) and the history's u_z, flag along the first row.
+    #[test]
+    #[ignore]
+    fn lateral_mode_study() {
+        let env = |k: &str, d: f64| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
+        let (steps, tilt, angle, rod) = (env("STEPS", 60.0) as usize, env("TILT", 0.0), env("ANGLE", ANGLE), env("ROD", 32.0) as usize);
+        let solved = belt(0.0).solve(rod, 2, newton()).unwrap();
+        let mut r = solved.runoff(&run(0.0, tilt, 1, angle), stepping()).unwrap();
+        r.ramp().unwrap();
+        let c0 = cpu_seconds();
+        let sigma = r.stepping.assembler().mesh().sigma_nodes().to_vec();
+        let centre = |r: &RunoffRun| sigma.iter().map(|&s| r.stepping.assembler().field_at(r.stepping.unknowns(), Field::Z, s, 0.0).unwrap()[0]).collect::<Vec<_>>();
+        let layer = |r: &RunoffRun| r.stepping.history().term(crate::shell::kernel::INTERLAYER).unwrap().clone();
+        for n in 1..=steps {
+            let rep = r.stepping.step(r.dt).unwrap();
+            let z = centre(&r);
+            let h = layer(&r);
+            let (rows, cols) = h.shape();
+            let uz = (0..rows).flat_map(|i| (0..cols).map(move |j| (i, j))).fold(0.0_f64, |m, (i, j)| m.max(h.get(i, j)[2].abs()));
+            println!("step {n:3} it {:2} zbar {:+.3e} max|z(s,0)| {:.3e} max|u_z| {:.3e}", rep.newton.iterations, lateral_offset(&r.stepping), z.iter().fold(0.0_f64, |m, v| m.max(v.abs())), uz);
+        }
+        println!("cpu {} s for {steps} steps", cpu_seconds() - c0);
+        for (s, z) in sigma.iter().zip(centre(&r)) {
+            println!("node {s:.4} z {z:+.3e}");
+        }
+        let h = layer(&r);
+        for j in 0..h.shape().1 {
+            let st = h.get(0, j);
+            println!("point {:.4} u {:+.3e} {:+.3e} {:+.3e} z_n {:+.3e} flag {}", h.column_sigma()[j], st[0], st[1], st[2], st[4], st[10]);
+        }
     }
 }

@@ -129,6 +129,14 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = time;
         0.0
     }
+    /// The components of `term`'s state that the advection keeps between the values of
+    /// the two points bracketing the foot (a transported quantity carried from step to
+    /// step by its own recursion, e.g. the interlayer's u; [`crate::surface::history`]).
+    /// Default: none (plain cubic interpolation of every component).
+    fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
+        let _ = term;
+        0..0
+    }
 }
 
 /// The evaluation state: time, step and the (advected) history the densities read.

@@ -19,6 +19,19 @@
 //! Courant number cΔt/h. A shift by a whole number of points on a uniform arrangement is
 //! exact; points at the same σ (element edges of a Simpson or trapezoidal rule) count once,
 //! with their mean, in the interpolation.
+//!
+//! **Bounded components** ([`SurfaceKernel::bounded_history`]): a component that the
+//! kernel carries from step to step by its own recursion (h_{n+1} = h̃_n + increment, the
+//! interlayer's u) is clipped to the range of its values at the two points bracketing
+//! the foot (the quasi-monotone semi-Lagrangian scheme of Bermejo & Staniforth 1992).
+//! On a non-uniform arrangement the cubic Lagrange weights are not bounded by 1: with
+//! the next spacing downstream short (x_{k+2} − x_{k+1} ≪ x_{k+1} − x_k) the point's own
+//! weight exceeds 1 and a state that is re-interpolated at the same place every step
+//! grows geometrically (docs/fem-shell.md §9.3: 1.6 per step at a contact exit next to
+//! an element of 1/6 the length). Clipped, max|h̃| ≤ max|h| over the row for any
+//! spacing and shift; where the field is smooth and monotone across the bracket the
+//! clip is inactive and the cubic's accuracy is kept; across a jump (u released to 0 at
+//! a contact exit) it removes the overshoot.
 
 use super::assembly::{Evaluation, SurfaceAssembler, SurfaceKernel};
 use super::SurfaceError;
@@ -41,6 +54,8 @@ pub struct TermStates {
     groups: Vec<Vec<usize>>,
     /// (row · columns + column) · width + k.
     values: Vec<f64>,
+    /// Components clipped to the bracketing values in the advection.
+    bounded: std::ops::Range<usize>,
 }
 
 impl TermStates {
@@ -102,7 +117,11 @@ impl TermStates {
             let ks = stencil.map(|k| k.rem_euclid(n as isize) as usize);
             for row in 0..self.rows {
                 for c in 0..self.width {
-                    let v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
+                    let mut v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
+                    if self.bounded.contains(&c) {
+                        let (a, b) = (mean(row, ks[1], c), mean(row, ks[2], c));
+                        v = v.clamp(a.min(b), a.max(b));
+                    }
                     out.values[(row * self.columns + column) * self.width + c] = v;
                 }
             }
@@ -135,7 +154,7 @@ impl SurfaceHistory {
             let [rs, rz] = term.rule;
             let (per_sigma, per_zeta) = (rs.points().len(), rz.points().len());
             let (columns, rows) = (mesh.sigma_elements() * per_sigma, mesh.zeta_elements() * per_zeta);
-            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history] };
+            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t) };
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 for point in asm.points(e, t, time, 0.0) {
