@@ -799,7 +799,9 @@ pub struct FemSettings {
     /// complementarity per friction point and a mesh fitted to the located transitions
     /// (docs/fem-drive.md §12) — or `paper-d` — Paper D's fixed topology with prescribed
     /// stick→slip points iterated until no stick zone exceeds Coulomb's bound (spec
-    /// §3.5, docs/cosserat-drive.md). Default absent = `semismooth`.
+    /// §3.5, docs/cosserat-drive.md) — or `auto`: Paper D's on a string, the semismooth
+    /// fit where that fails (a stated warning) and on a Cosserat rod. Default absent =
+    /// `auto`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub steady_scheme: Option<SteadyScheme>,
     /// The FE's normal contact in the direct steady solve of a one-pulley Cosserat scene
@@ -828,9 +830,14 @@ pub enum NormalContact {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "kebab-case")]
 pub enum SteadyScheme {
+    /// The scheme by the belt: Paper D's on the string's loop — its fronts converge at
+    /// order ≈ 2 where the semismooth fit's stall at ≈ 0.5 (docs/fem-drive.md §12) —
+    /// with the semismooth fit as the stated fallback when it fails; the semismooth fit on
+    /// the Cosserat rod's loop.
+    #[default]
+    Auto,
     /// Coulomb complementarity per friction point (semismooth Newton), mesh fitted to
     /// the located contact boundaries and transitions.
-    #[default]
     Semismooth,
     /// Paper D: fixed topology with prescribed stick→slip points and a scalar root find
     /// on the matching condition.

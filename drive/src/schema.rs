@@ -261,7 +261,7 @@ pub(crate) const FEM: &[Field] = &[
     opt("steady_tolerance", Kind::Number, "steady-state threshold per radian of driver rotation"),
     opt(
         "steady_scheme",
-        Kind::Choice { what: "steady scheme", variants: &["semismooth", "paper-d"] },
+        Kind::Choice { what: "steady scheme", variants: &["auto", "semismooth", "paper-d"] },
         "how the steady FE finds its stick and slip zones",
     ),
     opt(

@@ -82,6 +82,13 @@ pub struct Assembler<const N: usize = NDOF, K: ElementKernel<N> + ?Sized = dyn K
     augmented: Vec<[bool; 2]>,
 }
 
+// by hand: the kernel is shared (`Arc`), so no `K: Clone` bound as `derive` would add
+impl<const N: usize, K: ElementKernel<N> + ?Sized> Clone for Assembler<N, K> {
+    fn clone(&self) -> Self {
+        Assembler { mesh: self.mesh.clone(), dofs: self.dofs.clone(), kernel: Arc::clone(&self.kernel), rows: self.rows.clone(), cols: self.cols.clone(), diagonal: self.diagonal.clone(), augmented: self.augmented.clone() }
+    }
+}
+
 /// Energy, gradient and Hessian values (in the order of [`Assembler::pattern`]).
 #[derive(Debug, Clone)]
 pub struct Assembled {

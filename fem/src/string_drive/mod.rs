@@ -96,9 +96,11 @@ pub struct DriveSettings {
     /// does not apply).
     pub max_fits: usize,
     /// How the direct steady solve finds the stick and slip zones after its load
-    /// continuation (the scene's `fem.steady_scheme`): the semismooth fit (default,
-    /// docs/fem-drive.md §12) or Paper D's fixed topology ([`steady::SteadyScheme`];
-    /// spec §3.5). Not read by the transient.
+    /// continuation (the scene's `fem.steady_scheme`): the semismooth fit
+    /// (docs/fem-drive.md §12), Paper D's fixed topology (spec §3.5), or by the belt
+    /// (default: Paper D's on the string with the semismooth fit as fallback, the
+    /// semismooth fit on the Cosserat rod; [`steady::SteadyScheme`]). Not read by the
+    /// transient.
     pub steady_scheme: steady::SteadyScheme,
     /// The normal contact of the direct steady solve of a one-pulley scene (the scene's
     /// `fem.contact`, docs/fem-cosserat.md §12.5): the penalty (default) or the
@@ -128,7 +130,7 @@ impl Default for DriveSettings {
             tangential_penalty_factor: 300.0,
             max_newton_iterations: 40,
             max_fits: 30,
-            steady_scheme: steady::SteadyScheme::Semismooth,
+            steady_scheme: steady::SteadyScheme::Auto,
             normal_contact: steady::NormalContact::Penalty,
             contact_tolerance: 1e-3,
         }

@@ -134,6 +134,14 @@ pub(super) struct SteadyFitData<'a, K: ?Sized> {
     pub grading: Option<crate::mesh::Grading>,
 }
 
+// by hand: references and numbers only, so no `K: Copy` bound as `derive` would add
+impl<K: ?Sized> Clone for SteadyFitData<'_, K> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<K: ?Sized> Copy for SteadyFitData<'_, K> {}
+
 /// The steady state as a [`Fitted`]: the breakpoints are the contact boundaries and the
 /// stick→slip transitions (docs/fem-drive.md §12); a refit splits the node at each
 /// fitted transition into its stick and slip halves.

@@ -50,6 +50,7 @@ pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
+use paper_d::Resolve;
 pub use paper_d::{PaperDReport, SteadyScheme};
 use paper_d::PaperD;
 pub use semismooth::*;
@@ -86,6 +87,13 @@ pub struct SteadyReport {
     /// its outer iterations and final matching residual.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub paper_d: Option<PaperDReport>,
+    /// The scheme that found the stick and slip zones (`paper-d` or `semismooth`; the
+    /// scene's `fem.steady_scheme` resolved, `SteadyScheme::resolved`, and `semismooth`
+    /// after Paper D's failure under `auto`).
+    pub scheme: SteadyScheme,
+    /// Why Paper D's scheme, chosen by `auto`, failed before the semismooth fit took over.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paper_d_failure: Option<String>,
     /// The augmented-Lagrangian outer loop of the normal contact (`fem.contact` =
     /// `augmented-lagrangian`, docs/fem-cosserat.md §12.5).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -102,6 +110,13 @@ struct State<const N: usize, K: LayoutElement<N> + ?Sized> {
     asm: Assembler<N, K>,
     x: Vec<f64>,
     results: Vec<PointResult>,
+}
+
+// by hand: the kernel is shared, so no `K: Clone` bound as `derive` would add
+impl<const N: usize, K: LayoutElement<N> + ?Sized> Clone for State<N, K> {
+    fn clone(&self) -> Self {
+        State { rho: self.rho, asm: self.asm.clone(), x: self.x.clone(), results: self.results.clone() }
+    }
 }
 
 /// Peak refinement of the two-pulley steady drive's grading towards its contact edges
@@ -222,13 +237,29 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
     let element = PI * r / arc_elements as f64;
-    if drive_settings.steady_scheme == SteadyScheme::PaperD {
-        // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`)
-        let scheme = PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, arc_weight, mu, load_torque + damping * omega1);
-        let (solved, pd, iterations) = scheme.run()?;
-        state = solved;
-        report.newton_iterations += iterations;
-        report.paper_d = Some(pd);
+    let scheme = drive_settings.steady_scheme.resolved(kernel.friction_normal(), settings.contact_fitting);
+    report.scheme = scheme;
+    if scheme == SteadyScheme::PaperD {
+        // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`); chosen
+        // by the belt, its failure falls back to the semismooth fit from the same state
+        let fallback = (drive_settings.steady_scheme == SteadyScheme::Auto).then(|| state.clone());
+        // timed as the fitting it replaces (its fixed-topology solves in their own phases),
+        // each of them a fitting pass (`PaperD::solve_at`)
+        let run = numerics::phases::timed(numerics::phases::Phase::Fitting, || PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, arc_weight, mu, load_torque + damping * omega1).run());
+        match (run, fallback) {
+            (Ok((solved, pd, iterations)), _) => {
+                state = solved;
+                report.newton_iterations += iterations;
+                report.paper_d = Some(pd);
+            }
+            (Err(e @ FemError::PaperDFailed { .. }), Some(start)) => {
+                report.warnings.push(format!("Paper D's fixed-topology scheme, the string drive's default, failed ({e}); the result is the semismooth fit's, whose stick→slip fronts converge at order ≈ 0.5 only (docs/fem-drive.md §12)"));
+                report.scheme = SteadyScheme::Semismooth;
+                report.paper_d_failure = Some(e.to_string());
+                state = fit_steady::<N, P, E, K>(start, fit_data, settings, drive_settings, element, &mut report)?;
+            }
+            (Err(e), _) => return Err(e),
+        }
     } else if settings.contact_fitting {
         state = fit_steady::<N, P, E, K>(state, fit_data, settings, drive_settings, element, &mut report)?;
     }

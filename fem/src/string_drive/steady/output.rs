@@ -100,7 +100,11 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
     let per_element = view_points(&state, params, length, &kernel);
     let view = super::super::DriveSolution::new(base, &per_element, summary.clone());
     let mut terms = kernel.term_labels(&TermParams { penalty: None, ..params });
-    terms.push(format!("Coulomb contact, direct steady state (semismooth Newton, μ = {mu}, P_γ = {penalty:.6e} N/m², friction on the nodes)"));
+    let zones = match report.scheme {
+        SteadyScheme::PaperD => "stick and slip zones by Paper D's fixed topology",
+        _ => "stick and slip zones by the semismooth fit",
+    };
+    terms.push(format!("Coulomb contact, direct steady state (semismooth Newton, {zones}, μ = {mu}, P_γ = {penalty:.6e} N/m², friction on the nodes)"));
     terms.push(format!("driven load M₂ = {load_torque} N·m, d₂ = {damping} N·m·s"));
     if problem.effects.inertia {
         terms.push(format!("transport inertia (ρ = {} kg/m)", problem.belt.mass_per_length));

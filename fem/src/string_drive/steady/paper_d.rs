@@ -33,6 +33,23 @@ use super::*;
 
 pub use drive::scene::SteadyScheme;
 
+/// The scheme a steady loop runs (`fem.steady_scheme` resolved).
+pub(super) trait Resolve {
+    /// `auto` by the belt's friction normal: Paper D's on the string (nodal normal) when
+    /// the mesh may be fitted, else the semismooth fit; a named scheme as it is.
+    fn resolved(self, normal: FrictionNormal, fitting: bool) -> SteadyScheme;
+}
+
+impl Resolve for SteadyScheme {
+    fn resolved(self, normal: FrictionNormal, fitting: bool) -> SteadyScheme {
+        match self {
+            SteadyScheme::Auto if normal == FrictionNormal::Nodal && fitting => SteadyScheme::PaperD,
+            SteadyScheme::Auto => SteadyScheme::Semismooth,
+            named => named,
+        }
+    }
+}
+
 /// Work and outcome of Paper D's scheme (in the run's `options.drive.report.paper_d`).
 #[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
 pub struct PaperDReport {
@@ -236,6 +253,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 breaks.extend(span_contact_breaks(&contour, &zones, 0.5 * arc_element));
             }
             let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
+            let zones = zones_on_nodes(&zones, &mesh);
             let asm = Assembler::with_kernel(mesh, d.kernel.clone());
             let points = self.points(&asm, at, &zones);
             let mut x = crate::static_homotopy::transfer(&sol, &asm);
@@ -251,6 +269,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             })?;
             *self.newton_iterations.borrow_mut() += n.iterations;
             self.report.borrow_mut().auxiliary_solves += 1;
+            numerics::phases::count(numerics::phases::Step::FittingPass, 1);
             let results = prob.evaluate(&x, false).map(|e| e.results).unwrap_or_default();
             let st = State { asm, x, results, rho: self.solved.borrow()[0].state.rho };
             sol = solution(&st, d);

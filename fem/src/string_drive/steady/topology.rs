@@ -200,6 +200,22 @@ pub fn contact_side_halves(points: &mut [FrictionPoint], zones: &[(Pulley, f64, 
     }
 }
 
+/// The contact zones `zones` (pulley, σ_start, σ_end) with each boundary moved to the
+/// nearest node of `mesh`: the node [`contact_side_halves`] makes the boundary's half.
+/// A boundary the mesh was given as a breakpoint is a node already and stays; one that
+/// [`Mesh::graded`] dropped (within 2 % of an element of a region end or of another
+/// breakpoint) sits next to the node that took its place. Left unmoved, no point would
+/// be its half and the node beside it would be whole — on its free side a free point
+/// (τ = 0) whose hat halves the friction of the last contact element (measured on
+/// `string-drive-exudyn` by Paper D at 64–128 elements: the driven exit 0.19 mm before
+/// the arc's end node, the slip zone's friction short by ≈ 8 N, its stick arc 10 % off;
+/// docs/fem-drive.md §12, "Seventh round").
+pub fn zones_on_nodes(zones: &[(Pulley, f64, f64)], mesh: &Mesh) -> Vec<(Pulley, f64, f64)> {
+    let lc = mesh.contour().length();
+    let nearest = |s: f64| mesh.node_sigmas().iter().copied().min_by(|&a, &b| crate::fitting::periodic_diff(a, s, lc).abs().total_cmp(&crate::fitting::periodic_diff(b, s, lc).abs())).unwrap_or(s);
+    zones.iter().map(|&(pulley, start, end)| (pulley, nearest(start), nearest(end))).collect()
+}
+
 /// Whether a Paper D point of the string lies in its pulley's prescribed contact zone
 /// (`zones`: per pulley σ_start, σ_end along σ, as [`contact_side_halves`] takes them): a
 /// contact boundary's half ([`FrictionPoint::boundary`]), or a node strictly inside the
@@ -242,4 +258,30 @@ pub fn span_contact_breaks(contour: &Contour, zones: &[(Pulley, f64, f64)], h_ma
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A zone boundary the mesh took as a breakpoint stays; one `Mesh::graded` dropped
+    /// (within 2 % of an element of a region end) moves to the node that took its place,
+    /// so the boundary is a node and [`contact_side_halves`] makes that node its half.
+    #[test]
+    fn zone_boundaries_move_to_the_nodes_that_took_them() {
+        let contour = Contour::new(0.1, 0.1 * PI).unwrap();
+        let (a0, a1) = contour.region_bounds(Region::DrivenArc);
+        let h = (a1 - a0) / Mesh::new(contour, 128, 1.0).unwrap().elements().iter().filter(|e| e.region == Region::DrivenArc).count() as f64;
+        // the exit 1 % of an element before the arc's end (dropped), the entry 0.3 of an
+        // element before its start, on the span (kept)
+        let (start, end) = (a0 - 0.3 * h, a1 - 0.01 * h);
+        let (mesh, used) = Mesh::graded(contour, 128, 1.0, &[start, end], None).unwrap();
+        assert_eq!(used.len(), 1, "the exit is dropped, the entry kept: {used:?}");
+        let zones = zones_on_nodes(&[(Pulley::Driven, start, end)], &mesh);
+        assert_eq!(zones[0].1, start, "a node already");
+        assert_eq!(zones[0].2, a1, "the arc's end node");
+        let lc = contour.length();
+        let on_node = |s: f64| mesh.node_sigmas().iter().any(|&n| crate::fitting::periodic_diff(n, s, lc).abs() < 1e-15);
+        assert!(on_node(zones[0].1) && on_node(zones[0].2));
+    }
 }
