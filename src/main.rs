@@ -564,7 +564,7 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
     RunResult {
         scene: scene.name.clone(),
         method: method.to_string(),
-        converged: run.not_steady.is_none() && run.unfitted.is_none(),
+        converged: run.not_steady.is_none() && !run.unfitted.as_ref().is_some_and(|u| u.not_converged()),
         summary: run.summary.clone(),
         cost: Cost {
             wall_seconds: run.cost.wall_seconds,
@@ -677,7 +677,7 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     if let Some(n) = &run.not_steady {
         println!("  NOT CONVERGED: {n}; the numbers above are the last state of the transient");
     }
-    if run.unfitted.is_some() {
+    if run.unfitted.as_ref().is_some_and(|u| u.not_converged()) {
         println!("  NOT CONVERGED: the contact fitting (see the warning above); the numbers above are the best fitted solution's");
     }
     if !run.terms.is_empty() {

@@ -236,6 +236,16 @@ pub struct Unfitted {
     pub failure: Option<String>,
 }
 
+impl Unfitted {
+    /// True if the fitting stopped without a failed pass (its pass limit): the result is
+    /// then no converged answer. After a failed pass the result is the last converged
+    /// solve, stated only (the documented coarse-mesh case, `string-hanging-very-slack`
+    /// with `string-gauss` at 128 elements, which the gate keeps as a run).
+    pub fn not_converged(&self) -> bool {
+        self.failure.is_none()
+    }
+}
+
 impl std::fmt::Display for Unfitted {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "the contact fitting did not converge: after {} pass(es) ", self.passes)?;

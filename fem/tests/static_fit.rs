@@ -43,6 +43,8 @@ fn a_fitting_that_does_not_converge_is_stated() {
     let (converged, _, _) = fit_record(&run);
     assert!(!converged);
     let u = run.unfitted.as_ref().expect("an unconverged fitting is stated");
+    // stopped at its pass limit, not by a failed pass: no converged answer
+    assert!(u.not_converged() && u.failure.is_none(), "{u:?}");
     let m = u.last_move.expect("measured");
     assert!(m > u.tolerance && m < 1e-4, "{u:?}");
     assert!((u.tolerance - 1e-9 * 1.40265).abs() < 1e-14, "{u:?}");

@@ -136,8 +136,9 @@ pub struct Solved {
     pub not_steady: Option<NotSteady>,
     /// `Some` for a static FE run whose contact fitting did not converge (the solution is
     /// the best fitted one, its boundaries off their nodes by more than the tolerance);
-    /// treated as `not_steady`: [`execute`] turns it into [`RunError::Unfitted`], `solve`
-    /// prints it and writes `"converged": false`.
+    /// stopped at its pass limit ([`fem::fitting::Unfitted::not_converged`]), treated as
+    /// `not_steady`: [`execute`] turns it into [`RunError::Unfitted`], `solve` prints it
+    /// and writes `"converged": false`; ended by a failed pass, a stated warning only.
     pub unfitted: Option<fem::fitting::Unfitted>,
 }
 
@@ -794,7 +795,7 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
         if let Some(n) = s.not_steady {
             return Err(RunError::NotSteady(n));
         }
-        if let Some(u) = s.unfitted {
+        if let Some(u) = s.unfitted.filter(fem::fitting::Unfitted::not_converged) {
             return Err(RunError::Unfitted(u));
         }
         s.summary.check_finite()?;
