@@ -523,6 +523,9 @@ fn run_solve(args: &SolveArgs) -> Result<()> {
     if let Some(n) = &run.not_steady {
         eprintln!("warning: {n}");
     }
+    if let Some(u) = &run.unfitted {
+        eprintln!("warning: {u}");
+    }
     if let Some(path) = &args.json {
         let result = result_json(&scene, &name, disc, &run, args.fields)?;
         write_output(path, &result)?;
@@ -561,7 +564,7 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
     RunResult {
         scene: scene.name.clone(),
         method: method.to_string(),
-        converged: run.not_steady.is_none(),
+        converged: run.not_steady.is_none() && !run.unfitted.as_ref().is_some_and(|u| u.not_converged()),
         summary: run.summary.clone(),
         cost: Cost {
             wall_seconds: run.cost.wall_seconds,
@@ -673,6 +676,9 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     }
     if let Some(n) = &run.not_steady {
         println!("  NOT CONVERGED: {n}; the numbers above are the last state of the transient");
+    }
+    if run.unfitted.as_ref().is_some_and(|u| u.not_converged()) {
+        println!("  NOT CONVERGED: the contact fitting (see the warning above); the numbers above are the best fitted solution's");
     }
     if !run.terms.is_empty() {
         println!("  terms assembled: {}", run.terms.join(", "));

@@ -64,6 +64,25 @@ fn transient_cut_off_is_a_failed_run() {
     }
 }
 
+/// `cosserat-hanging` at 64 elements, where the contact fitting does not converge (its
+/// boundaries still move 6.0e-5 m after 2 × 10 passes, the tolerance 1.4e-9 m): the
+/// harness run fails as a transient cut off does, with the numbers (it used to count as
+/// converged, the non-convergence only in its options).
+#[test]
+fn unconverged_contact_fitting_is_a_failed_run() {
+    let scene = Scene::from_path(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cosserat-hanging.json")).unwrap();
+    let method = FemFormulation { name: "cosserat-gauss".into(), penalty: None };
+    let run = execute(&method, &scene, Discretisation::Elements(64), 64);
+    match &run.outcome {
+        Err(e @ RunError::Unfitted(u)) => {
+            assert_eq!(e.kind(), "not_converged");
+            assert!(u.last_move.is_some_and(|m| m > 1e3 * u.tolerance), "{u:?}");
+            assert!(e.to_string().contains("contact fitting did not converge"), "{e}");
+        }
+        other => panic!("expected Unfitted, got {:?}", other.as_ref().map(|d| &d.summary)),
+    }
+}
+
 /// The solvers' errors reach the harness as values, not strings (issue 11 item 7): an
 /// overloaded drive (M₂ = 1000 N·m against a capacity of ~21 N·m) fails in the FE with
 /// `FemError::FrictionCapacityExceeded` carrying both torques, and in the BVP with the

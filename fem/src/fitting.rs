@@ -142,6 +142,9 @@ pub struct FitRules {
     /// A fitting that does not converge returns the solution of the smallest measure
     /// (among those measured against their fitted positions).
     pub keep_best: bool,
+    /// The fitted meshes' tie tolerance of their element distribution, in elements
+    /// ([`Mesh::regraded`]).
+    pub tie: f64,
 }
 
 /// How a fitting ended.
@@ -205,6 +208,55 @@ impl FitReport {
             FitEnd::Refit(e) => self.fit_failure = Some(e.to_string()),
             FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
         }
+    }
+}
+
+impl FitReport {
+    /// The fitting as a run states it when it did not converge: `None` if it met its
+    /// `tolerance` (m) or never ran (no passes and no failure).
+    pub fn unfitted(&self, tolerance: f64) -> Option<Unfitted> {
+        let ran = self.fits > 0 || self.fit_failure.is_some();
+        (ran && !self.fit_converged).then(|| Unfitted { passes: self.fits, last_move: self.fit_last_move, tolerance, failure: self.fit_failure.clone() })
+    }
+}
+
+/// A contact fitting that ended without meeting its tolerance: the result is the best
+/// fitted solution, with its contact boundaries up to `last_move` off their nodes — not
+/// a converged answer (stated as a warning; `"converged": false` in the result, a failed
+/// run in a study, docs/fem-string.md §5).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Unfitted {
+    /// Fitting passes done.
+    pub passes: usize,
+    /// The largest boundary move of the returned solution, m (`None`: never measured).
+    pub last_move: Option<f64>,
+    /// The tolerance it did not meet, m.
+    pub tolerance: f64,
+    /// Why a fitting pass failed, if one did.
+    pub failure: Option<String>,
+}
+
+impl Unfitted {
+    /// True if the fitting stopped without a failed pass (its pass limit): the result is
+    /// then no converged answer. After a failed pass the result is the last converged
+    /// solve, stated only (the documented coarse-mesh case, `string-hanging-very-slack`
+    /// with `string-gauss` at 128 elements, which the gate keeps as a run).
+    pub fn not_converged(&self) -> bool {
+        self.failure.is_none()
+    }
+}
+
+impl std::fmt::Display for Unfitted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "the contact fitting did not converge: after {} pass(es) ", self.passes)?;
+        match self.last_move {
+            Some(m) => write!(f, "a contact boundary still moved {} m, above the tolerance {} m", numerics::Sig(m), numerics::Sig(self.tolerance))?,
+            None => write!(f, "no boundary was measured against its node (tolerance {} m)", numerics::Sig(self.tolerance))?,
+        }
+        if let Some(e) = &self.failure {
+            write!(f, "; a pass failed: {e}")?;
+        }
+        write!(f, "; the result is the best fitted solution, its contact boundaries up to that far from their nodes")
     }
 }
 
@@ -286,7 +338,7 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
 
         // refit and accept, on the accepted mesh's topology (a loop's or an open mesh's
         // regions and elements per region: the same unknowns and sparsity pattern)
-        let (mesh, _) = problem.mesh().regraded(&next, problem.grading());
+        let (mesh, _) = problem.mesh().regraded(&next, problem.grading(), rules.tie);
         match (problem.refit(mesh, &next), rules.limit) {
             (Ok(()), limit) => {
                 out.passes += 1;
@@ -466,6 +518,7 @@ mod tests {
             limit: MoveLimit::Step(0.01),
             stall: None,
             keep_best: true,
+            tie: 1e-3,
         }
     }
 
@@ -478,6 +531,7 @@ mod tests {
             stall: Some(Stall { gain: 0.9, patience: 4, below: 1e-3 }),
             keep_best: false,
             max_passes: 30,
+            tie: 0.0,
             ..static_rules()
         }
     }

@@ -154,6 +154,10 @@ pub struct FemRun {
     /// Stated warnings about the result (e.g. an unresolved bending layer,
     /// docs/fem-rod.md §10); empty for a clean result.
     pub notes: Vec<String>,
+    /// `Some` for a static run whose contact fitting did not converge (docs/fem-string.md
+    /// §5): the result is the best fitted solution, not a converged one (also one of the
+    /// `notes`); `None` for the other analyses and a converged or unfitted-by-option run.
+    pub unfitted: Option<fitting::Unfitted>,
 }
 
 /// Names of the registered element formulations: the built-in ones (default first), then
@@ -355,6 +359,10 @@ fn solve_static<const N: usize, K: formulation::layout::LayoutElement<N> + ?Size
     // unresolved bending layer a warning (docs/fem-rod.md §10)
     let mut notes = admissibility::check(&solution)?;
     notes.extend(warnings);
+    // a contact fitting that did not meet its tolerance: stated, and not converged
+    let fitted = settings.contact_fitting && data.penalty.is_some();
+    let unfitted = if fitted { report.fit.unfitted(settings.fit_tolerance * contour.length()) } else { None };
+    notes.extend(unfitted.as_ref().map(ToString::to_string));
     let summary = solution.summary();
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
@@ -384,7 +392,7 @@ fn solve_static<const N: usize, K: formulation::layout::LayoutElement<N> + ?Size
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None, notes })
+    Ok(FemRun { view: Box::new(solution), summary, stats, options, terms, history: None, notes, unfitted })
 }
 
 #[cfg(test)]

@@ -142,12 +142,19 @@ impl Mesh {
     /// # Errors
     /// As [`Mesh::new`].
     pub fn graded(contour: Contour, elements: usize, arc_weight: f64, breakpoints: &[f64], grading: Option<Grading>) -> Result<(Mesh, Vec<f64>), FemError> {
-        Ok(Mesh::new(contour, elements, arc_weight)?.regraded(breakpoints, grading))
+        Ok(Mesh::new(contour, elements, arc_weight)?.regraded(breakpoints, grading, 0.0))
     }
 
     /// [`Mesh::graded`] on this mesh's topology (its regions and elements per region,
-    /// open or closed; the node positions of `self` do not matter).
-    pub fn regraded(&self, breakpoints: &[f64], grading: Option<Grading>) -> (Mesh, Vec<f64>) {
+    /// open or closed; the node positions of `self` do not matter). Pieces whose
+    /// remainders of the largest-remainder distribution lie within `tie` elements of each
+    /// other are tied: the extra element goes to the first of them, not to the longer by
+    /// a few nm — the mirror-image end pieces of the upper span of a symmetric loop
+    /// fitted to its contact boundaries would otherwise get it by the round-off of their
+    /// lengths, and a fitting that moves their cuts by nm flips it between them, and the
+    /// discrete solution with it (the static fit's `tie`, docs/fem-string.md §5); 0: the
+    /// largest remainder decides, however small the difference.
+    pub fn regraded(&self, breakpoints: &[f64], grading: Option<Grading>, tie: f64) -> (Mesh, Vec<f64>) {
         let (base, contour) = (self, self.contour);
         let elements = self.elements.len();
         let mut nodes = Vec::with_capacity(elements + 1);
@@ -182,14 +189,7 @@ impl Mesh {
             let total = measure(b) - measure(a);
             let spare = (m - pieces) as f64;
             let ideal: Vec<f64> = lengths.iter().map(|l| spare * l / total).collect();
-            let mut counts: Vec<usize> = ideal.iter().map(|x| 1 + x.floor() as usize).collect();
-            let mut order: Vec<usize> = (0..pieces).collect();
-            order.sort_by(|&i, &j| (ideal[j] - ideal[j].floor()).total_cmp(&(ideal[i] - ideal[i].floor())));
-            let mut i = 0;
-            while counts.iter().sum::<usize>() < m {
-                counts[order[i % pieces]] += 1;
-                i += 1;
-            }
+            let counts = apportion(&ideal, m, tie);
             for p in 0..pieces {
                 let (pa, pb) = (edges[p], edges[p + 1]);
                 let n = counts[p];
@@ -376,6 +376,23 @@ fn invert(measure: &dyn Fn(f64) -> f64, target: f64, mut a: f64, mut b: f64) -> 
     0.5 * (a + b)
 }
 
+/// `m` elements over pieces with the ideal spare counts `ideal` (the counts beyond the
+/// one every piece has; Σ ideal = m − pieces): 1 + ⌊ideal⌋ each, the rest by largest
+/// remainders. Remainders within `tie` (elements) of the largest are a tie, given to the
+/// piece of the lowest index ([`Mesh::regraded`]).
+fn apportion(ideal: &[f64], m: usize, tie: f64) -> Vec<usize> {
+    let mut counts: Vec<usize> = ideal.iter().map(|x| 1 + x.floor() as usize).collect();
+    let mut remainder: Vec<f64> = ideal.iter().map(|x| x - x.floor()).collect();
+    while counts.iter().sum::<usize>() < m {
+        let largest = remainder.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let Some(k) = remainder.iter().position(|&r| r >= largest - tie) else { break };
+        counts[k] += 1;
+        // each piece gets at most one of the rest
+        remainder[k] = f64::NEG_INFINITY;
+    }
+    counts
+}
+
 /// Elements per region: proportional to the weighted lengths, ≥ 1 each, sum = `n`,
 /// symmetric (upper = lower span, driven = driver arc) — the left–right symmetry of the
 /// drive is kept by the mesh. For odd `n` the upper span gets the extra element.
@@ -394,6 +411,35 @@ mod tests {
 
     fn contour() -> Contour {
         Contour::new(0.08, 0.45).unwrap()
+    }
+
+    #[test]
+    fn mirror_pieces_keep_their_elements_through_a_tie() {
+        // the upper span of string-hanging at 256 elements (82 in the span) fitted to its
+        // two contact boundaries 14.679 mm from its ends: the two end pieces are equal
+        // up to ±3 nm; the extra element goes to the first piece for either sign (by
+        // their round-off it used to go to the longer one, flipping the mesh)
+        let c = contour();
+        let m0 = Mesh::new(c, 256, 1.0).unwrap();
+        let (a, b) = c.region_bounds(Region::UpperSpan);
+        let mut counts = Vec::new();
+        for d in [3e-9, -3e-9, 1e-12, -1e-12] {
+            let (m, used) = m0.regraded(&[a + 0.014679082, b - 0.014679082 + d], None, 1e-3);
+            assert_eq!(used.len(), 2);
+            let node = |s: f64| m.node_sigmas().iter().position(|&n| n == s).unwrap();
+            // elements of the left and the right end piece
+            let right_end = if b == c.length() { m.len() } else { node(b) };
+            let per = vec![node(used[0]) - node(a), right_end - node(used[1])];
+            counts.push(per);
+        }
+        assert!(counts.iter().all(|c| *c == counts[0]), "{counts:?}");
+        assert_eq!(counts[0][0], 4, "{counts:?}");
+        // a clear difference still decides by the remainders: 2.577 against 2.6 elements
+        assert_eq!(apportion(&[2.577, 73.823, 2.6], 82, 1e-3), vec![3, 75, 4]);
+        assert_eq!(apportion(&[2.6, 73.823, 2.577], 82, 1e-3), vec![4, 75, 3]);
+        assert_eq!(apportion(&[2.5775, 73.845, 2.5775], 82, 1e-3), vec![4, 75, 3]);
+        // without a tie tolerance a difference of 1e-9 elements decides
+        assert_eq!(apportion(&[2.577, 73.846 - 1e-9, 2.577 + 1e-9], 82, 0.0), vec![3, 75, 4]);
     }
 
     #[test]
@@ -514,7 +560,7 @@ mod tests {
             assert_eq!(m.locate(5.0), (n - 1, 1.0));
             assert_eq!(m.locate_left(0.0), (0, -1.0));
             let b = [0.5 + 0.05, 0.5 + 0.2];
-            let (g, used) = m.regraded(&b, Some(Grading { width: 0.003, ratio: 8.0 }));
+            let (g, used) = m.regraded(&b, Some(Grading { width: 0.003, ratio: 8.0 }), 0.0);
             assert!(g.is_open() && g.elements_per_region() == per && g.end_sigma() == m.end_sigma());
             if n >= 64 {
                 assert_eq!(used.len(), 2);

@@ -134,6 +134,12 @@ pub struct Solved {
     /// that reached what it solves for. [`execute`] turns `Some` into
     /// [`RunError::NotSteady`]; `solve` prints it and writes `"converged": false`.
     pub not_steady: Option<NotSteady>,
+    /// `Some` for a static FE run whose contact fitting did not converge (the solution is
+    /// the best fitted one, its boundaries off their nodes by more than the tolerance);
+    /// stopped at its pass limit ([`fem::fitting::Unfitted::not_converged`]), treated as
+    /// `not_steady`: [`execute`] turns it into [`RunError::Unfitted`], `solve` prints it
+    /// and writes `"converged": false`; ended by a failed pass, a stated warning only.
+    pub unfitted: Option<fem::fitting::Unfitted>,
 }
 
 /// How far a transient was from its steady state when `fem.max_steps` cut it off.
@@ -162,7 +168,7 @@ impl fmt::Display for NotSteady {
 /// Why a method produced no solution. The solvers' own errors are kept as values
 /// ([`RunError::Bvp`], [`RunError::Fem`]: match on them, or follow
 /// [`std::error::Error::source`]); their message is the solver's. Serialised as
-/// `{"kind": "not_applicable" | "not_yet_solvable" | "failed" | "not_steady", "message": "…"}`.
+/// `{"kind": "not_applicable" | "not_yet_solvable" | "failed" | "not_steady" | "not_converged", "message": "…"}`.
 #[derive(Debug, Clone, thiserror::Error)]
 pub enum RunError {
     /// The method has no model for this scene (e.g. a formulation for another belt
@@ -199,16 +205,21 @@ pub enum RunError {
     /// to compare (issue 12: it used to count as converged).
     #[error("{0}")]
     NotSteady(NotSteady),
+    /// A static FE run whose contact fitting did not converge: its best fitted solution
+    /// is no converged answer to compare, as a transient cut off is none.
+    #[error("{0}")]
+    Unfitted(fem::fitting::Unfitted),
 }
 
 impl RunError {
-    /// `not_applicable`, `not_yet_solvable`, `failed` or `not_steady`: the kind written
-    /// to JSON.
+    /// `not_applicable`, `not_yet_solvable`, `failed`, `not_steady` or `not_converged`:
+    /// the kind written to JSON.
     pub fn kind(&self) -> &'static str {
         match self {
             RunError::NotApplicable(_) => "not_applicable",
             RunError::NotYetSolvable(_) => "not_yet_solvable",
             RunError::NotSteady(_) => "not_steady",
+            RunError::Unfitted(_) => "not_converged",
             _ => "failed",
         }
     }
@@ -366,6 +377,7 @@ impl Method for BvpSolver {
             warnings: Vec::new(),
             history: None,
             not_steady: None,
+            unfitted: None,
         })
     }
 }
@@ -437,6 +449,7 @@ impl Method for FemFormulation {
             terms: run.terms,
             history: run.history.map(Into::into),
             not_steady,
+            unfitted: run.unfitted,
         })
     }
 }
@@ -781,6 +794,9 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
     let outcome = solved.and_then(|s| {
         if let Some(n) = s.not_steady {
             return Err(RunError::NotSteady(n));
+        }
+        if let Some(u) = s.unfitted.filter(fem::fitting::Unfitted::not_converged) {
+            return Err(RunError::Unfitted(u));
         }
         s.summary.check_finite()?;
         let samples = Samples::of_view(s.view.as_ref(), samples)?;

@@ -547,7 +547,7 @@ pub fn solve_layout<const N: usize, const X: usize, K: LayoutElement<N> + ?Sized
         elements: opts.elements,
         homotopy_steps: report.steps,
     };
-    Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history), notes: Vec::new() })
+    Ok(FemRun { view: Box::new(view), summary, stats, options, terms, history: Some(history), notes: Vec::new(), unfitted: None })
 }
 
 /// What both drive solvers start from (docs/fem-drive.md §3): the checked inputs μ, ω₁,
@@ -588,7 +588,10 @@ fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProble
     let data = problem.hanging(penalty);
     let contour = data.contour()?;
     let mesh = Mesh::new(contour, opts.elements, arc_weight)?;
-    let (start, report, _) = data.solve(mesh, kernel, settings)?;
+    // the start keeps the untied element distribution (tie 0): Paper D's fitted mesh
+    // ties its span end pieces within 2e-6 elements, so its result depends on the start's
+    // boundaries by nm (docs/fem-string.md §5)
+    let (start, report, _) = data.solve_with_tie(mesh, kernel, settings, 0.0)?;
     let s0 = start.summary();
     let t_static = s0.tension_upper_mid.unwrap_or(0.0).abs().max(s0.tension_lower_mid.unwrap_or(0.0).abs());
     let weight = problem.weight().unwrap_or(0.0);

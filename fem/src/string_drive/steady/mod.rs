@@ -297,6 +297,8 @@ fn fit_steady<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         // region transition, where `Mesh::fitted` keeps the transition node)
         stall: Some(Stall { gain: 0.9, patience: 4, below: 0.05 * element }),
         keep_best: false,
+        // the largest remainder decides (the steady fits are not symmetric)
+        tie: 0.0,
     };
     let mut fit = SteadyFit::<N, P, E, K>::new(state, data, report);
     let out = crate::fitting::fit(&mut fit, &rules);

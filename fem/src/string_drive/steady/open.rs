@@ -695,7 +695,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
             }
         }
     }
-    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes })
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes, unfitted: None })
 }
 
 /// The loop-frame solution seen on the open contour (docs/fem-cosserat.md §12.1): x

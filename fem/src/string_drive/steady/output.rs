@@ -131,7 +131,7 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
         elements: opts.elements,
         homotopy_steps: homotopy.steps + report.continuation_steps,
     };
-    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: warnings })
+    Ok(crate::FemRun { view: Box::new(view), summary, stats, options, terms, history: None, notes: warnings, unfitted: None })
 }
 
 /// Per element the point states the common view reads (docs/fem-drive.md §8): the
