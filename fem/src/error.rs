@@ -119,6 +119,23 @@ pub enum FemError {
         elements_needed: Option<usize>,
     },
 
+    /// A drive's self-check (docs/fem-drive.md §14): the torque the driven pulley takes
+    /// from the contact tractions must equal its load M₂ + d₂ω₂, the equation the solve
+    /// imposed. Off by more than [`crate::admissibility::TORQUE_BALANCE_TOLERANCE`] of the
+    /// load scale, the converged state is round-off, not a solution (e.g. an axial
+    /// stiffness of 1e50 N: tensions of 1e48 N cannot resolve a 13 N·m load).
+    #[error("self-check failed: the driven pulley's torque from the contact tractions is {} N·m against its load M₂ + d₂ω₂ = {} N·m (off by {} N·m, limit {} N·m = {} × the load scale |M₂| + |d₂ω₁| + ρgLR); the solution is not trustworthy: the scene's numbers (e.g. an axial stiffness of {} N against the load) lie beyond what double precision resolves", numerics::Sig(*.torque), numerics::Sig(*.load), numerics::Sig((*.torque - *.load).abs()), numerics::Sig(*.limit), numerics::Sig(crate::admissibility::TORQUE_BALANCE_TOLERANCE), numerics::Sig(*.axial_stiffness))]
+    TorqueBalance {
+        /// Torque on the driven pulley from the tractions, N·m.
+        torque: f64,
+        /// M₂ + d₂ω₂, N·m.
+        load: f64,
+        /// The admissible difference, N·m.
+        limit: f64,
+        /// The belt's axial stiffness EA, N (for the message).
+        axial_stiffness: f64,
+    },
+
     /// The belt rests on a pulley (the penalty carries contact force) but no contact zone
     /// could be located (docs/fem-rod.md §10): for a rod whose bending layer √(EI/N) is
     /// not small against R the belt does not wrap the pulley — a near point contact the
