@@ -44,7 +44,7 @@ pub enum FemError {
     },
 
     /// Newton's method did not converge at a homotopy point.
-    #[error("Newton did not converge at η = {eta} after {iterations} iterations: scaled update ‖Δ‖ = {update:.3e}, scaled residual ‖G‖ = {residual:.3e} (tolerance {tolerance:.1e}){}", if *.line_search_failed { "; the line search found no acceptable step" } else { "" })]
+    #[error("Newton did not converge at η = {} after {iterations} iterations: scaled update ‖Δ‖ = {update:.3e}, scaled residual ‖G‖ = {residual:.3e} (tolerance {tolerance:.1e}){}", numerics::Sig(*.eta), if *.line_search_failed { "; the line search found no acceptable step" } else { "" })]
     NewtonDiverged {
         /// Homotopy parameter.
         eta: f64,
@@ -72,7 +72,7 @@ pub enum FemError {
     },
 
     /// The homotopy step fell below its minimum.
-    #[error("homotopy stalled at η = {eta} (step {step:.2e} < minimum {min_step:.1e}) after {steps} accepted steps; last failure: {last_failure}")]
+    #[error("homotopy stalled at η = {} (step {step:.2e} < minimum {min_step:.1e}) after {steps} accepted steps; last failure: {last_failure}", numerics::Sig(*.eta))]
     HomotopyStalled {
         /// Last accepted η.
         eta: f64,
@@ -84,6 +84,19 @@ pub enum FemError {
         steps: usize,
         /// The last Newton failure.
         last_failure: String,
+    },
+
+    /// The static homotopy (weight on, then the loop lengthened to L) stalled: `at` says
+    /// which scene quantity it was switching on and how far it got, `hard` the scene's
+    /// numbers that make it hard and what to try (issue 12, "smaller ones").
+    #[error("{at}: {cause}; {hard}")]
+    StaticHomotopyStalled {
+        /// The phase of the path and how far it got.
+        at: String,
+        /// The scene's numbers that make it hard, and what to try.
+        hard: String,
+        /// The continuation's failure ([`FemError::HomotopyStalled`]).
+        cause: Box<FemError>,
     },
 
     /// The start of a continuation (its η = 0 problem) could not be solved, with the

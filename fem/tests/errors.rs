@@ -103,3 +103,27 @@ fn drive_torque_balance_is_checked() {
     let torque = run.summary.driven.unwrap().torque.unwrap();
     assert!((torque - 13.0).abs() < 1e-6 * 13.0, "{torque}");
 }
+
+/// A stalled static homotopy says which scene quantity it was switching on, the scene's
+/// numbers that make it hard and what to try, with significant digits (issue 12,
+/// "smaller ones", audit): `string-hanging` with R = 0.01 m at 32 elements used to say
+/// only "homotopy stalled at η = 0.6194416697474341 …".
+#[test]
+fn stalled_static_homotopy_names_the_scene_quantity() {
+    let mut s = scene("string-hanging");
+    s.drive.pulley_radius = 0.01;
+    let e = fem::solve_scene(&s, &opts(32)).err().expect("R = 0.01 m at 32 elements stalls");
+    let text = e.to_string();
+    println!("{text}");
+    match &e {
+        FemError::StaticHomotopyStalled { at, hard, cause } => {
+            assert!(at.contains("lengthening the loop"), "{at}");
+            assert!(hard.contains("L/L_geom") && hard.contains("R = 0.01 m") && hard.contains("--elements 64"), "{hard}");
+            assert!(matches!(**cause, FemError::HomotopyStalled { .. }), "{cause}");
+        }
+        other => panic!("expected StaticHomotopyStalled, got {other:?}"),
+    }
+    // no η or other number with more than six significant digits
+    let long_number = text.split(|c: char| !(c.is_ascii_digit() || c == '.')).any(|w| w.chars().filter(|c| c.is_ascii_digit()).count() > 9);
+    assert!(!long_number, "{text}");
+}
