@@ -161,7 +161,7 @@ pub fn check<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, 
         for (what, sigma) in [("first", z.sigma_start), ("last", z.sigma_end)] {
             let n = sol.axial_force(sigma);
             let limit = -weight_floor - EDGE_FORCE_TOLERANCE * scale;
-            if !(n >= limit) {
+            if n.is_nan() || n < limit {
                 return Err(inadmissible(p, format!("axial force at the {what} contact [N] (compressive: a belt pressed on the pulley needs N ≥ −ρgR)"), n, limit));
             }
         }
@@ -224,8 +224,8 @@ pub fn check_drive_torque(problem: &crate::FemProblem, summary: &drive::summary:
     let weight = problem.belt.mass_per_length * problem.effects.gravity.unwrap_or(0.0).abs() * problem.belt.length * problem.geometry.radius;
     let limit = TORQUE_BALANCE_TOLERANCE * (d.driven_torque.abs() + (d.driven_damping * d.driver_speed).abs() + weight);
     let off = (torque - load).abs();
-    // `!(off <= limit)` also catches a NaN torque or speed
-    if limit > 0.0 && !(off <= limit) {
+    // a NaN torque or speed fails too
+    if limit > 0.0 && (off.is_nan() || off > limit) {
         return Err(FemError::TorqueBalance { torque, load, limit, axial_stiffness: problem.belt.axial_stiffness });
     }
     Ok(())
