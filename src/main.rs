@@ -35,7 +35,7 @@ enum CliError {
     File(#[from] verification::files::WriteError),
     /// Two scenes of one `report` run with the same name (their reports would overwrite
     /// each other).
-    #[error("scene name `{name}` appears twice ({} and {}): each scene's report is written to a directory of its name; rename one", .first.display(), .second.display())]
+    #[error("scene name `{name}` appears twice ({} and {}; names that differ only in letter case count as one, as on a case-insensitive file system): each scene's report is written to a directory of its name; rename one", .first.display(), .second.display())]
     DuplicateSceneName { name: String, first: PathBuf, second: PathBuf },
     /// Scenes of a `report` run without a usable study (reports are written, exit 2).
     #[error("{} scene(s) without a usable study: {}", .0.len(), .0.join("; "))]
@@ -783,7 +783,7 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
             plan.reference = verification::reference::Reference::Richardson { formulation, levels };
         }
     }
-    plan.validate()?;
+    plan.validate_for(scene)?;
     Ok(plan)
 }
 
@@ -834,7 +834,7 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let files = scene_files(&args.inputs)?;
     let scenes: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
     for (i, (file, scene)) in scenes.iter().enumerate() {
-        if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name == scene.name) {
+        if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name.eq_ignore_ascii_case(&scene.name)) {
             return Err(CliError::DuplicateSceneName { name: scene.name.clone(), first: first.clone(), second: file.clone() }.into());
         }
     }
@@ -895,7 +895,7 @@ fn run_gate(args: &GateArgs) -> Result<bool> {
         .zip(&files)
         .map(|(scene, file)| {
             let plan = gate::gate_plan_with(scene, args.tolerance, meshes, formulations.clone());
-            plan.validate().with_context(|| format!("scene {}", file.display()))?;
+            plan.validate_for(scene).with_context(|| format!("scene {}", file.display()))?;
             Ok(plan)
         })
         .collect::<Result<_>>()?;

@@ -248,3 +248,37 @@ fn numbers_in_messages_have_significant_digits() {
     let err = fails_with(&["solve", "scenes/string-hanging.json", "--tolerance", "1e-16"], "tolerance = 1e-16");
     assert!(!err.contains("0000000"), "a long run of fixed digits in: {err}");
 }
+
+/// Issue 12 audit: a formulation of another belt theory is a usage error before anything
+/// runs in `gate`, `converge` and `report`, as in `solve` — `gate` used to run the study and
+/// exit 1 ("drift") with a failed FE row, from `--formulation` or from the scene's
+/// `fem.formulations`.
+#[test]
+fn studies_refuse_a_formulation_of_another_theory() {
+    let s = "scenes/string-hanging.json";
+    fails_with(&["gate", "--formulation", "rod-simpson", s], "discretises theory `kirchhoff`");
+    let mut v = catalogue("string-hanging");
+    v["fem"] = serde_json::json!({"formulations": ["rod-gauss"]});
+    let scene = write_scene("string-with-rod-formulation.json", &v);
+    fails_with(&["gate", scene.to_str().unwrap()], "discretises theory `kirchhoff`");
+    let out = temp("rod-formulation-study.json");
+    let _ = std::fs::remove_file(&out);
+    fails_with(&["converge", scene.to_str().unwrap(), "--tolerances", "1e-4", "--json", out.to_str().unwrap()], "discretises theory `kirchhoff`");
+    assert!(!out.exists());
+    fails_with(&["converge", "scenes/rod-hanging.json", "--reference", "richardson", "--formulation", "string-gauss", "--elements", "16,32,64"], "discretises theory `string`");
+    let dir = temp("report-rod-formulation");
+    fails_with(&["report", "-o", dir.to_str().unwrap(), scene.to_str().unwrap()], "discretises theory `kirchhoff`");
+    assert!(!dir.exists(), "nothing may run or be written");
+}
+
+/// Issue 12 audit: two scene names that differ only in letter case write one report
+/// directory on a case-insensitive file system (macOS, Windows) — refused like equal names.
+#[test]
+fn report_refuses_names_equal_but_for_case() {
+    let mut v = catalogue("string-hanging");
+    v["name"] = serde_json::json!("String-Hanging");
+    let twin = write_scene("case-twin.json", &v);
+    let out = temp("report-case-twins");
+    fails_with(&["report", "-o", out.to_str().unwrap(), "scenes/string-hanging.json", twin.to_str().unwrap()], "appears twice");
+    assert!(!out.exists());
+}

@@ -50,14 +50,11 @@ pub struct EdgeLayer {
 
 impl EdgeLayer {
     /// Elements the whole mesh needs so that this edge's element is ≤ ℓ_b/LAYER_ELEMENTS
-    /// (the mesh is refined uniformly in its arc weighting, so h scales as 1/n).
-    pub fn elements_needed(&self, elements: usize) -> usize {
+    /// (the mesh is refined uniformly in its arc weighting, so h scales as 1/n); `None`
+    /// for an edge with N ≤ 0, which no mesh resolves.
+    pub fn elements_needed(&self, elements: usize) -> Option<usize> {
         let ratio = self.element_size * LAYER_ELEMENTS / self.layer_length;
-        if ratio.is_finite() {
-            (elements as f64 * ratio).ceil().max(elements as f64) as usize
-        } else {
-            usize::MAX
-        }
+        ratio.is_finite().then(|| (elements as f64 * ratio).ceil().max(elements as f64) as usize)
     }
 
     /// True if h ≤ ℓ_b/LAYER_ELEMENTS.
@@ -108,7 +105,7 @@ pub fn check<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, 
     let scale = [s.tension_upper_mid, s.tension_lower_mid].into_iter().flatten().fold(0.0f64, |m, t| m.max(t.abs()));
     let elements = sol.mesh().len();
     let layers = edge_layers(sol);
-    let needed = layers.iter().filter(|l| !l.1.resolved()).map(|l| l.1.elements_needed(elements)).max();
+    let needed = layers.iter().filter(|l| !l.1.resolved()).filter_map(|l| l.1.elements_needed(elements)).max();
     let inadmissible = |pulley: Pulley, quantity: String, value: f64, limit: f64| FemError::InadmissibleContact {
         pulley: name(pulley).into(),
         quantity,
@@ -156,6 +153,18 @@ pub fn check<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, 
                 0.0,
             ));
         }
+        // A belt pressed on the pulley at a contact edge needs p = N/R + (its weight's
+        // normal component) ≥ 0 just inside the zone, so N ≥ −ρgR there: a more
+        // compressive axial force is a discrete equilibrium of a mesh that does not
+        // resolve the contact (`rod-hanging` at 5 elements: N = −1.5 N at an edge).
+        let weight_floor = sol.params().weight.unwrap_or(0.0).abs() * sol.mesh().contour().radius();
+        for (what, sigma) in [("first", z.sigma_start), ("last", z.sigma_end)] {
+            let n = sol.axial_force(sigma);
+            let limit = -weight_floor - EDGE_FORCE_TOLERANCE * scale;
+            if n.is_nan() || n < limit {
+                return Err(inadmissible(p, format!("axial force at the {what} contact [N] (compressive: a belt pressed on the pulley needs N ≥ −ρgR)"), n, limit));
+            }
+        }
         for (what, force) in [("first", z.edge_force_start), ("last", z.edge_force_end)] {
             if let Some(f) = force {
                 if f < -EDGE_FORCE_TOLERANCE * scale {
@@ -174,17 +183,50 @@ pub fn check<const N: usize, K: LayoutElement<N> + ?Sized>(sol: &FemSolution<N, 
     let worst = unresolved.iter().max_by(|a, b| (a.1.element_size / a.1.layer_length).total_cmp(&(b.1.element_size / b.1.layer_length)));
     let warnings = worst
         .map(|(p, l)| {
+            let advice = match l.elements_needed(elements) {
+                Some(n) => format!("use at least {n} elements"),
+                None => "N ≤ 0 there: no mesh resolves it; refine the mesh and check the scene".into(),
+            };
             format!(
-                "unresolved bending layer at {} of 4 contact edges (worst on the {} pulley): ℓ_b = √(EI/N) = {:.3e} m (N = {:.4e} N) against an element of {:.3e} m there — edge forces and contact angles are not resolved; use at least {} elements",
+                "unresolved bending layer at {} of 4 contact edges (worst on the {} pulley): ℓ_b = √(EI/N) = {:.3e} m (N = {:.4e} N) against an element of {:.3e} m there — edge forces and contact angles are not resolved; {advice}",
                 unresolved.len(),
                 name(*p),
                 l.layer_length,
                 l.axial_force,
                 l.element_size,
-                l.elements_needed(elements)
             )
         })
         .into_iter()
         .collect();
     Ok(warnings)
+}
+
+/// The driven pulley's torque balance may be off by 1e-6 of the load scale (measured on
+/// the catalogue's drives, both senses and power flows, 32 and 128 elements: ≤ 4e-14 for
+/// the steady solve, ≤ 4e-11 for a transient's last step; an axial stiffness of 1e50 N
+/// is off by 1 or by 1e19).
+pub const TORQUE_BALANCE_TOLERANCE: f64 = 1e-6;
+
+/// Self-check of a two-pulley drive's result (steady or transient; docs/fem-drive.md
+/// §14): the torque the driven pulley takes from the contact tractions equals its load
+/// M₂ + d₂ω₂. The scale is |M₂| + |d₂ω₁| + ρgLR (the load, or the belt's weight on
+/// the pulley radius for a free-running drive); a drive with no load and no gravity has
+/// nothing to check. A result without a driven pulley (one-pulley layout) passes.
+///
+/// # Errors
+/// [`FemError::TorqueBalance`] with the torque, the load and the limit.
+pub fn check_drive_torque(problem: &crate::FemProblem, summary: &drive::summary::Summary) -> Result<(), FemError> {
+    let (Some(torque), Some(omega2)) = (summary.driven.as_ref().and_then(|p| p.torque), summary.driven_speed) else {
+        return Ok(());
+    };
+    let d = &problem.drive;
+    let load = d.driven_torque + d.driven_damping * omega2;
+    let weight = problem.belt.mass_per_length * problem.effects.gravity.unwrap_or(0.0).abs() * problem.belt.length * problem.geometry.radius;
+    let limit = TORQUE_BALANCE_TOLERANCE * (d.driven_torque.abs() + (d.driven_damping * d.driver_speed).abs() + weight);
+    let off = (torque - load).abs();
+    // a NaN torque or speed fails too
+    if limit > 0.0 && (off.is_nan() || off > limit) {
+        return Err(FemError::TorqueBalance { torque, load, limit, axial_stiffness: problem.belt.axial_stiffness });
+    }
+    Ok(())
 }

@@ -44,7 +44,7 @@ pub enum FemError {
     },
 
     /// Newton's method did not converge at a homotopy point.
-    #[error("Newton did not converge at η = {eta} after {iterations} iterations: scaled update ‖Δ‖ = {update:.3e}, scaled residual ‖G‖ = {residual:.3e} (tolerance {tolerance:.1e}){}", if *.line_search_failed { "; the line search found no acceptable step" } else { "" })]
+    #[error("Newton did not converge at η = {} after {iterations} iterations: scaled update ‖Δ‖ = {update:.3e}, scaled residual ‖G‖ = {residual:.3e} (tolerance {tolerance:.1e}){}", numerics::Sig(*.eta), if *.line_search_failed { "; the line search found no acceptable step" } else { "" })]
     NewtonDiverged {
         /// Homotopy parameter.
         eta: f64,
@@ -72,7 +72,7 @@ pub enum FemError {
     },
 
     /// The homotopy step fell below its minimum.
-    #[error("homotopy stalled at η = {eta} (step {step:.2e} < minimum {min_step:.1e}) after {steps} accepted steps; last failure: {last_failure}")]
+    #[error("homotopy stalled at η = {} (step {step:.2e} < minimum {min_step:.1e}) after {steps} accepted steps; last failure: {last_failure}", numerics::Sig(*.eta))]
     HomotopyStalled {
         /// Last accepted η.
         eta: f64,
@@ -84,6 +84,19 @@ pub enum FemError {
         steps: usize,
         /// The last Newton failure.
         last_failure: String,
+    },
+
+    /// The static homotopy (weight on, then the loop lengthened to L) stalled: `at` says
+    /// which scene quantity it was switching on and how far it got, `hard` the scene's
+    /// numbers that make it hard and what to try (issue 12, "smaller ones").
+    #[error("{at}: {cause}; {hard}")]
+    StaticHomotopyStalled {
+        /// The phase of the path and how far it got.
+        at: String,
+        /// The scene's numbers that make it hard, and what to try.
+        hard: String,
+        /// The continuation's failure ([`FemError::HomotopyStalled`]).
+        cause: Box<FemError>,
     },
 
     /// The start of a continuation (its η = 0 problem) could not be solved, with the
@@ -117,6 +130,23 @@ pub enum FemError {
         /// Elements a mesh needs to resolve the bending layers at the contact edges
         /// (`None`: the layers are resolved, or a string).
         elements_needed: Option<usize>,
+    },
+
+    /// A drive's self-check (docs/fem-drive.md §14): the torque the driven pulley takes
+    /// from the contact tractions must equal its load M₂ + d₂ω₂, the equation the solve
+    /// imposed. Off by more than [`crate::admissibility::TORQUE_BALANCE_TOLERANCE`] of the
+    /// load scale, the converged state is round-off, not a solution (e.g. an axial
+    /// stiffness of 1e50 N: tensions of 1e48 N cannot resolve a 13 N·m load).
+    #[error("self-check failed: the driven pulley's torque from the contact tractions is {} N·m against its load M₂ + d₂ω₂ = {} N·m (off by {} N·m, limit {} N·m = {} × the load scale |M₂| + |d₂ω₁| + ρgLR); the solution is not trustworthy: the scene's numbers (e.g. an axial stiffness of {} N against the load) lie beyond what double precision resolves", numerics::Sig(*.torque), numerics::Sig(*.load), numerics::Sig((*.torque - *.load).abs()), numerics::Sig(*.limit), numerics::Sig(crate::admissibility::TORQUE_BALANCE_TOLERANCE), numerics::Sig(*.axial_stiffness))]
+    TorqueBalance {
+        /// Torque on the driven pulley from the tractions, N·m.
+        torque: f64,
+        /// M₂ + d₂ω₂, N·m.
+        load: f64,
+        /// The admissible difference, N·m.
+        limit: f64,
+        /// The belt's axial stiffness EA, N (for the message).
+        axial_stiffness: f64,
     },
 
     /// The belt rests on a pulley (the penalty carries contact force) but no contact zone

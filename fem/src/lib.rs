@@ -258,11 +258,15 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
         };
         // `steady`: the direct steady solve (docs/fem-drive.md §12); `transient`: the
         // quasistatic transient run to its steady state, with its history
-        if problem.analysis == Analysis::Steady {
-            return string_drive::steady::solve(problem, opts, settings, drive_settings, kernel);
-        }
-        refuse_paper_d(drive_settings, "the quasistatic transient")?;
-        return string_drive::solve(problem, opts, settings, drive_settings, kernel);
+        let run = if problem.analysis == Analysis::Steady {
+            string_drive::steady::solve(problem, opts, settings, drive_settings, kernel)?
+        } else {
+            refuse_paper_d(drive_settings, "the quasistatic transient")?;
+            string_drive::solve(problem, opts, settings, drive_settings, kernel)?
+        };
+        // the driven pulley's torque balance is a self-check (issue 12 item 6)
+        admissibility::check_drive_torque(problem, &run.summary)?;
+        return Ok(run);
     }
     if problem.is_cosserat_steady_drive() {
         // the direct steady solve, monomorphised for the Cosserat layout {s, ν, ψ}
@@ -283,7 +287,9 @@ pub fn solve_problem(problem: &FemProblem, opts: &FemOptions, settings: &SolverS
             // the open layout (docs/fem-cosserat.md §12)
             return string_drive::steady::solve_open::<NC, { point_size(NC) }, { element_size(NC) }>(problem, opts, settings, drive_settings, kernel);
         }
-        return string_drive::steady::solve_layout::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel);
+        let run = string_drive::steady::solve_layout::<NC, { point_size(NC) }, { element_size(NC) }, dyn formulation::layout::LayoutElement<NC>>(problem, opts, settings, drive_settings, kernel)?;
+        admissibility::check_drive_torque(problem, &run.summary)?;
+        return Ok(run);
     }
     let data = problem.static_data(opts, settings)?;
     // an element discretises one theory: string elements cannot carry EI, rod

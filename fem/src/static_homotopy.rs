@@ -21,6 +21,7 @@ use crate::linear::SparseLu;
 use crate::mesh::{Grading, Mesh};
 use crate::newton::{self, NewtonFailure, NewtonSettings, Scales};
 use crate::options::SolverSettings;
+use numerics::Sig;
 use crate::problem::{BeltSection, Geometry};
 use crate::solution::FemSolution;
 use crate::string_drive::steady::{multiplier_update, AugmentedFailure, AugmentedReport};
@@ -429,24 +430,64 @@ impl StringHanging {
         let mut path = StaticPath { data: self, asm, lu, l0, scales, newton_settings, tolerance: settings.update_tolerance, z, prev: None, report };
         // the path is smooth within each phase [0, ½] (gravity on), [½, 1] (length to
         // L), kinked at ½: a breakpoint, hit exactly
-        match continuation::natural(&mut path, 0.0, 1.0, &mut control, &[0.5]) {
-            Ok(_) => Ok(path.z),
+        let stalled = match continuation::natural(&mut path, 0.0, 1.0, &mut control, &[0.5]) {
+            Ok(_) => return Ok(path.z),
             Err(ContinuationError::Aborted(never)) => match never {},
-            Err(ContinuationError::Stalled { eta, step, cause, .. }) => Err(FemError::HomotopyStalled {
+            Err(ContinuationError::Stalled { eta, step, cause, .. }) => FemError::HomotopyStalled {
                 eta: eta.0,
                 step: step.0,
                 min_step: settings.min_step,
                 steps: path.report.steps,
                 last_failure: cause.unwrap_or_default(),
-            }),
-            Err(ContinuationError::StepLimit { eta, step, cause, .. }) => Err(FemError::HomotopyStalled {
+            },
+            Err(ContinuationError::StepLimit { eta, step, cause, .. }) => FemError::HomotopyStalled {
                 eta: eta.0,
                 step: step.0,
                 min_step: settings.min_step,
                 steps: path.report.steps,
                 last_failure: format!("step limit {} reached; {}", settings.max_steps, cause.unwrap_or_default()),
-            }),
+            },
+        };
+        Err(self.stalled(stalled, l0, asm.mesh().len()))
+    }
+
+    /// A stalled homotopy in the scene's terms: the phase it was in (weight on for
+    /// η ≤ ½, the loop lengthened from the tight L₀ to L above), the numbers that make the
+    /// scene hard — its slack L/L_geom, and the pulley radius against the element length
+    /// of a uniform mesh of `elements` — and what to try.
+    fn stalled(&self, cause: FemError, l0: f64, elements: usize) -> FemError {
+        let eta = match &cause {
+            FemError::HomotopyStalled { eta, .. } => *eta,
+            _ => return cause,
+        };
+        let (r, h) = (self.geometry.radius, self.geometry.centre_distance);
+        let lg = 2.0 * h + 2.0 * PI * r;
+        let at = if eta < 0.5 {
+            format!("the FE homotopy stalled switching on the weight ({} % of ρg, at the tight length L₀ = {} m)", Sig(200.0 * eta), Sig(l0))
+        } else {
+            format!("the FE homotopy stalled lengthening the loop from the tight L₀ = {} m to L = {} m ({} % of the way)", Sig(l0), Sig(self.belt.length), Sig(200.0 * (eta - 0.5)))
+        };
+        let size = lg / elements as f64;
+        // the weight's strain ρgL/EA: below ~1e-10 the weight is lost in the round-off
+        // of the tension and no mesh helps (EA = 1e17 N on `rod-hanging`: 8e-17)
+        let weight_strain = self.gravity.unwrap_or(0.0) * self.belt.mass_per_length * self.belt.length / self.belt.axial_stiffness;
+        if weight_strain > 0.0 && weight_strain < 1e-10 {
+            let hard = format!(
+                "the weight's strain ρgL/EA = {} (EA = {} N) is below what double precision resolves against the belt's tension; a smaller axial stiffness is what to try (the weight strains the belt by far less than the tolerance already at EA ≈ 1e12 N)",
+                Sig(weight_strain),
+                Sig(self.belt.axial_stiffness)
+            );
+            return FemError::StaticHomotopyStalled { at, hard, cause: Box::new(cause) };
         }
+        let hard = format!(
+            "the scene's slack L/L_geom = {} and pulley radius R = {} m against an element length of ≈ {} m ({} elements per half pulley) make it hard; try a finer mesh (--elements {}) — a pulley resolved by few elements under a slack belt is the usual cause",
+            Sig(self.belt.length / lg),
+            Sig(r),
+            Sig(size),
+            Sig(PI * r / size),
+            (2 * elements).min(crate::mesh::MAX_ELEMENTS)
+        );
+        FemError::StaticHomotopyStalled { at, hard, cause: Box::new(cause) }
     }
 }
 

@@ -132,3 +132,27 @@ fn catalogue_default_meshes_are_clean() {
         assert!(run.notes.is_empty(), "{name}: {:?}", run.notes);
     }
 }
+
+/// A compressive axial force at a contact edge (issue 12 audit): `rod-hanging` by
+/// `rod-gauss` at 5 elements converged to N = −1.49 N at the driver's first contact
+/// (and −2.67 N at the upper span's middle) and exited 0 with only a layer warning
+/// that asked for "at least 18446744073709551615 elements". A belt pressed on a pulley
+/// needs N ≥ −ρgR at its contact edges (p = N/R plus at most ρg of weight ≥ 0): an error
+/// now, with the value and that limit (ρgR = 0.094 N here).
+#[test]
+fn compressive_axial_force_at_a_contact_edge_is_inadmissible() {
+    let scene = rod_hanging(None, None);
+    let e = solve(&scene, 5, "rod-gauss").err().expect("5 rod-gauss elements must not give a result");
+    println!("{e}");
+    match &e {
+        FemError::InadmissibleContact { quantity, value, limit, elements, .. } => {
+            assert!(quantity.contains("axial force"), "{quantity}");
+            let floor = -scene.belt.mass_per_length * scene.effects.gravity.unwrap() * scene.drive.pulley_radius;
+            assert!(*limit <= floor && *limit > floor - 1e-5, "limit {limit}, −ρgR {floor}");
+            assert!(*value < 10.0 * floor, "{value}");
+            assert_eq!(*elements, 5);
+        }
+        other => panic!("expected InadmissibleContact, got {other:?}"),
+    }
+    assert!(!e.to_string().contains(&usize::MAX.to_string()), "{e}");
+}

@@ -79,3 +79,51 @@ fn other_models_are_unsupported() {
     let e = fem::solve_scene(&scene("string-hanging"), &FemOptions { formulation: "rod-gauss".into(), ..opts(64) }).err().unwrap();
     assert!(matches!(&e, FemError::Unsupported(m) if m.contains("rod-gauss") && m.contains("string")), "{e}");
 }
+
+/// The drive's torque balance is a self-check (issue 12 item 6, audit): `string-drive`
+/// with EA = 1e50 N converged to tensions of 1.8e48 N, whose differences cannot resolve
+/// the 13 N·m load — the driven pulley's torque from the tractions came out as 0 N·m at
+/// 32 elements (and −2.4e20 N·m at 128), exit 0. Now a named error; the same drive at
+/// EA = 1e17 N (tensions 1.8e15 N) still balances and solves.
+#[test]
+fn drive_torque_balance_is_checked() {
+    let mut s = scene("string-drive");
+    s.belt.axial_stiffness = 1e50;
+    let e = fem::solve_scene(&s, &opts(32)).err().expect("EA = 1e50 N must not give a result");
+    match &e {
+        FemError::TorqueBalance { torque, load, limit, .. } => {
+            assert!((load - 13.0).abs() < 1e-9, "load {load}");
+            assert!((torque - load).abs() > 1e3 * limit, "torque {torque}, limit {limit}");
+        }
+        other => panic!("expected TorqueBalance, got {other:?}"),
+    }
+    assert!(e.to_string().contains("self-check failed"), "{e}");
+    s.belt.axial_stiffness = 1e17;
+    let run = fem::solve_scene(&s, &opts(32)).expect("EA = 1e17 N solves");
+    let torque = run.summary.driven.unwrap().torque.unwrap();
+    assert!((torque - 13.0).abs() < 1e-6 * 13.0, "{torque}");
+}
+
+/// A stalled static homotopy says which scene quantity it was switching on, the scene's
+/// numbers that make it hard and what to try, with significant digits (issue 12,
+/// "smaller ones", audit): `string-hanging` with R = 0.01 m at 32 elements used to say
+/// only "homotopy stalled at η = 0.6194416697474341 …".
+#[test]
+fn stalled_static_homotopy_names_the_scene_quantity() {
+    let mut s = scene("string-hanging");
+    s.drive.pulley_radius = 0.01;
+    let e = fem::solve_scene(&s, &opts(32)).err().expect("R = 0.01 m at 32 elements stalls");
+    let text = e.to_string();
+    println!("{text}");
+    match &e {
+        FemError::StaticHomotopyStalled { at, hard, cause } => {
+            assert!(at.contains("lengthening the loop"), "{at}");
+            assert!(hard.contains("L/L_geom") && hard.contains("R = 0.01 m") && hard.contains("--elements 64"), "{hard}");
+            assert!(matches!(**cause, FemError::HomotopyStalled { .. }), "{cause}");
+        }
+        other => panic!("expected StaticHomotopyStalled, got {other:?}"),
+    }
+    // no η or other number with more than six significant digits
+    let long_number = text.split(|c: char| !(c.is_ascii_digit() || c == '.')).any(|w| w.chars().filter(|c| c.is_ascii_digit()).count() > 9);
+    assert!(!long_number, "{text}");
+}

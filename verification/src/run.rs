@@ -159,7 +159,7 @@ impl fmt::Display for NotSteady {
             f,
             "the transient did not reach a steady state: it stopped after {} step(s) (fem.max_steps) with change rate {} per rad above the steady threshold {} per rad; raise fem.max_steps or fem.time_step",
             self.steps,
-            drive::error::num(&self.rate),
+            numerics::Sig(self.rate),
             drive::error::num(&self.tolerance)
         )
     }

@@ -131,6 +131,19 @@ pub enum PlanError {
     /// A tolerance outside (0, 1).
     #[error("tolerance {} is not in (0, 1)", drive::error::num(.0))]
     Tolerance(f64),
+    /// A named formulation that discretises another belt theory than the scene's: a
+    /// usage error before anything runs, as in `solve`, not a failed run (issue 12).
+    #[error("formulation `{name}` discretises theory `{theory}`, the scene's belt is theory `{scene_theory}` (its formulations: {its})")]
+    NotApplicable {
+        /// The name asked for.
+        name: String,
+        /// The theory it discretises.
+        theory: drive::scene::Theory,
+        /// The scene's belt theory.
+        scene_theory: drive::scene::Theory,
+        /// The registered formulations of the scene's theory, or "none".
+        its: String,
+    },
 }
 
 impl StudyPlan {
@@ -236,6 +249,30 @@ impl StudyPlan {
         for &t in tols {
             if !(t > 0.0 && t < 1.0) {
                 return Err(PlanError::Tolerance(t));
+            }
+        }
+        Ok(())
+    }
+
+    /// [`StudyPlan::validate`], and every formulation the plan names (for its FE runs or
+    /// its Richardson reference) discretises the scene's belt theory.
+    ///
+    /// # Errors
+    /// The first problem found.
+    pub fn validate_for(&self, scene: &Scene) -> Result<(), PlanError> {
+        self.validate()?;
+        let mut named: Vec<&String> = Vec::new();
+        if let (Formulations::Named(names), false) = (&self.formulations, self.meshes.is_empty()) {
+            named.extend(names);
+        }
+        if let Reference::Richardson { formulation, .. } = &self.reference {
+            named.push(formulation);
+        }
+        for name in named {
+            if let Some(theory) = crate::run::formulation_theory(name).filter(|&t| t != scene.belt.theory) {
+                let its = fem::formulations_for(scene.belt.theory);
+                let its = if its.is_empty() { "none".to_string() } else { its.join(", ") };
+                return Err(PlanError::NotApplicable { name: name.clone(), theory, scene_theory: scene.belt.theory, its });
             }
         }
         Ok(())
@@ -364,7 +401,7 @@ impl Study {
     /// # Errors
     /// An invalid plan. Failed runs are not errors: they are rows with a reason.
     pub fn run(scene: &Scene, plan: &StudyPlan, progress: &mut dyn FnMut(&Progress)) -> Result<Study, PlanError> {
-        plan.validate()?;
+        plan.validate_for(scene)?;
         let mut bvp: Vec<(Box<dyn Method>, Vec<Discretisation>)> = Vec::new();
         for s in &plan.bvp {
             let solver = BvpSolver { variant: s.variant, max_nodes: plan.max_nodes };
