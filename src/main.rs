@@ -759,6 +759,11 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
     }
     for &t in &args.tolerances {
         check_tolerance("tolerances", t)?;
+        // the BVP runs of the sweep would each fail: refused before anything runs
+        if !bvp::belt::options::tolerance_in_range(t) {
+            let (lo, hi) = bvp::belt::options::TOLERANCE_RANGE;
+            return Err(CliError::OutOfRange { flag: "tolerances", value: num(&t), range: format!("a BVP tolerance, {} < tolerance ≤ {}", num(&lo), num(&hi)) }.into());
+        }
     }
     let mut plan = verification::study::StudyPlan::convergence(scene);
     if !args.tolerances.is_empty() {

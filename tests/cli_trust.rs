@@ -109,17 +109,17 @@ fn converge_on_an_unsolvable_scene_writes_nothing() {
     assert!(!out.exists(), "a study JSON was written for an unusable study");
 }
 
-/// A study whose runs of a method all fail (tolerance 1e-16 is below what the BVP
-/// accepts) is an error, not an exit 0 with a table of failures.
+/// A BVP tolerance the solvers refuse (below 1e-13 or above 1e-2) is refused before
+/// the study runs, alone (1e-16: every BVP run would fail) or among valid ones (1e-300
+/// next to 1e-4 ran, failed those rows and exited 0 before); nothing is written.
 #[test]
-fn converge_with_every_run_of_a_method_failed_exits_2() {
+fn converge_refuses_a_bvp_tolerance_out_of_the_solvers_range() {
     let out = temp("tight-study.json");
-    let _ = std::fs::remove_file(&out);
-    fails_with(
-        &["converge", "scenes/string-hanging.json", "--tolerances", "1e-16", "--elements", "16", "--json", out.to_str().unwrap()],
-        "no successful run of bvp-collocation",
-    );
-    assert!(!out.exists());
+    for tolerances in ["1e-16", "1e-300,1e-4", "1e-4,0.05"] {
+        let _ = std::fs::remove_file(&out);
+        fails_with(&["converge", "scenes/string-hanging.json", "--tolerances", tolerances, "--elements", "16", "--json", out.to_str().unwrap()], "a BVP tolerance, 1e-13 < tolerance ≤ 0.01");
+        assert!(!out.exists(), "{tolerances}: nothing written");
+    }
 }
 
 /// `report`: a scene named `..` is refused by the scene itself; two scenes of one name

@@ -53,6 +53,15 @@ impl Default for BeltOptions {
     }
 }
 
+/// The BVP solvers' final tolerance range (lower bound exclusive, upper inclusive): below
+/// 1e-13 the residual estimate of a double-precision solve is round-off.
+pub const TOLERANCE_RANGE: (f64, f64) = (1e-13, 1e-2);
+
+/// Whether `t` lies in [`TOLERANCE_RANGE`].
+pub fn tolerance_in_range(t: f64) -> bool {
+    t > TOLERANCE_RANGE.0 && t <= TOLERANCE_RANGE.1
+}
+
 impl BeltOptions {
     /// Collocation with `scheme` at `tolerance`, other options default.
     pub fn collocation(scheme: Scheme, tolerance: f64) -> Self {
@@ -72,9 +81,9 @@ impl BeltOptions {
         }
     }
 
-    /// The final tolerance within (1e-13, 1e-2].
+    /// The final tolerance within (1e-13, 1e-2] ([`TOLERANCE_RANGE`]).
     pub fn check_tolerance(&self) -> Result<(), super::BeltError> {
-        if self.tolerance > 1e-13 && self.tolerance <= 1e-2 {
+        if tolerance_in_range(self.tolerance) {
             Ok(())
         } else {
             Err(super::BeltError::InvalidInput { name: "tolerance", value: self.tolerance, reason: "must lie in (1e-13, 1e-2]" })
