@@ -71,8 +71,11 @@ fn check(name: &str, fe: &Summary, bvp: &Summary, limits: &[(&[&str], f64, bool)
 fn small_bending_stiffness_below_the_element_size() {
     let s = scene("rod-small-ei", 0.08, 0.45, 1.41, 2e4, 1e-6, 0.12);
     let (fe, bvp, notes) = both(&s, 256);
-    // h/ℓ_b ≈ 6 at the edges: a stated warning, never a clean result (docs/fem-rod.md §10)
-    assert!(notes.len() == 1 && notes[0].contains("unresolved bending layer"), "{notes:?}");
+    // h/ℓ_b ≈ 6 at the edges: a stated warning, never a clean result (docs/fem-rod.md §10);
+    // the edges the fit cannot place within such a layer (it moves them by 3e-5 m after its
+    // 20 passes, measured) are stated too, since the fit's non-convergence is
+    assert!(notes.iter().any(|n| n.contains("unresolved bending layer")), "{notes:?}");
+    assert!(notes.iter().all(|n| n.contains("unresolved bending layer") || n.contains("contact fitting did not converge")), "{notes:?}");
     let angles: &[&str] = &["driver.contact_start", "driver.contact_end", "driven.contact_start", "driven.contact_end"];
     check("small EI", &fe, &bvp, &[(&["y_upper_mid", "y_lower_mid"], 1e-5, false), (&["tension_upper_mid", "tension_lower_mid"], 2e-4, true), (angles, 3e-2, false)]);
     // unresolved edge forces: finite and below 5 % of the weight ρ g H of a span
