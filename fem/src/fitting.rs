@@ -209,9 +209,7 @@ impl FitReport {
             FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
         }
     }
-}
 
-impl FitReport {
     /// The fitting as a run states it when it did not converge: `None` if it met its
     /// `tolerance` (m) or never ran (no passes and no failure).
     pub fn unfitted(&self, tolerance: f64) -> Option<Unfitted> {

@@ -50,7 +50,6 @@ pub use open::{end_flux, solve_open, OpenEnds, OpenMode};
 use kernels::*;
 use load_path::LoadPath;
 use output::*;
-use paper_d::Resolve;
 pub use paper_d::{PaperDReport, SteadyScheme};
 use paper_d::PaperD;
 pub use semismooth::*;
@@ -88,7 +87,7 @@ pub struct SteadyReport {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub paper_d: Option<PaperDReport>,
     /// The scheme that found the stick and slip zones (`paper-d` or `semismooth`; the
-    /// scene's `fem.steady_scheme` resolved, `SteadyScheme::resolved`, and `semismooth`
+    /// scene's `fem.steady_scheme` resolved, `paper_d::resolved`, and `semismooth`
     /// after Paper D's failure under `auto`).
     pub scheme: SteadyScheme,
     /// Why Paper D's scheme, chosen by `auto`, failed before the semismooth fit took over.
@@ -237,7 +236,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
 
     // fitting: a node at every contact boundary and stick→slip transition (§12)
     let element = PI * r / arc_elements as f64;
-    let scheme = drive_settings.steady_scheme.resolved(kernel.friction_normal(), settings.contact_fitting);
+    let scheme = paper_d::resolved(drive_settings.steady_scheme, kernel.friction_normal(), settings.contact_fitting);
     report.scheme = scheme;
     if scheme == SteadyScheme::PaperD {
         // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`); chosen

@@ -33,20 +33,14 @@ use super::*;
 
 pub use drive::scene::SteadyScheme;
 
-/// The scheme a steady loop runs (`fem.steady_scheme` resolved).
-pub(super) trait Resolve {
-    /// `auto` by the belt's friction normal: Paper D's on the string (nodal normal) when
-    /// the mesh may be fitted, else the semismooth fit; a named scheme as it is.
-    fn resolved(self, normal: FrictionNormal, fitting: bool) -> SteadyScheme;
-}
-
-impl Resolve for SteadyScheme {
-    fn resolved(self, normal: FrictionNormal, fitting: bool) -> SteadyScheme {
-        match self {
-            SteadyScheme::Auto if normal == FrictionNormal::Nodal && fitting => SteadyScheme::PaperD,
-            SteadyScheme::Auto => SteadyScheme::Semismooth,
-            named => named,
-        }
+/// The scheme a steady loop runs (`fem.steady_scheme` resolved): `auto` by the belt's
+/// friction normal — Paper D's on the string (nodal normal) when the mesh may be fitted,
+/// else the semismooth fit; a named scheme as it is.
+pub(super) fn resolved(scheme: SteadyScheme, normal: FrictionNormal, fitting: bool) -> SteadyScheme {
+    match scheme {
+        SteadyScheme::Auto if normal == FrictionNormal::Nodal && fitting => SteadyScheme::PaperD,
+        SteadyScheme::Auto => SteadyScheme::Semismooth,
+        named => named,
     }
 }
 
