@@ -1347,6 +1347,7 @@ impl Scene {
                         reason: "frictionless contact in a steady analysis: steady motion is driven through friction, so use {\"coulomb\": μ} (or `elastic_layer` for a shell); without friction the belt speed is undetermined".into(),
                     });
                 }
+                self.check_friction_capacity()?;
             }
             Analysis::Transient => {
                 if self.bvp.is_some() {
@@ -1356,6 +1357,47 @@ impl Scene {
                     });
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// A steady two-pulley friction drive whose load no belt tension of its order can
+    /// carry: the friction of a wrap of at most a full turn carries at most
+    /// R·T_t·(1 − e^{−2πμ}) (Euler–Eytelwein, T_s ≥ 0), so the load M = |M₂ + d₂ω₁|
+    /// needs a tight-side tension T_need = M / (R(1 − e^{−2πμ})). The loop's tension is of
+    /// the order T_belt = max(EA(L_geom/L − 1), 0) + ρgL + (EA(ρgH)²/24)^{1/3} + ρc²
+    /// (the stretch, the weight, the tension of a span hanging at zero slack, the transport
+    /// term with c = |ω₁|R), and T_t + T_s stays near twice it. Refused only when
+    /// T_need > 100 × 2T_belt — a margin wide enough that no solvable scene is refused —
+    /// with the numbers; the solvers find the nearer cases on their homotopy paths
+    /// (`FrictionCapacityExceeded`). Before, μ = 1e-13 started the BVP from a loop at
+    /// 8e14 N and failed with "Newton iteration did not converge", the FE with "homotopy
+    /// stalled at η = 0" (issue 12, smaller items).
+    fn check_friction_capacity(&self) -> Result<(), SceneError> {
+        let (&Contact::Coulomb(mu), Layout::TwoPulley) = (&self.effects.contact, self.drive.layout) else {
+            return Ok(());
+        };
+        let (d, b) = (&self.drive, &self.belt);
+        let load = (d.driven_torque + d.driven_damping * d.driver_speed).abs();
+        if load == 0.0 || mu.is_nan() || mu <= 0.0 {
+            return Ok(());
+        }
+        let g = self.effects.gravity.unwrap_or(0.0).abs();
+        let (ea, rho) = (b.axial_stiffness, b.mass_per_length);
+        let stretch = (ea * (self.geometric_length() / b.length - 1.0)).max(0.0);
+        let weight = rho * g * b.length;
+        let hanging = (ea * (rho * g * d.centre_distance).powi(2) / 24.0).cbrt();
+        let transport = if self.effects.inertia == Some(true) { rho * (d.driver_speed * d.pulley_radius).powi(2) } else { 0.0 };
+        let belt = stretch + weight + hanging + transport;
+        let need = load / (d.pulley_radius * -(-2.0 * std::f64::consts::PI * mu).exp_m1());
+        if need > 100.0 * 2.0 * belt {
+            return Err(SceneError::NotAllowed {
+                path: "effects.contact.coulomb".into(),
+                reason: format!(
+                    "no steady solution: the load |M₂ + d₂ω₁| = {load:.4e} N·m needs a tight-side tension of at least {need:.4e} N to be carried by friction μ = {} over even a full turn of wrap (M/(R(1 − e^{{−2πμ}}))), but the belt's tension is of the order of {belt:.4e} N (stretch {stretch:.4e} N, weight {weight:.4e} N, hanging span {hanging:.4e} N, transport ρc² {transport:.4e} N): raise μ or the pretension, or lower the load",
+                    crate::error::num(&mu),
+                ),
+            });
         }
         Ok(())
     }

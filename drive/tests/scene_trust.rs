@@ -89,6 +89,36 @@ fn zero_friction_drive_is_refused_for_both_analyses() {
     }
 }
 
+/// A friction far too small for the load (μ = 1e-13 on the catalogue drive: 2e14 N of
+/// tight-side tension needed against a belt of ~200 N) is refused before either solver
+/// starts, with the numbers (it used to fail inside them: "Newton iteration did not
+/// converge" from a start loop at 8e14 N, "homotopy stalled at η = 0"); μ = 1e-3, where
+/// the estimate leaves the question open (need 2.1e4 N, 200 × 216 N = 4.3e4 N), is left
+/// to the solvers' own capacity check on their homotopy paths; a transient, whose belt
+/// may slip for ever, is not refused.
+#[test]
+fn friction_far_below_the_load_is_refused_with_the_numbers() {
+    let with = |mu: f64, analysis: &str| {
+        let mut v: serde_json::Value = serde_json::from_str(DRIVE).unwrap();
+        v["effects"]["contact"]["coulomb"] = serde_json::json!(mu);
+        v["analysis"] = serde_json::json!(analysis);
+        if analysis == "transient" {
+            v.as_object_mut().unwrap().remove("bvp");
+        }
+        v.to_string()
+    };
+    for mu in [1e-13, 1e-6, 1e-4] {
+        let e = rejected(&with(mu, "steady"));
+        assert_eq!(e.path(), Some("effects.contact.coulomb"), "μ = {mu}: {e}");
+        let text = e.to_string();
+        assert!(text.contains("needs a tight-side tension") && text.contains("1.3000e1 N·m") && text.contains("raise μ"), "μ = {mu}: {text}");
+    }
+    assert!(rejected(&with(1e-13, "steady")).to_string().contains("2.0690e14 N"));
+    for (mu, analysis) in [(1e-3, "steady"), (1e-13, "transient"), (0.3, "steady")] {
+        Scene::from_json_str(&with(mu, analysis)).unwrap_or_else(|e| panic!("μ = {mu}, {analysis}: {e}"));
+    }
+}
+
 /// An unknown key of 10 MB is echoed cut to a few dozen characters and its length.
 #[test]
 fn huge_unknown_key_is_truncated_in_the_message() {
