@@ -36,7 +36,7 @@ mod load_path;
 mod nested;
 mod open;
 mod output;
-mod paper_d;
+pub(crate) mod paper_d;
 mod semismooth;
 mod topology;
 

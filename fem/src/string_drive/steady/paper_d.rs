@@ -36,12 +36,28 @@ pub use drive::scene::SteadyScheme;
 /// The scheme a steady loop runs (`fem.steady_scheme` resolved): `auto` by the belt's
 /// friction normal — Paper D's on the string (nodal normal) when the mesh may be fitted,
 /// else the semismooth fit; a named scheme as it is.
-pub(super) fn resolved(scheme: SteadyScheme, normal: FrictionNormal, fitting: bool) -> SteadyScheme {
+pub(crate) fn resolved(scheme: SteadyScheme, normal: FrictionNormal, fitting: bool) -> SteadyScheme {
     match scheme {
         SteadyScheme::Auto if normal == FrictionNormal::Nodal && fitting => SteadyScheme::PaperD,
         SteadyScheme::Auto => SteadyScheme::Semismooth,
         named => named,
     }
+}
+
+/// The growth of the default normal penalty with the mesh under Paper D's scheme on the
+/// string (the Cosserat rod's bands keep κ: not measured there):
+/// max(1, (n/128)²) for n elements (P = κ (n/128)² EA/R², from 128 elements on). The
+/// penetration δ = p/P shortens the belt's path round both drums by 2πδ, a uniform
+/// relative tension error 2πR/(κL) wherever the span tension is set by the stretch
+/// (3.6e-6 at κ = 10⁵ on the low-tension drive, R = 0.08 m, L = 1.41 m), while the
+/// mesh error falls like h²: with a fixed κ the penalty's error is the larger one from
+/// ≈ 512 elements and the tensions stop converging there (docs/fem-drive.md §12, "Ninth
+/// round"). κ ∝ n² keeps it a fixed fraction of the mesh error. The prescribed contact set
+/// of the fixed topology takes the stiffer penalty without a cost in robustness; the
+/// semismooth fit, whose contact set moves, keeps κ (at 512 elements its low-tension
+/// slip arcs got worse with it: driven 4.5e-4 → 3.5e-3).
+pub(crate) fn penalty_mesh_scale(elements: usize) -> f64 {
+    (elements as f64 / 128.0).powi(2).max(1.0)
 }
 
 /// Work and outcome of Paper D's scheme (in the run's `options.drive.report.paper_d`).
