@@ -469,20 +469,20 @@ mod tests {
     /// entry by the relative lateral motion, u = (v/c)x + O(Rβ) over the contact length
     /// x ∈ [0, W_i] (c = ωR), so the balance P_⊥b Σ∫u dx = −β(T_in + T_out) gives
     /// v = −β(T_in + T_out) c / (P_⊥ b Σ W_i²/2) + O(ωRβ). At P_⊥ = 100 N/m³ the first
-    /// term is ~20× the second (the in-plane shape's, ~0.1 ωRβ/2 for a belt stiff in its
-    /// plane: P_⊥b L⁴/(EAb²/12) = 0.05), so the closed form holds to ~5 %.
+    /// term is ~250× the second (the in-plane shape's, ~0.1 ωRβ/2 for a belt stiff in its
+    /// plane: P_⊥b H⁴/(EAb²/12) = 0.05, H the span), so the closed form holds to ~0.5 %.
     /// T_in + T_out: the stage-(0) mid-span tensions (upper + lower); W_i: the contact
     /// lengths of the stage-(0) centre line (the extent of ν(σ, 0) < 10 µm on the arc,
     /// sampled every 0.1 mm: the penalty's penetration is 5e-7 m, the cubic field wanders
     /// by a few µm between the nodes, and a belt of bending length √(EI/T) = 2.9 cm lifts
-    /// off by 10 µm within ~5 mm of the edge). The discrete contact zone is longer by up to one step's travel cΔt at
-    /// each exit (u is kept where the foot was in contact, docs/fem-shell.md §7 (b)) and
-    /// quantised by the nodes. Measured drift / closed form (second revolution): 0.721
+    /// off by 10 µm within ~5 mm of the edge). The discrete contact zone is longer by up
+    /// to one step's travel cΔt at each exit (u is kept where the foot was in contact,
+    /// docs/fem-shell.md §7 (b)) and quantised by the nodes. Measured drift / closed form (second revolution): 0.721
     /// (32 rod elements, ωΔt = π/8), 0.863 (64, π/8), 0.841 (64, π/16) — towards 1 with
     /// the mesh, independent of ωΔt to 2.5 % (the quasistatic rate independence, V-11),
-    /// and 14 % short at 64 (the neglected shape term is ~5 %, the rest not accounted
-    /// for; docs/fem-shell.md §9.3). Asserted: 64 within 20 % and closer than 32; 32
-    /// within 35 % — before the released points were kept out of the cubic advection of
+    /// the error halving from 32 to 64 (first order in h; the first-order Richardson
+    /// estimate from the two is 1.005, docs/fem-shell.md §9.3). Asserted: 64 within
+    /// 20 % and closer than 32; 32 within 35 % — before the released points were kept out of the cubic advection of
     /// u (docs/fem-shell.md §9.3, "The exit point") the 32-element mesh gave 0.04 (u
     /// piled up at the exit points, −3e-3 m there against −4e-5 m inside the contact;
     /// fails); the two ωΔt within 5 % of each other.
