@@ -190,7 +190,16 @@ impl HangingBelt {
     /// # Errors
     /// [`ShellError::PlanarStart`] if the rod fails.
     pub fn planar(&self, rod_elements: usize) -> Result<(FemSolution, usize), ShellError> {
-        let settings = SolverSettings::default();
+        self.planar_with(rod_elements, &SolverSettings::default())
+    }
+
+    /// [`Self::planar`] with the rod's `settings` (its mesh distribution `arc_weight`,
+    /// whether the mesh is fitted to the contact edges, `contact_fitting`).
+    ///
+    /// # Errors
+    /// [`ShellError::PlanarStart`] if the rod fails.
+    pub fn planar_with(&self, rod_elements: usize, settings: &SolverSettings) -> Result<(FemSolution, usize), ShellError> {
+        let settings = settings.clone();
         let kernel = crate::formulation::find("rod-simpson").expect("a shipped formulation");
         let solved = crate::mesh::Mesh::new(self.contour, rod_elements, settings.arc_weight).and_then(|mesh| self.rod().solve(mesh, kernel, &settings));
         let (solution, report, _) = solved.map_err(|e| ShellError::PlanarStart(Box::new(e)))?;
@@ -252,7 +261,16 @@ impl HangingBelt {
     /// # Errors
     /// Those of the parts; [`ShellError::Static`] if Newton fails.
     pub fn solve(&self, rod_elements: usize, across: usize, newton: NewtonOptions) -> Result<StaticShell, ShellError> {
-        let (rod, start_iterations) = self.planar(rod_elements)?;
+        self.solve_with(rod_elements, across, &SolverSettings::default(), newton)
+    }
+
+    /// [`Self::solve`] with the rod of [`Self::planar_with`] (its mesh is the shell's
+    /// σ-mesh).
+    ///
+    /// # Errors
+    /// As [`Self::solve`].
+    pub fn solve_with(&self, rod_elements: usize, across: usize, settings: &SolverSettings, newton: NewtonOptions) -> Result<StaticShell, ShellError> {
+        let (rod, start_iterations) = self.planar_with(rod_elements, settings)?;
         let mesh = self.mesh_of(&rod, across)?;
         let constraints = zero_mode_constraints(&mesh)?;
         let shell = self.shell(&mesh)?;

@@ -46,6 +46,10 @@ const POSITION: usize = 3;
 const SLOPE: usize = 6;
 const MATERIAL: usize = 9;
 const CONTACT: usize = 10;
+/// The contact flag in the state: where it is < ½ u was released (set to 0 out of
+/// contact), so the advection does not interpolate u across it with the cubic
+/// ([`crate::surface::assembly::SurfaceKernel::history_support`]).
+pub const CONTACT_FLAG: usize = CONTACT;
 /// The components of u in the state: the only value carried by its own recursion
 /// (u_{n+1} = ũ_n + increment, (S13)); the others are re-recorded from the converged
 /// configuration every step. The advection keeps them between the bracketing points'

@@ -21,7 +21,7 @@ use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, Su
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, DEFORMATION, STATE};
+use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, DEFORMATION, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -378,6 +378,15 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         match (&self.interlayer, term) {
             (Some(_), INTERLAYER) => DEFORMATION,
             _ => 0..0,
+        }
+    }
+
+    /// u is a field where the contact flag is set ([`super::interlayer::CONTACT_FLAG`]):
+    /// next to a released point it is advected linearly (docs/fem-shell.md §9.3).
+    fn history_support(&self, term: usize) -> Option<usize> {
+        match (&self.interlayer, term) {
+            (Some(_), INTERLAYER) => Some(CONTACT_FLAG),
+            _ => None,
         }
     }
 

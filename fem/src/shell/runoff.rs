@@ -180,6 +180,30 @@ pub fn drift_velocity(time: &[f64], channel: &[f64], last: usize) -> Option<f64>
     Some(num / den)
 }
 
+/// The least-squares drift (m/s, [`drift_velocity`]) of `channel` over each whole window
+/// of length `period` (s; a belt revolution L/(ωR)) of the stage-(2) series `time`, the
+/// windows counted from `start` (the end of stage (1)): window k holds the samples with
+/// start + k·period < t ≤ start + (k + 1)·period (a sample on a boundary belongs to the
+/// window it ends, within 1e-9 of the step). Only whole windows with two samples or more
+/// count, so the drifts of runs with different steps Δt are taken over the same
+/// revolutions of the belt (docs/fem-shell.md §9.3).
+pub fn drift_per_revolution(time: &[f64], channel: &[f64], start: f64, period: f64) -> Vec<f64> {
+    let n = time.len().min(channel.len());
+    if n == 0 || period.is_nan() || period <= 0.0 {
+        return vec![];
+    }
+    let slack = 1e-9 * period;
+    let whole = ((time[n - 1] - start + slack) / period).floor().max(0.0) as usize;
+    (0..whole)
+        .filter_map(|k| {
+            let (low, high) = (start + k as f64 * period + slack, start + (k + 1) as f64 * period + slack);
+            let a = time[..n].partition_point(|&t| t <= low);
+            let b = time[..n].partition_point(|&t| t <= high);
+            drift_velocity(&time[a..b], &channel[a..b], b - a)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,6 +311,39 @@ mod tests {
         assert!((change - work).abs() < 1e-4 * work.abs(), "ΔE = {change:e} vs the camber's work {work:e}");
     }
 
+    /// The drift per revolution is the least-squares slope over whole windows counted
+    /// from the start: on z = a + v_k t piecewise per window (exactly linear inside each)
+    /// every window gives its own v_k to round-off, whatever the step
+    /// (10 or 7 samples per window, a sample exactly on each boundary belongs to the
+    /// window it ends); a last, partial window is not reported; degenerate input gives
+    /// nothing. Tolerance 1e-10 relative: z ≈ 0.3 m carries round-off ~1e-16 × 0.3 m
+    /// against its change v·period ≥ 1e-5 m over a window, i.e. ~1e-11 of the slope
+    /// (measured 2.9e-12).
+    #[test]
+    fn drift_per_revolution_takes_whole_windows() {
+        let (start, period) = (3.0, 2.5);
+        let slopes = [1.0e-5, -2.0e-5, 4.0e-6];
+        for per_window in [10, 7] {
+            let dt = period / per_window as f64;
+            let steps = slopes.len() * per_window + per_window / 2;
+            let time: Vec<f64> = (1..=steps).map(|k| start + k as f64 * dt).collect();
+            let lateral: Vec<f64> = time
+                .iter()
+                .map(|&t| {
+                    let k = (((t - start) / period - 1e-9).floor().max(0.0) as usize).min(slopes.len() - 1);
+                    0.3 + 1e-3 * k as f64 + slopes[k] * (t - start)
+                })
+                .collect();
+            let drifts = drift_per_revolution(&time, &lateral, start, period);
+            assert_eq!(drifts.len(), slopes.len(), "{per_window} samples per window: {drifts:?}");
+            for (d, v) in drifts.iter().zip(slopes) {
+                assert!((d - v).abs() < 1e-10 * v.abs(), "{per_window} per window: {d:e} vs {v:e}");
+            }
+        }
+        assert!(drift_per_revolution(&[], &[], 0.0, 1.0).is_empty());
+        assert!(drift_per_revolution(&[1.0, 2.0], &[0.0, 1.0], 0.0, 0.0).is_empty());
+    }
+
     /// Steps of stage (2) in the drift tests.
     const TURNING: usize = 16;
     /// Steps of stage (2) over which the swivel's initial run-off is measured.
@@ -378,17 +435,16 @@ mod tests {
     /// The swivelled steering drum (β_y = 1e-3 on the driven drum) over four
     /// revolutions (192 steps, `--ignored`: ~50 s CPU): every step converges (before the
     /// bounded advection of u, Newton's line search failed at step 40; docs/fem-shell.md
-    /// §9.3), and the run-off settles to a steady drift. Within the first revolutions z̄
-    /// is modulated with the belt's revolution (the lateral shape of the ramp's start
-    /// carried round by the belt; the least-squares drift over a one-revolution window
-    /// swings by ±35 % in the second revolution, ±5 % in the fourth), so the drift is
-    /// taken by least squares over a whole revolution (48 steps ≈ L/(ωRΔt) = 45):
-    /// the third and the fourth revolution agree within 10 % (measured 3 %), to −z
-    /// (above), between 2 % and 100 % of the stick kinematics' steady −ωRβ_y/2
-    /// (measured 12 %; V-14 is an order-of-magnitude check only). This is a property of
-    /// this coarse mesh (3–4 history points per contact zone), not a converged result:
-    /// on the 64-element rod mesh the long-time drift turns to +z (docs/fem-shell.md
-    /// §9.3) — the test guards the stability and steadiness of the scheme.
+    /// §9.3), and after the initial run-off to −z (the entry rule, test above) the drift
+    /// over whole revolutions becomes small against the stick kinematics' steady
+    /// −ωRβ_y/2: |v| < 0.1 ωRβ_y/2 over the third and the fourth revolution (48-step
+    /// windows; measured +2.27e-6 and +2.53e-6 m/s, −0.028 and −0.032 of it). What the
+    /// long-time drift is, is not settled (docs/fem-shell.md §9.3, "Convergence of the
+    /// swivel's drift"): it is a small difference of two effects of order ωRβ_y, still
+    /// changing between revolutions, and differs between meshes and ωΔt by about its own
+    /// size (the same mesh at ωΔt = π/16: +0.12, +0.11 of −ωRβ_y/2 over whole
+    /// revolutions 3 and 4; 64 elements at π/8: −0.10, −0.056). Before u was advected linearly next to released points
+    /// this mesh gave a steady −0.12 (ωRβ_y/2) — the pile-up of u at the exit points.
     #[test]
     #[ignore]
     fn swivelled_steering_drum_reaches_a_steady_drift() {
@@ -398,10 +454,68 @@ mod tests {
         let third = drift_velocity(&t[..3 * AROUND], &z[..3 * AROUND], AROUND).unwrap();
         let fourth = drift_velocity(t, z, AROUND).unwrap();
         let kinematic = -belt(0.0).contour.radius() * 2.0 * beta / 2.0;
-        println!("β_y = {beta:e}: drift {third:e} m/s (third revolution), {fourth:e} m/s (fourth); −ωRβ_y/2 = {kinematic:e} m/s, ratio {}", fourth / kinematic);
-        assert!(((fourth / third) - 1.0).abs() < 0.1, "no steady drift: {third:e} vs {fourth:e} m/s");
-        let ratio = fourth / kinematic;
-        assert!(ratio > 2e-2 && ratio < 1.0, "drift {fourth:e} m/s against −ωRβ_y/2 = {kinematic:e}");
+        println!("β_y = {beta:e}: drift {third:e} m/s (third revolution), {fourth:e} m/s (fourth); −ωRβ_y/2 = {kinematic:e} m/s, ratios {} {}", third / kinematic, fourth / kinematic);
+        for v in [third, fourth] {
+            assert!(v.abs() < 0.1 * kinematic.abs(), "drift {v:e} m/s against −ωRβ_y/2 = {kinematic:e}");
+        }
+    }
+
+    /// The swivel's drift in the limit of a soft interlayer, against a closed form
+    /// (docs/fem-shell.md §9.3, "A closed form for a soft layer"; `--ignored`, ~2 min CPU).
+    /// On the tilted drum the normal pressure is perpendicular to its axis
+    /// a = (sin β_y, 0, cos β_y) while the two spans pull along −x: the wrap presses the
+    /// belt axially with β_y(T_in + T_out) (to −z for β_y > 0 on the driven drum), and
+    /// nothing but the layer's shear takes it. In the brush model u grows from 0 at each
+    /// entry by the relative lateral motion, u = (v/c)x + O(Rβ) over the contact length
+    /// x ∈ [0, W_i] (c = ωR), so the balance P_⊥b Σ∫u dx = −β(T_in + T_out) gives
+    /// v = −β(T_in + T_out) c / (P_⊥ b Σ W_i²/2) + O(ωRβ). At P_⊥ = 100 N/m³ the first
+    /// term is ~250× the second (the in-plane shape's, ~0.1 ωRβ/2 for a belt stiff in its
+    /// plane: P_⊥b H⁴/(EAb²/12) = 0.05, H the span), so the closed form holds to ~0.5 %.
+    /// T_in + T_out: the stage-(0) mid-span tensions (upper + lower); W_i: the contact
+    /// lengths of the stage-(0) centre line (the extent of ν(σ, 0) < 10 µm on the arc,
+    /// sampled every 0.1 mm: the penalty's penetration is 5e-7 m, the cubic field wanders
+    /// by a few µm between the nodes, and a belt of bending length √(EI/T) = 2.9 cm lifts
+    /// off by 10 µm within ~5 mm of the edge). The discrete contact zone is longer by up
+    /// to one step's travel cΔt at each exit (u is kept where the foot was in contact,
+    /// docs/fem-shell.md §7 (b)) and quantised by the nodes. Measured drift / closed form (second revolution): 0.721
+    /// (32 rod elements, ωΔt = π/8), 0.863 (64, π/8), 0.841 (64, π/16) — towards 1 with
+    /// the mesh, independent of ωΔt to 2.5 % (the quasistatic rate independence, V-11),
+    /// the error halving from 32 to 64 (first order in h; the first-order Richardson
+    /// estimate from the two is 1.005, docs/fem-shell.md §9.3). Asserted: 64 within
+    /// 20 % and closer than 32; 32 within 35 % — before the released points were kept out of the cubic advection of
+    /// u (docs/fem-shell.md §9.3, "The exit point") the 32-element mesh gave 0.04 (u
+    /// piled up at the exit points, −3e-3 m there against −4e-5 m inside the contact;
+    /// fails); the two ωΔt within 5 % of each other.
+    #[test]
+    #[ignore]
+    fn swivel_drift_with_a_soft_interlayer_matches_the_tension_closed_form() {
+        let (b, beta, shear) = (belt(0.0), 1.0e-3, 100.0);
+        let (h, radius) = (b.contour.centre_distance(), b.contour.radius());
+        let pi_r = std::f64::consts::PI * radius;
+        let mut ratios = vec![];
+        for (rod, angle) in [(32, ANGLE), (64, ANGLE), (64, 0.5 * ANGLE)] {
+            let solved = b.solve(rod, 2, newton()).unwrap();
+            let tension: f64 = solved.mid_spans().unwrap().iter().map(|s| s.tension).sum();
+            let contact = |start: f64| {
+                let inside: Vec<f64> = (0..=2500).map(|k| start + pi_r * f64::from(k) / 2500.0).filter(|&s| solved.stepping.assembler().field_at(solved.stepping.unknowns(), Field::Nu, s, 0.0).unwrap()[0] < 1e-5).collect();
+                inside.last().unwrap() - inside[0]
+            };
+            let widths = [contact(h), contact(2.0 * h + pi_r)];
+            let closed = -beta * tension * 2.0 * radius / (shear * b.width * widths.iter().map(|w| 0.5 * w * w).sum::<f64>());
+            let mut r = solved.runoff(&Runoff { shear, ..run(0.0, beta, 1, angle) }, stepping()).unwrap();
+            r.ramp().unwrap();
+            let period = b.length / (2.0 * radius);
+            let steps = (2.0 * period / r.dt - 1e-6).ceil() as usize;
+            let series = r.rotate(steps).unwrap();
+            let (t, z) = (&series.time, series.channel("lateral_offset").unwrap());
+            let drift = drift_per_revolution(t, z, t[0] - r.dt, period)[1];
+            println!("{rod} rod elements, ωΔt = {angle}: drift {drift:e} m/s, closed form {closed:e} m/s (T_in + T_out = {tension} N, contact {widths:?} m), ratio {}", drift / closed);
+            ratios.push(drift / closed);
+        }
+        println!("drift / closed form {ratios:?}");
+        assert!((ratios[0] - 1.0).abs() < 0.35, "32 rod elements: drift / closed form = {}", ratios[0]);
+        assert!((ratios[1] - 1.0).abs() < 0.2 && (ratios[1] - 1.0).abs() < (ratios[0] - 1.0).abs(), "64 rod elements: drift / closed form = {ratios:?}");
+        assert!((ratios[2] / ratios[1] - 1.0).abs() < 0.05, "the drift depends on ωΔt: {ratios:?}");
     }
 
     /// E-4 for camber: a cambered belt on aligned drums runs off, and the belt of the
@@ -426,27 +540,29 @@ mod tests {
         assert!((v + w).abs() < 1e-6 * v.abs() && (z + y).abs() < 1e-6 * z.abs(), "not odd in κ_c: v {v:e} / {w:e}, z̄ {z:e} / {y:e}");
     }
 
-    /// A longer run for the study of docs/fem-shell.md §9.3 (`--ignored`; env `ROD`,
-    /// `STEPS`, `ANGLE` (ωΔt), `TILT` (β_y of the driven drum), `CAMBER`, `RUNOFF_TOL`):
-    /// z̄ and Newton iterations per step, CPU, the drift over the last 5 steps.
+    /// A longer run for the study of docs/fem-shell.md §9.3 (`--ignored`; env `ROD`
+    /// (rod elements = shell σ-elements), `ACROSS` (n_ζ), `FIT` (1: the rod's mesh fitted
+    /// to its contact edges, 0: not), `ARCW` (the rod mesh's arc weight), `REVS` (belt
+    /// revolutions L/(ωR) of stage (2)), `ANGLE` (ωΔt), `TILT` (β_y of the driven drum),
+    /// `CAMBER`, `SHEAR` (P_⊥), `RUNOFF_TOL`, `PROFILE` (1: the interlayer's u and z(σ, 0) at the
+    /// middle row's history points at the end)): the σ-nodes, z̄ per step, CPU, and the least-squares drift
+    /// over each whole revolution.
     #[test]
     #[ignore]
     fn runoff_study() {
         let b = belt(0.0);
-        let rod = std::env::var("ROD").ok().and_then(|v| v.parse().ok()).unwrap_or(32);
-        let steps = std::env::var("STEPS").ok().and_then(|v| v.parse().ok()).unwrap_or(20);
-        let angle = std::env::var("ANGLE").ok().and_then(|v| v.parse().ok()).unwrap_or(std::f64::consts::PI / 8.0);
-        let tilt = std::env::var("TILT").ok().and_then(|v| v.parse().ok()).unwrap_or(1e-3);
-        let camber = std::env::var("CAMBER").ok().and_then(|v| v.parse().ok()).unwrap_or(0.0);
-        let solved = b.solve(rod, 2, newton()).unwrap();
+        let env = |k: &str, d: f64| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
+        let (rod, across, revs) = (env("ROD", 32.0) as usize, env("ACROSS", 2.0) as usize, env("REVS", 1.0));
+        let (angle, tilt, camber) = (env("ANGLE", ANGLE), env("TILT", 1e-3), env("CAMBER", 0.0));
+        let settings = crate::SolverSettings { contact_fitting: env("FIT", 1.0) != 0.0, arc_weight: env("ARCW", 1.0), ..crate::SolverSettings::default() };
+        let solved = b.solve_with(rod, across, &settings, newton()).unwrap();
         let m = solved.stepping.assembler().mesh();
         println!("mesh {} x {}, sigma nodes {:?}", m.sigma_elements(), m.zeta_elements(), m.sigma_nodes());
-        let mut r = solved.runoff(&run(camber, tilt, 2, angle), stepping()).unwrap();
-        let c0 = cpu_seconds();
-        for rep in r.ramp().unwrap() {
-            println!("ramp step {} t {} it {}", rep.step, rep.time, rep.newton.iterations);
-        }
-        println!("after ramp z̄ = {:e}, cpu {}", lateral_offset(&r.stepping), cpu_seconds() - c0);
+        let mut r = solved.runoff(&Runoff { shear: env("SHEAR", SHEAR), ..run(camber, tilt, 1, angle) }, stepping()).unwrap();
+        r.ramp().unwrap();
+        let period = b.length / (2.0 * b.contour.radius());
+        let steps = (revs * period / r.dt - 1e-6).ceil() as usize;
+        println!("after ramp z̄ = {:e}; {steps} steps of {} s, revolution {period} s", lateral_offset(&r.stepping), r.dt);
         let c1 = cpu_seconds();
         let series = r.rotate(steps).unwrap();
         let cpu = cpu_seconds() - c1;
@@ -454,7 +570,19 @@ mod tests {
         for k in 0..t.len() {
             println!("{:.4} {:+.6e} {}", t[k], z[k], it[k]);
         }
-        println!("cpu {cpu} s for {steps} steps; v = {:?}, kinematic −ωRβ/2 = {:e}", drift_velocity(t, z, 5), -2.0 * b.contour.radius() * tilt / 2.0);
+        let kinematic = -2.0 * b.contour.radius() * tilt / 2.0;
+        let per = drift_per_revolution(t, z, t[0] - r.dt, period);
+        if env("PROFILE", 0.0) != 0.0 {
+            let h = r.stepping.history().term(crate::shell::kernel::INTERLAYER).unwrap().clone();
+            let row = h.shape().0 / 2;
+            for j in 0..h.shape().1 {
+                let st = h.get(row, j);
+                let s = h.column_sigma()[j];
+                let zc = r.stepping.assembler().field_at(r.stepping.unknowns(), Field::Z, s, 0.0).unwrap()[0];
+                println!("point {s:.4} u {:+.3e} {:+.3e} {:+.3e} z(s,0) {zc:+.4e} flag {}", st[0], st[1], st[2], st[10]);
+            }
+        }
+        println!("cpu {cpu} s for {steps} steps; drift per revolution {per:?} m/s; / (−ωRβ/2) {:?}", per.iter().map(|v| v / kinematic).collect::<Vec<_>>());
     }
 
     /// Diagnostic of the lateral mode (docs/fem-shell.md §9.3, `--ignored`; env `STEPS`,

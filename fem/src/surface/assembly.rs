@@ -137,6 +137,17 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = term;
         0..0
     }
+    /// The component of `term`'s state that marks where its bounded components
+    /// ([`Self::bounded_history`]) are a field: ≥ ½ where they are (the interlayer's
+    /// contact flag), < ½ where they were released (u set to 0 out of contact — a jump,
+    /// not the continuation of the field). A foot whose cubic stencil contains a
+    /// released point interpolates the bounded components linearly between its two
+    /// bracketing points ([`crate::surface::history`]). Default: none (every point
+    /// counts).
+    fn history_support(&self, term: usize) -> Option<usize> {
+        let _ = term;
+        None
+    }
 }
 
 /// The evaluation state: time, step and the (advected) history the densities read.

@@ -32,6 +32,17 @@
 //! spacing and shift; where the field is smooth and monotone across the bracket the
 //! clip is inactive and the cubic's accuracy is kept; across a jump (u released to 0 at
 //! a contact exit) it removes the overshoot.
+//!
+//! **Released points** ([`SurfaceKernel::history_support`]): a bounded component that
+//! the kernel sets to 0 outside a zone (u out of contact) jumps there, and the clip alone
+//! does not keep the jump out of the cubic: next to a contact exit followed by a short
+//! element the cubic weight of the last point in the zone on its own value is ≈ 1
+//! (0.98 on the 32-element rod mesh at ωΔt = π/8) — inside the bracket, so not clipped —
+//! and that point keeps its value for ~50 steps instead of passing it downstream within
+//! one step: u piles up at the exit point (docs/fem-shell.md §9.3, "The exit point").
+//! Where the four stencil points are not all marked as supporting the field, the bounded
+//! components are interpolated linearly between the two bracketing points (second
+//! order, bounded; the cubic elsewhere).
 
 use super::assembly::{Evaluation, SurfaceAssembler, SurfaceKernel};
 use super::SurfaceError;
@@ -56,6 +67,8 @@ pub struct TermStates {
     values: Vec<f64>,
     /// Components clipped to the bracketing values in the advection.
     bounded: std::ops::Range<usize>,
+    /// The component marking where the bounded ones are a field (≥ ½).
+    support: Option<usize>,
 }
 
 impl TermStates {
@@ -115,12 +128,15 @@ impl TermStates {
             let xs = stencil.map(x);
             let weights: [f64; 4] = std::array::from_fn(|r| (0..4).filter(|&s| s != r).map(|s| (foot - xs[s]) / (xs[r] - xs[s])).product());
             let ks = stencil.map(|k| k.rem_euclid(n as isize) as usize);
+            // the bracket's linear weight of its downstream point
+            let linear = (foot - xs[1]) / (xs[2] - xs[1]);
             for row in 0..self.rows {
+                let supported = self.support.is_none_or(|s| ks.iter().all(|&k| mean(row, k, s) >= 0.5));
                 for c in 0..self.width {
                     let mut v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
                     if self.bounded.contains(&c) {
                         let (a, b) = (mean(row, ks[1], c), mean(row, ks[2], c));
-                        v = v.clamp(a.min(b), a.max(b));
+                        v = if supported { v.clamp(a.min(b), a.max(b)) } else { a + (b - a) * linear };
                     }
                     out.values[(row * self.columns + column) * self.width + c] = v;
                 }
@@ -154,7 +170,7 @@ impl SurfaceHistory {
             let [rs, rz] = term.rule;
             let (per_sigma, per_zeta) = (rs.points().len(), rz.points().len());
             let (columns, rows) = (mesh.sigma_elements() * per_sigma, mesh.zeta_elements() * per_zeta);
-            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t) };
+            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t), support: asm.kernel().history_support(t) };
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 for point in asm.points(e, t, time, 0.0) {
