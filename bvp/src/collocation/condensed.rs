@@ -519,9 +519,96 @@ pub(crate) struct CondensedLu {
     jac: Vec<RhsJacobian>,
 }
 
+/// The per-mesh buffers of a dropped [`CondensedLu`] (emptied, their capacity kept),
+/// which the next `CondensedLu` of the same thread starts with: a solve's buffers grow
+/// with its meshes to ~0.9 MB (the gauss8 elastica's 212 intervals), and returned to the
+/// allocator at the end of a solve they went back to the operating system, so every
+/// solve page-faulted them in again — 183 faults and ~14 % of the CPU time of a gauss8
+/// elastica solve (`docs/performance.md`, issue 17, run 10). Every buffer is emptied
+/// before reuse, so each solve starts from zero-filled buffers exactly as before.
+#[derive(Debug, Default)]
+struct Spare {
+    phis: Vec<f64>,
+    psis: Vec<f64>,
+    k_lu: Vec<f64>,
+    piv: Vec<usize>,
+    v: Vec<f64>,
+    g: Vec<f64>,
+    scratch: Vec<f64>,
+    rhs: Vec<f64>,
+    block: (Vec<f64>, Vec<usize>),
+}
+
+/// Largest [`Spare`] a thread keeps (bytes of capacity); larger buffers are freed.
+const SPARE_BYTES: usize = 16 << 20;
+
+impl Spare {
+    fn bytes(&self) -> usize {
+        let f = self.phis.capacity()
+            + self.psis.capacity()
+            + self.k_lu.capacity()
+            + self.v.capacity()
+            + self.g.capacity()
+            + self.scratch.capacity()
+            + self.rhs.capacity()
+            + self.block.0.capacity();
+        let u = self.piv.capacity() + self.block.1.capacity();
+        f * size_of::<f64>() + u * size_of::<usize>()
+    }
+}
+
+thread_local! {
+    static SPARE: std::cell::Cell<Option<Spare>> = const { std::cell::Cell::new(None) };
+}
+
+impl Drop for CondensedLu {
+    fn drop(&mut self) {
+        let spare = Spare {
+            phis: std::mem::take(&mut self.phis),
+            psis: std::mem::take(&mut self.psis),
+            k_lu: std::mem::take(&mut self.k_lu),
+            piv: std::mem::take(&mut self.piv),
+            v: std::mem::take(&mut self.v),
+            g: std::mem::take(&mut self.g),
+            scratch: std::mem::take(&mut self.scratch),
+            rhs: std::mem::take(&mut self.rhs),
+            block: self.block.take_buffers(),
+        };
+        if spare.bytes() <= SPARE_BYTES {
+            // keep the larger of this and a spare already kept (nested solves); the
+            // thread-local is gone only while the thread exits
+            let _ = SPARE.try_with(|cell| {
+                let kept = cell.take();
+                cell.set(Some(match kept {
+                    Some(k) if k.bytes() > spare.bytes() => k,
+                    _ => spare,
+                }));
+            });
+        }
+    }
+}
+
 impl CondensedLu {
+    /// A factorisation object with no layout yet; it takes over the emptied buffers
+    /// of this thread's last dropped one ([`Spare`]).
     pub fn new() -> Self {
-        Self::default()
+        let mut lu = Self::default();
+        if let Some(mut spare) = SPARE.try_with(std::cell::Cell::take).ok().flatten() {
+            for v in [&mut spare.phis, &mut spare.psis, &mut spare.k_lu, &mut spare.v, &mut spare.g, &mut spare.scratch, &mut spare.rhs] {
+                v.clear();
+            }
+            spare.piv.clear();
+            lu.phis = spare.phis;
+            lu.psis = spare.psis;
+            lu.k_lu = spare.k_lu;
+            lu.piv = spare.piv;
+            lu.v = spare.v;
+            lu.g = spare.g;
+            lu.scratch = spare.scratch;
+            lu.rhs = spare.rhs;
+            lu.block = BlockLu::with_buffers(spare.block);
+        }
+        lu
     }
 
     /// Numeric factorisations of the condensed system by the sparse LU and of the full
@@ -1137,5 +1224,74 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A `CondensedLu` dropped at the end of a solve leaves its buffers to the next one
+    /// of the thread ([`Spare`]), emptied: the next solve takes them (no allocation, its
+    /// capacity is the previous solve's) and gives the same result to the bit as a
+    /// solve in a new thread (no spare), also with another problem's (other n, other
+    /// sizes) buffers in between.
+    #[test]
+    fn spare_buffers_are_reused_and_leave_every_result_unchanged() {
+        use crate::analytical::bratu::{Bratu, BratuBranch, Exact as BratuExact};
+        use crate::analytical::elastica::{guess, Exact};
+        use crate::collocation::{solve, CollocationOptions, Scheme};
+        use crate::Solution;
+
+        fn bits(sol: &Solution) -> Vec<u64> {
+            let seg = &sol.segments[0];
+            let mut out: Vec<u64> = seg.mesh.iter().map(|x| x.to_bits()).collect();
+            out.extend(seg.nodes.iter().flatten().map(|y| y.to_bits()));
+            out.extend(sol.params.iter().map(|p| p.to_bits()));
+            out.push(sol.stats.newton_iterations as u64);
+            out
+        }
+        fn spare() -> Option<(usize, usize, usize)> {
+            SPARE.with(|c| {
+                let kept = c.take();
+                let cap = kept.as_ref().map(|k| (k.bytes(), k.k_lu.capacity(), k.block.0.capacity()));
+                c.set(kept);
+                cap
+            })
+        }
+        fn elastica() -> Solution {
+            let exact = Exact::new(std::f64::consts::FRAC_1_SQRT_2).unwrap();
+            let opts = CollocationOptions { scheme: Scheme::Gauss8, tolerance: 1e-8, ..Default::default() };
+            solve(&exact.problem(), &guess(1.0, 11), &opts).unwrap()
+        }
+        fn bratu() -> Solution {
+            let exact = BratuExact::new(3.51, BratuBranch::Lower).unwrap();
+            let opts = CollocationOptions { scheme: Scheme::Gauss6, tolerance: 1e-8, ..Default::default() };
+            let sol = solve(&Bratu, &exact.guess(11), &opts).unwrap();
+            assert!(exact.max_dense_error(&sol, 2001) < 1e-9);
+            sol
+        }
+        let fresh = |f: fn() -> Solution| std::thread::spawn(move || {
+            assert!(spare().is_none(), "a new thread has no spare buffers");
+            bits(&f())
+        });
+        let (elastica_fresh, bratu_fresh) = (fresh(elastica).join().unwrap(), fresh(bratu).join().unwrap());
+        std::thread::spawn(move || {
+            assert_eq!(bits(&bratu()), bratu_fresh);
+            assert_eq!(bits(&elastica()), elastica_fresh, "after Bratu's buffers");
+            // 212 intervals of 16 × 16 LUs: the spare holds at least those
+            let (bytes, k_lu, steps) = spare().expect("the solve left its buffers");
+            assert!(k_lu >= 212 * 16 * 16 && steps > 0 && bytes >= k_lu * 8, "{bytes} {k_lu} {steps}");
+            // a new CondensedLu takes them, emptied
+            let mut lu = CondensedLu::new();
+            assert!(spare().is_none());
+            assert!(lu.k_lu.is_empty() && lu.k_lu.capacity() == k_lu && lu.v.is_empty() && lu.piv.is_empty());
+            assert_eq!(lu.block.take_buffers().0.capacity(), steps);
+            drop(lu);
+            assert_eq!(bits(&elastica()), elastica_fresh, "with its own buffers");
+            assert_eq!(bits(&bratu()), bratu_fresh, "after the elastica's buffers");
+            // too large a spare is not kept
+            let mut big = CondensedLu::new();
+            big.k_lu = Vec::with_capacity(SPARE_BYTES / 8 + 1);
+            drop(big);
+            assert!(spare().is_none(), "a spare above SPARE_BYTES is freed");
+        })
+        .join()
+        .unwrap();
     }
 }
