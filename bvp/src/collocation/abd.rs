@@ -71,6 +71,20 @@ fn width(n: usize, np: usize) -> usize {
 }
 
 impl BlockLu {
+    /// Its two largest buffers (the steps' blocks and pivots), for reuse by a later
+    /// `BlockLu` ([`Self::with_buffers`]); this one is left without them.
+    pub(crate) fn take_buffers(&mut self) -> (Vec<f64>, Vec<usize>) {
+        (std::mem::take(&mut self.steps), std::mem::take(&mut self.pivots))
+    }
+
+    /// A new `BlockLu` with the given buffers, emptied (their capacity kept): the same
+    /// state as [`Default`] but for the capacity.
+    pub(crate) fn with_buffers((mut steps, mut pivots): (Vec<f64>, Vec<usize>)) -> Self {
+        steps.clear();
+        pivots.clear();
+        Self { steps, pivots, ..Self::default() }
+    }
+
     /// Factorise the condensed system of segments with dimensions `dims` and
     /// `intervals` (per segment), `n_params` parameters, the interval blocks
     /// `phi(k, i)` (n × n) and `psi(k, i)` (n × n_p, row-major) and the boundary

@@ -332,6 +332,9 @@ fn substitute_fixed<const NC: usize>(lu: &[f64], m: usize, x: &mut [f64]) {
     }
 }
 
+/// Two one-column solves side by side: (LUs, order m, pivots, right-hand sides).
+type SolvePair = fn([&[f64]; 2], usize, [&[usize]; 2], [&mut [f64]; 2]);
+
 /// The dense kernels of one interval's condensation for K of order m = s n with n
 /// columns of V ([`CondensedLu`]): its LU ([`dense_lu`]), the transposed solve of Vᵀ
 /// ([`dense_solve_transposed`], n columns) and the one-column solve of the stage
@@ -346,6 +349,8 @@ pub(crate) struct Kernels {
     lu: fn(&mut [f64], usize, &mut [usize]) -> bool,
     transposed: fn(&[f64], usize, &[usize], &mut [f64], usize),
     solve: fn(&[f64], usize, &[usize], &mut [f64]),
+    /// `solve` of two intervals side by side ([`solve_square_pair`]).
+    solve_pair: SolvePair,
     /// Compiled for the order (not the general loops).
     #[cfg(test)]
     fixed: bool,
@@ -353,7 +358,14 @@ pub(crate) struct Kernels {
 
 impl Kernels {
     /// The general loops (any m and n).
-    const GENERAL: Kernels = Kernels { lu: dense_lu, transposed: dense_solve_transposed, solve: |lu, m, piv, x| dense_solve(lu, m, piv, x, 1),
+    const GENERAL: Kernels = Kernels {
+        lu: dense_lu,
+        transposed: dense_solve_transposed,
+        solve: |lu, m, piv, x| dense_solve(lu, m, piv, x, 1),
+        solve_pair: |[la, lb], m, [pa, pb], [xa, xb]| {
+            dense_solve(la, m, pa, xa, 1);
+            dense_solve(lb, m, pb, xb, 1);
+        },
         #[cfg(test)]
         fixed: false,
     };
@@ -366,6 +378,7 @@ impl Kernels {
             ($(($m:literal, $n:literal)),*) => {
                 match (m, n) {
                     $(($m, $n) => Kernels { lu: lu_square::<$m>, transposed: transposed_square::<$m, $n>, solve: solve_square::<$m>,
+                        solve_pair: solve_square_pair::<$m>,
                         #[cfg(test)]
                         fixed: true,
                     },)*
@@ -438,6 +451,37 @@ fn solve_square<const M: usize>(lu: &[f64], _m: usize, piv: &[usize], x: &mut [f
     let x = &mut x[..M];
     swap_rows(x, &piv[..M], 1, false);
     substitute_fixed::<1>(lu, M, x);
+}
+
+/// [`solve_square`] of two systems (two intervals' K) side by side: each sees exactly
+/// the operations of `solve_square` in the same order (the same results to the bit),
+/// but the two dependency chains of the substitutions — each row waits for the rows
+/// before it and for a division — are interleaved, so that one fills the other's
+/// latency (the stage solve of a gauss8 elastica was ~10 % of its CPU time).
+fn solve_square_pair<const M: usize>(lu: [&[f64]; 2], _m: usize, piv: [&[usize]; 2], x: [&mut [f64]; 2]) {
+    let [xa, xb] = x;
+    let (xa, xb) = (&mut xa[..M], &mut xb[..M]);
+    swap_rows(xa, &piv[0][..M], 1, false);
+    swap_rows(xb, &piv[1][..M], 1, false);
+    let (la, lb) = (&lu[0][..M * M], &lu[1][..M * M]);
+    for r in 1..M {
+        let (mut a, mut b) = (xa[r], xb[r]);
+        for k in 0..r {
+            a -= la[r * M + k] * xa[k];
+            b -= lb[r * M + k] * xb[k];
+        }
+        xa[r] = a;
+        xb[r] = b;
+    }
+    for r in (0..M).rev() {
+        let (mut a, mut b) = (xa[r], xb[r]);
+        for k in r + 1..M {
+            a -= la[r * M + k] * xa[k];
+            b -= lb[r * M + k] * xb[k];
+        }
+        xa[r] = a / la[r * M + r];
+        xb[r] = b / lb[r * M + r];
+    }
 }
 
 /// Default largest order of the structured LU's final dense system
@@ -519,9 +563,96 @@ pub(crate) struct CondensedLu {
     jac: Vec<RhsJacobian>,
 }
 
+/// The per-mesh buffers of a dropped [`CondensedLu`] (emptied, their capacity kept),
+/// which the next `CondensedLu` of the same thread starts with: a solve's buffers grow
+/// with its meshes to ~0.9 MB (the gauss8 elastica's 212 intervals), and returned to the
+/// allocator at the end of a solve they went back to the operating system, so every
+/// solve page-faulted them in again — 183 faults and ~14 % of the CPU time of a gauss8
+/// elastica solve (`docs/performance.md`, issue 17, run 10). Every buffer is emptied
+/// before reuse, so each solve starts from zero-filled buffers exactly as before.
+#[derive(Debug, Default)]
+struct Spare {
+    phis: Vec<f64>,
+    psis: Vec<f64>,
+    k_lu: Vec<f64>,
+    piv: Vec<usize>,
+    v: Vec<f64>,
+    g: Vec<f64>,
+    scratch: Vec<f64>,
+    rhs: Vec<f64>,
+    block: (Vec<f64>, Vec<usize>),
+}
+
+/// Largest [`Spare`] a thread keeps (bytes of capacity); larger buffers are freed.
+const SPARE_BYTES: usize = 16 << 20;
+
+impl Spare {
+    fn bytes(&self) -> usize {
+        let f = self.phis.capacity()
+            + self.psis.capacity()
+            + self.k_lu.capacity()
+            + self.v.capacity()
+            + self.g.capacity()
+            + self.scratch.capacity()
+            + self.rhs.capacity()
+            + self.block.0.capacity();
+        let u = self.piv.capacity() + self.block.1.capacity();
+        f * size_of::<f64>() + u * size_of::<usize>()
+    }
+}
+
+thread_local! {
+    static SPARE: std::cell::Cell<Option<Spare>> = const { std::cell::Cell::new(None) };
+}
+
+impl Drop for CondensedLu {
+    fn drop(&mut self) {
+        let spare = Spare {
+            phis: std::mem::take(&mut self.phis),
+            psis: std::mem::take(&mut self.psis),
+            k_lu: std::mem::take(&mut self.k_lu),
+            piv: std::mem::take(&mut self.piv),
+            v: std::mem::take(&mut self.v),
+            g: std::mem::take(&mut self.g),
+            scratch: std::mem::take(&mut self.scratch),
+            rhs: std::mem::take(&mut self.rhs),
+            block: self.block.take_buffers(),
+        };
+        if spare.bytes() <= SPARE_BYTES {
+            // keep the larger of this and a spare already kept (nested solves); the
+            // thread-local is gone only while the thread exits
+            let _ = SPARE.try_with(|cell| {
+                let kept = cell.take();
+                cell.set(Some(match kept {
+                    Some(k) if k.bytes() > spare.bytes() => k,
+                    _ => spare,
+                }));
+            });
+        }
+    }
+}
+
 impl CondensedLu {
+    /// A factorisation object with no layout yet; it takes over the emptied buffers
+    /// of this thread's last dropped one ([`Spare`]).
     pub fn new() -> Self {
-        Self::default()
+        let mut lu = Self::default();
+        if let Some(mut spare) = SPARE.try_with(std::cell::Cell::take).ok().flatten() {
+            for v in [&mut spare.phis, &mut spare.psis, &mut spare.k_lu, &mut spare.v, &mut spare.g, &mut spare.scratch, &mut spare.rhs] {
+                v.clear();
+            }
+            spare.piv.clear();
+            lu.phis = spare.phis;
+            lu.psis = spare.psis;
+            lu.k_lu = spare.k_lu;
+            lu.piv = spare.piv;
+            lu.v = spare.v;
+            lu.g = spare.g;
+            lu.scratch = spare.scratch;
+            lu.rhs = spare.rhs;
+            lu.block = BlockLu::with_buffers(spare.block);
+        }
+        lu
     }
 
     /// Numeric factorisations of the condensed system by the sparse LU and of the full
@@ -809,7 +940,29 @@ impl CondensedLu {
             let xi = &self.rhs[xi..xi + n];
             let gg = &self.g[iv.g..iv.g + sn * nq];
             small_n!(n, nc => stage_rhs(nc, xs, xi, gg, used, p));
-            (Kernels::new(sn, n).solve)(&self.k_lu[iv.lu..iv.lu + sn * sn], sn, &self.piv[iv.piv..iv.piv + sn], xs);
+        }
+        // The stage solves, two intervals of a segment at a time (independent systems).
+        let mut ivx = 0;
+        while ivx < self.intervals.len() {
+            let iv = self.intervals[ivx];
+            let n = disc.dims[iv.k];
+            let sn = s * n;
+            let kernels = Kernels::new(sn, n);
+            let at = disc.stage(iv.k, iv.i, 0);
+            let lu = |iv: &Interval| &self.k_lu[iv.lu..iv.lu + sn * sn];
+            let piv = |iv: &Interval| &self.piv[iv.piv..iv.piv + sn];
+            match self.intervals.get(ivx + 1) {
+                Some(next) if next.k == iv.k => {
+                    let bt = disc.stage(next.k, next.i, 0);
+                    let (head, tail) = x.split_at_mut(bt);
+                    (kernels.solve_pair)([lu(&iv), lu(next)], sn, [piv(&iv), piv(next)], [&mut head[at..at + sn], &mut tail[..sn]]);
+                    ivx += 2;
+                }
+                _ => {
+                    (kernels.solve)(lu(&iv), sn, piv(&iv), &mut x[at..at + sn]);
+                    ivx += 1;
+                }
+            }
         }
         if x.iter().any(|v| !v.is_finite()) {
             return Err(BvpError::SingularJacobian {
@@ -1086,6 +1239,19 @@ mod tests {
                 (Kernels::GENERAL.solve)(&lu_g, m, &piv_g, &mut x_g);
                 (fixed.solve)(&lu_f, m, &piv_f, &mut x_f);
                 assert_eq!(bits(&x_f), bits(&x_g), "s = {s}, n = {n}: solve");
+                // two systems side by side (the other one Aᵀ): each exactly its own solve
+                let mut lu_t: Vec<f64> = (0..m * m).map(|i| a[(i % m) * m + i / m]).collect();
+                let mut piv_t = vec![0; m];
+                assert!((fixed.lu)(&mut lu_t, m, &mut piv_t), "s = {s}, n = {n}: Aᵀ regular");
+                let rhs_t: Vec<f64> = (0..m).map(|_| next()).collect();
+                let mut x_t = rhs_t.clone();
+                (fixed.solve)(&lu_t, m, &piv_t, &mut x_t);
+                for k in [fixed, Kernels::GENERAL] {
+                    let (mut p1, mut p2) = (rhs[..m].to_vec(), rhs_t.clone());
+                    (k.solve_pair)([&lu_f, &lu_t], m, [&piv_f, &piv_t], [&mut p1, &mut p2]);
+                    assert_eq!(bits(&p1), bits(&x_f), "s = {s}, n = {n}: first of a pair");
+                    assert_eq!(bits(&p2), bits(&x_t), "s = {s}, n = {n}: second of a pair");
+                }
                 // and the general solve solves A x = b (so the comparison is of solutions)
                 let b = &rhs[..m];
                 let res = (0..m).map(|r| ((0..m).map(|c| a[r * m + c] * x_g[c]).sum::<f64>() - b[r]).abs()).fold(0.0, f64::max);
@@ -1137,5 +1303,74 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// A `CondensedLu` dropped at the end of a solve leaves its buffers to the next one
+    /// of the thread ([`Spare`]), emptied: the next solve takes them (no allocation, its
+    /// capacity is the previous solve's) and gives the same result to the bit as a
+    /// solve in a new thread (no spare), also with another problem's (other n, other
+    /// sizes) buffers in between.
+    #[test]
+    fn spare_buffers_are_reused_and_leave_every_result_unchanged() {
+        use crate::analytical::bratu::{Bratu, BratuBranch, Exact as BratuExact};
+        use crate::analytical::elastica::{guess, Exact};
+        use crate::collocation::{solve, CollocationOptions, Scheme};
+        use crate::Solution;
+
+        fn bits(sol: &Solution) -> Vec<u64> {
+            let seg = &sol.segments[0];
+            let mut out: Vec<u64> = seg.mesh.iter().map(|x| x.to_bits()).collect();
+            out.extend(seg.nodes.iter().flatten().map(|y| y.to_bits()));
+            out.extend(sol.params.iter().map(|p| p.to_bits()));
+            out.push(sol.stats.newton_iterations as u64);
+            out
+        }
+        fn spare() -> Option<(usize, usize, usize)> {
+            SPARE.with(|c| {
+                let kept = c.take();
+                let cap = kept.as_ref().map(|k| (k.bytes(), k.k_lu.capacity(), k.block.0.capacity()));
+                c.set(kept);
+                cap
+            })
+        }
+        fn elastica() -> Solution {
+            let exact = Exact::new(std::f64::consts::FRAC_1_SQRT_2).unwrap();
+            let opts = CollocationOptions { scheme: Scheme::Gauss8, tolerance: 1e-8, ..Default::default() };
+            solve(&exact.problem(), &guess(1.0, 11), &opts).unwrap()
+        }
+        fn bratu() -> Solution {
+            let exact = BratuExact::new(3.51, BratuBranch::Lower).unwrap();
+            let opts = CollocationOptions { scheme: Scheme::Gauss6, tolerance: 1e-8, ..Default::default() };
+            let sol = solve(&Bratu, &exact.guess(11), &opts).unwrap();
+            assert!(exact.max_dense_error(&sol, 2001) < 1e-9);
+            sol
+        }
+        let fresh = |f: fn() -> Solution| std::thread::spawn(move || {
+            assert!(spare().is_none(), "a new thread has no spare buffers");
+            bits(&f())
+        });
+        let (elastica_fresh, bratu_fresh) = (fresh(elastica).join().unwrap(), fresh(bratu).join().unwrap());
+        std::thread::spawn(move || {
+            assert_eq!(bits(&bratu()), bratu_fresh);
+            assert_eq!(bits(&elastica()), elastica_fresh, "after Bratu's buffers");
+            // 212 intervals of 16 × 16 LUs: the spare holds at least those
+            let (bytes, k_lu, steps) = spare().expect("the solve left its buffers");
+            assert!(k_lu >= 212 * 16 * 16 && steps > 0 && bytes >= k_lu * 8, "{bytes} {k_lu} {steps}");
+            // a new CondensedLu takes them, emptied
+            let mut lu = CondensedLu::new();
+            assert!(spare().is_none());
+            assert!(lu.k_lu.is_empty() && lu.k_lu.capacity() == k_lu && lu.v.is_empty() && lu.piv.is_empty());
+            assert_eq!(lu.block.take_buffers().0.capacity(), steps);
+            drop(lu);
+            assert_eq!(bits(&elastica()), elastica_fresh, "with its own buffers");
+            assert_eq!(bits(&bratu()), bratu_fresh, "after the elastica's buffers");
+            // too large a spare is not kept
+            let mut big = CondensedLu::new();
+            big.k_lu = Vec::with_capacity(SPARE_BYTES / 8 + 1);
+            drop(big);
+            assert!(spare().is_none(), "a spare above SPARE_BYTES is freed");
+        })
+        .join()
+        .unwrap();
     }
 }
