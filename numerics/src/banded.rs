@@ -34,6 +34,13 @@ fn is_zero_pivot(pivot: f64, scale: f64) -> bool {
     pivot.partial_cmp(&(PIVOT_TOLERANCE * scale)) != Some(std::cmp::Ordering::Greater) || !pivot.is_finite()
 }
 
+/// With a border, the band block A must be well conditioned as well as regular: its
+/// inverse enters V = A⁻¹B and S = D − C V, so an A with a pivot |u_jj| ≤ this ratio of
+/// its column's scale (cond(A) ≳ 1e8 while the whole matrix may be well conditioned)
+/// would lose ~cond(A) ε in the solution unseen. Such a block is a [`BandFailure::Band`]
+/// (the caller's general LU takes over).
+pub const BORDER_PIVOT_RATIO: f64 = 1e-8;
+
 /// Largest border (dense rows and columns) [`BandStructure::detect`] accepts.
 pub const MAX_BORDER: usize = 64;
 
@@ -158,6 +165,14 @@ impl BandLu {
             }
         }
         Ok(())
+    }
+
+    /// The pivot |u_jj| smallest against `scale[j]` after [`Self::factorize`]: (j, |u_jj|, scale[j]).
+    pub fn smallest_pivot(&self, scale: &[f64]) -> Option<(usize, f64, f64)> {
+        let kv = self.kl + self.ku;
+        (0..self.n.min(scale.len()))
+            .map(|j| (j, self.ab[j * self.ld + kv].abs(), scale[j]))
+            .min_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2)))
     }
 
     /// Overwrite `b` (length n) with A⁻¹ b from the factors.
@@ -552,6 +567,11 @@ impl BorderedBand {
             }
         }
         self.band.factorize(Some(&scale)).map_err(|(column, pivot, scale)| BandFailure::Band { column, pivot, scale })?;
+        if m > 0 {
+            if let Some((column, pivot, scale)) = self.band.smallest_pivot(&scale).filter(|&(_, p, s)| !(p > BORDER_PIVOT_RATIO * s)) {
+                return Err(BandFailure::Band { column, pivot, scale });
+            }
+        }
         for col in b.chunks_exact_mut(ni.max(1)).take(m) {
             self.band.solve_in_place(col);
         }
@@ -900,5 +920,31 @@ mod tests {
         lu.solve_in_place(&mut x).unwrap();
         assert!(relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b)) < 1e-14);
         assert_eq!((lu.symbolic_factorisations, lu.numeric_factorisations), (2, 1));
+    }
+
+    /// C₆ + δI with δ = 1e-12 is well conditioned (cond ≈ 2), but its band block P₅ + δI
+    /// (node 0 in the border) has cond ≈ 1e12: block elimination through A⁻¹ would lose
+    /// ~1e-4 of the solution. The block is refused ([`BORDER_PIVOT_RATIO`]) and the
+    /// general LU solves to round-off (review item; without the check the difference
+    /// to the dense solve is ~1e-4).
+    #[test]
+    fn an_ill_conditioned_band_block_under_a_border_falls_back_to_the_general_lu() {
+        let n = 6;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..n {
+            push(&mut t, i, (i + 1) % n, 1.0);
+            push(&mut t, (i + 1) % n, i, 1.0);
+            push(&mut t, i, i, 1e-12);
+        }
+        let (r, c, v) = t;
+        let mut lu: SparseLu = SparseLu::banded();
+        lu.set_pattern(n, &r, &c).unwrap();
+        assert_eq!(lu.band_structure().map(|s| s.border.clone()), Some(vec![0]));
+        lu.factorize(&v).unwrap();
+        assert!(lu.band_structure().is_none(), "the ill-conditioned band block is handed to the general LU");
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+        let mut x = b.clone();
+        lu.solve_in_place(&mut x).unwrap();
+        assert!(relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b)) < 1e-12);
     }
 }
