@@ -568,7 +568,7 @@ impl BorderedBand {
         }
         self.band.factorize(Some(&scale)).map_err(|(column, pivot, scale)| BandFailure::Band { column, pivot, scale })?;
         if m > 0 {
-            if let Some((column, pivot, scale)) = self.band.smallest_pivot(&scale).filter(|&(_, p, s)| !(p > BORDER_PIVOT_RATIO * s)) {
+            if let Some((column, pivot, scale)) = self.band.smallest_pivot(&scale).filter(|&(_, p, s)| p.partial_cmp(&(BORDER_PIVOT_RATIO * s)) != Some(std::cmp::Ordering::Greater)) {
                 return Err(BandFailure::Band { column, pivot, scale });
             }
         }
