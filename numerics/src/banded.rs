@@ -865,12 +865,17 @@ mod tests {
     #[test]
     fn singular_detection_is_independent_of_the_scale() {
         for scale in [1.0, 1e-150, 1e150] {
+            // the band's own verdict: refused at every scale
             let (r, c, v) = nearly_singular(0.0);
+            let structure = BandStructure::detect(12, &r, &c, &[]).unwrap();
+            assert!(structure.border.is_empty());
+            let scaled: Vec<f64> = v.iter().map(|x| x * scale).collect();
+            let mut band = BorderedBand::new(structure, &r, &c);
+            assert!(matches!(band.factorize(&scaled, &[]), Err(BandFailure::Band { column: 6, .. })), "scale {scale}: {:?}", band.factorize(&scaled, &[]));
+            // SparseLu hands it to faer's LU, whose verdict stands
             let mut lu: SparseLu = SparseLu::banded();
             lu.set_pattern(12, &r, &c).unwrap();
-            assert!(lu.band_structure().is_some_and(|s| s.border.is_empty()));
-            let scaled: Vec<f64> = v.iter().map(|x| x * scale).collect();
-            assert!(matches!(lu.factorize(&scaled), Err(LinearError::Singular { .. })), "scale {scale}: {:?}", lu.factorize(&scaled));
+            assert!(faer_verdict(&mut lu, 12, &r, &c, &scaled), "scale {scale}");
             // regular: not refused at any scale, and every column scaled differently
             let (r, c, v) = nearly_singular(1e-6);
             let column_scaled: Vec<f64> = v.iter().zip(&c).map(|(x, &j)| x * scale * 10f64.powi(j as i32 * 7 - 40)).collect();
@@ -889,13 +894,65 @@ mod tests {
                 assert!((bi - y).abs() <= 1e-7 * y.abs(), "scale {scale}, {i}: {bi} vs {y}");
             }
         }
-        // a zero border row: the Schur complement is singular, named with its determinant
+        // a zero border row: the Schur complement is singular, named with its determinant;
+        // SparseLu hands it to faer's LU
         let mut rng = Lcg(8);
         let (n, (r, c, v)) = closed_chain(10, 2, 1, &mut rng);
         let zero_row: Vec<f64> = r.iter().zip(&v).map(|(&ri, &x)| if ri == n - 1 { 0.0 } else { x * 1e-200 }).collect();
+        let mut band = BorderedBand::new(BandStructure::detect(n, &r, &c, &[]).unwrap(), &r, &c);
+        assert!(matches!(band.factorize(&zero_row, &[]), Err(BandFailure::Schur { det }) if det == 0.0));
         let mut lu: SparseLu = SparseLu::banded();
         lu.set_pattern(n, &r, &c).unwrap();
-        assert!(matches!(lu.factorize(&zero_row), Err(LinearError::SingularSchur { det }) if det == 0.0));
+        assert!(lu.band_structure().is_some());
+        assert!(faer_verdict(&mut lu, n, &r, &c, &zero_row));
+    }
+
+    /// The fallback gives faer's verdict: `lu` (banded, refused by the band) factorises
+    /// and solves exactly as faer's LU alone — both fail, or both give the same solution
+    /// (for an exactly singular matrix faer's LU may see a round-off pivot and return a
+    /// huge finite solution, as the solver without the banded LU did).
+    fn faer_verdict(lu: &mut SparseLu, n: usize, r: &[usize], c: &[usize], values: &[f64]) -> bool {
+        let mut faer: SparseLu = SparseLu::new();
+        faer.set_pattern(n, r, c).unwrap();
+        let solve = |lu: &mut SparseLu| -> Result<Vec<f64>, LinearError> {
+            lu.factorize(values)?;
+            let mut x: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+            lu.solve_in_place(&mut x)?;
+            Ok(x)
+        };
+        let (ours, theirs) = (solve(lu), solve(&mut faer));
+        lu.band_structure().is_none() && ours == theirs
+    }
+
+    /// A tridiagonal (−1, 2, −1) matrix of order 10 with its last row scaled by 1e-20 is
+    /// regular (cond ≈ 60 before the scaling); its last pivot, ≈ 1e-20, is ≤ τ × its
+    /// column's largest entry 1, so the band refuses it without a border (review item,
+    /// the case of [[1, 1], [1e-20, 2e-20]]): SparseLu hands it to faer's LU, which
+    /// solves it to round-off (without the fallback `factorize` returned `Singular`).
+    #[test]
+    fn a_badly_row_scaled_regular_matrix_falls_back_to_the_general_lu() {
+        let n: usize = 10;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..n {
+            let row_scale = if i == n - 1 { 1e-20 } else { 1.0 };
+            for j in i.saturating_sub(1)..=(i + 1).min(n - 1) {
+                push(&mut t, i, j, row_scale * if i == j { 2.0 } else { -1.0 });
+            }
+        }
+        let (r, c, v) = t;
+        let mut lu: SparseLu = SparseLu::banded();
+        lu.set_pattern(n, &r, &c).unwrap();
+        assert!(lu.band_structure().is_some_and(|s| s.border.is_empty()));
+        lu.factorize(&v).unwrap();
+        assert!(lu.band_structure().is_none());
+        let x: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+        let mut b = vec![0.0; n];
+        for k in 0..r.len() {
+            b[r[k]] += v[k] * x[c[k]];
+        }
+        lu.solve_in_place(&mut b).unwrap();
+        // cond ≈ 60 for the row-equilibrated matrix: ≈ 1e-14 relative
+        assert!(relative_difference(&b, &x) < 1e-12, "{b:?}");
     }
 
     /// The 6-cycle C₆ (adjacency, zero diagonal) is regular; with node 0 in the border

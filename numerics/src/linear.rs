@@ -16,7 +16,7 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::MatMut;
 use thiserror::Error;
-use crate::banded::{BandFailure, BandStructure, BorderedBand};
+use crate::banded::{BandStructure, BorderedBand};
 use crate::phases::{timed, Phase};
 
 /// Why a sparse factorisation or solve failed.
@@ -81,8 +81,8 @@ fn check_pattern(n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearE
 /// pattern ([`BandStructure::detect`]: a mesh's unknowns numbered node by node, a
 /// closed loop's wrap-around and global unknowns in the border) and factorises it by
 /// [`BorderedBand`], linear in n; faer's general sparse LU is used for any other pattern,
-/// and from the first matrix of a pattern whose band block alone is singular (the whole
-/// matrix may be regular then).
+/// and from the first matrix of a pattern that the banded LU refuses (any zero or, under
+/// a border, small pivot: faer's LU decides whether the matrix is singular).
 #[derive(Debug)]
 pub struct SparseLu<E = LinearError> {
     n: usize,
@@ -194,9 +194,9 @@ impl<E: From<LinearError>> SparseLu<E> {
     ///
     /// # Errors
     /// [`LinearError::NotFactorised`] without a pattern, [`LinearError::NonFiniteMatrix`],
-    /// [`LinearError::DimensionMismatch`], [`LinearError::Singular`] (the banded LU: a
-    /// pivot ≤ 64 ε of its column, see [`crate::banded`]) or
-    /// [`LinearError::SingularSchur`] (the banded LU's border).
+    /// [`LinearError::DimensionMismatch`], or [`LinearError::Singular`] (faer's LU; a
+    /// matrix the banded LU refuses — see [`crate::banded`] — is handed to faer's, from
+    /// then on for this pattern).
     pub fn factorize(&mut self, values: &[f64]) -> Result<(), E> {
         if !self.has_pattern() {
             return Err(LinearError::NotFactorised.into());
@@ -215,14 +215,17 @@ impl<E: From<LinearError>> SparseLu<E> {
                     self.factors = Factors::Band;
                     return Ok(());
                 }
-                // the band block alone is singular: faer's LU of the whole matrix
-                Err(BandFailure::Band { .. }) if !band.structure().border.is_empty() => {
+                // every refusal goes to faer's LU of the whole matrix, which gives the
+                // verdict: the band block alone may be singular or ill conditioned under
+                // a border (the whole matrix regular), a pivot judged against its column
+                // may be small only because its row is badly scaled, the Schur
+                // complement's test may be met by cancellation
+                Err(_) => {
                     let (rows, cols) = self.indices.take().unwrap_or_default();
                     self.pattern = Some(timed(Phase::SymbolicFactorisation, || faer_symbolic(self.n, &rows, &cols))?);
                     self.band = None;
                     self.symbolic_factorisations += 1;
                 }
-                Err(failure) => return Err(LinearError::from(failure).into()),
             }
         }
         let (sym, argsort, symbolic) = self.pattern.as_ref().ok_or(LinearError::NotFactorised)?;
