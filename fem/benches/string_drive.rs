@@ -154,7 +154,7 @@ fn iteration_vs_lu(group: &mut criterion::BenchmarkGroup<criterion::measurement:
         x.extend([0.95 * r * d.driver_speed, d.driver_speed]);
         x.extend(std::iter::repeat_n(0.0, points.len()));
         let (rows, cols) = prob.pattern();
-        let mut lu = BorderedLu::new(&rows, &cols, x.len(), [asm.len(), asm.len() + 1]).unwrap();
+        let mut lu = BorderedLu::banded(&rows, &cols, x.len(), [asm.len(), asm.len() + 1]).unwrap();
         let values = prob.evaluate(&x, true).unwrap().values;
         let mut rhs = vec![1.0; x.len()];
         group.bench_with_input(BenchmarkId::new("exudyn-lu", n), &n, |bch, _| {

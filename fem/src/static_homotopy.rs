@@ -140,7 +140,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> StartProblem<N, K> {
     /// # Errors
     /// [`FemError::NewtonDiverged`], [`FemError::SingularTangent`], [`FemError::NonFinite`].
     pub fn newton(&mut self, settings: &SolverSettings) -> Result<newton::NewtonReport, FemError> {
-        let mut lu = SparseLu::new();
+        let mut lu = SparseLu::banded();
         let (rows, cols) = self.assembler.pattern();
         lu.set_pattern(self.assembler.len(), rows, cols)
             .map_err(|detail| FemError::SingularTangent { eta: 0.0, iteration: 0, detail })?;
@@ -265,7 +265,7 @@ impl StringHanging {
 
         let asm = Assembler::with_kernel(mesh, kernel.clone());
         let scales = Scales::new(&asm, contour.centre_distance(), f_ref);
-        let mut lu = SparseLu::new();
+        let mut lu = SparseLu::banded();
         let (rows, cols) = asm.pattern();
         lu.set_pattern(asm.len(), rows, cols)
             .map_err(|detail| FemError::SingularTangent { eta: 0.0, iteration: 0, detail })?;

@@ -9,7 +9,10 @@
 //!   per pattern, numeric per iteration), [`linear::TripletLu`] (the same from triplets,
 //!   pattern cached by comparison) and [`linear::BorderedLu`] (a sparse block with two
 //!   dense border unknowns by its 2 × 2 Schur complement), failures as
-//!   [`linear::LinearError`];
+//!   [`linear::LinearError`]; [`SparseLu::banded`] factorises a band with a small dense
+//!   border (global unknowns, a closed loop's wrap-around) by [`banded::BorderedBand`]
+//!   — an LU with partial pivoting within the band and the border's Schur complement,
+//!   linear in n — and falls back to faer's LU for any other pattern;
 //! - [`quadrature`]: integration rules on [−1, 1] (Gauss–Legendre 1…5 points, Simpson,
 //!   trapezoidal) — fem's element rules and bvp's collocation nodes;
 //! - [`fmt`]: numbers in messages with significant digits ([`Sig`]);
@@ -34,6 +37,7 @@
 //! Errors are typed enums carrying the numbers; the linear solvers are generic over the
 //! caller's error type `E: From<LinearError>` so that each crate keeps its own error enum.
 
+pub mod banded;
 pub mod continuation;
 pub mod fmt;
 pub mod linear;
@@ -42,6 +46,8 @@ pub mod phases;
 pub mod quadrature;
 pub mod roots;
 pub mod scalar;
+#[cfg(test)]
+mod test_support;
 
 pub use fmt::Sig;
 pub use linear::{BorderedLu, LinearError, SparseLu, TripletLu};

@@ -260,7 +260,7 @@ fn cached_lu(rows: &[usize], cols: &[usize], n: usize, border: [usize; 2]) -> Re
     let cached = LU_CACHE.with(|c| c.borrow_mut().take());
     match cached {
         Some((r, c, b, lu)) if b == border && lu.dim() == n && r == rows && c == cols => Ok(lu),
-        _ => BorderedLu::new(rows, cols, n, border).map_err(NewtonFailure::Pattern),
+        _ => BorderedLu::banded(rows, cols, n, border).map_err(NewtonFailure::Pattern),
     }
 }
 

@@ -1,0 +1,1001 @@
+//! A banded LU with a dense border: the direct solve of the finite-element Newton
+//! systems whose unknowns, numbered node by node along a mesh, couple only within a band
+//! — except a few global unknowns (dense rows and columns: the drive's belt speed and
+//! driven speed) and, on a closed loop, the unknowns where the mesh wraps around (the
+//! last element couples the last node with the first).
+//!
+//! [`BandStructure::detect`] finds, from the pattern alone, a border — the fewest
+//! unknowns whose removal leaves a narrow band, chosen by an estimate of the flops —
+//! and [`BorderedBand`] factorises the matrix as
+//!
+//! ```text
+//!   [A B; C D],   A band (half-widths kl, ku), B, C dense columns / rows of the border,
+//!   A = P L U     (LAPACK's gbtf2: partial pivoting by rows within the band),
+//!   V = A⁻¹ B,  S = D − C V (m × m, dense LU with partial pivoting),
+//!   solve:  u = A⁻¹ r_A,  y = S⁻¹ (r_D − C u),  x_A = u − V y,  x_D = y.
+//! ```
+//!
+//! The cost is linear in n: (kl + ku + kl)·kl per column for the LU, m band solves for
+//! V, m²n for S; a general sparse LU (faer's, with its fill-reducing ordering) of such a
+//! matrix costs 5–10× more at the sizes of the steady drive (docs/performance.md).
+//!
+//! **Singular**: a pivot |u_jj| ≤ τ max_i |a_ij| (τ = 64 ε, the largest entry of the
+//! original column j of the whole matrix, border rows included) — invariant under a
+//! scaling of the matrix or of its columns. For the Schur complement the scale of
+//! column l is max_k (|D_kl| + Σ_i |C_ki| |V_il|), the size of the terms that cancel.
+
+use crate::linear::LinearError;
+
+/// Relative pivot threshold τ (see the module docs).
+pub const PIVOT_TOLERANCE: f64 = 64.0 * f64::EPSILON;
+
+/// |pivot| ≤ τ scale, or not finite.
+fn is_zero_pivot(pivot: f64, scale: f64) -> bool {
+    pivot.partial_cmp(&(PIVOT_TOLERANCE * scale)) != Some(std::cmp::Ordering::Greater) || !pivot.is_finite()
+}
+
+/// With a border, the band block A must be well conditioned as well as regular: its
+/// inverse enters V = A⁻¹B and S = D − C V, so an A with a pivot |u_jj| ≤ this ratio of
+/// its column's scale (cond(A) ≳ 1e8 while the whole matrix may be well conditioned)
+/// would lose ~cond(A) ε in the solution unseen. Such a block is a [`BandFailure::Band`]
+/// (the caller's general LU takes over).
+pub const BORDER_PIVOT_RATIO: f64 = 1e-8;
+
+/// Largest border (dense rows and columns) [`BandStructure::detect`] accepts.
+pub const MAX_BORDER: usize = 64;
+
+/// Largest half-bandwidth [`BandStructure::detect`] accepts.
+pub const MAX_HALF_BAND: usize = 96;
+
+/// LU with partial pivoting of an n × n band matrix with kl sub- and ku
+/// superdiagonals, in LAPACK's band storage: column j holds rows j − ku − kl … j + kl
+/// (the top kl rows are the room for the fill of the row interchanges).
+#[derive(Debug, Clone)]
+pub struct BandLu {
+    n: usize,
+    kl: usize,
+    ku: usize,
+    /// Leading dimension 2 kl + ku + 1.
+    ld: usize,
+    ab: Vec<f64>,
+    pivots: Vec<usize>,
+}
+
+impl BandLu {
+    /// An n × n band matrix of zeros with half-widths `kl`, `ku`.
+    pub fn zeros(n: usize, kl: usize, ku: usize) -> Self {
+        let ld = 2 * kl + ku + 1;
+        BandLu { n, kl, ku, ld, ab: vec![0.0; ld * n], pivots: vec![0; n] }
+    }
+
+    /// Order n.
+    pub fn dim(&self) -> usize {
+        self.n
+    }
+
+    /// Half-bandwidths (kl, ku).
+    pub fn half_widths(&self) -> (usize, usize) {
+        (self.kl, self.ku)
+    }
+
+    /// Storage position of entry (i, j), if it lies in the band.
+    pub fn position(&self, i: usize, j: usize) -> Option<usize> {
+        (i < self.n && j < self.n && i <= j + self.kl && j <= i + self.ku).then(|| j * self.ld + self.kl + self.ku + i - j)
+    }
+
+    /// Set every entry (and the fill room) to zero.
+    pub fn clear(&mut self) {
+        self.ab.fill(0.0);
+    }
+
+    /// Add `v` to entry (i, j).
+    ///
+    /// # Panics
+    /// If (i, j) lies outside the band (a caller's indexing error).
+    pub fn add(&mut self, i: usize, j: usize, v: f64) {
+        let p = self.position(i, j).unwrap_or_else(|| panic!("entry ({i}, {j}) outside the band"));
+        self.ab[p] += v;
+    }
+
+    /// Add `v` at a storage position from [`Self::position`].
+    pub fn add_at(&mut self, position: usize, v: f64) {
+        self.ab[position] += v;
+    }
+
+    /// The largest |a_ij| of each column j (call before [`Self::factorize`]).
+    pub fn column_maxima(&self) -> Vec<f64> {
+        self.ab.chunks_exact(self.ld).map(|c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs()))).collect()
+    }
+
+    /// Factorise in place (gbtf2). `scale[j]` is the size of column j against which a
+    /// pivot is judged zero (see the module docs); `None`: the band's own column maxima.
+    ///
+    /// # Errors
+    /// The first column j whose pivot is ≤ τ scale[j] (or not finite), with the pivot.
+    pub fn factorize(&mut self, scale: Option<&[f64]>) -> Result<(), (usize, f64, f64)> {
+        let own;
+        let scale = match scale {
+            Some(s) => s,
+            None => {
+                own = self.column_maxima();
+                &own
+            }
+        };
+        let (n, kl, ld) = (self.n, self.kl, self.ld);
+        let kv = self.kl + self.ku;
+        let mut ju = 0;
+        for (j, &column_scale) in scale.iter().enumerate().take(n) {
+            let km = kl.min(n - 1 - j);
+            let base = j * ld + kv;
+            let (mut p, mut best) = (0, self.ab[base].abs());
+            for r in 1..=km {
+                let a = self.ab[base + r].abs();
+                if a > best {
+                    (p, best) = (r, a);
+                }
+            }
+            self.pivots[j] = j + p;
+            if is_zero_pivot(best, column_scale) {
+                return Err((j, best, column_scale));
+            }
+            ju = ju.max((j + self.ku + p).min(n - 1));
+            if p != 0 {
+                for c in j..=ju {
+                    let top = c * ld + kv - (c - j);
+                    self.ab.swap(top, top + p);
+                }
+            }
+            let inv = 1.0 / self.ab[base];
+            for v in &mut self.ab[base + 1..=base + km] {
+                *v *= inv;
+            }
+            if km == 0 {
+                continue;
+            }
+            let (left, right) = self.ab.split_at_mut((j + 1) * ld);
+            let l = &left[base + 1..=base + km];
+            for c in j + 1..=ju {
+                let top = (c - j - 1) * ld + kv - (c - j);
+                let a = right[top];
+                if a != 0.0 {
+                    for (x, &m) in right[top + 1..=top + km].iter_mut().zip(l) {
+                        *x -= a * m;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The pivot |u_jj| smallest against `scale[j]` after [`Self::factorize`]: (j, |u_jj|, scale[j]).
+    pub fn smallest_pivot(&self, scale: &[f64]) -> Option<(usize, f64, f64)> {
+        let kv = self.kl + self.ku;
+        (0..self.n.min(scale.len()))
+            .map(|j| (j, self.ab[j * self.ld + kv].abs(), scale[j]))
+            .min_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2)))
+    }
+
+    /// Overwrite `b` (length n) with A⁻¹ b from the factors.
+    pub fn solve_in_place(&self, b: &mut [f64]) {
+        let (n, kl, ld) = (self.n, self.kl, self.ld);
+        let kv = self.kl + self.ku;
+        for j in 0..n {
+            let p = self.pivots[j];
+            if p != j {
+                b.swap(p, j);
+            }
+            let km = kl.min(n - 1 - j);
+            let t = b[j];
+            if t != 0.0 {
+                let l = &self.ab[j * ld + kv + 1..=j * ld + kv + km];
+                for (x, &m) in b[j + 1..=j + km].iter_mut().zip(l) {
+                    *x -= t * m;
+                }
+            }
+        }
+        for j in (0..n).rev() {
+            let col = &self.ab[j * ld..(j + 1) * ld];
+            b[j] /= col[kv];
+            let t = b[j];
+            if t != 0.0 {
+                let top = j.saturating_sub(kv);
+                // rows top … j−1 of column j sit at storage rows kv − (j − i)
+                for (i, x) in b[top..j].iter_mut().enumerate() {
+                    *x -= t * col[kv - (j - top - i)];
+                }
+            }
+        }
+    }
+}
+
+/// The border and band of a pattern: `inner` (global indices in order) form a band of
+/// half-widths (kl, ku) once `border` is taken out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandStructure {
+    pub n: usize,
+    pub border: Vec<usize>,
+    pub inner: Vec<usize>,
+    pub kl: usize,
+    pub ku: usize,
+}
+
+impl BandStructure {
+    /// The cheapest band-plus-border split of the n × n pattern (`rows`, `cols`) with
+    /// the unknowns `forced` in the border, or `None` if the best one is no band (a
+    /// border of more than [`MAX_BORDER`] or a half-width above [`MAX_HALF_BAND`]).
+    /// Two orders of the unknowns are tried, the given one and [`neighbour_order`]
+    /// (unknowns appended after a mesh's, e.g. one per friction point, moved next to
+    /// the nodes they couple with); in each, for each candidate half-width w (the
+    /// distinct distances of the entries, ascending), the entries farther than w are
+    /// covered by border unknowns greedily (the one on most such entries first — a dense
+    /// row and column before the two ends of a wrap-around); the split of least
+    /// estimated flops ([`BandStructure::flops`]) is taken.
+    pub fn detect(n: usize, rows: &[usize], cols: &[usize], forced: &[usize]) -> Option<BandStructure> {
+        if forced.iter().any(|&f| f >= n) {
+            return None;
+        }
+        let natural: Vec<usize> = (0..n).collect();
+        let moved = neighbour_order(n, rows, cols, forced);
+        let first = Self::detect_in_order(&natural, rows, cols, forced);
+        let second = if moved == natural { None } else { Self::detect_in_order(&moved, rows, cols, forced) };
+        match (first, second) {
+            (Some(a), Some(b)) => Some(if b.flops() < a.flops() { b } else { a }),
+            (a, b) => a.or(b),
+        }
+    }
+
+    /// Estimated flops of one factorisation: n w (3w + 1) for the band's LU and solves
+    /// (w = max(kl, ku)), m n (3w + 1) + m² n for the border of m unknowns.
+    pub fn flops(&self) -> f64 {
+        band_flops(self.n, self.kl.max(self.ku), self.border.len())
+    }
+
+    /// [`Self::detect`] with the unknowns in the order `order` (a permutation of 0…n−1).
+    fn detect_in_order(order: &[usize], rows: &[usize], cols: &[usize], forced: &[usize]) -> Option<BandStructure> {
+        let n = order.len();
+        let mut position = vec![0; n];
+        for (p, &g) in order.iter().enumerate() {
+            position[g] = p;
+        }
+        let mut is_forced = vec![false; n];
+        for &f in forced {
+            is_forced[f] = true;
+        }
+        // edges in positions of `order`, the farthest first: the entries outside a band
+        // of half-width w are a prefix
+        let mut edges: Vec<(usize, usize)> = rows.iter().zip(cols).filter(|&(&r, &c)| r != c && !is_forced[r] && !is_forced[c]).map(|(&r, &c)| (position[r], position[c])).collect();
+        edges.sort_unstable_by_key(|&(r, c)| std::cmp::Reverse(r.abs_diff(c)));
+        let mut degree = vec![0usize; n];
+        for &(r, c) in &edges {
+            degree[r] += 1;
+            degree[c] += 1;
+        }
+        // a cover of k entries needs at least k / (the largest degree) unknowns
+        let top_degree = degree.iter().copied().max().unwrap_or(0);
+        degree.fill(0);
+        let room = MAX_BORDER.saturating_sub(forced.len());
+        let mut cover_outside = |w: usize| -> Option<Vec<usize>> {
+            let count = edges.partition_point(|&(r, c)| r.abs_diff(c) > w);
+            if count > room * top_degree {
+                return None;
+            }
+            let mut far = edges[..count].to_vec();
+            let mut cover = Vec::new();
+            while !far.is_empty() {
+                for &(r, c) in &far {
+                    degree[r] += 1;
+                    degree[c] += 1;
+                }
+                let most = far.iter().flat_map(|&(r, c)| [r, c]).max_by_key(|&v| (degree[v], std::cmp::Reverse(v))).unwrap_or(0);
+                let max_degree = degree[most];
+                for &(r, c) in &far {
+                    degree[r] = 0;
+                    degree[c] = 0;
+                }
+                if cover.len() >= room || far.len() > (room - cover.len()) * max_degree {
+                    return None;
+                }
+                cover.push(most);
+                far.retain(|&(r, c)| r != most && c != most);
+            }
+            Some(cover)
+        };
+        let mut distances: Vec<usize> = edges.iter().map(|&(r, c)| r.abs_diff(c)).filter(|&d| d <= MAX_HALF_BAND).collect();
+        distances.push(0);
+        distances.sort_unstable();
+        distances.dedup();
+        // the widest admissible band first: if its border overflows, every narrower one's does
+        let widest = *distances.last().unwrap_or(&0);
+        let mut best: Option<(f64, Vec<usize>)> = cover_outside(widest).map(|cover| (band_flops(n, widest, forced.len() + cover.len()), cover));
+        best.as_ref()?;
+        for &w in &distances {
+            let wf = w as f64;
+            if best.as_ref().is_some_and(|(cost, _)| n as f64 * wf * (3.0 * wf + 1.0) >= *cost) {
+                break;
+            }
+            let Some(cover) = cover_outside(w) else { continue };
+            let cost = band_flops(n, w, forced.len() + cover.len());
+            if best.as_ref().is_none_or(|(c, _)| cost < *c) {
+                best = Some((cost, cover));
+            }
+        }
+        let (_, cover) = best?;
+        let mut border: Vec<usize> = forced.to_vec();
+        border.extend(cover.iter().map(|&p| order[p]));
+        let mut in_border = vec![false; n];
+        for &b in &border {
+            in_border[b] = true;
+        }
+        let mut inner_of = vec![usize::MAX; n];
+        let mut inner = Vec::with_capacity(n - border.len());
+        for &g in order {
+            if !in_border[g] {
+                inner_of[g] = inner.len();
+                inner.push(g);
+            }
+        }
+        let (mut kl, mut ku) = (0, 0);
+        for (&r, &c) in rows.iter().zip(cols) {
+            if !in_border[r] && !in_border[c] {
+                let (i, j) = (inner_of[r], inner_of[c]);
+                kl = kl.max(i.saturating_sub(j));
+                ku = ku.max(j.saturating_sub(i));
+            }
+        }
+        (kl <= MAX_HALF_BAND && ku <= MAX_HALF_BAND).then_some(BandStructure { n, border, inner, kl, ku })
+    }
+}
+
+/// Estimated flops of a band of half-width w with a border of m unknowns (see
+/// [`BandStructure::flops`]).
+fn band_flops(n: usize, w: usize, m: usize) -> f64 {
+    let (n, w, m) = (n as f64, w as f64, m as f64);
+    n * (w * (3.0 * w + 1.0) + m * (3.0 * w + 1.0) + m * m)
+}
+
+/// The unknowns reordered so that each unknown coupled mostly far from its own index (an
+/// unknown numbered after a mesh's, e.g. one per friction point) sits at the lower
+/// median of its neighbours' indices, the others keeping their places (ties in index
+/// order). "Far" is beyond T = 2 × (the median over the unknowns of their neighbours'
+/// median distance) — a few nodes' unknowns on a mesh; the two ends of a closed loop's
+/// numbering are near most of their neighbours and stay. The `forced` unknowns and the
+/// diagonal are left out.
+pub fn neighbour_order(n: usize, rows: &[usize], cols: &[usize], forced: &[usize]) -> Vec<usize> {
+    let mut is_forced = vec![false; n];
+    for &f in forced {
+        is_forced[f] = true;
+    }
+    let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for (&r, &c) in rows.iter().zip(cols) {
+        if r != c && !is_forced[r] && !is_forced[c] {
+            neighbours[r].push(c);
+        }
+    }
+    let lower_median = |v: &mut Vec<usize>| {
+        v.sort_unstable();
+        v[(v.len() - 1) / 2]
+    };
+    let mut median_distance: Vec<usize> = Vec::with_capacity(n);
+    for (g, list) in neighbours.iter_mut().enumerate() {
+        list.sort_unstable();
+        list.dedup();
+        if !list.is_empty() {
+            median_distance.push(lower_median(&mut list.iter().map(|&j| j.abs_diff(g)).collect()));
+        }
+    }
+    if median_distance.is_empty() {
+        return (0..n).collect();
+    }
+    let far = 2 * lower_median(&mut median_distance).max(1);
+    let key: Vec<usize> = neighbours
+        .iter()
+        .enumerate()
+        .map(|(g, list)| {
+            let distant = list.iter().filter(|&&j| j.abs_diff(g) > far).count();
+            if 2 * distant > list.len() {
+                list[(list.len() - 1) / 2]
+            } else {
+                g
+            }
+        })
+        .collect();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by_key(|&g| (key[g], g));
+    order
+}
+
+/// Where a pattern entry goes.
+#[derive(Debug, Clone, Copy)]
+enum Slot {
+    /// A storage position of the band.
+    Band(usize),
+    /// B: (inner row, border column).
+    B(usize, usize),
+    /// C: (border row, inner column).
+    C(usize, usize),
+    /// D: (border row, border column).
+    D(usize, usize),
+}
+
+/// Dense LU with partial pivoting of the m × m Schur complement (row-major).
+#[derive(Debug, Clone, Default)]
+struct DenseLu {
+    m: usize,
+    a: Vec<f64>,
+    pivots: Vec<usize>,
+}
+
+impl DenseLu {
+    /// Factorise `a` (row-major m × m); `scale[l]` judges the pivot of column l.
+    /// Returns the determinant on a pivot ≤ τ scale[l].
+    fn factorize(&mut self, m: usize, mut a: Vec<f64>, scale: &[f64]) -> Result<(), f64> {
+        let mut pivots = vec![0; m];
+        let mut det = 1.0;
+        for k in 0..m {
+            let p = (k..m).max_by(|&i, &j| a[i * m + k].abs().total_cmp(&a[j * m + k].abs())).unwrap_or(k);
+            pivots[k] = p;
+            if p != k {
+                // the trailing columns only (LINPACK's order: the solve interleaves the
+                // interchanges with the elimination)
+                for l in k..m {
+                    a.swap(k * m + l, p * m + l);
+                }
+                det = -det;
+            }
+            let pivot = a[k * m + k];
+            det *= pivot;
+            if is_zero_pivot(pivot.abs(), scale[k]) {
+                // the determinant so far, the remaining pivots taken as the rows left
+                return Err(if pivot.is_finite() { det } else { f64::NAN });
+            }
+            for i in k + 1..m {
+                let f = a[i * m + k] / pivot;
+                a[i * m + k] = f;
+                for l in k + 1..m {
+                    a[i * m + l] -= f * a[k * m + l];
+                }
+            }
+        }
+        *self = DenseLu { m, a, pivots };
+        Ok(())
+    }
+
+    fn solve_in_place(&self, b: &mut [f64]) {
+        let m = self.m;
+        for k in 0..m {
+            b.swap(k, self.pivots[k]);
+            for i in k + 1..m {
+                b[i] -= self.a[i * m + k] * b[k];
+            }
+        }
+        for k in (0..m).rev() {
+            let s: f64 = (k + 1..m).map(|l| self.a[k * m + l] * b[l]).sum();
+            b[k] = (b[k] - s) / self.a[k * m + k];
+        }
+    }
+}
+
+/// Why a [`BorderedBand`] factorisation failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum BandFailure {
+    /// A pivot of the band block A: (inner column, |pivot|, column scale). With a
+    /// border the whole matrix may still be regular (A alone singular).
+    Band { column: usize, pivot: f64, scale: f64 },
+    /// The Schur complement's LU: the determinant up to the failing pivot.
+    Schur { det: f64 },
+}
+
+/// The LU of a matrix of pattern (`rows`, `cols`) split by a [`BandStructure`] (see the
+/// module docs for the algebra). Values are given in pattern order, duplicates summed.
+#[derive(Debug, Clone)]
+pub struct BorderedBand {
+    structure: BandStructure,
+    slots: Vec<Slot>,
+    /// Band position of each inner unknown's diagonal.
+    diagonal: Vec<usize>,
+    band: BandLu,
+    /// V = A⁻¹ B, column-major (inner × border); C row-major (border × inner).
+    v: Vec<f64>,
+    c: Vec<f64>,
+    schur: DenseLu,
+}
+
+impl BorderedBand {
+    /// The split of the pattern by `structure` (from [`BandStructure::detect`] on it).
+    pub fn new(structure: BandStructure, rows: &[usize], cols: &[usize]) -> Self {
+        let n = structure.n;
+        let mut place = vec![(false, 0usize); n];
+        for (k, &b) in structure.border.iter().enumerate() {
+            place[b] = (true, k);
+        }
+        for (i, &g) in structure.inner.iter().enumerate() {
+            place[g] = (false, i);
+        }
+        let band = BandLu::zeros(structure.inner.len(), structure.kl, structure.ku);
+        let slots = rows
+            .iter()
+            .zip(cols)
+            .map(|(&r, &c)| match (place[r], place[c]) {
+                ((false, i), (false, j)) => Slot::Band(band.position(i, j).expect("the structure's band holds every inner entry")),
+                ((false, i), (true, k)) => Slot::B(i, k),
+                ((true, k), (false, j)) => Slot::C(k, j),
+                ((true, k), (true, l)) => Slot::D(k, l),
+            })
+            .collect();
+        let diagonal = (0..structure.inner.len()).map(|i| band.position(i, i).unwrap_or(0)).collect();
+        BorderedBand { structure, slots, diagonal, band, v: Vec::new(), c: Vec::new(), schur: DenseLu::default() }
+    }
+
+    /// The split in use.
+    pub fn structure(&self) -> &BandStructure {
+        &self.structure
+    }
+
+    /// Factorise the matrix of `values` (pattern order) with `shift[g]` added to the
+    /// diagonal of each unknown g (empty: none).
+    ///
+    /// # Errors
+    /// [`BandFailure`]: a zero pivot of A (the caller may fall back to a general LU of
+    /// the whole matrix) or of the Schur complement (the matrix is singular).
+    pub fn factorize(&mut self, values: &[f64], shift: &[f64]) -> Result<(), BandFailure> {
+        let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
+        self.band.clear();
+        let mut b = vec![0.0; ni * m];
+        let mut c = vec![0.0; m * ni];
+        let mut d = vec![0.0; m * m];
+        for (slot, &v) in self.slots.iter().zip(values) {
+            match *slot {
+                Slot::Band(p) => self.band.add_at(p, v),
+                Slot::B(i, k) => b[k * ni + i] += v,
+                Slot::C(k, j) => c[k * ni + j] += v,
+                Slot::D(k, l) => d[k * m + l] += v,
+            }
+        }
+        if !shift.is_empty() {
+            for (i, &g) in self.structure.inner.iter().enumerate() {
+                self.band.add_at(self.diagonal[i], shift[g]);
+            }
+            for (k, &g) in self.structure.border.iter().enumerate() {
+                d[k * m + k] += shift[g];
+            }
+        }
+        // a pivot of A is judged against its whole column, the border rows included
+        let mut scale = self.band.column_maxima();
+        for row in c.chunks_exact(ni.max(1)).take(m) {
+            for (s, x) in scale.iter_mut().zip(row) {
+                *s = s.max(x.abs());
+            }
+        }
+        self.band.factorize(Some(&scale)).map_err(|(column, pivot, scale)| BandFailure::Band { column, pivot, scale })?;
+        if m > 0 {
+            if let Some((column, pivot, scale)) = self.band.smallest_pivot(&scale).filter(|&(_, p, s)| p.partial_cmp(&(BORDER_PIVOT_RATIO * s)) != Some(std::cmp::Ordering::Greater)) {
+                return Err(BandFailure::Band { column, pivot, scale });
+            }
+        }
+        for col in b.chunks_exact_mut(ni.max(1)).take(m) {
+            self.band.solve_in_place(col);
+        }
+        // S = D − C V and the size of its terms
+        let mut s = d;
+        let mut size: Vec<f64> = s.iter().map(|x| x.abs()).collect();
+        for k in 0..m {
+            let ck = &c[k * ni..(k + 1) * ni];
+            for l in 0..m {
+                let vl = &b[l * ni..(l + 1) * ni];
+                let (mut dot, mut abs) = (0.0, 0.0);
+                for (x, y) in ck.iter().zip(vl) {
+                    dot += x * y;
+                    abs += (x * y).abs();
+                }
+                s[k * m + l] -= dot;
+                size[k * m + l] += abs;
+            }
+        }
+        let col_scale: Vec<f64> = (0..m).map(|l| (0..m).fold(0.0_f64, |a, k| a.max(size[k * m + l]))).collect();
+        self.schur.factorize(m, s, &col_scale).map_err(|det| BandFailure::Schur { det })?;
+        self.v = b;
+        self.c = c;
+        Ok(())
+    }
+
+    /// Overwrite `x` (length n, global order) with the solution (after a successful
+    /// [`Self::factorize`]).
+    pub fn solve_in_place(&self, x: &mut [f64]) {
+        let ni = self.structure.inner.len();
+        let mut u: Vec<f64> = self.structure.inner.iter().map(|&g| x[g]).collect();
+        self.band.solve_in_place(&mut u);
+        let mut y: Vec<f64> = self.structure.border.iter().map(|&g| x[g]).collect();
+        for (k, yk) in y.iter_mut().enumerate() {
+            *yk -= self.c[k * ni..(k + 1) * ni].iter().zip(&u).map(|(a, b)| a * b).sum::<f64>();
+        }
+        self.schur.solve_in_place(&mut y);
+        for (l, &yl) in y.iter().enumerate() {
+            if yl != 0.0 {
+                for (ui, vi) in u.iter_mut().zip(&self.v[l * ni..(l + 1) * ni]) {
+                    *ui -= vi * yl;
+                }
+            }
+        }
+        for (&g, &ui) in self.structure.inner.iter().zip(&u) {
+            x[g] = ui;
+        }
+        for (&g, &yk) in self.structure.border.iter().zip(&y) {
+            x[g] = yk;
+        }
+    }
+}
+
+impl From<BandFailure> for LinearError {
+    fn from(f: BandFailure) -> LinearError {
+        match f {
+            BandFailure::Band { column, pivot, scale } => LinearError::Singular {
+                detail: format!("banded LU: pivot {pivot:.3e} of inner column {column} ≤ {PIVOT_TOLERANCE:.1e} × its column's largest entry {scale:.3e}"),
+            },
+            BandFailure::Schur { det } => LinearError::SingularSchur { det },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear::SparseLu;
+    use crate::test_support::{dense_of, dense_solve, Lcg};
+
+    type Triplets = (Vec<usize>, Vec<usize>, Vec<f64>);
+
+    fn push(t: &mut Triplets, r: usize, c: usize, v: f64) {
+        t.0.push(r);
+        t.1.push(c);
+        t.2.push(v);
+    }
+
+    /// A random n × n band (kl, ku) whose diagonal is small against the subdiagonals, so
+    /// that partial pivoting must swap rows; some entries given twice (summed).
+    fn random_band(n: usize, kl: usize, ku: usize, rng: &mut Lcg) -> Triplets {
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..n {
+            for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                let v = if i == j { 0.01 * rng.next() } else { rng.next() };
+                push(&mut t, i, j, v);
+            }
+        }
+        for k in 0..n / 5 {
+            let e = (7 * k) % t.0.len();
+            let (r, c) = (t.0[e], t.1[e]);
+            push(&mut t, r, c, 0.1 * rng.next());
+        }
+        t
+    }
+
+    /// max_i |x_i − y_i| / max_i |y_i|.
+    fn relative_difference(x: &[f64], y: &[f64]) -> f64 {
+        let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        x.iter().zip(y).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs())) / scale
+    }
+
+    /// The random matrices below have condition numbers of 10²…10⁴ (small diagonal):
+    /// two backward-stable solves then agree to ≈ cond · ε ≤ 1e-11.
+    const AGREE: f64 = 1e-10;
+
+    #[test]
+    fn band_lu_matches_a_dense_solve_and_pivots() {
+        let mut rng = Lcg(99);
+        for (n, kl, ku) in [(1, 0, 0), (7, 2, 1), (40, 3, 5), (60, 7, 7), (25, 0, 4), (25, 4, 1)] {
+            let (r, c, v) = random_band(n, kl, ku, &mut rng);
+            let mut band = BandLu::zeros(n, kl, ku);
+            for k in 0..r.len() {
+                band.add(r[k], c[k], v[k]);
+            }
+            band.factorize(None).unwrap();
+            if kl > 0 {
+                // the small diagonal made partial pivoting swap rows
+                assert!(band.pivots.iter().enumerate().any(|(j, &p)| p != j), "{n} {kl} {ku}: no interchange");
+            }
+            let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            let expected = dense_solve(dense_of(n, &r, &c, &v), b.clone());
+            let mut x = b.clone();
+            band.solve_in_place(&mut x);
+            assert!(relative_difference(&x, &expected) < AGREE, "{n} {kl} {ku}: {}", relative_difference(&x, &expected));
+        }
+    }
+
+    /// A closed chain of `nodes` nodes with `dofs` unknowns each, every element coupling
+    /// all unknowns of two neighbouring nodes (the last element the last node with the
+    /// first: the wrap-around), plus `globals` unknowns at the end coupled to all (dense
+    /// rows and columns); a small diagonal so that pivoting is needed.
+    fn closed_chain(nodes: usize, dofs: usize, globals: usize, rng: &mut Lcg) -> (usize, Triplets) {
+        chain(nodes, dofs, globals, true, rng)
+    }
+
+    /// As [`closed_chain`], open (no last element) if not `closed`.
+    fn chain(nodes: usize, dofs: usize, globals: usize, closed: bool, rng: &mut Lcg) -> (usize, Triplets) {
+        let n = nodes * dofs + globals;
+        let mut t = (vec![], vec![], vec![]);
+        for e in 0..if closed { nodes } else { nodes - 1 } {
+            let unknowns: Vec<usize> = (0..dofs).map(|k| e * dofs + k).chain((0..dofs).map(|k| ((e + 1) % nodes) * dofs + k)).collect();
+            for &i in &unknowns {
+                for &j in &unknowns {
+                    push(&mut t, i, j, if i == j { 0.01 * rng.next() } else { rng.next() });
+                }
+            }
+        }
+        for g in nodes * dofs..n {
+            for i in 0..n {
+                push(&mut t, i, g, rng.next());
+                if i != g {
+                    push(&mut t, g, i, rng.next());
+                }
+            }
+        }
+        (n, t)
+    }
+
+    #[test]
+    fn the_wrap_around_and_the_global_unknowns_go_to_the_border() {
+        let mut rng = Lcg(3);
+        let (n, (r, c, _)) = closed_chain(30, 4, 2, &mut rng);
+        let s = BandStructure::detect(n, &r, &c, &[]).unwrap();
+        // the two dense unknowns first (most far entries), then one node's four
+        let mut border = s.border.clone();
+        border.sort_unstable();
+        assert_eq!(border, vec![0, 1, 2, 3, 120, 121]);
+        assert_eq!((s.kl, s.ku), (7, 7));
+        assert_eq!(s.inner.len() + s.border.len(), n);
+        // the forced border is kept, the rest found the same way
+        let forced = BandStructure::detect(n, &r, &c, &[121, 120]).unwrap();
+        assert_eq!(&forced.border[..2], &[121, 120]);
+        assert_eq!(forced.border.len(), 6);
+        // an open chain is a band without border
+        let (n, (r, c, _)) = chain(20, 3, 0, false, &mut rng);
+        let s = BandStructure::detect(n, &r, &c, &[]).unwrap();
+        assert!(s.border.is_empty());
+        assert_eq!((s.kl, s.ku), (5, 5));
+        // a random sparse pattern is no band
+        let (mut rr, mut cc) = (vec![], vec![]);
+        for i in 0..300 {
+            for _ in 0..6 {
+                rr.push(i);
+                cc.push(((rng.next() + 1.0) * 150.0) as usize % 300);
+            }
+        }
+        assert_eq!(BandStructure::detect(300, &rr, &cc, &[]), None);
+    }
+
+    /// A closed chain (4 unknowns per node) with one unknown per node of its first half
+    /// numbered after the mesh (a friction point: coupled with the unknowns of the
+    /// node's two elements and with its neighbouring points), and two global unknowns
+    /// between the mesh and the points, given as the forced border.
+    fn chain_with_points(nodes: usize, rng: &mut Lcg) -> (usize, Vec<usize>, Triplets) {
+        let (nm, mut t) = closed_chain(nodes, 4, 2, rng);
+        let points = nodes / 2;
+        let n = nm + points;
+        for p in 0..points {
+            let node = p + 1;
+            let mut coupled: Vec<usize> = (4 * (node - 1)..4 * (node + 2)).collect();
+            coupled.extend([nm + p, nm - 2]);
+            if p > 0 {
+                coupled.push(nm + p - 1);
+            }
+            for &i in &coupled {
+                push(&mut t, nm + p, i, rng.next());
+                if i != nm + p {
+                    push(&mut t, i, nm + p, rng.next());
+                }
+            }
+        }
+        (n, vec![nm - 2, nm - 1], t)
+    }
+
+    #[test]
+    fn unknowns_numbered_after_the_mesh_move_into_the_band() {
+        let mut rng = Lcg(21);
+        let (n, forced, (r, c, v)) = chain_with_points(40, &mut rng);
+        let s = BandStructure::detect(n, &r, &c, &forced).unwrap();
+        // the two forced unknowns and one node's four; the points inside the band
+        assert_eq!(s.border.len(), 6, "{:?}", s.border);
+        assert!(s.kl.max(s.ku) <= 12, "{} {}", s.kl, s.ku);
+        let order = neighbour_order(n, &r, &c, &forced);
+        assert_eq!(&order[..4], &[0, 1, 2, 3], "the closed loop's first node stays");
+        let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+        let mut lu = BorderedBand::new(s, &r, &c);
+        lu.factorize(&v, &[]).unwrap();
+        let mut x = b.clone();
+        lu.solve_in_place(&mut x);
+        let d = relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b));
+        assert!(d < AGREE, "{d}");
+    }
+
+    #[test]
+    fn bordered_cyclic_band_matches_a_dense_solve() {
+        let mut rng = Lcg(11);
+        for (nodes, dofs, globals) in [(30, 4, 2), (12, 2, 0), (50, 6, 1), (3, 4, 2)] {
+            let (n, (r, c, v)) = closed_chain(nodes, dofs, globals, &mut rng);
+            let structure = BandStructure::detect(n, &r, &c, &[]).unwrap();
+            let mut lu = BorderedBand::new(structure, &r, &c);
+            let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            for shift in [vec![], (0..n).map(|i| 0.3 + 0.01 * i as f64).collect::<Vec<_>>()] {
+                let mut dense = dense_of(n, &r, &c, &v);
+                for (i, s) in shift.iter().enumerate() {
+                    dense[i][i] += s;
+                }
+                let expected = dense_solve(dense, b.clone());
+                lu.factorize(&v, &shift).unwrap();
+                let mut x = b.clone();
+                lu.solve_in_place(&mut x);
+                let d = relative_difference(&x, &expected);
+                assert!(d < AGREE, "{nodes} × {dofs} + {globals}: {d}");
+            }
+            // the same through SparseLu::banded, which must have chosen the band
+            let mut sparse: SparseLu = SparseLu::banded();
+            sparse.set_pattern(n, &r, &c).unwrap();
+            assert!(sparse.band_structure().is_some());
+            sparse.factorize(&v).unwrap();
+            let mut x = b.clone();
+            sparse.solve_in_place(&mut x).unwrap();
+            assert!(relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b.clone())) < AGREE);
+        }
+    }
+
+    /// A band matrix whose columns 5 and 6 are equal (rank n − 1), well scaled
+    /// otherwise; and the same with column 6 perturbed by 1e-6 (regular, cond ≈ 1e7).
+    fn nearly_singular(perturbation: f64) -> Triplets {
+        let (n, kl, ku) = (12, 2, 2);
+        let mut rng = Lcg(5);
+        let mut a = vec![vec![0.0; n]; n];
+        for (i, row) in a.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate().take((i + ku + 1).min(n)).skip(i.saturating_sub(kl)) {
+                *x = if i == j { 3.0 } else { rng.next() };
+            }
+            // rows 4…7 hold both columns inside the band
+            row[5] = if (4..=7).contains(&i) { 1.0 + 0.1 * i as f64 } else { 0.0 };
+            row[6] = row[5] + if i == 6 { perturbation } else { 0.0 };
+        }
+        let mut t = (vec![], vec![], vec![]);
+        for (i, row) in a.iter().enumerate() {
+            for (j, &x) in row.iter().enumerate() {
+                if i.abs_diff(j) <= 2 {
+                    push(&mut t, i, j, x);
+                }
+            }
+        }
+        t
+    }
+
+    #[test]
+    fn singular_detection_is_independent_of_the_scale() {
+        for scale in [1.0, 1e-150, 1e150] {
+            // the band's own verdict: refused at every scale
+            let (r, c, v) = nearly_singular(0.0);
+            let structure = BandStructure::detect(12, &r, &c, &[]).unwrap();
+            assert!(structure.border.is_empty());
+            let scaled: Vec<f64> = v.iter().map(|x| x * scale).collect();
+            let mut band = BorderedBand::new(structure, &r, &c);
+            assert!(matches!(band.factorize(&scaled, &[]), Err(BandFailure::Band { column: 6, .. })), "scale {scale}: {:?}", band.factorize(&scaled, &[]));
+            // SparseLu hands it to faer's LU, whose verdict stands
+            let mut lu: SparseLu = SparseLu::banded();
+            lu.set_pattern(12, &r, &c).unwrap();
+            assert!(faer_verdict(&mut lu, 12, &r, &c, &scaled), "scale {scale}");
+            // regular: not refused at any scale, and every column scaled differently
+            let (r, c, v) = nearly_singular(1e-6);
+            let column_scaled: Vec<f64> = v.iter().zip(&c).map(|(x, &j)| x * scale * 10f64.powi(j as i32 * 7 - 40)).collect();
+            let mut lu: SparseLu = SparseLu::banded();
+            lu.set_pattern(12, &r, &c).unwrap();
+            lu.factorize(&column_scaled).unwrap();
+            let x: Vec<f64> = (0..12).map(|i| 1.0 + i as f64).collect();
+            let mut b = vec![0.0; 12];
+            for k in 0..r.len() {
+                b[r[k]] += column_scaled[k] * x[c[k]] / (scale * 10f64.powi(c[k] as i32 * 7 - 40));
+            }
+            lu.solve_in_place(&mut b).unwrap();
+            for (i, bi) in b.iter().enumerate() {
+                // y = D⁻¹ x with D the column scaling; cond ≈ 1e7: ≈ 1e-9 … 1e-8 relative
+                let y = x[i] / (scale * 10f64.powi(i as i32 * 7 - 40));
+                assert!((bi - y).abs() <= 1e-7 * y.abs(), "scale {scale}, {i}: {bi} vs {y}");
+            }
+        }
+        // a zero border row: the Schur complement is singular, named with its determinant;
+        // SparseLu hands it to faer's LU
+        let mut rng = Lcg(8);
+        let (n, (r, c, v)) = closed_chain(10, 2, 1, &mut rng);
+        let zero_row: Vec<f64> = r.iter().zip(&v).map(|(&ri, &x)| if ri == n - 1 { 0.0 } else { x * 1e-200 }).collect();
+        let mut band = BorderedBand::new(BandStructure::detect(n, &r, &c, &[]).unwrap(), &r, &c);
+        assert!(matches!(band.factorize(&zero_row, &[]), Err(BandFailure::Schur { det }) if det == 0.0));
+        let mut lu: SparseLu = SparseLu::banded();
+        lu.set_pattern(n, &r, &c).unwrap();
+        assert!(lu.band_structure().is_some());
+        assert!(faer_verdict(&mut lu, n, &r, &c, &zero_row));
+    }
+
+    /// The fallback gives faer's verdict: `lu` (banded, refused by the band) factorises
+    /// and solves exactly as faer's LU alone — both fail, or both give the same solution
+    /// (for an exactly singular matrix faer's LU may see a round-off pivot and return a
+    /// huge finite solution, as the solver without the banded LU did).
+    fn faer_verdict(lu: &mut SparseLu, n: usize, r: &[usize], c: &[usize], values: &[f64]) -> bool {
+        let mut faer: SparseLu = SparseLu::new();
+        faer.set_pattern(n, r, c).unwrap();
+        let solve = |lu: &mut SparseLu| -> Result<Vec<f64>, LinearError> {
+            lu.factorize(values)?;
+            let mut x: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+            lu.solve_in_place(&mut x)?;
+            Ok(x)
+        };
+        let (ours, theirs) = (solve(lu), solve(&mut faer));
+        lu.band_structure().is_none() && ours == theirs
+    }
+
+    /// A tridiagonal (−1, 2, −1) matrix of order 10 with its last row scaled by 1e-20 is
+    /// regular (cond ≈ 60 before the scaling); its last pivot, ≈ 1e-20, is ≤ τ × its
+    /// column's largest entry 1, so the band refuses it without a border (review item,
+    /// the case of [[1, 1], [1e-20, 2e-20]]): SparseLu hands it to faer's LU, which
+    /// solves it to round-off (without the fallback `factorize` returned `Singular`).
+    #[test]
+    fn a_badly_row_scaled_regular_matrix_falls_back_to_the_general_lu() {
+        let n: usize = 10;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..n {
+            let row_scale = if i == n - 1 { 1e-20 } else { 1.0 };
+            for j in i.saturating_sub(1)..=(i + 1).min(n - 1) {
+                push(&mut t, i, j, row_scale * if i == j { 2.0 } else { -1.0 });
+            }
+        }
+        let (r, c, v) = t;
+        let mut lu: SparseLu = SparseLu::banded();
+        lu.set_pattern(n, &r, &c).unwrap();
+        assert!(lu.band_structure().is_some_and(|s| s.border.is_empty()));
+        lu.factorize(&v).unwrap();
+        assert!(lu.band_structure().is_none());
+        let x: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+        let mut b = vec![0.0; n];
+        for k in 0..r.len() {
+            b[r[k]] += v[k] * x[c[k]];
+        }
+        lu.solve_in_place(&mut b).unwrap();
+        // cond ≈ 60 for the row-equilibrated matrix: ≈ 1e-14 relative
+        assert!(relative_difference(&b, &x) < 1e-12, "{b:?}");
+    }
+
+    /// The 6-cycle C₆ (adjacency, zero diagonal) is regular; with node 0 in the border
+    /// its band block is the path P₅, singular: the banded LU hands the pattern to faer.
+    /// The 6-cycle C₆ + δI factorised by the banded LU (node 0 lands in the border):
+    /// the LU and the relative difference of its solution to the dense solve.
+    fn cycle6(delta: f64) -> (SparseLu, f64) {
+        let n = 6;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..n {
+            push(&mut t, i, (i + 1) % n, 1.0);
+            push(&mut t, (i + 1) % n, i, 1.0);
+            push(&mut t, i, i, delta);
+        }
+        let (r, c, v) = t;
+        let mut lu: SparseLu = SparseLu::banded();
+        lu.set_pattern(n, &r, &c).unwrap();
+        assert_eq!(lu.band_structure().map(|s| s.border.clone()), Some(vec![0]));
+        lu.factorize(&v).unwrap();
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+        let mut x = b.clone();
+        lu.solve_in_place(&mut x).unwrap();
+        let difference = relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b));
+        (lu, difference)
+    }
+
+    #[test]
+    fn a_singular_band_block_falls_back_to_the_general_lu() {
+        let (lu, difference) = cycle6(0.0);
+        assert!(lu.band_structure().is_none());
+        assert!(difference < 1e-14);
+        assert_eq!((lu.symbolic_factorisations, lu.numeric_factorisations), (2, 1));
+    }
+
+    /// C₆ + δI with δ = 1e-12 is well conditioned (cond ≈ 2), but its band block P₅ + δI
+    /// (node 0 in the border) has cond ≈ 1e12: block elimination through A⁻¹ would lose
+    /// ~1e-4 of the solution. The block is refused ([`BORDER_PIVOT_RATIO`]) and the
+    /// general LU solves to round-off (review item; without the check the difference
+    /// to the dense solve is ~1e-4).
+    #[test]
+    fn an_ill_conditioned_band_block_under_a_border_falls_back_to_the_general_lu() {
+        let (lu, difference) = cycle6(1e-12);
+        assert!(lu.band_structure().is_none(), "the ill-conditioned band block is handed to the general LU");
+        assert!(difference < 1e-12, "{difference}");
+    }
+}
