@@ -88,6 +88,9 @@ pub struct PaperDReport {
 /// Most fixed-topology solves at a new pair of points (outer iterations).
 const MAX_OUTER: usize = 32;
 
+/// Polishing steps of the front roots after their searches end (`front_roots`).
+const POLISH: usize = 8;
+
 /// Most refits to the contact boundaries at one pair of points.
 const BOUNDARY_PASSES: usize = 3;
 
@@ -412,8 +415,10 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         // 7.9 µm off its root while the driven moved 17 steps). Judged by the slope across
         // its whole search, a point more than the step tolerance off takes that Newton
         // step, and its search restarts from the fresh pair (docs/fem-drive.md §12,
-        // "Fifth round"); at most 3 times.
-        for _ in 0..3 {
+        // "Fifth round"); at most `POLISH` = 8 times (3 left `drive-slack`'s driven point 2e-7 m
+        // off at 128 elements after the root search was tightened to 1e-6 of an arc
+        // element, measured with the banded LU's round-off; 23 solves with 8).
+        for _ in 0..POLISH {
             let off = roots.each_ref().map(|r| r.last.is_finite() && r.span_slope().is_finite() && r.last.abs() > r.span_slope().abs() * tolerance);
             if off == [false; 2] || self.report.borrow().outer_iterations >= MAX_OUTER {
                 break;
