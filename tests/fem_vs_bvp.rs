@@ -408,13 +408,13 @@ fn low_tension_drive_counter_clockwise_by_paper_d_against_the_bvp() {
 }
 
 /// [`low_tension_drive_by_paper_d_against_the_bvp`] and its counter-clockwise twin up to
-/// 2048 elements (≈ 150 s CPU in all). Measured at 1024 / 2048: clockwise driver slip arc
+/// 2048 elements (≈ 55 s CPU in all). Measured at 1024 / 2048: clockwise driver slip arc
 /// −4.9e-6 / −1.18e-6 (order 1.92, 2.06), driven 4.8e-6 / 1.19e-6 (2.02, 2.02);
 /// counter-clockwise driver −6.6e-6 / −1.7e-6 (1.95, 1.97), driven 4.35e-6 / 1.07e-6
 /// (1.96, 2.02); tension errors ≤ 1.3e-7 / ≤ 2.9e-8, every one shrinking with every
 /// doubling (docs/fem-drive.md §12, "Eighth round" and "Ninth round").
 #[test]
-#[ignore = "≈ 150 s CPU: 1024 and 2048 elements, both senses"]
+#[ignore = "≈ 55 s CPU: 1024 and 2048 elements, both senses"]
 fn low_tension_drive_by_paper_d_up_to_2048_elements() {
     for scene in [low_tension_drive(), counter_clockwise(low_tension_drive())] {
         paper_d_low_tension(&scene, &[128, 256, 512, 1024, 2048]);

@@ -584,14 +584,7 @@ fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProble
     }
     let b = &problem.belt;
     let r = problem.geometry.radius;
-    // the default penalty grows with the mesh under Paper D's fixed topology on the
-    // string (its penetration's tension error would otherwise stop the tensions
-    // converging); the Cosserat rod's Paper D (bands, tributary normal) keeps κ
-    let paper_d = matches!(problem.analysis, Analysis::Steady)
-        && kernel.friction_normal() == crate::formulation::layout::FrictionNormal::Nodal
-        && steady::paper_d::resolved(drive_settings.steady_scheme, kernel.friction_normal(), settings.contact_fitting) == steady::SteadyScheme::PaperD;
-    let scale = if paper_d && opts.penalty.is_none() { steady::paper_d::penalty_mesh_scale(opts.elements) } else { 1.0 };
-    let penalty = scale * problem.penalty(opts, settings);
+    let penalty = problem.penalty(opts, settings);
     let data = problem.hanging(penalty);
     let contour = data.contour()?;
     let mesh = Mesh::new(contour, opts.elements, arc_weight)?;

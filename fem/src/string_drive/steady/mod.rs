@@ -238,15 +238,25 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
     let element = PI * r / arc_elements as f64;
     let scheme = paper_d::resolved(drive_settings.steady_scheme, kernel.friction_normal(), settings.contact_fitting);
     report.scheme = scheme;
+    let (mut final_params, mut final_penalty) = (params, penalty);
     if scheme == SteadyScheme::PaperD {
         // Paper D's fixed topology instead of the fitting (spec §3.5, `paper_d`); chosen
         // by the belt, its failure falls back to the semismooth fit from the same state
         let fallback = (drive_settings.steady_scheme == SteadyScheme::Auto).then(|| state.clone());
+        // on the string the default penalty grows with the mesh for the fixed topology's
+        // solves only (`paper_d::penalty_mesh_scale`): the static start and the load
+        // continuation keep κ (with the grown penalty throughout, the Exudyn scene at 512
+        // elements took 351 Newton iterations and 2.5 s against 89 and 0.38 s, measured)
+        let grown = if opts.penalty.is_none() && kernel.friction_normal() == FrictionNormal::Nodal { paper_d::penalty_mesh_scale(opts.elements) * penalty } else { penalty };
+        let grown_params = TermParams { penalty: Some(grown), ..params };
+        let grown_sp_at = |eta: f64| SteadyParams { penalty: grown, ..sp_at(eta) };
+        let grown_data = SteadyFitData { params: grown_params, sp_at: &grown_sp_at, ..fit_data };
         // timed as the fitting it replaces (its fixed-topology solves in their own phases),
         // each of them a fitting pass (`PaperD::solve_at`)
-        let run = numerics::phases::timed(numerics::phases::Phase::Fitting, || PaperD::<N, P, E, K>::new(state, fit_data, opts.elements, arc_weight, mu, load_torque + damping * omega1).run());
+        let run = numerics::phases::timed(numerics::phases::Phase::Fitting, || PaperD::<N, P, E, K>::new(state, grown_data, opts.elements, arc_weight, mu, load_torque + damping * omega1).run());
         match (run, fallback) {
             (Ok((solved, pd, iterations)), _) => {
+                (final_params, final_penalty) = (grown_params, grown);
                 state = solved;
                 report.newton_iterations += iterations;
                 report.paper_d = Some(pd);
@@ -263,7 +273,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
         state = fit_steady::<N, P, E, K>(state, fit_data, settings, drive_settings, element, &mut report)?;
     }
     report.fitting_seconds = clock.elapsed().as_secs_f64() - static_seconds - report.continuation_seconds;
-    finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, params, penalty, kappa, mu, homotopy, report, clock)
+    finish::<N, P, E, K>(problem, opts, settings, drive_settings, kernel, state, final_params, final_penalty, kappa, mu, homotopy, report, clock)
 }
 
 /// The contact fitting of a converged steady state (docs/fem-drive.md §12 "Fitting"; the

@@ -52,7 +52,9 @@ pub(crate) fn resolved(scheme: SteadyScheme, normal: FrictionNormal, fitting: bo
 /// (3.6e-6 at κ = 10⁵ on the low-tension drive, R = 0.08 m, L = 1.41 m), while the
 /// mesh error falls like h²: with a fixed κ the penalty's error is the larger one from
 /// ≈ 512 elements and the tensions stop converging there (docs/fem-drive.md §12, "Ninth
-/// round"). κ ∝ n² keeps it a fixed fraction of the mesh error. The prescribed contact set
+/// round"). κ ∝ n² keeps it a fixed fraction of the mesh error. Applied to the
+/// fixed-topology solves only (`steady::solve_layout`): the static start and the load
+/// continuation keep κ. The prescribed contact set
 /// of the fixed topology takes the stiffer penalty without a cost in robustness; the
 /// semismooth fit, whose contact set moves, keeps κ (at 512 elements its low-tension
 /// slip arcs got worse with it: driven 4.5e-4 → 3.5e-3).
