@@ -778,8 +778,9 @@ pub struct FemSettings {
     pub formulations: Vec<String>,
     /// Contact penalty factor P_γ (§6.1, Table 1), N/m² for rods (force per length
     /// per penetration), > 0. Default absent = the `fem` crate scales it from the
-    /// belt stiffness (κ EA/R²), and under Paper D's steady scheme also with the mesh
-    /// (× max(1, (n/128)²) for n elements, docs/fem-drive.md §12).
+    /// belt stiffness (κ EA/R²), and in the fixed-topology solves of Paper D's steady
+    /// scheme on a string also with the mesh (× max(1, (n/128)²) for n elements,
+    /// docs/fem-drive.md §12).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penalty: Option<f64>,
     /// Time step Δt of the quasistatic transient (analyses `steady`, `transient`), s,

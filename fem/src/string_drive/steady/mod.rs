@@ -246,7 +246,7 @@ pub fn solve_layout<const N: usize, const P: usize, const E: usize, K: LayoutEle
         // on the string the default penalty grows with the mesh for the fixed topology's
         // solves only (`paper_d::penalty_mesh_scale`): the static start and the load
         // continuation keep κ (with the grown penalty throughout, the Exudyn scene at 512
-        // elements took 351 Newton iterations and 2.5 s against 89 and 0.38 s, measured)
+        // elements took 351 Newton iterations and 2.5 s against 88 and 0.41 s, measured)
         let grown = if opts.penalty.is_none() && kernel.friction_normal() == FrictionNormal::Nodal { paper_d::penalty_mesh_scale(opts.elements) * penalty } else { penalty };
         let grown_params = TermParams { penalty: Some(grown), ..params };
         let grown_sp_at = |eta: f64| SteadyParams { penalty: grown, ..sp_at(eta) };

@@ -53,11 +53,10 @@ pub(crate) fn resolved(scheme: SteadyScheme, normal: FrictionNormal, fitting: bo
 /// mesh error falls like h²: with a fixed κ the penalty's error is the larger one from
 /// ≈ 512 elements and the tensions stop converging there (docs/fem-drive.md §12, "Ninth
 /// round"). κ ∝ n² keeps it a fixed fraction of the mesh error. Applied to the
-/// fixed-topology solves only (`steady::solve_layout`): the static start and the load
-/// continuation keep κ. The prescribed contact set
-/// of the fixed topology takes the stiffer penalty without a cost in robustness; the
-/// semismooth fit, whose contact set moves, keeps κ (at 512 elements its low-tension
-/// slip arcs got worse with it: driven 4.5e-4 → 3.5e-3).
+/// fixed-topology solves only (`steady::solve_layout`), whose prescribed contact set
+/// takes the stiffer penalty: the static start, the load continuation and the
+/// semismooth fit keep κ (with it, the fit's low-tension driven slip arc at 512 elements
+/// got worse, 4.5e-4 → 3.5e-3).
 pub(crate) fn penalty_mesh_scale(elements: usize) -> f64 {
     (elements as f64 / 128.0).powi(2).max(1.0)
 }
