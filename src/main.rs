@@ -231,7 +231,7 @@ struct ReferenceArgs {
     /// a comment).
     #[arg(long, value_name = "FILE", conflicts_with = "samples")]
     sigma: Option<PathBuf>,
-    /// N equally spaced σ_i = i·L_geom/N (1 … 100000); default 200.
+    /// N equally spaced σ_i = i·L/N, L the contour length (2H + 2πR on the loop, 2D + πR on the one-pulley layout), 1 … 100000; default 200.
     #[arg(long, value_name = "N")]
     samples: Option<usize>,
     /// Output format: the result JSON, or CSV with a # JSON header.
@@ -1035,7 +1035,7 @@ fn run_reference(args: &ReferenceArgs) -> Result<()> {
     let (label, solved) = verification::check::reference_solution(&scene, args.tolerance).map_err(|e| anyhow::Error::new(e).context("the reference (BVP run)"))?;
     let sigma = sigma_file.unwrap_or_else(|| {
         let n = args.samples.unwrap_or(200);
-        let l = scene.contour().length();
+        let l = scene.path().length();
         (0..n).map(|i| l * i as f64 / n as f64).collect()
     });
     let fields = drive::view::fields_at(solved.view.as_ref(), sigma);

@@ -214,7 +214,7 @@ fn bad_files_are_named_errors() {
                 v["fields"][k].as_array_mut().unwrap().truncate(1000);
             }
             serde_json::to_string(&v).unwrap()
-        }, &["part.json", "gap", "round the whole loop"]),
+        }, &["part.json", "gap", "over the whole contour"]),
         ("bad.csv", "# {\"scene\":\"string-hanging\",\"method\":\"m\",\"converged\":true,\"summary\":{},\"cost\":{\"wall_seconds\":0,\"newton_iterations\":0,\"unknowns\":0},\"discretisation\":{\"elements\":8}}\nsigma,x,y,tension\n0,-0.225,0.08,nan\n".to_string(), &["bad.csv", "fields.tension[0]", "nan"]),
     ];
     for (name, text, needles) in cases {
@@ -412,4 +412,74 @@ fn auto_falls_back_to_the_supplied_runs_where_no_bvp_solves_the_scene() {
         let (a, b) = (check_error(&json, q), check_error(&supplied, q));
         assert!(a > 0.0 && a < 1e-5 && (a - b).abs() <= 1e-12 * b, "{q}: auto fallback {a:e}, supplied {b:e}");
     }
+}
+
+/// The one-pulley layout (issue 13: the open contour, σ from the inflow end): the
+/// exported reference reads back at round-off (scalars and field norms); beltcheck's own
+/// FE runs of `cosserat-pulley`, written as files, pass with the scene's gate limits and
+/// measure what `gate` measures at the same formulation and meshes (1e-6 relative, the
+/// files carry the fields on the harness's σ grid); a file of the other layout is refused
+/// naming each layout's σ convention. Before the fix the open contour's files were
+/// mapped onto the loop (`fields.sigma[0] … lies on the contour normal at σ = 0.49`), and
+/// `reference --samples` covered only 2πR of the 2D + πR contour.
+#[test]
+fn the_one_pulley_layout_is_checked_on_its_open_contour() {
+    const PULLEY: &str = "scenes/cosserat-pulley.json";
+    let d = dir("one-pulley");
+    let csv = d.join("reference.csv");
+    let o = beltcheck(&["reference", PULLEY, "--samples", "2048", "--format", "csv", "-o", csv.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // the samples reach the outflow end: the last σ is (2047/2048)·(2D + πR)
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let last: f64 = text.lines().last().unwrap().split(',').next().unwrap().parse().unwrap();
+    let l = 2.0 * 0.5 + std::f64::consts::PI * 0.1;
+    assert!((last - l * 2047.0 / 2048.0).abs() < 1e-12, "last σ {last}, L = {l}");
+    let json = d.join("reference-check.json");
+    let c = beltcheck(&["check", PULLEY, csv.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    assert_eq!(c.status.code(), Some(0), "{}\n{}", stdout(&c), stderr(&c));
+    for q in ["pulley_speed", "y_in", "y_out", "pulley.contact_arc", "pulley.stick_arc", "pulley.edge_pressure_end"] {
+        let e = check_error(&json, q);
+        assert!(e < 1e-12, "{q}: {e:e}");
+    }
+    let table = stdout(&c);
+    let norms = table.lines().find(|l| l.trim_start().starts_with("1e-10")).expect("the reference run's row");
+    for v in norms.split_whitespace().skip(6).map(|x| x.parse::<f64>().unwrap()) {
+        assert!(v < 1e-12, "a field norm of the reference against itself: {norms}");
+    }
+
+    // own FE runs as outside results, against `gate` at the same meshes
+    let fe = d.join("fe");
+    std::fs::create_dir_all(&fe).unwrap();
+    for n in MESHES {
+        let path = fe.join(format!("fe-{n}.json"));
+        let o = beltcheck(&["solve", PULLEY, "--method", "fem", "--formulation", "cosserat-gauss", "--elements", &n.to_string(), "--fields", "2048", "--json", path.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let json = d.join("fe-check.json");
+    let o = beltcheck(&["check", PULLEY, fe.to_str().unwrap(), "--json", json.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}\n{}", stdout(&o), stderr(&o));
+    let meshes = MESHES.map(|n| n.to_string()).join(",");
+    let gate_json = d.join("gate.json");
+    let g = beltcheck(&["gate", PULLEY, "--formulation", "cosserat-gauss", "--elements", &meshes, "--json", gate_json.to_str().unwrap()]);
+    assert_eq!(g.status.code(), Some(0), "{}", stdout(&g));
+    let gv: Value = serde_json::from_str(&std::fs::read_to_string(&gate_json).unwrap()).unwrap();
+    let mut compared = 0;
+    for c in gv[0]["checks"].as_array().unwrap().iter().filter(|c| c["method"] == "fem cosserat-gauss" && c["measure"] == "error") {
+        let q = c["quantity"].as_str().unwrap();
+        let (a, b) = (c["value"].as_f64().unwrap(), check_error(&json, q));
+        assert!((a - b).abs() <= 1e-6 * a.abs().max(1e-12), "{q}: gate {a:e}, check {b:e}");
+        compared += 1;
+    }
+    assert_eq!(compared, 9, "every gated quantity of cosserat-pulley compared");
+
+    // the other layout's σ convention is named
+    let o = beltcheck(&["check", "scenes/cosserat-hanging.json", csv.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
+    assert!(stderr(&o).contains("from the top of the driver, clockwise"), "{}", stderr(&o));
+    let loop_file = d.join("loop.json");
+    let o = beltcheck(&["reference", SCENE, "--samples", "64", "-o", loop_file.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = beltcheck(&["check", PULLEY, loop_file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
+    assert!(stderr(&o).contains("one-pulley layout: from the inflow end"), "{}", stderr(&o));
 }

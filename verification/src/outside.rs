@@ -22,6 +22,7 @@
 use std::path::{Path, PathBuf};
 
 use drive::result::{Discretisation, Fields, RunResult};
+use drive::contour::Path as Path2;
 use drive::scene::Scene;
 use drive::view::ContactState;
 use serde::Serialize;
@@ -111,7 +112,7 @@ pub enum OutsideError {
         file: PathBuf,
     },
     /// A sample whose σ is not the σ of its point (x, y) on the contour.
-    #[error("{}: `fields.sigma[{index}]` = {given} but the point (x, y) = ({x}, {y}) lies on the contour normal at σ = {mapped:.9}: expected σ of the contour of DESIGN.md (from the top of the driver, clockwise), |Δσ| ≤ {tol:.1e} m", .file.display())]
+    #[error("{}: `fields.sigma[{index}]` = {given} but the point (x, y) = ({x}, {y}) lies on the contour normal at σ = {mapped:.9}: expected σ of the contour of DESIGN.md ({convention}), |Δσ| ≤ {tol:.1e} m", .file.display())]
     SigmaMismatch {
         /// The file.
         file: PathBuf,
@@ -127,9 +128,11 @@ pub enum OutsideError {
         mapped: f64,
         /// Tolerance, m.
         tol: f64,
+        /// Where σ starts and which way it runs on this layout.
+        convention: &'static str,
     },
-    /// Fields that do not cover the loop.
-    #[error("{}: `fields` leave a gap of {gap:.4} m between σ = {from:.4} and σ = {to:.4} m (at most {max:.4} m = {MAX_GAP}·L_geom allowed, {n} samples given, at least {MIN_FIELD_SAMPLES}): expected samples round the whole loop", .file.display())]
+    /// Fields that do not cover the contour.
+    #[error("{}: `fields` leave a gap of {gap:.4} m between σ = {from:.4} and σ = {to:.4} m (at most {max:.4} m = {MAX_GAP}·L_geom allowed, {n} samples given, at least {MIN_FIELD_SAMPLES}): expected samples over the whole contour (round the loop; from end to end on the one-pulley layout)", .file.display())]
     FieldCoverage {
         /// The file.
         file: PathBuf,
@@ -435,22 +438,39 @@ fn csv_fields(file: &Path, text: &str, first_line: usize) -> Result<Fields, Outs
     })
 }
 
-/// σ consistent with the points, and samples round the whole loop.
+/// Where σ starts and which way it runs on the scene's layout (DESIGN.md).
+fn sigma_convention(path: &Path2) -> &'static str {
+    if path.is_open() {
+        "one-pulley layout: from the inflow end at x = −end_distance, along the upper span, round the pulley clockwise, to the outflow end"
+    } else {
+        "from the top of the driver, clockwise"
+    }
+}
+
+/// σ consistent with the points, and samples over the whole contour: round the loop, or
+/// from end to end of the open one-pulley contour.
 fn check_fields(file: &Path, f: &Fields, scene: &Scene) -> Result<(), OutsideError> {
-    let contour = scene.contour();
-    let l = contour.length();
+    let path = scene.path();
+    let l = path.length();
     let tol = SIGMA_TOLERANCE * l;
     for i in 0..f.len() {
-        let (mapped, _) = contour.sigma_nu([f.x[i], f.y[i]]);
-        let d = (contour.wrap(f.sigma[i]) - mapped).abs();
-        if d.min(l - d) > tol {
-            return Err(OutsideError::SigmaMismatch { file: file.to_path_buf(), index: i, given: f.sigma[i], x: f.x[i], y: f.y[i], mapped, tol });
+        let (mapped, _) = path.sigma_nu([f.x[i], f.y[i]]);
+        let d = (path.wrap(f.sigma[i]) - mapped).abs();
+        let d = if path.is_open() { d } else { d.min(l - d) };
+        if d > tol {
+            return Err(OutsideError::SigmaMismatch { file: file.to_path_buf(), index: i, given: f.sigma[i], x: f.x[i], y: f.y[i], mapped, tol, convention: sigma_convention(&path) });
         }
     }
-    let mut s: Vec<f64> = f.sigma.iter().map(|&x| contour.wrap(x)).collect();
+    let mut s: Vec<f64> = f.sigma.iter().map(|&x| path.wrap(x)).collect();
     s.sort_by(f64::total_cmp);
     let max = MAX_GAP * l;
-    let gaps = s.windows(2).map(|w| (w[1] - w[0], w[0], w[1])).chain(s.last().zip(s.first()).map(|(&a, &b)| (b + l - a, a, b)));
+    // the loop closes over the seam σ = 0; the open contour has its two ends instead
+    let ends: Vec<(f64, f64, f64)> = match (s.first(), s.last()) {
+        (Some(&a), Some(&b)) if path.is_open() => vec![(a, 0.0, a), (l - b, b, l)],
+        (Some(&a), Some(&b)) => vec![(a + l - b, b, a)],
+        _ => Vec::new(),
+    };
+    let gaps = s.windows(2).map(|w| (w[1] - w[0], w[0], w[1])).chain(ends);
     let worst = gaps.fold((0.0, 0.0, 0.0), |m, g| if g.0 > m.0 { g } else { m });
     if s.len() < MIN_FIELD_SAMPLES || worst.0 > max {
         let (gap, from, to) = if s.len() < 2 { (l, 0.0, l) } else { worst };
@@ -583,15 +603,18 @@ fn harness_run(label: &str, family: Family, r: &OutsideRun, scene: &Scene, n: us
     Run { method: label.to_string(), family, discretisation: r.discretisation, wall_seconds: c.wall_seconds, outcome: Ok(data) }
 }
 
-/// Linear periodic interpolation of the fields (at their σ, with ν from (x, y)) onto the
-/// harness's grid σ_i = i·L_geom/n. The contact state is inferred: in contact where the
-/// point lies on a pulley arc with ν ≤ 0 (the files carry no state).
+/// Linear interpolation of the fields (at their σ, with ν from (x, y)) onto the
+/// harness's grid σ_i = i·L_geom/n: periodic round the loop; on the open one-pulley
+/// contour between its samples, held at the end values beyond the first and last (which
+/// [`check_fields`] has kept within [`MAX_GAP`] of the ends). The contact state is
+/// inferred: in contact where the point lies on a pulley arc with ν ≤ 0 (the files carry
+/// no state).
 fn interpolate(f: &Fields, scene: &Scene, n: usize) -> Samples {
-    let contour = scene.contour();
-    let l = contour.length();
+    let path = scene.path();
+    let l = path.length();
     let mut pts: Vec<(f64, f64, f64, Option<f64>)> = (0..f.len())
         .map(|i| {
-            let (s, nu) = contour.sigma_nu([f.x[i], f.y[i]]);
+            let (s, nu) = path.sigma_nu([f.x[i], f.y[i]]);
             (s, nu, f.tension[i], f.moment.as_ref().map(|m| m[i]))
         })
         .collect();
@@ -599,24 +622,31 @@ fn interpolate(f: &Fields, scene: &Scene, n: usize) -> Samples {
     let m = pts.len();
     let mut out = Samples::default();
     let mut moment = f.moment.is_some().then(Vec::new);
-    let mut j = 0; // pts[j].0 ≤ σ < pts[j+1].0 (periodically)
+    let mut j = 0; // pts[j].0 ≤ σ < pts[j+1].0 (periodically on the loop)
     for i in 0..n {
         let sigma = l * i as f64 / n as f64;
         while j + 1 < m && pts[j + 1].0 <= sigma {
             j += 1;
         }
-        // the bracketing pair, across the seam σ = 0 where needed
+        // the bracketing pair: across the seam σ = 0 on the loop, the end sample itself
+        // beyond an end of the open contour
         let (a, b, sa, sb) = if sigma < pts[0].0 {
-            (m - 1, 0, pts[m - 1].0 - l, pts[0].0)
+            if path.is_open() {
+                (0, 0, pts[0].0, pts[0].0)
+            } else {
+                (m - 1, 0, pts[m - 1].0 - l, pts[0].0)
+            }
         } else if j + 1 < m {
             (j, j + 1, pts[j].0, pts[j + 1].0)
+        } else if path.is_open() {
+            (m - 1, m - 1, pts[m - 1].0, pts[m - 1].0)
         } else {
             (m - 1, 0, pts[m - 1].0, pts[0].0 + l)
         };
         let t = if sb > sa { (sigma - sa) / (sb - sa) } else { 0.0 };
         let lerp = |u: f64, v: f64| u + t * (v - u);
         let nu = lerp(pts[a].1, pts[b].1);
-        let p = contour.position(sigma, nu);
+        let p = path.position(sigma, nu);
         out.sigma.push(sigma);
         out.x.push(p[0]);
         out.y.push(p[1]);
@@ -625,7 +655,7 @@ fn interpolate(f: &Fields, scene: &Scene, n: usize) -> Samples {
         if let (Some(mv), Some(ma), Some(mb)) = (moment.as_mut(), pts[a].3, pts[b].3) {
             mv.push(lerp(ma, mb));
         }
-        let on_arc = contour.region(sigma).is_polar();
+        let on_arc = path.is_polar(sigma);
         out.state.push(if on_arc && nu <= 0.0 { ContactState::Contact } else { ContactState::Free });
     }
     out.moment = moment;
