@@ -194,9 +194,9 @@ pub fn cosserat_pulley_data(scene: &Scene) -> Result<CosseratPulley, SceneSolveE
     };
     let (tension_in, tension_out, mode) = match d.one_pulley_load() {
         Some(OnePulleyLoad::Tensions { tension_in, tension_out }) => (tension_in, tension_out, Mode::Tensions),
-        Some(OnePulleyLoad::Transition { stick_slip_angle, tension: (given, n) }) => {
+        Some(OnePulleyLoad::Transition { stick_slip_angle, tension: (given, n), driving }) => {
             let (tin, tout) = if given == End::In { (n, f64::NAN) } else { (f64::NAN, n) };
-            (tin, tout, Mode::Transition { stick_slip_angle, given, driving: true })
+            (tin, tout, Mode::Transition { stick_slip_angle, given, driving })
         }
         Some(OnePulleyLoad::PulleySpeed { pulley_speed, tension: (End::Out, n) }) => (f64::NAN, n, Mode::PulleySpeed { pulley_speed }),
         Some(OnePulleyLoad::PulleySpeed { tension: (End::In, _), .. }) => {

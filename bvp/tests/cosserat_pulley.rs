@@ -378,6 +378,37 @@ fn scene_file_solves_from_the_file_alone() {
     assert!(matches!(e, bvp::scene::SceneSolveError::IllPosedPrescription { given: "pulley_speed + tension_in", .. }), "{e}");
 }
 
+/// The braking sense from a scene file: φ_B of the braking `tensions` solve (N_in = 10,
+/// N_out = 15 N) with N_out given and `belt_drives_pulley: true` returns N_in = 10 N (to
+/// 1e-8, the collocation tolerance 1e-10 as in the round trip below) and a positive
+/// torque; the same φ_B without the field is the driving solution, N_in > N_out, with the
+/// same slip arc to the capstan's accuracy (a different state: φ_B fixes the arc, not its
+/// sense).
+#[test]
+fn scene_chooses_the_sense_of_a_prescribed_transition() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cosserat-pulley.json");
+    let base = drive::scene::Scene::from_path(&path).unwrap();
+    let mut tensions = base.clone();
+    (tensions.drive.tension_in, tensions.drive.tension_out) = (Some(10.0), Some(15.0));
+    let mut opts = bvp::scene::BvpRunOptions::from_scene(&tensions).unwrap();
+    opts.tolerance = 1e-10;
+    let reference = bvp::scene::solve_scene(&tensions, &opts).unwrap().summary;
+    let p = reference.pulley.as_ref().unwrap();
+    let phi_b = p.contact_end.unwrap() + p.slip_arc.unwrap();
+    let mut braking = base.clone();
+    (braking.drive.tension_in, braking.drive.stick_slip_angle, braking.drive.belt_drives_pulley) = (None, Some(phi_b), Some(true));
+    braking.drive.tension_out = Some(15.0);
+    braking.validate().unwrap();
+    let s = bvp::scene::solve_scene(&braking, &opts).unwrap().summary;
+    assert!((s.tension_in.unwrap() - 10.0).abs() < 1e-8, "N_in = {:?}", s.tension_in);
+    assert!(s.pulley.as_ref().unwrap().torque.unwrap() > 0.49, "the belt drives the pulley");
+    braking.drive.belt_drives_pulley = None;
+    let s = bvp::scene::solve_scene(&braking, &opts).unwrap().summary;
+    let q = s.pulley.as_ref().unwrap();
+    assert!(s.tension_in.unwrap() > 20.0 && q.torque.unwrap() < -0.5, "driving: N_in = {:?}, torque {:?}", s.tension_in, q.torque);
+    assert!((q.slip_arc.unwrap() - p.slip_arc.unwrap()).abs() < 1e-3, "slip arcs {:?} / {:?}", q.slip_arc, p.slip_arc);
+}
+
 /// Spec C-11, the round trip of the prescription modes: given the `tensions` solution's
 /// ω (mode `pulley_speed`, with N_out) or φ_B (mode `transition`, with either tension),
 /// each mode returns the other tension and every output of that solution. Driving

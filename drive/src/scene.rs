@@ -241,6 +241,12 @@ pub struct DriveGeometry {
     /// point, prescribed directly (Paper C).
     #[serde(default)]
     pub stick_slip_angle: Option<f64>,
+    /// `one-pulley` with `stick_slip_angle` only: φ_B fixes the slip arc, not its sense.
+    /// `true`: the belt drives the pulley (N_in < N_out, slip reversed); `false` (the
+    /// default): the pulley drives the belt (N_in > N_out). With two tensions or ω given
+    /// the sense follows from them, so the field is refused there.
+    #[serde(default)]
+    pub belt_drives_pulley: Option<bool>,
 }
 
 /// The two prescribed quantities of a one-pulley scene (spec §2.3): exactly two of the
@@ -260,6 +266,9 @@ pub enum OnePulleyLoad {
         stick_slip_angle: f64,
         /// The end whose tension is given and its value, N.
         tension: (End, f64),
+        /// The pulley drives the belt (N_in > N_out; `belt_drives_pulley` false or
+        /// absent) or the belt drives it.
+        driving: bool,
     },
     /// ω and one tension given ("the usual approach"); φ_B and the other tension outputs.
     PulleySpeed {
@@ -308,7 +317,7 @@ impl DriveGeometry {
         };
         match (self.tension_in, self.tension_out, self.pulley_speed, self.stick_slip_angle) {
             (Some(tension_in), Some(tension_out), None, None) => Some(OnePulleyLoad::Tensions { tension_in, tension_out }),
-            (_, _, None, Some(stick_slip_angle)) => tension.map(|tension| OnePulleyLoad::Transition { stick_slip_angle, tension }),
+            (_, _, None, Some(stick_slip_angle)) => tension.map(|tension| OnePulleyLoad::Transition { stick_slip_angle, tension, driving: self.belt_drives_pulley != Some(true) }),
             (_, _, Some(pulley_speed), None) => tension.map(|tension| OnePulleyLoad::PulleySpeed { pulley_speed, tension }),
             _ => None,
         }
@@ -341,6 +350,9 @@ impl Serialize for DriveGeometry {
                 }
                 for (name, v) in self.one_pulley_given() {
                     m.serialize_entry(name, &v)?;
+                }
+                if let Some(b) = self.belt_drives_pulley {
+                    m.serialize_entry("belt_drives_pulley", &b)?;
                 }
             }
         }
@@ -1140,6 +1152,12 @@ impl Scene {
         if d.one_pulley_load().is_none() {
             let given = d.one_pulley_given().into_iter().map(|(n, v)| (n.to_string(), v)).collect();
             return Err(SceneError::OnePulleyPrescription { given });
+        }
+        if d.belt_drives_pulley.is_some() && d.stick_slip_angle.is_none() {
+            return Err(SceneError::NotAllowed {
+                path: "drive.belt_drives_pulley".into(),
+                reason: "it chooses the sense of a prescribed `stick_slip_angle` (φ_B fixes the slip arc, not its sense); with the two tensions or `pulley_speed` given the sense follows from them".into(),
+            });
         }
         if self.analysis != Analysis::Steady {
             return Err(SceneError::NotAllowed {

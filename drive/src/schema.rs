@@ -184,6 +184,7 @@ pub(crate) const DRIVE: &[Field] = &[
     opt_in(Cond::OnePulley, "tension_out", Kind::Number, "axial force at the outflow end, N"),
     opt_in(Cond::OnePulley, "pulley_speed", Kind::Number, "pulley speed ω, rad/s, clockwise positive"),
     opt_in(Cond::OnePulley, "stick_slip_angle", Kind::Number, "polar angle φ_B of the stick-to-slip transition, rad"),
+    opt_in(Cond::OnePulley, "belt_drives_pulley", Kind::Bool, "with stick_slip_angle: the belt drives the pulley (N_in < N_out); default false"),
 ];
 
 pub(crate) const CAMBER: &[Field] = &[

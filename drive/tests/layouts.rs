@@ -67,7 +67,17 @@ fn one_pulley_scene_reads_writes_and_has_its_open_contour() {
     let mut v = one_pulley();
     v["drive"].as_object_mut().unwrap().remove("tension_in");
     v["drive"]["stick_slip_angle"] = json!(0.5);
-    assert!(matches!(read(&v).unwrap().drive.one_pulley_load(), Some(OnePulleyLoad::Transition { stick_slip_angle, .. }) if stick_slip_angle == 0.5));
+    assert!(matches!(read(&v).unwrap().drive.one_pulley_load(), Some(OnePulleyLoad::Transition { stick_slip_angle, driving: true, .. }) if stick_slip_angle == 0.5));
+    // φ_B fixes the slip arc, not its sense: `belt_drives_pulley` chooses it, is written
+    // and read back
+    v["drive"]["belt_drives_pulley"] = json!(true);
+    let braking = read(&v).unwrap();
+    assert!(matches!(braking.drive.one_pulley_load(), Some(OnePulleyLoad::Transition { driving: false, .. })));
+    assert!(braking.to_json_pretty().contains("\"belt_drives_pulley\": true"));
+    assert_eq!(Scene::from_json_str(&braking.to_json_pretty()).unwrap(), braking);
+    v["drive"]["belt_drives_pulley"] = json!(false);
+    assert!(matches!(read(&v).unwrap().drive.one_pulley_load(), Some(OnePulleyLoad::Transition { driving: true, .. })));
+    v["drive"].as_object_mut().unwrap().remove("belt_drives_pulley");
     v["drive"].as_object_mut().unwrap().remove("stick_slip_angle");
     v["drive"]["pulley_speed"] = json!(19.0);
     assert!(matches!(read(&v).unwrap().drive.one_pulley_load(), Some(OnePulleyLoad::PulleySpeed { pulley_speed, .. }) if pulley_speed == 19.0));
@@ -76,6 +86,26 @@ fn one_pulley_scene_reads_writes_and_has_its_open_contour() {
     assert!(!two.to_json_pretty().contains("layout"));
     assert_eq!(two.drive.layout, Layout::TwoPulley);
     assert!(two.open_contour().is_none());
+}
+
+/// `belt_drives_pulley` only where it decides something: with `stick_slip_angle` on the
+/// one-pulley layout (the tensions or ω decide the sense otherwise; the two-pulley loop
+/// has `driven_torque`'s sign), and a boolean.
+#[test]
+fn belt_drives_pulley_is_refused_where_the_sense_is_given() {
+    let mut v = one_pulley();
+    v["drive"]["belt_drives_pulley"] = json!(true);
+    not_allowed(&v, "drive.belt_drives_pulley", "sense follows from them");
+    let mut v = one_pulley();
+    v["drive"].as_object_mut().unwrap().remove("tension_in");
+    v["drive"]["stick_slip_angle"] = json!(0.5);
+    v["drive"]["belt_drives_pulley"] = json!("yes");
+    let e = err(&v);
+    assert!(e.to_string().contains("drive.belt_drives_pulley") && e.to_string().contains("true or false"), "{e}");
+    let mut two: Value = serde_json::from_str(include_str!("../../scenes/string-drive.json")).unwrap();
+    two["drive"]["belt_drives_pulley"] = json!(true);
+    let e = err(&two);
+    assert!(e.to_string().contains("belt_drives_pulley") && e.to_string().contains("one-pulley"), "{e}");
 }
 
 #[test]

@@ -105,7 +105,7 @@ impl FemProblem {
         let b = &scene.belt;
         let dr = &scene.drive;
         let open = match (dr.layout, dr.end_distance, dr.transport_rate, dr.tension_in, dr.tension_out) {
-            (drive::scene::Layout::OnePulley, Some(end_distance), Some(transport_rate), tension_in, tension_out) => Some(crate::string_drive::steady::OpenEnds { end_distance, transport_rate, tension_in, tension_out, pulley_speed: dr.pulley_speed, stick_slip_angle: dr.stick_slip_angle }),
+            (drive::scene::Layout::OnePulley, Some(end_distance), Some(transport_rate), tension_in, tension_out) => Some(crate::string_drive::steady::OpenEnds { end_distance, transport_rate, tension_in, tension_out, pulley_speed: dr.pulley_speed, stick_slip_angle: dr.stick_slip_angle, belt_drives_pulley: dr.belt_drives_pulley == Some(true) }),
             _ => None,
         };
         FemProblem {

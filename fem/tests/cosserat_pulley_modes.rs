@@ -114,6 +114,29 @@ fn stick_slip_angle_round_trip() {
     }
 }
 
+/// The sense of a prescribed φ_B (`belt_drives_pulley`, φ_B fixes the slip arc, not its
+/// sense): the braking `tensions` solve's φ_B (N_in = 10 < N_out = 15 N, 128 elements,
+/// fitted) fed back with N_out and the belt driving the pulley finds φ_B to 1e-9 rad, a
+/// positive torque and N_in near 10 N (without the field the search would return the
+/// driving state, N_in ≈ 22 N). Not a round trip to round-off as the driving one above:
+/// measured N_in = 9.9912 N (8.8e-4 relative) — the fitted φ_B(N_in) of the braking
+/// sense has another root near the original at this mesh (open, docs/fem-cosserat.md
+/// §12.7); at 64 elements an evaluation's fit fails at N_in ≥ 11 N (the capstan start).
+/// Bound 2e-3 relative: the FE's free-tension error at 128 (3.6e-3 driving, §12.7).
+#[test]
+fn stick_slip_angle_round_trip_with_the_belt_driving_the_pulley() {
+    let tensions = fe(&scene(&[("tension_in", 10.0), ("tension_out", 15.0)], 0.3), 128).unwrap();
+    let phi = stick_slip_angle(&tensions.summary);
+    let mut sc = scene(&[("stick_slip_angle", phi), ("tension_out", 15.0)], 0.3);
+    sc.drive.belt_drives_pulley = Some(true);
+    let back = fe(&sc, 128).unwrap();
+    let s = &back.summary;
+    eprintln!("braking φ_B = {phi}: N_in = {:?}, φ_B = {} ({:.2} s, {} Newton iterations)", s.tension_in, stick_slip_angle(s), back.stats.wall_seconds, back.stats.newton_iterations);
+    assert!((stick_slip_angle(s) - phi).abs() < 1e-9, "φ_B {} vs {phi}", stick_slip_angle(s));
+    assert!((s.tension_in.unwrap() - 10.0).abs() <= 2e-2, "N_in = {:?}", s.tension_in);
+    assert!(s.pulley.as_ref().unwrap().torque.unwrap() > 0.49, "the belt drives the pulley");
+}
+
 /// Spec §2.8 at 128 elements against the BVP: relative errors of (ω, y_in, y_out,
 /// contact arc, slip arc, torque), on the mesh fitted to A, B, C and graded over the shear
 /// layer (docs/fem-cosserat.md §12.5; unfitted before, in brackets). Measured:

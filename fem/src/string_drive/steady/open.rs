@@ -34,6 +34,9 @@ pub struct OpenEnds {
     pub pulley_speed: Option<f64>,
     /// φ_B, rad (polar angle of the stick → slip point), if given.
     pub stick_slip_angle: Option<f64>,
+    /// With φ_B given: the belt drives the pulley (N_in < N_out), else the pulley drives
+    /// the belt (φ_B fixes the slip arc, not its sense).
+    pub belt_drives_pulley: bool,
 }
 
 /// What a one-pulley scene prescribes besides c (spec §2.3), as the FE solves it.
@@ -43,8 +46,9 @@ pub enum OpenMode {
     Tensions { tension_in: f64, tension_out: f64 },
     /// ω and N_out given (ω with N_in leaves N_out undetermined, as the BVP says).
     PulleySpeed { pulley_speed: f64, tension_out: f64 },
-    /// φ_B and the tension of `given` (the pulley driving the belt).
-    Transition { stick_slip_angle: f64, given: End, tension: f64 },
+    /// φ_B and the tension of `given`; `driving`: the pulley drives the belt (N_in >
+    /// N_out), else the belt drives the pulley.
+    Transition { stick_slip_angle: f64, given: End, tension: f64, driving: bool },
 }
 
 /// ω with N_in leaves N_out undetermined (the BVP's `PULLEY_SPEED_WITH_TENSION_IN`).
@@ -61,8 +65,8 @@ impl OpenEnds {
             (Some(tension_in), Some(tension_out), None, None) => Ok(OpenMode::Tensions { tension_in, tension_out }),
             (None, Some(tension_out), Some(pulley_speed), None) => Ok(OpenMode::PulleySpeed { pulley_speed, tension_out }),
             (Some(_), None, Some(pulley_speed), None) => Err(FemError::Prescription { name: "pulley_speed", value: pulley_speed, reason: PULLEY_SPEED_WITH_TENSION_IN.into() }),
-            (Some(tension), None, None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::In, tension }),
-            (None, Some(tension), None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::Out, tension }),
+            (Some(tension), None, None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::In, tension, driving: !self.belt_drives_pulley }),
+            (None, Some(tension), None, Some(stick_slip_angle)) => Ok(OpenMode::Transition { stick_slip_angle, given: End::Out, tension, driving: !self.belt_drives_pulley }),
             _ => Err(FemError::Prescription { name: "drive", value: f64::NAN, reason: "a one-pulley scene gives exactly two of tension_in, tension_out, pulley_speed, stick_slip_angle, at least one a tension".into() }),
         }
     }
@@ -131,13 +135,15 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize>(problem: &crat
             }
             (vec![("outflow", tension_out)], [tension_of(t_in), tension_out])
         }
-        OpenMode::Transition { stick_slip_angle, given, tension } => {
+        OpenMode::Transition { stick_slip_angle, given, tension, driving } => {
             let a = b.bending_stiffness.unwrap_or(0.0);
             let t = effective(tension);
             let phi_c = |t_out: f64| -FRAC_PI_2 + (a / t_out).sqrt() / r;
+            // the capstan over the slip arc: N_in > N_out when the pulley drives
+            let mu_s = if driving { mu } else { -mu };
             let free = match given {
-                End::Out => tension_of(t * (mu * (stick_slip_angle - phi_c(t))).exp()),
-                End::In => tension_of(t * (-mu * (stick_slip_angle - phi_c(t))).exp()),
+                End::Out => tension_of(t * (mu_s * (stick_slip_angle - phi_c(t))).exp()),
+                End::In => tension_of(t * (-mu_s * (stick_slip_angle - phi_c(t))).exp()),
             };
             if !(stick_slip_angle > phi_c(t) && free.is_finite()) {
                 return Err(FemError::Prescription { name: "stick_slip_angle", value: stick_slip_angle, reason: format!("below the contact end φ_C ≈ −π/2 + √(a/T̃)/R = {:.6}: no slip arc", phi_c(t)) });
@@ -208,7 +214,7 @@ pub fn solve_open<const N: usize, const P: usize, const E: usize>(problem: &crat
             (State { rho, asm: setup.assembler(), x, results }, setup.sp(to))
         }
         // fitted per evaluation of its root find (§12.7), so no fit after it
-        OpenMode::Transition { stick_slip_angle, given, tension } => setup.transition(stick_slip_angle, given, tension, estimate[if given == End::In { 1 } else { 0 }], fit.as_ref(), &mut report)?,
+        OpenMode::Transition { stick_slip_angle, given, tension, driving } => setup.transition(stick_slip_angle, given, tension, driving, estimate[if given == End::In { 1 } else { 0 }], fit.as_ref(), &mut report)?,
     };
     report.continuation_seconds = clock.elapsed().as_secs_f64();
     // the loop's fitting (§12.5)
@@ -470,7 +476,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     }
 
     /// Mode `stick_slip_angle` (docs/fem-cosserat.md §12.7): the free tension N_f with
-    /// φ_B(N_f) = `phi` (the pulley driving the belt), the tension of `given` fixed. Each
+    /// φ_B(N_f) = `phi` (`driving`: the pulley drives the belt, N_in > N_out; else the
+    /// belt drives the pulley), the tension of `given` fixed. Each
     /// evaluation is a mode-`tensions` solve continued from the nearest one done; string
     /// steps (∂φ_B/∂N_f ≈ ±1/(μT̃_f), the capstan's) until φ_B − φ brackets a root, then
     /// Brent's method on the bracket to 10⁻¹⁰ relative in N_f. Each evaluation continues on
@@ -478,7 +485,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// is the fitted solve's (smooth in N_f, §12.7). (Continuing on the nearest state's
     /// fitted mesh, whose split node sits at the old B, gave a different fitted state: 64
     /// elements, N_out given, a wrong bracket at N_in = 14.948 N with φ_B 0.012 rad off.)
-    fn transition(&self, phi: f64, given: End, tension: f64, estimate: f64, fit: Option<&OpenFit<'_>>, report: &mut SteadyReport) -> Result<(State<N, K>, SteadyParams), FemError> {
+    fn transition(&self, phi: f64, given: End, tension: f64, driving: bool, estimate: f64, fit: Option<&OpenFit<'_>>, report: &mut SteadyReport) -> Result<(State<N, K>, SteadyParams), FemError> {
         let (b1, chi) = (self.axial_stiffness, self.chi);
         let h_given = end_flux(tension, b1, chi);
         let ends_of = |free: f64| match given {
@@ -510,8 +517,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             solved.borrow_mut().push((free, x, results, fitted));
             Ok(angle - phi)
         };
-        // driving: N_in > N_out; φ_B grows with N_in and falls with N_out
-        let sense = if given == End::Out { 1.0 } else { -1.0 };
+        // driving: N_in > N_out, φ_B grows with N_in and falls with N_out; the belt
+        // driving the pulley (N_in < N_out): the other way round
+        let sense = if (given == End::Out) == driving { 1.0 } else { -1.0 };
         let slope = |n: f64| sense / (self.base.mu * (n - chi * (1.0 + n / b1)));
         let (mut n0, mut g0) = (estimate, solve(estimate)?);
         let mut bracket = None;
@@ -526,7 +534,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 break;
             }
             // the string step overshot by 20 % (so that it brackets the root where the
-            // capstan slope is that accurate), kept on the driving side of the given tension
+            // capstan slope is that accurate), kept on the sense's side of the given tension
             let mut n1 = n0 - 1.2 * g0 / slope(n0);
             if (n1 - tension) * sense <= 0.0 {
                 n1 = tension + 0.5 * (n0 - tension);
