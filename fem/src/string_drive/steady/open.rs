@@ -485,6 +485,7 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
     /// is the fitted solve's (smooth in N_f, §12.7). (Continuing on the nearest state's
     /// fitted mesh, whose split node sits at the old B, gave a different fitted state: 64
     /// elements, N_out given, a wrong bracket at N_in = 14.948 N with φ_B 0.012 rad off.)
+    #[allow(clippy::too_many_arguments)] // the mode's four data, the start and the fit
     fn transition(&self, phi: f64, given: End, tension: f64, driving: bool, estimate: f64, fit: Option<&OpenFit<'_>>, report: &mut SteadyReport) -> Result<(State<N, K>, SteadyParams), FemError> {
         let (b1, chi) = (self.axial_stiffness, self.chi);
         let h_given = end_flux(tension, b1, chi);
