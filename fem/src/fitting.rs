@@ -145,6 +145,15 @@ pub struct FitRules {
     /// The fitted meshes' tie tolerance of their element distribution, in elements
     /// ([`Mesh::regraded`]).
     pub tie: f64,
+    /// Bisection of a located point that jumps across its node, m (`None`: none). When
+    /// the stall rule's patience runs out above its `below`, each point whose residual
+    /// F = g − x changed sign between two accepted passes is fitted to the middle of the
+    /// narrowest such bracket instead; the fitting ends [`FitEnd::Bracketed`] once
+    /// every point is either below the stall's `below` or bracketed within this width.
+    /// A locator that is discontinuous in x (a node that flips from stick to slip as it
+    /// crosses the discrete transition, docs/fem-drive.md §12) has no fixed point; the
+    /// jump is where the mesh puts its node.
+    pub bracket: Option<f64>,
 }
 
 /// How a fitting ended.
@@ -156,6 +165,15 @@ pub enum FitEnd<F> {
     PassLimit,
     /// The stall rule stopped it.
     Stalled,
+    /// Every point either below the stall's `below` or, bisected, fitted to a jump of
+    /// its locator: `width` (m) the widest remaining bracket, `jump` (m) the largest
+    /// |g − x| of a bracketed point — the located positions carry up to that much.
+    Bracketed {
+        /// The widest remaining bracket, m.
+        width: f64,
+        /// The largest |g − x| of a bracketed point, m.
+        jump: f64,
+    },
     /// A refit failed (and the move limit allows no retry).
     Refit(F),
 }
@@ -176,7 +194,7 @@ pub struct FitOutcome<F> {
 impl<F> FitOutcome<F> {
     /// True if every point is within the tolerance.
     pub fn converged(&self) -> bool {
-        matches!(self.end, FitEnd::Converged)
+        matches!(self.end, FitEnd::Converged | FitEnd::Bracketed { .. })
     }
 }
 
@@ -206,7 +224,7 @@ impl FitReport {
         self.fit_last_move = out.last_move;
         match &out.end {
             FitEnd::Refit(e) => self.fit_failure = Some(e.to_string()),
-            FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled => {}
+            FitEnd::Converged | FitEnd::PassLimit | FitEnd::Stalled | FitEnd::Bracketed { .. } => {}
         }
     }
 
@@ -295,6 +313,10 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
     };
     let mut out = FitOutcome { end: FitEnd::PassLimit, passes: 0, rejected: 0, last_move: None };
     let mut attempts = 0;
+    // (x, F) of every accepted pass, per point, while the point count holds; and
+    // whether the stall rule has turned to bisection (`rules.bracket`)
+    let mut history: Vec<Vec<(f64, f64)>> = Vec::new();
+    let mut bisecting = false;
     loop {
         // locate and measure
         let located = problem.locate();
@@ -308,6 +330,17 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
             }
         };
         out.last_move = moved.is_finite().then_some(moved);
+        match &residual {
+            Some(f) => {
+                if history.len() != f.len() {
+                    history = vec![Vec::new(); f.len()];
+                }
+                for (h, (x, f)) in history.iter_mut().zip(fitted_to.iter().zip(f)) {
+                    h.push((*x, *f));
+                }
+            }
+            None => history.clear(),
+        }
         if rules.keep_best && residual.is_some() && best.as_ref().is_none_or(|(m, _)| moved < *m) {
             best = Some((moved, problem.snapshot()));
         }
@@ -322,6 +355,23 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
             } else if attempts >= best_attempt + stall.patience && moved < stall.below {
                 out.end = FitEnd::Stalled;
                 break;
+            } else if attempts >= best_attempt + stall.patience && rules.bracket.is_some() && residual.is_some() {
+                bisecting = true;
+            }
+        }
+        // the brackets of the bisected points (`None` for the others)
+        let brackets: Vec<Option<(f64, f64)>> = match (&residual, bisecting) {
+            (Some(_), true) => fitted_to.iter().zip(&history).map(|(x, h)| bracket(h, *x, period)).collect(),
+            _ => Vec::new(),
+        };
+        if let (Some(f), Some(width), Some(stall)) = (&residual, rules.bracket, rules.stall.filter(|_| !brackets.is_empty())) {
+            let bracketed = |i: usize| brackets[i].filter(|(lo, hi)| hi - lo <= width);
+            if (0..f.len()).all(|i| f[i].abs() < stall.below || bracketed(i).is_some()) && (0..f.len()).any(|i| bracketed(i).is_some()) {
+                let bracketed: Vec<usize> = (0..f.len()).filter(|&i| bracketed(i).is_some()).collect();
+                let width = bracketed.iter().filter_map(|&i| brackets[i]).map(|(lo, hi)| hi - lo).fold(0.0, f64::max);
+                let jump = bracketed.iter().map(|&i| f[i].abs()).fold(0.0, f64::max);
+                out.end = FitEnd::Bracketed { width, jump };
+                break;
             }
         }
         if attempts >= rules.max_passes {
@@ -331,7 +381,12 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
         attempts += 1;
 
         // propose
-        let next = propose(problem.mesh(), &contour, rules, factor, &located, &fitted_to, residual.as_deref(), previous.as_ref());
+        let mut next = propose(problem.mesh(), &contour, rules, factor, &located, &fitted_to, residual.as_deref(), previous.as_ref());
+        for (n, b) in next.iter_mut().zip(&brackets) {
+            if let Some((lo, hi)) = b {
+                *n = contour.wrap(0.5 * (lo + hi));
+            }
+        }
         previous = residual.map(|f| (std::mem::take(&mut fitted_to), f));
 
         // refit and accept, on the accepted mesh's topology (a loop's or an open mesh's
@@ -360,6 +415,14 @@ fn fit_passes<P: Fitted>(problem: &mut P, rules: &FitRules) -> FitOutcome<P::Fai
         out.last_move = Some(m);
     }
     out
+}
+
+/// The narrowest bracket of a sign change of F among the (x, F) of `history`, as
+/// (lo, hi) with lo < hi unwrapped next to `x` (period `period`); `None` without one.
+fn bracket(history: &[(f64, f64)], x: f64, period: f64) -> Option<(f64, f64)> {
+    let mut pts: Vec<(f64, f64)> = history.iter().map(|(xj, f)| (x + periodic_diff(*xj, x, period), *f)).collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.windows(2).filter(|w| w[0].1 * w[1].1 < 0.0 && w[1].0 > w[0].0).map(|w| (w[0].0, w[1].0)).min_by(|a, b| (a.1 - a.0).total_cmp(&(b.1 - b.0)))
 }
 
 /// The next positions: per located point `g`, the secant proposal from the position
@@ -517,6 +580,7 @@ mod tests {
             stall: None,
             keep_best: true,
             tie: 1e-3,
+            bracket: None,
         }
     }
 
@@ -645,5 +709,64 @@ mod tests {
         assert!((periodic_diff(1.9, 0.1, l) + 0.2).abs() < 1e-15);
         assert_eq!(periodic_diff(1.0, 0.0, l), 1.0);
         assert_eq!(periodic_diff(0.0, 1.0, l), 1.0);
+    }
+
+    /// A located point that jumps across its node: g(x) = a + J/2 for x < a, a − J/2
+    /// for x ≥ a (a node that sticks on one side of the discrete transition and slips
+    /// on the other), so F = g − x has no zero. The second point is linear and
+    /// converges.
+    struct Jump {
+        lin: Linear,
+        jump: f64,
+    }
+
+    impl Fitted for Jump {
+        type Failure = f64;
+        type Snapshot = (Mesh, Vec<f64>);
+        fn mesh(&self) -> &Mesh {
+            self.lin.mesh()
+        }
+        fn locate(&mut self) -> Vec<f64> {
+            let mut g = self.lin.locate();
+            let (x, a) = (self.lin.x[0], self.lin.a[0]);
+            g[0] = if x < a { a + 0.5 * self.jump } else { a - 0.5 * self.jump };
+            g
+        }
+        fn refit(&mut self, mesh: Mesh, points: &[f64]) -> Result<(), f64> {
+            self.lin.refit(mesh, points)
+        }
+        fn snapshot(&self) -> (Mesh, Vec<f64>) {
+            self.lin.snapshot()
+        }
+        fn restore(&mut self, s: (Mesh, Vec<f64>)) {
+            self.lin.restore(s)
+        }
+    }
+
+    #[test]
+    fn a_point_that_jumps_across_its_node_is_bisected_onto_the_jump() {
+        // J = 8 mm (16 % of an element) above the stall's 1 mm: without the bracket
+        // rule the secant and the plain steps cycle across a until the pass limit
+        let a = fixed_points();
+        let jump = 8e-3;
+        let width = 1e-4;
+        let start = || Jump { lin: Linear::new(a.clone(), vec![-0.9, 0.5], vec![a[0] + 0.01, a[1] - 0.003]), jump };
+        let mut p = start();
+        let out = fit(&mut p, &steady_rules());
+        assert!(matches!(out.end, FitEnd::PassLimit), "{:?}", out.end);
+        assert!(!out.converged());
+        // with it: bisected onto the jump to within the bracket width, the linear
+        // point converged to below the stall's 1 mm, and the jump reported
+        let rules = FitRules { bracket: Some(width), ..steady_rules() };
+        let mut p = start();
+        let out = fit(&mut p, &rules);
+        let FitEnd::Bracketed { width: w, jump: j } = out.end else { panic!("{:?}", out.end) };
+        assert!(out.converged());
+        assert!(w <= width && w > 0.0, "bracket {w}");
+        assert!((p.lin.x[0] - a[0]).abs() <= width, "fitted {} against the jump at {}", p.lin.x[0], a[0]);
+        // |g − x| at the end is the half jump plus at most the bracket
+        assert!(j >= 0.5 * jump - width && j <= 0.5 * jump + width, "jump {j}");
+        assert!((p.lin.x[1] - a[1]).abs() < 1e-3, "linear point at {} against {}", p.lin.x[1], a[1]);
+        assert!(out.passes + out.rejected <= rules.max_passes);
     }
 }

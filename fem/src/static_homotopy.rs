@@ -604,6 +604,8 @@ fn fit<const N: usize, K: LayoutElement<N> + ?Sized>(
         stall: None,
         keep_best: true,
         tie,
+        // the static contact edges are continuous in x (no stick/slip states)
+        bracket: None,
     };
     let mut problem = StaticFit { sol, params, length, kernel, lu, scales, newton_settings, tolerance: settings.update_tolerance, grading, report };
     let out = fitting::fit(&mut problem, &rules);

@@ -308,6 +308,10 @@ fn fit_steady<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         keep_best: false,
         // the largest remainder decides (the steady fits are not symmetric)
         tie: 0.0,
+        // a stick→slip transition whose located position jumps across its node (the
+        // node sticks on one side and slips on the other, §12 "A transition that
+        // jumps"): bisected to 1 % of an element, once the stall's patience is spent
+        bracket: Some(0.01 * element),
     };
     let mut fit = SteadyFit::<N, P, E, K>::new(state, data, report);
     let out = crate::fitting::fit(&mut fit, &rules);
@@ -322,6 +326,15 @@ fn fit_steady<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
             out.passes + out.rejected,
             numerics::Sig(m),
             100.0 * m / element
+        ));
+    }
+    if let FitEnd::Bracketed { width, jump } = out.end {
+        report.warnings.push(format!(
+            "the stick→slip transition could not be fitted to a node on this mesh: its located position jumps by {} m ({:.1} % of an arc element) as the node crosses it (the node sticks on one side, slips on the other); the node was bisected onto the jump to {} m, and the stick and slip arcs carry up to {} m — a finer mesh resolves it (docs/fem-drive.md §12)",
+            numerics::Sig(jump),
+            100.0 * jump / element,
+            numerics::Sig(width),
+            numerics::Sig(jump)
         ));
     }
     // an unresolved fit leaves the stick/slip arcs wrong by a fraction of an element or

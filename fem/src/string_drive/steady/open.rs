@@ -497,6 +497,9 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
         // solved states by N_f; a new one continues from the nearest
         let solved: std::cell::RefCell<Vec<Solved<N, K>>> = std::cell::RefCell::new(vec![(tension, stick, Vec::new(), None)]);
         let report = std::cell::RefCell::new(report);
+        // each evaluation's fit warnings, by its free tension: only the state returned
+        // states its own (the search's other evaluations are not the result)
+        let notes: std::cell::RefCell<Vec<(f64, Vec<String>)>> = std::cell::RefCell::new(Vec::new());
         let solve = |free: f64| -> Result<f64, FemError> {
             let (from, x) = {
                 let s = solved.borrow();
@@ -509,7 +512,11 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 Some(fit) => {
                     let sp = self.sp(ends_of(free));
                     let (x, results) = (state.x.clone(), state.results.clone());
-                    (x, results, Some(self.fit(state, &move |_: f64| sp, None, fit, &mut report.borrow_mut())?))
+                    let before = report.borrow().warnings.len();
+                    let fitted = self.fit(state, &move |_: f64| sp, None, fit, &mut report.borrow_mut())?;
+                    let said = report.borrow_mut().warnings.split_off(before);
+                    notes.borrow_mut().push((free, said));
+                    (x, results, Some(fitted))
                 }
                 None => (state.x, state.results, None),
             };
@@ -567,6 +574,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
                 solved.borrow().len() - 1
             }
         };
+        let said = notes.into_inner().into_iter().rev().find(|n| n.0 == root).map(|n| n.1).unwrap_or_default();
+        report.borrow_mut().warnings.extend(said);
         let (_, x, results, fitted) = solved.into_inner().swap_remove(i);
         let state = fitted.unwrap_or_else(|| State { rho: self.rho, asm: self.assembler(), x, results });
         Ok((state, self.sp(ends_of(root))))
