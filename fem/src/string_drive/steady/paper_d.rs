@@ -244,6 +244,8 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             PI * d.r / s[0].state.asm.mesh().elements().iter().filter(|e| e.region == Region::DriverArc).count().max(1) as f64
         };
         let mut state = None;
+        // the node-snapped contact zones of the last pass's mesh
+        let mut zones_fitted: Vec<(Pulley, f64, f64)> = Vec::new();
         // the contact boundaries follow the transitions by a fraction of an element: at most
         // BOUNDARY_PASSES refits, until they are within 1 % of an arc element of their nodes
         for _pass in 0..BOUNDARY_PASSES {
@@ -268,6 +270,20 @@ impl<'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?
             }
             let (mesh, _) = Mesh::graded(contour, self.elements, self.arc_weight, &breaks, d.grading)?;
             let zones = zones_on_nodes(&zones, &mesh);
+            // a refit that would rebuild the same mesh — no node and no contact-zone end
+            // more than 1 % of an arc element from the last pass's — solves the same fixed
+            // topology again: the last pass's state stands. The boundary check above does
+            // not see it where `Mesh::graded` dropped a boundary within 2 % of an element of
+            // an arc's end (it then stays off its node) or where the located boundary moves
+            // by less than a node's snap each pass: 27 solves for 9 pairs on the Exudyn
+            // scene at 128 elements before (docs/fem-drive.md §12, "Tenth round")
+            if let Some(st) = &state {
+                let st: &State<N, K> = st;
+                if same_mesh(st.asm.mesh(), &mesh, &zones_fitted, &zones, 1e-2 * arc_element) {
+                    break;
+                }
+            }
+            zones_fitted.clone_from(&zones);
             let asm = Assembler::with_kernel(mesh, d.kernel.clone());
             let points = self.points(&asm, at, &zones);
             let mut x = crate::static_homotopy::transfer(&sol, &asm);
@@ -495,6 +511,19 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         self.solve_at(at)?;
         Ok((at, [bands[0].width(), bands[1].width()]))
     }
+}
+
+/// Whether the mesh `new` with its node-snapped contact zones `zones_new` is the mesh `old`
+/// with `zones_old` to within `tolerance` (m): the same node count, the same zones (pulley)
+/// and no node and no zone end more than `tolerance` apart (periodic in σ).
+fn same_mesh(old: &Mesh, new: &Mesh, zones_old: &[(Pulley, f64, f64)], zones_new: &[(Pulley, f64, f64)], tolerance: f64) -> bool {
+    let lc = new.contour().length();
+    let near = |a: f64, b: f64| crate::fitting::periodic_diff(a, b, lc).abs() <= tolerance;
+    let (a, b) = (old.node_sigmas(), new.node_sigmas());
+    a.len() == b.len()
+        && a.iter().zip(b).all(|(&x, &y)| near(x, y))
+        && zones_old.len() == zones_new.len()
+        && zones_old.iter().zip(zones_new).all(|(z, w)| z.0 == w.0 && near(z.1, w.1) && near(z.2, w.2))
 }
 
 /// A point whose row the fixed topology prescribes while its normal traction is negative:
