@@ -164,11 +164,7 @@ impl ShellScene {
     fn kernel(&self, stage0: &Shell, t0: f64, start: f64) -> Result<Shell, ShellError> {
         let layer = stage0.interlayer().ok_or(ShellError::BadParameter { what: "stage (0) without an interlayer", value: 0.0 })?;
         let ramp = |value: f64| Schedule::new(vec![(t0, 0.0), (start, value)]);
-        let history = |h: &[[f64; 2]]| {
-            let mut points = vec![(t0, 0.0), (start, Steering::angle_at(h, 0.0))];
-            points.extend(h.iter().filter(|p| p[0] > 0.0).map(|p| (start + p[0], p[1])));
-            Schedule::new(points)
-        };
+        let history = |h: &[[f64; 2]]| tilt_schedule(h, t0, start);
         let mut drums = layer.drums.clone();
         for drum in &mut drums {
             drum.speed = self.speed;
@@ -183,6 +179,19 @@ impl ShellScene {
         let interlayer = Interlayer { shear: self.shear, drums, transport: self.speed * layer.radius, start: begin, ..layer.clone() };
         stage0.clone().with_camber(ramp(self.camber)?)?.with_interlayer(interlayer)
     }
+}
+
+/// The kernel's schedule of a scene's tilt history `h` ([[t, β], …], t from the start
+/// of the rotation): 0 at `t0` (the end of stage (0)), ramped linearly to β(0) at
+/// `start` (the end of stage (1)), then the history shifted by `start`, held after its
+/// last point.
+///
+/// # Errors
+/// [`Schedule::new`]'s (not for a validated scene: its times increase and are ≥ 0).
+pub fn tilt_schedule(h: &[[f64; 2]], t0: f64, start: f64) -> Result<Schedule, ShellError> {
+    let mut points = vec![(t0, 0.0), (start, Steering::angle_at(h, 0.0))];
+    points.extend(h.iter().filter(|p| p[0] > 0.0).map(|p| (start + p[0], p[1])));
+    Schedule::new(points)
 }
 
 /// A solved shell scene.
@@ -545,3 +554,100 @@ fn data_normal(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> f64 {
     stepping.assembler().kernel().interlayer().map_or(1.0, |l| l.normal)
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::{json, Value};
+
+    fn shipped() -> Value {
+        serde_json::from_str(include_str!("../../../scenes/shell-runoff.json")).unwrap()
+    }
+
+    fn read(v: &Value) -> Scene {
+        Scene::from_json_str(&v.to_string()).unwrap()
+    }
+
+    /// The shipped scene's data: κ_c = ΔL/(bL) (spec §4.3), the interlayer's P and
+    /// P_⊥, ω; what the shell's FE has no model for is refused by name.
+    #[test]
+    fn scene_data_is_read_and_what_is_not_modelled_refused() {
+        let v = shipped();
+        let d = ShellScene::from_scene(&read(&v)).unwrap();
+        let (b, l) = (v["belt"]["width"].as_f64().unwrap(), v["belt"]["length"].as_f64().unwrap());
+        let dl = v["belt"]["camber"]["edge_length_difference"].as_f64().unwrap();
+        assert!((d.camber - dl / (b * l)).abs() < 1e-15 * d.camber.abs());
+        assert_eq!(d.shear, v["effects"]["contact"]["elastic_layer"]["tangential_stiffness"].as_f64().unwrap());
+        assert_eq!(d.belt.normal_stiffness, v["effects"]["contact"]["elastic_layer"]["normal_stiffness"].as_f64().unwrap());
+        assert_eq!(d.speed, 2.0);
+        assert!(d.turning && !d.is_perfect());
+        let not_modelled = |v: Value, what: &str| match ShellScene::from_scene(&read(&v)) {
+            Err(ShellError::NotModelled(m)) => assert!(m.contains(what), "{m}"),
+            Err(e) => panic!("{what}: wrong error {e}"),
+            Ok(_) => panic!("{what}: accepted"),
+        };
+        let mut w = v.clone();
+        w["drive"]["driven_speed"] = json!(2.5);
+        not_modelled(w, "different speeds");
+        let mut w = v.clone();
+        w["drive"]["driver_speed"] = json!(-2.0);
+        w["drive"]["driven_speed"] = json!(-2.0);
+        w["fem"].as_object_mut().unwrap().remove("time_step");
+        not_modelled(w, "counter-clockwise");
+        let mut w = v.clone();
+        w["effects"]["contact"] = json!("frictionless");
+        not_modelled(w, "elastic interlayer");
+        let mut w = v.clone();
+        w["analysis"] = json!("steady");
+        not_modelled(w, "analysis `steady`");
+    }
+
+    /// The tilt schedule: 0 at the end of stage (0), β(0) at the start of the rotation,
+    /// then the history shifted by that start, linear between, held after; exact
+    /// (piecewise-linear data evaluated at and between its points).
+    #[test]
+    fn tilt_schedules_follow_the_histories_from_the_start_of_the_rotation() {
+        let h = [[0.5, 1e-3], [1.5, -1e-3]];
+        let s = tilt_schedule(&h, 1.0, 1.2).unwrap();
+        assert_eq!(s.at(1.0), 0.0);
+        // before its first point a history holds its first value: β(0) = 1e-3
+        assert!((s.at(1.1) - 0.5e-3).abs() < 1e-18);
+        assert!((s.at(1.2) - 1e-3).abs() < 1e-18);
+        assert!((s.at(1.7) - 1e-3).abs() < 1e-18);
+        assert!((s.at(2.2) - 0.0).abs() < 1e-15);
+        assert_eq!(s.at(9.0), -1e-3);
+        // no history: 0 throughout
+        let zero = tilt_schedule(&[], 1.0, 1.2).unwrap();
+        assert!([0.0, 1.1, 5.0].iter().all(|&t| zero.at(t) == 0.0));
+        // a history with a point at t = 0 starts there
+        let s = tilt_schedule(&[[0.0, 2e-3], [1.0, 0.0]], 1.0, 2.0).unwrap();
+        assert_eq!(s.points(), &[(1.0, 0.0), (2.0, 2e-3), (3.0, 0.0)]);
+    }
+
+    /// A perfect belt through the whole pipeline (32 × 2 elements, 6 steps): the
+    /// symmetry self-check (E-3) passes and the run-off velocity is round-off; a static
+    /// scene runs stages (0)–(1) only and has no run-off. ~5 s.
+    #[test]
+    fn perfect_belt_and_static_scene_through_the_pipeline() {
+        let mut v = shipped();
+        v["drive"].as_object_mut().unwrap().remove("steering");
+        v["belt"].as_object_mut().unwrap().remove("camber");
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 6, "frame_every": 3});
+        let solved = solve(&read(&v)).unwrap();
+        let vel = solved.summary.runoff_velocity.unwrap();
+        assert!(vel.abs() < 1e-12, "a perfect belt runs off at {vel:e} m/s");
+        assert!(solved.checks.iter().any(|c| c.contains("mirror symmetry")), "{:?}", solved.checks);
+        assert_eq!(solved.history.len(), 1 + 1 + 6);
+        assert_eq!(solved.history.frames.len(), 3);
+        // static: at rest the drums do not turn, no run-off quantities
+        v["analysis"] = json!("static");
+        v["drive"]["driver_speed"] = json!(0.0);
+        v["drive"]["driven_speed"] = json!(0.0);
+        v["belt"]["camber"] = json!({"curvature": 1e-5});
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "ramp_steps": 2});
+        let at_rest = solve(&read(&v)).unwrap();
+        assert!(at_rest.summary.runoff_velocity.is_none() && at_rest.summary.driven_speed.is_none());
+        assert_eq!(at_rest.history.len(), 1 + 2);
+        assert!(at_rest.summary.tension_upper_mid.unwrap() > 0.0);
+    }
+}
