@@ -83,6 +83,12 @@ fn check_vtu(file: &Path, frame: &SurfaceFields, contour: &drive::Contour) {
     }
     // the belt rests on the drums (pressure > 0 somewhere), nowhere a negative pressure
     assert!(pressure.iter().any(|&p| p > 0.0) && pressure.iter().all(|&p| p >= 0.0));
+    let shear = array(&doc, "PointData", "interlayer_shear");
+    assert!(shear.iter().all(|&u| u.is_finite() && u >= 0.0));
+    for (k, u) in shear.iter().enumerate() {
+        let (i, j) = (k / nz, k % nz);
+        assert!(close(*u, frame.values["interlayer_shear"][i][j]), "interlayer shear {k}");
+    }
     // quads (type 9), four vertices each; the last column connects to the first (closed loop)
     let connectivity = array(&doc, "Cells", "connectivity");
     let types = array(&doc, "Cells", "types");
@@ -168,16 +174,16 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     assert_eq!(m.time.len(), times.len() - 1);
     assert_eq!(m.outside, 1);
     let start = h.time[first];
-    for k in 0..m.time.len() {
-        assert_eq!(m.measured[k], 4e-6 * m.time[k]);
+    for (k, &tk) in m.time.iter().enumerate() {
+        assert_eq!(m.measured[k], 4e-6 * tk);
         assert!((m.difference[k] - (m.model[k] - m.measured[k])).abs() <= 1e-18);
         // the model interpolated independently here
-        let tt = start + m.time[k];
+        let tt = start + tk;
         let i = h.time.partition_point(|&x| x <= tt).clamp(1, h.len() - 1);
         let zc = h.channel("lateral_offset").unwrap();
         let w = (tt - h.time[i - 1]) / (h.time[i] - h.time[i - 1]);
         let model = zc[i - 1] + w.clamp(0.0, 1.0) * (zc[i] - zc[i - 1]);
-        assert!((m.model[k] - model).abs() <= 1e-15, "t = {}: {} vs {model}", m.time[k], m.model[k]);
+        assert!((m.model[k] - model).abs() <= 1e-15, "t = {tk}: {} vs {model}", m.model[k]);
     }
     let rms = (m.difference.iter().map(|d| d * d).sum::<f64>() / m.difference.len() as f64).sqrt();
     assert!((m.rms_difference - rms).abs() <= 1e-15 * rms.max(1e-300));
@@ -195,6 +201,9 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
         assert!((time - frame.time).abs() <= 1e-15 * frame.time);
         check_vtu(&file, frame.surface.as_ref().unwrap(), &contour);
     }
+    // the turning drums shear the interlayer: |u| > 0 on the drums at the end
+    let last = h.frames.last().unwrap().surface.as_ref().unwrap();
+    assert!(last.values["interlayer_shear"].iter().flatten().any(|&u| u > 0.0));
 }
 
 /// What a shell scene is refused for, with exit 2 and nothing written; `gate` and

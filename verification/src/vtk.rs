@@ -8,7 +8,7 @@
 //! the loop is closed. **Point data**: `displacement` (3 components, m) = r − (g(σ) +
 //! ζ e_z), the deflection from the undeformed placement on the contour (ν n_g + (z − ζ)
 //! e_z); `membrane_force` n_σσ (N/m), `bending_moment` m_σσ (N), `contact_pressure` Pγ
-//! (N/m²) — each present in the frame. `vtkio` writes the arrays as `format="binary"`:
+//! (N/m²), `interlayer_shear` |u| (m) — each present in the frame. `vtkio` writes the arrays as `format="binary"`:
 //! base64 of a little-endian UInt64 byte count followed by the little-endian values, not
 //! compressed (no compression back-end: pure Rust).
 
@@ -19,7 +19,7 @@ use drive::result::{SurfaceFields, TimeSeries};
 use vtkio::model::{Attribute, Attributes, ByteOrder, CellType, Cells, DataArray, DataSet, ElementType, IOBuffer, UnstructuredGridPiece, Version, VertexNumbers, Vtk};
 
 /// The scalar point fields written besides the displacement, when present in a frame.
-pub const SCALARS: [&str; 3] = ["membrane_force", "bending_moment", "contact_pressure"];
+pub const SCALARS: [&str; 4] = ["membrane_force", "bending_moment", "contact_pressure", "interlayer_shear"];
 
 /// Why VTK output was not written.
 #[derive(Debug, thiserror::Error)]

@@ -122,7 +122,7 @@ impl ShellScene {
         let plate = scene.belt.plate().ok_or(ShellError::NotModelled("the plate parameters are missing".into()))?;
         let (w1, w2) = (scene.drive.driver_speed, scene.drive.driven_speed.unwrap_or(scene.drive.driver_speed));
         if turning {
-            if !(w1 > 0.0) {
+            if w1.is_nan() || w1 <= 0.0 {
                 return refuse(format!("drums turning counter-clockwise or at rest in a transient (ω₁ = {w1} rad/s): the shell's run is built for ω > 0 (the belt moves along +σ); mirror the scene"));
             }
             if (w2 - w1).abs() > 1e-12 * w1 {
@@ -247,20 +247,43 @@ fn pressure(layer: &Interlayer, r: &[f64; 3], time: f64) -> f64 {
     layer.drums.iter().map(|d| d.gap(layer.radius, r, time).0.max(0.0)).sum::<f64>() * layer.normal
 }
 
+/// |u| (m) of the interlayer at σ-node `i`, ζ-node `j`: the committed state of the
+/// nearest history point — the interlayer's points are the σ-nodes (trapezoidal rule)
+/// × the 2 Gauss points of each ζ-element, so a ζ-node takes the mean of the nearest
+/// Gauss point of its one or two neighbouring ζ-elements (within (1 − 1/√3)/2 of an
+/// element's width). 0 without an interlayer history.
+fn interlayer_shear(stepping: &TimeStepping<Shell, SHELL_VALUES>, i: usize, j: usize) -> f64 {
+    let Some(states) = stepping.history().term(super::kernel::INTERLAYER) else { return 0.0 };
+    let n_zeta = stepping.assembler().mesh().zeta_nodes().len() - 1;
+    // element i's first column (ξ = −1) sits at σ-node i
+    let column = 2 * i;
+    let rows: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
+    let (rows_total, columns) = states.shape();
+    let magnitude = |row: usize| {
+        if row >= rows_total || column >= columns {
+            return 0.0;
+        }
+        let u = super::interlayer::Interlayer::deformation(states.get(row, column));
+        (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+    };
+    rows.iter().map(|&r| magnitude(r)).sum::<f64>() / rows.len().max(1) as f64
+}
+
 /// The frame of surface fields on the mesh's nodes.
 fn frame(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> Result<SurfaceFields, ShellError> {
     let asm = stepping.assembler();
     let shell = asm.kernel();
     let layer = shell.interlayer();
     let (sigma, zeta) = (asm.mesh().sigma_nodes().to_vec(), asm.mesh().zeta_nodes().to_vec());
-    let names = ["x", "y", "z", "membrane_force", "bending_moment", "contact_pressure"];
+    let names = ["x", "y", "z", "membrane_force", "bending_moment", "contact_pressure", "interlayer_shear"];
     let mut rows: Vec<Vec<Vec<f64>>> = vec![Vec::with_capacity(sigma.len()); names.len()];
-    for &s in &sigma {
+    for (i, &s) in sigma.iter().enumerate() {
         let mut row: Vec<Vec<f64>> = vec![Vec::with_capacity(zeta.len()); names.len()];
-        for &q in &zeta {
+        for (j, &q) in zeta.iter().enumerate() {
             let (at, v) = point_values_at(asm, stepping.unknowns(), s, q, stepping.time()).ok_or(ShellError::BadParameter { what: "frame point σ", value: s })?;
             let r = shell.position(&at, &v);
-            let values = [r[0], r[1], r[2], shell.forces(&at, &v)[0], shell.moments(&at, &v)[0], layer.map_or(0.0, |l| pressure(l, &r, stepping.time()))];
+            let shear = interlayer_shear(stepping, i, j);
+            let values = [r[0], r[1], r[2], shell.forces(&at, &v)[0], shell.moments(&at, &v)[0], layer.map_or(0.0, |l| pressure(l, &r, stepping.time())), shear];
             for (k, x) in values.into_iter().enumerate() {
                 row[k].push(x);
             }
@@ -419,7 +442,7 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
     let reactions = solved.reactions()?;
     let scale = upper.tension.abs().max(lower.tension.abs());
     let worst = reactions.iter().fold(0.0_f64, |m, r| m.max(r.abs()));
-    if !(worst <= REACTION_TOLERANCE * scale) {
+    if worst.is_nan() || worst > REACTION_TOLERANCE * scale {
         return Err(ShellError::Check(format!(
             "stage (0): the zero-mode constraints carry {worst:.3e} N against the mid-span tension {scale:.4e} N (allowed {REACTION_TOLERANCE:e} of it): the static belt is not in equilibrium without them"
         )));
@@ -498,7 +521,7 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
     let lateral = series.channel("lateral_offset").unwrap_or(&[]);
     let drift = lateral.iter().fold(0.0_f64, |m, z| m.max(z.abs()));
     if data.is_perfect() {
-        if !(drift <= SYMMETRY_TOLERANCE * width) {
+        if drift.is_nan() || drift > SYMMETRY_TOLERANCE * width {
             return Err(ShellError::Check(format!(
                 "a perfect belt on aligned drums ran off by {drift:.3e} m (allowed {SYMMETRY_TOLERANCE:e} × b = {:.1e} m; spec E-3, mirror symmetry): the transient is unstable laterally",
                 SYMMETRY_TOLERANCE * width
