@@ -1908,7 +1908,7 @@ impl FemSettings {
             }
         }
         if let Some(n) = self.elements_zeta {
-            if !(2..=64).contains(&n) || n % 2 != 0 {
+            if !(2..=64).contains(&n) || !n.is_multiple_of(2) {
                 return Err(SceneError::OutOfRange {
                     path: "fem.elements_zeta".into(),
                     value: n as f64,

@@ -40,7 +40,7 @@ fn shipped_shell_scenes_read_and_round_trip() {
         assert_eq!(s.belt.theory, drive::Theory::Shell);
         roundtrip(&s);
         let run = s.shell_run();
-        assert!(run.steps >= 1 && run.elements_zeta % 2 == 0);
+        assert!(run.steps >= 1 && run.elements_zeta.is_multiple_of(2));
         // realistic proportions (issue 15): h/b ≈ 1e-3, b/H ≈ 0.2, a slack belt
         let plate = s.belt.plate().unwrap();
         let hb = plate.thickness / plate.width;
