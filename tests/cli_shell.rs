@@ -163,6 +163,16 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     let plate = s.belt.plate().unwrap();
     assert!(sum.edge_stress_max.unwrap() >= tu.max(tl) / (plate.width * plate.thickness), "{:?}", sum.edge_stress_max);
     assert_eq!(sum.driven_speed, Some(s.drive.driver_speed));
+    // the width-integrated belt along σ (`fields`, the common view): each point on the
+    // contour's normal at its σ (DESIGN.md's fields; `check` relies on it), to round-off
+    let f = r.fields.as_ref().unwrap();
+    assert_eq!(f.sigma.len(), 200);
+    let c = s.contour();
+    for ((&sg, &x), &y) in f.sigma.iter().zip(&f.x).zip(&f.y) {
+        let (back, _) = c.sigma_nu([x, y]);
+        let d = (back - sg).abs().min(c.length() - (back - sg).abs());
+        assert!(d <= 1e-9, "σ = {sg}: the point lies on the normal at {back}");
+    }
 
     // frames: the start of the rotation, every 6 steps, the end
     assert_eq!(h.frames.len(), 1 + run.steps / run.frame_every);

@@ -307,7 +307,9 @@ pub struct PlanarView {
     sigma: Vec<f64>,
     belt_length: f64,
     summary: Summary,
-    /// (x, y, T, M, p per length, s) at each station.
+    /// (ν, y, T, M, p per length, s) at each station: ν the normal offset from the
+    /// contour of the width-averaged mid-surface point (so that the interpolated
+    /// position lies on the contour's normal at σ, as the common view requires).
     values: Vec<[f64; 6]>,
 }
 
@@ -338,7 +340,8 @@ impl PlanarView {
                 }
             }
             let material = asm.field_at(stepping.unknowns(), Field::S, s, 0.0).map_or(f64::NAN, |v| v[0]) + shell.gauge() * s;
-            values.push([x, st.height, st.tension, st.moment, p, material]);
+            let nu = contour.sigma_nu([x, st.height]).1;
+            values.push([nu, st.height, st.tension, st.moment, p, material]);
         }
         Ok(PlanarView { contour, sigma, belt_length: shell.gauge() * contour.length(), summary: Summary::default(), values })
     }
@@ -365,7 +368,7 @@ impl SolutionView for PlanarView {
     }
 
     fn position(&self, sigma: f64) -> [f64; 2] {
-        [self.at(sigma, 0), self.at(sigma, 1)]
+        self.contour.position(sigma, self.at(sigma, 0))
     }
 
     fn axial_force(&self, sigma: f64) -> f64 {
