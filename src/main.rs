@@ -24,6 +24,15 @@ use verification::study::{MAX_ELEMENTS, MIN_ELEMENTS, SAMPLES_RANGE};
 /// Why the command line refuses to run or to write (exit status 2).
 #[derive(Debug, thiserror::Error)]
 enum CliError {
+    /// A flag that only a shell scene uses.
+    #[error("--{flag} is for shell scenes (theory `shell`, a run-off transient); this scene's belt is theory `{theory}`")]
+    FlagNotForScene { flag: &'static str, theory: String },
+    /// A shell scene given to `converge`: it has no reference to converge to.
+    #[error("scene `{scene}`: `{command}` cannot study a shell scene: {NO_SHELL_REFERENCE}")]
+    ShellNotStudied { scene: String, command: &'static str },
+    /// A flag that only works with another.
+    #[error("--{flag} needs --{needs}")]
+    FlagNeeds { flag: &'static str, needs: &'static str },
     /// A flag that the chosen method does not use.
     #[error("--{flag} is not used by method {method}: {hint}")]
     FlagNotForMethod { flag: &'static str, method: &'static str, hint: &'static str },
@@ -338,6 +347,26 @@ struct SolveArgs {
     /// fitting, other) and the step counts — the result's `cost.phases`.
     #[arg(long, short)]
     verbose: bool,
+    /// Shell scenes only: a measurement to hold the run against — a CSV of (time, lateral
+    /// position) lines, time in s from the start of the drums' rotation, lateral
+    /// position in m (+z along the drum axes); `#` comments and one header line allowed.
+    /// Printed beside the model with the difference, and written to the JSON's `measured`.
+    /// A malformed file is refused (line named) before anything is solved.
+    #[arg(long, value_name = "FILE.csv")]
+    measured: Option<PathBuf>,
+    /// Shell scenes only, with --measured: the history channel compared (default
+    /// `lateral_offset`, the belt's mean lateral offset; also `lateral_upper_mid`,
+    /// `lateral_lower_mid`, `lateral_driver_apex`, `lateral_driven_apex`,
+    /// `edge_minus_upper_mid`, `edge_plus_upper_mid`).
+    #[arg(long, value_name = "CHANNEL")]
+    measured_channel: Option<String>,
+    /// Shell scenes only: write the belt surface over time as VTK files into DIR (created
+    /// if absent): one `<scene>_NNNN.vtu` per frame (the start and the end of the
+    /// rotation, and every `fem.frame_every` steps) with the displacement from the
+    /// undeformed placement, the membrane force, the bending moment and the contact
+    /// pressure, and a `<scene>.pvd` series for ParaView.
+    #[arg(long, value_name = "DIR")]
+    vtk: Option<PathBuf>,
 }
 
 fn main() -> ExitCode {
@@ -426,6 +455,17 @@ fn check_tolerance(flag: &'static str, t: f64) -> Result<(), CliError> {
 /// The method and discretisation a `solve` asks for (scene defaults, then flags); a flag
 /// the chosen method does not use is an error, not ignored.
 fn chosen_method(scene: &Scene, flags: MethodFlags<'_>) -> Result<(Box<dyn Method>, Discretisation, String)> {
+    // the shell: its FE by default (no BVP exists for it: a BVP method is refused by the
+    // solver with that reason); its mesh and time step are the scene's `fem` block
+    if scene.belt.theory == drive::scene::Theory::Shell && matches!(flags.method, None | Some(MethodArg::Fem)) {
+        let name = "fem";
+        let hint = "the shell's mesh and time step are the scene's `fem.elements_sigma`, `fem.elements_zeta` and `fem.time_step`";
+        unused(flags.elements.is_some(), "elements", name, hint)?;
+        unused(flags.formulation.is_some(), "formulation", name, "the shell has one element (Bogner–Fox–Schmit, docs/fem-shell.md)")?;
+        unused(flags.scheme.is_some(), "scheme", name, "it sets the BVP solve")?;
+        unused(flags.tolerance.is_some(), "tolerance", name, "it sets the BVP solve")?;
+        return Ok((Box::new(verification::run::ShellFe), verification::run::ShellFe::discretisation(scene), name.to_string()));
+    }
     let bvp = scene.bvp_settings();
     let method = flags.method.unwrap_or(match bvp.method {
         drive::scene::BvpMethod::Collocation => MethodArg::BvpCollocation,
@@ -506,6 +546,20 @@ fn run_solve(args: &SolveArgs) -> Result<()> {
         return Err(CliError::OutOfRange { flag: "fields", value: args.fields.to_string(), range: format!("0 (no fields) … {} samples", SAMPLES_RANGE.end()) }.into());
     }
     let scene = load_scene(&args.scene)?;
+    let shell = scene.belt.theory == drive::scene::Theory::Shell;
+    for (flag, given) in [("measured", args.measured.is_some()), ("measured-channel", args.measured_channel.is_some()), ("vtk", args.vtk.is_some())] {
+        if given && !shell {
+            return Err(CliError::FlagNotForScene { flag, theory: scene.belt.theory.to_string() }.into());
+        }
+    }
+    if args.measured_channel.is_some() && args.measured.is_none() {
+        return Err(CliError::FlagNeeds { flag: "measured-channel", needs: "measured" }.into());
+    }
+    // read before solving: a bad file costs nothing
+    let measured = args.measured.as_deref().map(verification::measured::Measured::read).transpose()?;
+    if let Some(dir) = &args.vtk {
+        verification::vtk::check_directory(dir)?;
+    }
     let flags = MethodFlags {
         method: args.method,
         tolerance: args.tolerance,
@@ -526,12 +580,56 @@ fn run_solve(args: &SolveArgs) -> Result<()> {
     if let Some(u) = &run.unfitted {
         eprintln!("warning: {u}");
     }
+    if shell {
+        print_shell_history(&run);
+    }
+    let comparison = match (&measured, &run.history) {
+        (Some(m), Some(h)) => {
+            let channel = args.measured_channel.as_deref().unwrap_or("lateral_offset");
+            let start = run.options.pointer("/shell/rotation_start").and_then(serde_json::Value::as_f64).unwrap_or(0.0);
+            let c = m.compare(h, channel, start)?;
+            print_measured(&c);
+            Some(c)
+        }
+        _ => None,
+    };
+    if let (Some(dir), Some(h)) = (&args.vtk, &run.history) {
+        let written = verification::vtk::write_series(dir, &scene.name, &scene.contour(), h)?;
+        println!("VTK: {} frame(s) written to {} (series {})", written.frames.len(), dir.display(), written.series.display());
+    }
     if let Some(path) = &args.json {
-        let result = result_json(&scene, &name, disc, &run, args.fields)?;
+        let result = result_json(&scene, &name, disc, &run, args.fields, comparison)?;
         write_output(path, &result)?;
         println!("result written to {}", path.display());
     }
     Ok(())
+}
+
+/// The shell run's history in short: the lateral channels at the start and the end of
+/// the rotation.
+fn print_shell_history(run: &Solved) {
+    let Some(h) = &run.history else { return };
+    let stage = h.channel("stage").unwrap_or(&[]);
+    let Some(first) = stage.iter().position(|&s| s >= 2.0).map(|k| k.saturating_sub(1)) else { return };
+    let last = h.len() - 1;
+    println!("history (lateral positions, m; +z along the drum axes)   t = {:.4} s      t = {:.4} s", h.time[first], h.time[last]);
+    for name in ["lateral_offset", "lateral_upper_mid", "lateral_lower_mid", "lateral_driver_apex", "lateral_driven_apex", "edge_minus_upper_mid", "edge_plus_upper_mid"] {
+        if let Some(c) = h.channel(name) {
+            println!("  {name:<24} {:>32.6e} {:>16.6e}", c[first], c[last]);
+        }
+    }
+}
+
+/// The measurement beside the model, with the difference.
+fn print_measured(c: &drive::result::MeasuredComparison) {
+    println!("measured ({}) against the model's `{}` (t from the start of the rotation):", c.file, c.channel);
+    println!("  {:>10} {:>14} {:>14} {:>14}", "t [s]", "measured", "model", "difference");
+    let n = c.time.len();
+    let shown: Vec<usize> = if n <= 12 { (0..n).collect() } else { (0..12).map(|k| k * (n - 1) / 11).collect() };
+    for k in shown {
+        println!("  {:>10.4} {:>14.6e} {:>14.6e} {:>14.6e}", c.time[k], c.measured[k], c.model[k], c.difference[k]);
+    }
+    println!("  {n} sample(s) compared, {} outside the simulated rotation; difference rms {:.4e}, largest {:.4e}", c.outside, c.rms_difference, c.max_difference);
 }
 
 fn run_default() -> Result<()> {
@@ -551,10 +649,11 @@ fn run_default() -> Result<()> {
 }
 
 /// The result JSON of DESIGN.md, checked finite before anything is written.
-fn result_json(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: usize) -> Result<String> {
+fn result_json(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, fields: usize, measured: Option<drive::result::MeasuredComparison>) -> Result<String> {
     run.summary.check_finite()?;
     let fields = (fields > 0).then(|| sample_fields(run.view.as_ref(), fields));
-    let result = run_result(scene, method, disc, run, fields);
+    let mut result = run_result(scene, method, disc, run, fields);
+    result.measured = measured;
     result.check()?;
     Ok(serde_json::to_string_pretty(&result)?)
 }
@@ -579,6 +678,7 @@ fn run_result(scene: &Scene, method: &str, disc: Discretisation, run: &Solved, f
         history: run.history.clone(),
         discretisation: Some(disc),
         warnings: run.warnings.clone(),
+        measured: None,
     }
 }
 
@@ -640,6 +740,15 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
     }
     if let Some(c) = s.transport_rate {
         println!("  transport rate c   [m/s]  {:>13.8}", c);
+    }
+    if let Some(v) = s.runoff_velocity {
+        println!("  run-off velocity   [m/s]  {:>13.6e}   (+z along the drum axes)", v);
+    }
+    if let Some(d) = s.drift_per_revolution {
+        println!("  drift per revolution [m]  {:>13.6e}", d);
+    }
+    if let Some(e) = s.edge_stress_max {
+        println!("  edge stress, largest [Pa] {:>13.6e}", e);
     }
     if let (Some(d1), Some(d2)) = (&s.driver, &s.driven) {
         println!("                                  driver         driven");
@@ -792,8 +901,15 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
     Ok(plan)
 }
 
+/// Why the harness's studies (`converge`, `report`, `gate`) do not take a shell scene:
+/// they hold every run against a reference, and the shell has none yet.
+const NO_SHELL_REFERENCE: &str = "no BVP exists for the shell (only its planar limit is the rod's BVP), and its own reference — the finest FE run with Richardson extrapolation over n_σ × n_ζ and Δt refined together (issue 15, docs/fem-shell.md) — is not built yet; solve it with `beltcheck solve` (at two or more `fem` settings to judge the discretisation)";
+
 fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
+    if scene.belt.theory == drive::scene::Theory::Shell {
+        return Err(CliError::ShellNotStudied { scene: scene.name.clone(), command: "converge" }.into());
+    }
     let plan = study_plan(&scene, &args.study)?;
     let bar = progress_bar();
     let study = study_with_progress(&scene, &plan, &bar)?;
@@ -835,9 +951,19 @@ fn scene_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
+/// Drops the shell scenes from a `report` or `gate` run, saying so on stdout.
+fn without_shells(command: &str, scenes: Vec<(PathBuf, Scene)>) -> Vec<(PathBuf, Scene)> {
+    let (shells, others): (Vec<_>, Vec<_>) = scenes.into_iter().partition(|(_, s)| s.belt.theory == drive::scene::Theory::Shell);
+    for (file, scene) in &shells {
+        println!("{command}: skipped scene `{}` ({}): {NO_SHELL_REFERENCE}", scene.name, file.display());
+    }
+    others
+}
+
 fn run_report(args: &ReportArgs) -> Result<()> {
     let files = scene_files(&args.inputs)?;
     let scenes: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
+    let scenes = without_shells("report", scenes);
     for (i, (file, scene)) in scenes.iter().enumerate() {
         if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name.eq_ignore_ascii_case(&scene.name)) {
             return Err(CliError::DuplicateSceneName { name: scene.name.clone(), first: first.clone(), second: file.clone() }.into());
@@ -886,7 +1012,8 @@ fn run_gate(args: &GateArgs) -> Result<bool> {
         check_elements("elements", n)?;
     }
     let files = scene_files(&args.scenes)?;
-    let scenes: Vec<Scene> = files.iter().map(|f| load_scene(f)).collect::<Result<_>>()?;
+    let loaded: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
+    let (files, scenes): (Vec<PathBuf>, Vec<Scene>) = without_shells("gate", loaded).into_iter().unzip();
     let meshes = (!args.elements.is_empty()).then_some(args.elements.as_slice());
     let formulations = if args.bvp_only {
         Some(verification::study::Formulations::Named(Vec::new()))

@@ -1,5 +1,5 @@
 //! End to end: a scene the contract describes but no solver solves yet (spec §2.2's
-//! `cosserat-pulley` as a string, a shell) is refused by every such method of `solve`
+//! `cosserat-pulley` as a string; the shell's refusals are in tests/cli_shell.rs) is refused by every such method of `solve`
 //! and by `converge` with exit status 2, a message naming the scene, the layout or theory
 //! and the issue that brings it, and no result file — never solved as something else.
 

@@ -598,6 +598,55 @@ pub struct RunResult {
     /// treats results as trusted numbers should treat a warned one as not trusted.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// A user's measurement held against a channel of `history` (optional; `beltcheck
+    /// solve --measured FILE.csv` of a shell scene).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<MeasuredComparison>,
+}
+
+/// A measured series overlaid on a channel of the run's history (`measured`): at each
+/// measured time inside the simulated rotation, the measurement, the model (linear
+/// between its steps) and their difference model − measured. Times count from the start
+/// of the drums' rotation, s; values in the channel's unit (m for the lateral channels).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+pub struct MeasuredComparison {
+    /// The file the measurement was read from.
+    pub file: String,
+    /// The history channel compared with, e.g. `lateral_offset`.
+    pub channel: String,
+    /// Measured times inside the simulated rotation, s.
+    pub time: Vec<f64>,
+    /// The measured values there.
+    pub measured: Vec<f64>,
+    /// The model's values there.
+    pub model: Vec<f64>,
+    /// model − measured.
+    pub difference: Vec<f64>,
+    /// Measured samples outside the simulated rotation (not compared).
+    pub outside: usize,
+    /// Root mean square of the differences.
+    pub rms_difference: f64,
+    /// Largest |difference|.
+    pub max_difference: f64,
+}
+
+impl MeasuredComparison {
+    /// Checks equal lengths and finite numbers.
+    ///
+    /// # Errors
+    /// [`ResultError::FieldLength`] or [`ResultError::NotFinite`] naming the entry, e.g.
+    /// `measured.difference[2]`.
+    pub fn check(&self) -> Result<(), ResultError> {
+        let n = self.time.len();
+        for (name, v) in [("time", &self.time), ("measured", &self.measured), ("model", &self.model), ("difference", &self.difference)] {
+            if v.len() != n {
+                return Err(ResultError::FieldLength { field: format!("measured.{name}"), len: v.len(), expected: n });
+            }
+            check_finite_vec(&format!("measured.{name}"), v)?;
+        }
+        check_finite_vec("measured.rms_difference", &[self.rms_difference])?;
+        check_finite_vec("measured.max_difference", &[self.max_difference])
+    }
 }
 
 impl RunResult {
@@ -632,6 +681,9 @@ impl RunResult {
         }
         if let Some(d) = self.discretisation {
             d.check()?;
+        }
+        if let Some(m) = &self.measured {
+            m.check()?;
         }
         Ok(())
     }

@@ -247,6 +247,106 @@ pub struct DriveGeometry {
     /// the sense follows from them, so the field is refused there.
     #[serde(default)]
     pub belt_drives_pulley: Option<bool>,
+    /// ω₂, rad/s, finite (theory `shell` only, optional; default: `driver_speed`): the
+    /// prescribed speed of the driven drum. In Paper E both drums turn at prescribed
+    /// speeds (spec §4.15; Fig. 1 [T l.99]), so a shell scene has no load torque. It must
+    /// turn in the sense of the driver (a belt cannot run over drums turning opposite
+    /// ways) and is 0 in a static analysis.
+    #[serde(default)]
+    pub driven_speed: Option<f64>,
+    /// The steering drum and the histories of its two tilt angles (theory `shell` only,
+    /// optional; absent = aligned drums; spec §4.7, docs/fem-shell.md §8).
+    #[serde(default)]
+    pub steering: Option<Steering>,
+}
+
+/// Which drum of the two-pulley loop steers (`drive.steering.drum`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum SteeringDrum {
+    /// The left drum, centre (−H/2, 0).
+    Driver,
+    /// The right drum, centre (+H/2, 0).
+    Driven,
+}
+
+impl SteeringDrum {
+    /// The JSON spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            SteeringDrum::Driver => "driver",
+            SteeringDrum::Driven => "driven",
+        }
+    }
+}
+
+/// Largest tilt angle of the steering drum, rad (π/4): the interlayer's contact rule
+/// integrates across the width with two Gauss points, which holds for small
+/// misalignments only ([T l.432]; docs/fem-shell.md §8).
+pub const MAX_TILT: f64 = std::f64::consts::FRAC_PI_4;
+
+/// The steering drum and its tilt (`drive.steering`, spec §4.7 and §4.15): the axis of
+/// the steered drum is a(t) = Rot_x(β_x(t)) Rot_y(β_y(t)) e_z through its centre —
+/// β_x (`tilt_x`) rotates it about the span direction x (tilt in the y–z plane), β_y
+/// (`tilt_y`) in the plane of the two axes (the x–z plane, "swivel"). Each angle is a
+/// piecewise-linear history `[[t, β], …]` (t in s from the start of the drums' rotation,
+/// t ≥ 0, strictly increasing; β in rad, |β| < π/4), held at its first value before the
+/// first point and at its last after the last; an absent or empty history is 0. The
+/// solver ramps the angles from 0 to their values at t = 0 at rest, before the rotation
+/// starts (docs/fem-shell.md §9).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct Steering {
+    /// The steered drum. Required.
+    pub drum: SteeringDrum,
+    /// History of β_x, `[[t, β_x], …]` (s, rad). Optional, default none (0).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tilt_x: Vec<[f64; 2]>,
+    /// History of β_y, `[[t, β_y], …]` (s, rad). Optional, default none (0).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub tilt_y: Vec<[f64; 2]>,
+}
+
+impl Steering {
+    /// The value of a history at time t (s from the start of the rotation):
+    /// piecewise-linear, held constant outside; 0 for an empty history.
+    pub fn angle_at(history: &[[f64; 2]], t: f64) -> f64 {
+        let Some(first) = history.first() else { return 0.0 };
+        if t <= first[0] {
+            return first[1];
+        }
+        for w in history.windows(2) {
+            let ([t0, b0], [t1, b1]) = (w[0], w[1]);
+            if t <= t1 {
+                return b0 + (b1 - b0) * (t - t0) / (t1 - t0);
+            }
+        }
+        history[history.len() - 1][1]
+    }
+
+    /// Checks one history (path `drive.steering.<name>`): points finite, t ≥ 0 and
+    /// strictly increasing, |β| < [`MAX_TILT`].
+    fn validate_history(name: &str, history: &[[f64; 2]]) -> Result<(), SceneError> {
+        for (i, &[t, beta]) in history.iter().enumerate() {
+            let path = format!("drive.steering.{name}[{i}]");
+            check_non_negative(&format!("{path}[0]"), t)?;
+            check_finite(&format!("{path}[1]"), beta)?;
+            if i > 0 && t <= history[i - 1][0] {
+                return Err(SceneError::Invalid {
+                    path,
+                    reason: format!("the times of a tilt history must increase strictly, but t = {} s follows t = {} s", crate::error::num(&t), crate::error::num(&history[i - 1][0])),
+                });
+            }
+            if beta.abs() >= MAX_TILT {
+                return Err(SceneError::OutOfRange {
+                    path: format!("{path}[1]"),
+                    value: beta,
+                    range: "|β| < π/4 rad (45°): a misalignment, not a turned drum (the contact rule across the width holds for small tilts only)".into(),
+                });
+            }
+        }
+        Ok(())
+    }
 }
 
 /// The two prescribed quantities of a one-pulley scene (spec §2.3): exactly two of the
@@ -341,6 +441,12 @@ impl Serialize for DriveGeometry {
                 m.serialize_entry("driver_speed", &self.driver_speed)?;
                 m.serialize_entry("driven_torque", &self.driven_torque)?;
                 m.serialize_entry("driven_damping", &self.driven_damping)?;
+                if let Some(w) = self.driven_speed {
+                    m.serialize_entry("driven_speed", &w)?;
+                }
+                if let Some(st) = &self.steering {
+                    m.serialize_entry("steering", st)?;
+                }
             }
             Layout::OnePulley => {
                 for (name, v) in [("end_distance", self.end_distance), ("transport_rate", self.transport_rate)] {
@@ -454,6 +560,19 @@ pub struct Camber {
     /// ΔL, m, finite: length difference of the two belt edges.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge_length_difference: Option<f64>,
+}
+
+impl Camber {
+    /// κ_c, 1/m, of a belt of width b and unstretched length L: `curvature` as given, or
+    /// from `edge_length_difference` ΔL = κ_c b L (spec §4.3; ΔL is the length of the
+    /// −ζ edge minus that of the +ζ edge, so ΔL > 0 ⇔ κ_c > 0, the +ζ edge shorter).
+    pub fn curvature_for(&self, width: f64, length: f64) -> f64 {
+        match (self.curvature, self.edge_length_difference) {
+            (Some(k), _) => k,
+            (None, Some(dl)) => dl / (width * length),
+            (None, None) => 0.0,
+        }
+    }
 }
 
 /// The plate parameters of a shell belt (theory `shell`).
@@ -824,7 +943,58 @@ pub struct FemSettings {
     /// stated warning where that does not converge. Default absent = `penalty`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact: Option<NormalContact>,
+    /// Shell only: elements n_σ round the loop (the σ-mesh is that of the equivalent rod
+    /// of the planar start, with nodes on the four transitions and the rod's contact
+    /// edges; docs/fem-shell.md §9.1), 8 … 4096. Default absent = 64.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements_sigma: Option<usize>,
+    /// Shell only: elements n_ζ across the width, even (a node on the centre line), 2 …
+    /// 64. Default absent = 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub elements_zeta: Option<usize>,
+    /// Shell only: time steps of the rotation (stage 2), ≥ 1; not with `duration`.
+    /// Default absent = from `duration`, else one revolution of the belt L/(ωR).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
+    /// Shell only: simulated time of the rotation (stage 2), s, > 0; the steps are
+    /// ⌈duration/Δt⌉; not with `steps`. Default absent = see `steps`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub duration: Option<f64>,
+    /// Shell only: quasistatic steps of stage 1 at rest, in which the camber and the
+    /// initial tilt are ramped from 0, ≥ 1. Default absent = 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp_steps: Option<usize>,
+    /// Shell only: a frame of surface fields every this many steps of the rotation
+    /// (besides the frames at the start and the end of the rotation, always written);
+    /// 0 = those two only. Default absent = 0.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame_every: Option<usize>,
 }
+
+/// The shell's discretisation and run, resolved from the `fem` block with its defaults
+/// ([`Scene::shell_run`]).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ShellRun {
+    /// n_σ.
+    pub elements_sigma: usize,
+    /// n_ζ.
+    pub elements_zeta: usize,
+    /// Δt, s.
+    pub time_step: f64,
+    /// Steps of the rotation.
+    pub steps: usize,
+    /// Steps of the ramp at rest.
+    pub ramp_steps: usize,
+    /// Frame interval (0: start and end only).
+    pub frame_every: usize,
+}
+
+/// Default shell drum rotation per step ωΔt, rad (π/16): about one arc element of a
+/// 64-element loop per step.
+pub const SHELL_STEP_ANGLE: f64 = std::f64::consts::PI / 16.0;
+
+/// Largest number of rotation steps of a shell run (`fem.steps` or from `fem.duration`).
+pub const MAX_SHELL_STEPS: usize = 100_000;
 
 /// The FE's normal contact (`fem.contact`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
@@ -890,6 +1060,12 @@ impl Default for FemSettings {
             steady_tolerance: None,
             steady_scheme: None,
             contact: None,
+            elements_sigma: None,
+            elements_zeta: None,
+            steps: None,
+            duration: None,
+            ramp_steps: None,
+            frame_every: None,
         }
     }
 }
@@ -1014,6 +1190,7 @@ impl Scene {
         }
         if let Some(f) = &self.fem {
             f.validate()?;
+            self.validate_shell_fem(f)?;
             self.validate_time_step(f)?;
             self.validate_normal_contact(f)?;
         }
@@ -1114,8 +1291,128 @@ impl Scene {
                 check_finite("drive.driver_speed", d.driver_speed)?;
                 check_finite("drive.driven_torque", d.driven_torque)?;
                 check_non_negative("drive.driven_damping", d.driven_damping)?;
+                self.validate_shell_drive()?;
             }
             Layout::OnePulley => self.validate_one_pulley()?,
+        }
+        Ok(())
+    }
+
+    /// The drive of a shell (spec §4.15): both drums at prescribed speeds, so no load
+    /// torque or damping; ω₂ finite and in the sense of ω₁ (zero exactly when ω₁ is);
+    /// the steering histories valid. Outside theory `shell` the schema walk refuses the
+    /// fields; a scene built in code is refused here.
+    fn validate_shell_drive(&self) -> Result<(), SceneError> {
+        let d = &self.drive;
+        if self.belt.theory != Theory::Shell {
+            for (path, given) in [("drive.driven_speed", d.driven_speed.is_some()), ("drive.steering", d.steering.is_some())] {
+                if given {
+                    return Err(SceneError::NotAllowed { path: path.into(), reason: format!("it belongs to theory `shell` (both drums at prescribed speed, a steering drum); this scene's belt is theory `{}`", self.belt.theory) });
+                }
+            }
+            return Ok(());
+        }
+        for (path, value, unit) in [("drive.driven_torque", d.driven_torque, "N·m"), ("drive.driven_damping", d.driven_damping, "N·m·s")] {
+            if value != 0.0 {
+                return Err(SceneError::NotAllowed {
+                    path: path.into(),
+                    reason: format!(
+                        "a shell scene turns both drums at prescribed speeds (`driver_speed`, `driven_speed`; Paper E, spec §4.15), so there is no load on the driven drum: it must be 0 (got {} {unit})",
+                        crate::error::num(&value)
+                    ),
+                });
+            }
+        }
+        if let Some(w2) = d.driven_speed {
+            check_finite("drive.driven_speed", w2)?;
+            let w1 = d.driver_speed;
+            if w1.signum() * w2.signum() < 0.0 || (w1 == 0.0) != (w2 == 0.0) {
+                return Err(SceneError::Invalid {
+                    path: "drive.driven_speed".into(),
+                    reason: format!(
+                        "ω₂ = {} rad/s and ω₁ = `drive.driver_speed` = {} rad/s: a belt cannot run over drums turning in opposite senses, or over one turning drum and one at rest; give both the same sign (both 0 at rest)",
+                        crate::error::num(&w2),
+                        crate::error::num(&w1)
+                    ),
+                });
+            }
+        }
+        if let Some(st) = &d.steering {
+            Steering::validate_history("tilt_x", &st.tilt_x)?;
+            Steering::validate_history("tilt_y", &st.tilt_y)?;
+        }
+        Ok(())
+    }
+
+    /// The shell's run from the `fem` block with its defaults (docs on
+    /// [`FemSettings`]): n_σ = 64, n_ζ = 2, ωΔt = [`SHELL_STEP_ANGLE`] (Δt = π/(16ω₁);
+    /// 1 s at rest), the rotation over `steps`, ⌈`duration`/Δt⌉ or one revolution of the
+    /// belt L/(ω₁R), one ramp step, frames at the start and the end. Assumes a validated
+    /// shell scene; `steps` is at least 1.
+    pub fn shell_run(&self) -> ShellRun {
+        let f = self.fem_settings();
+        let omega = self.drive.driver_speed.abs();
+        let time_step = f.time_step.unwrap_or(if omega > 0.0 { SHELL_STEP_ANGLE / omega } else { 1.0 });
+        let revolution = if omega > 0.0 { self.belt.length / (omega * self.drive.pulley_radius) } else { time_step };
+        let steps = match (f.steps, f.duration) {
+            (Some(n), _) => n,
+            (None, Some(d)) => (d / time_step - 1e-9).ceil().max(1.0) as usize,
+            (None, None) => (revolution / time_step - 1e-9).ceil().max(1.0) as usize,
+        };
+        ShellRun {
+            elements_sigma: f.elements_sigma.unwrap_or(64),
+            elements_zeta: f.elements_zeta.unwrap_or(2),
+            time_step,
+            steps,
+            ramp_steps: f.ramp_steps.unwrap_or(1),
+            frame_every: f.frame_every.unwrap_or(0),
+        }
+    }
+
+    /// The `fem` block of a shell: only the shell's settings (`elements_sigma`,
+    /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`);
+    /// the rod and string settings are refused by name rather than ignored; the rotation
+    /// at most [`MAX_SHELL_STEPS`] steps.
+    fn validate_shell_fem(&self, f: &FemSettings) -> Result<(), SceneError> {
+        let shell = self.belt.theory == Theory::Shell;
+        let shell_fields = [
+            ("fem.elements_sigma", f.elements_sigma.is_some()),
+            ("fem.elements_zeta", f.elements_zeta.is_some()),
+            ("fem.steps", f.steps.is_some()),
+            ("fem.duration", f.duration.is_some()),
+            ("fem.ramp_steps", f.ramp_steps.is_some()),
+            ("fem.frame_every", f.frame_every.is_some()),
+        ];
+        if !shell {
+            if let Some((path, _)) = shell_fields.iter().find(|(_, given)| *given) {
+                return Err(SceneError::NotAllowed { path: (*path).into(), reason: format!("a setting of the shell's FE; this scene's belt is theory `{}` (its FE mesh is `fem.elements`)", self.belt.theory) });
+            }
+            return Ok(());
+        }
+        let rod_fields = [
+            ("fem.elements", f.elements != FemSettings::default_elements()),
+            ("fem.mesh_sequence", !f.mesh_sequence.is_empty()),
+            ("fem.formulations", !f.formulations.is_empty()),
+            ("fem.penalty", f.penalty.is_some()),
+            ("fem.max_steps", f.max_steps.is_some()),
+            ("fem.steady_tolerance", f.steady_tolerance.is_some()),
+            ("fem.steady_scheme", f.steady_scheme.is_some()),
+            ("fem.contact", f.contact.is_some()),
+        ];
+        if let Some((path, _)) = rod_fields.iter().find(|(_, given)| *given) {
+            return Err(SceneError::NotAllowed {
+                path: (*path).into(),
+                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every` (its contact is the scene's elastic interlayer)".into(),
+            });
+        }
+        let steps = self.shell_run().steps;
+        if steps > MAX_SHELL_STEPS {
+            let path = if f.steps.is_some() { "fem.steps" } else { "fem.duration" };
+            return Err(SceneError::OutOfRange {
+                path: path.into(),
+                value: if f.steps.is_some() { steps as f64 } else { f.duration.unwrap_or(0.0) },
+                range: format!("at most {MAX_SHELL_STEPS} time steps of the rotation (this gives {steps}); lengthen `fem.time_step` or shorten the run"),
+            });
         }
         Ok(())
     }
@@ -1259,9 +1556,12 @@ impl Scene {
             }
         }
         if let Some(c) = &b.camber {
+            let path = match (c.curvature, c.edge_length_difference) {
+                (Some(_), None) => "belt.camber.curvature",
+                _ => "belt.camber.edge_length_difference",
+            };
             match (c.curvature, c.edge_length_difference) {
-                (Some(v), None) => check_finite("belt.camber.curvature", v)?,
-                (None, Some(v)) => check_finite("belt.camber.edge_length_difference", v)?,
+                (Some(v), None) | (None, Some(v)) => check_finite(path, v)?,
                 (k, d) => {
                     return Err(SceneError::Invalid {
                         path: "belt.camber".into(),
@@ -1270,6 +1570,23 @@ impl Scene {
                             if k.is_some() && d.is_some() { "both" } else { "neither" }
                         ),
                     })
+                }
+            }
+            // the unstressed fibre at ζ has the length ℓ*(ζ) = 1 − κ_c ζ per unit length
+            // (spec §4.3): an edge of zero or negative length is no belt
+            if let (Some(w), Some(l)) = (b.width, Some(b.length).filter(|&l| l > 0.0)) {
+                let kappa = c.curvature_for(w, l);
+                if kappa.abs() * 0.5 * w >= 1.0 {
+                    let given = c.curvature.or(c.edge_length_difference).unwrap_or(kappa);
+                    return Err(SceneError::OutOfRange {
+                        path: path.into(),
+                        value: given,
+                        range: format!(
+                            "|κ_c| b/2 < 1: the unstressed fibre at ζ has the length (1 − κ_c ζ) per unit length, so an edge would have zero or negative length (κ_c = {} 1/m, b = {} m; ΔL = κ_c b L)",
+                            crate::error::num(&kappa),
+                            crate::error::num(&w)
+                        ),
+                    });
                 }
             }
         }
@@ -1339,6 +1656,7 @@ impl Scene {
                     ("drive.driver_speed", d.driver_speed, "rad/s"),
                     ("drive.driven_torque", d.driven_torque, "N·m"),
                     ("drive.driven_damping", d.driven_damping, "N·m·s"),
+                    ("drive.driven_speed", d.driven_speed.unwrap_or(0.0), "rad/s"),
                 ] {
                     if value != 0.0 {
                         return Err(SceneError::NotAllowed {
@@ -1583,6 +1901,32 @@ impl FemSettings {
         }
         if let Some(dt) = self.time_step {
             check_positive("fem.time_step", dt)?;
+        }
+        if let Some(n) = self.elements_sigma {
+            if !(8..=4096).contains(&n) {
+                return Err(SceneError::OutOfRange { path: "fem.elements_sigma".into(), value: n as f64, range: "8 … 4096 elements round the loop (at least two per region of the contour)".into() });
+            }
+        }
+        if let Some(n) = self.elements_zeta {
+            if !(2..=64).contains(&n) || !n.is_multiple_of(2) {
+                return Err(SceneError::OutOfRange {
+                    path: "fem.elements_zeta".into(),
+                    value: n as f64,
+                    range: "an even number 2 … 64 of elements across the width (a node on the centre line ζ = 0 holds the zero modes of the static start, docs/fem-shell.md §9.1)".into(),
+                });
+            }
+        }
+        if self.steps == Some(0) {
+            return Err(SceneError::OutOfRange { path: "fem.steps".into(), value: 0.0, range: "at least 1 time step".into() });
+        }
+        if let Some(d) = self.duration {
+            check_positive("fem.duration", d)?;
+            if self.steps.is_some() {
+                return Err(SceneError::NotAllowed { path: "fem.duration".into(), reason: "give the rotation's length as `steps` or as `duration`, not both".into() });
+            }
+        }
+        if self.ramp_steps == Some(0) {
+            return Err(SceneError::OutOfRange { path: "fem.ramp_steps".into(), value: 0.0, range: "at least 1 step of the ramp at rest".into() });
         }
         if self.max_steps == Some(0) {
             return Err(SceneError::OutOfRange {

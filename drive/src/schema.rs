@@ -38,6 +38,8 @@ pub(crate) enum Kind {
     NumberMap,
     /// `effects.contact`: `"frictionless"`, `{"coulomb": μ}`, `{"elastic_layer": {..}}`.
     Contact,
+    /// A history `[[t, value], …]`: an array of two-number arrays.
+    History,
 }
 
 impl Kind {
@@ -55,6 +57,7 @@ impl Kind {
             Kind::CountList => "an array of non-negative integers".into(),
             Kind::TextList => "an array of strings".into(),
             Kind::Contact => r#""frictionless", {"coulomb": μ} or {"elastic_layer": {...}}"#.into(),
+            Kind::History => "an array of [t, value] pairs of numbers".into(),
         }
     }
 }
@@ -107,7 +110,7 @@ impl Cond {
         match self {
             Cond::TwoPulley => "it belongs to layout `two-pulley` (the closed loop over two pulleys); this scene's `drive.layout` is `one-pulley` (one pulley, open ends)",
             Cond::OnePulley => "it belongs to layout `one-pulley` (one pulley, open ends); this scene's layout is `two-pulley` — set `drive.layout` to \"one-pulley\" or remove the field",
-            Cond::Shell => "it is a plate parameter of theory `shell`; this scene's belt is a rod or string",
+            Cond::Shell => "it belongs to theory `shell` (a plate parameter, or a setting of the shell's run-off: both drums at prescribed speed, the steering drum, the shell's mesh and time stepping); this scene's belt is a rod or string",
             Cond::LayerStiffness => "the interlayer is given by its material (`thickness`, `youngs_modulus`, `poisson_ratio`), from which P and P_⊥ are derived; give one form, not both",
             Cond::LayerMaterial => "unreachable: a material field makes the material form",
             Cond::NotShell => "theory `shell` derives it from the plate parameters (EA = E b h, EI = E b h³/(12(1 − ν²)), ρ = ρ_V b h); give `width`, `thickness`, `youngs_modulus`, `poisson_ratio`, `density` instead",
@@ -185,6 +188,14 @@ pub(crate) const DRIVE: &[Field] = &[
     opt_in(Cond::OnePulley, "pulley_speed", Kind::Number, "pulley speed ω, rad/s, clockwise positive"),
     opt_in(Cond::OnePulley, "stick_slip_angle", Kind::Number, "polar angle φ_B of the stick-to-slip transition, rad"),
     opt_in(Cond::OnePulley, "belt_drives_pulley", Kind::Bool, "with stick_slip_angle: the belt drives the pulley (N_in < N_out); default false"),
+    opt_in(Cond::Shell, "driven_speed", Kind::Number, "prescribed speed ω₂ of the driven drum, rad/s (shell)"),
+    opt_in(Cond::Shell, "steering", Kind::Object(STEERING), "the steering drum and its tilt histories (shell)"),
+];
+
+pub(crate) const STEERING: &[Field] = &[
+    req("drum", Kind::Choice { what: "steering drum", variants: &["driver", "driven"] }, "the steered drum, \"driver\" or \"driven\""),
+    opt("tilt_x", Kind::History, "history [[t, β_x], …] of the tilt about the span direction, s and rad"),
+    opt("tilt_y", Kind::History, "history [[t, β_y], …] of the swivel in the plane of the axes, s and rad"),
 ];
 
 pub(crate) const CAMBER: &[Field] = &[
@@ -270,6 +281,12 @@ pub(crate) const FEM: &[Field] = &[
         Kind::Choice { what: "normal contact", variants: &["penalty", "augmented-lagrangian"] },
         "the steady FE's normal contact on one pulley",
     ),
+    opt_in(Cond::Shell, "elements_sigma", Kind::Count, "shell elements round the loop"),
+    opt_in(Cond::Shell, "elements_zeta", Kind::Count, "shell elements across the width (even)"),
+    opt_in(Cond::Shell, "steps", Kind::Count, "time steps of the rotation"),
+    opt_in(Cond::Shell, "duration", Kind::Number, "simulated time of the rotation, s"),
+    opt_in(Cond::Shell, "ramp_steps", Kind::Count, "steps of the ramp of camber and tilt at rest"),
+    opt_in(Cond::Shell, "frame_every", Kind::Count, "steps between frames of surface fields"),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -582,6 +599,18 @@ fn check_value(v: &mut Value, kind: Kind, path: &str, ctx: Ctx) -> Result<(), Sc
             true
         }
         Kind::Contact => return check_contact(v, path, ctx),
+        Kind::History => {
+            let Value::Array(items) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            for (i, item) in items.iter().enumerate() {
+                let pair = item.as_array().is_some_and(|p| p.len() == 2 && p.iter().all(Value::is_number));
+                if !pair {
+                    return Err(SceneError::WrongType { path: format!("{path}[{i}]"), expected: "a pair [t, value] of two numbers".into(), found: describe(item) });
+                }
+            }
+            true
+        }
     };
     if ok {
         Ok(())
@@ -713,9 +742,16 @@ mod tests {
             steady_tolerance: Some(1e-6),
             steady_scheme: Some(SteadyScheme::PaperD),
             contact: Some(NormalContact::AugmentedLagrangian),
+            elements_sigma: Some(64),
+            elements_zeta: Some(2),
+            steps: Some(24),
+            duration: Some(1.0),
+            ramp_steps: Some(2),
+            frame_every: Some(4),
             ..Default::default()
         })
         .unwrap();
+        let shell = Ctx { shell: true, ..Ctx::default() };
         let gate = serde_json::to_value(GateSettings {
             min_order: Some(2.0),
             bvp_tolerances: [("y_upper_mid".to_string(), 1e-6)].into(),
@@ -732,8 +768,11 @@ mod tests {
                 table.len(),
                 "{name}: struct and table differ in field count"
             );
-            check_object(&mut v, table, name, Ctx::default()).unwrap();
+            check_object(&mut v, table, name, shell).unwrap();
         }
+        let mut steering = serde_json::to_value(Steering { drum: SteeringDrum::Driven, tilt_x: vec![[0.0, 1e-3]], tilt_y: vec![[0.0, 0.0], [1.0, 2e-3]] }).unwrap();
+        assert_eq!(steering.as_object().map_or(0, |m| m.len()), STEERING.len());
+        check_object(&mut steering, STEERING, "drive.steering", shell).unwrap();
         let layer = ElasticLayer { normal_stiffness: 1.0, tangential_stiffness: 2.0, thickness: None, youngs_modulus: None, poisson_ratio: None };
         let mut contact = serde_json::to_value(Contact::ElasticLayer(layer)).unwrap();
         check_contact(&mut contact, "effects.contact", Ctx::default()).unwrap();

@@ -65,6 +65,12 @@ pub enum Global {
     YIn,
     /// y of the centreline at the outflow end section, m.
     YOut,
+    /// Lateral run-off velocity of the shell belt, m/s (+z: along the drum axes).
+    RunoffVelocity,
+    /// Lateral drift of the shell belt per belt revolution, m.
+    DriftPerRevolution,
+    /// Largest membrane stress at the belt edges, Pa.
+    EdgeStressMax,
 }
 
 /// Which pulley a [`PulleyQuantity`] belongs to: `driver`/`driven` of the two-pulley
@@ -115,7 +121,7 @@ pub enum Quantity {
 
 impl Global {
     /// Every global quantity, in the order of the result format.
-    pub const ALL: [Global; 15] = [
+    pub const ALL: [Global; 18] = [
         Global::YUpperMid,
         Global::YLowerMid,
         Global::TensionUpperMid,
@@ -131,6 +137,9 @@ impl Global {
         Global::TensionOut,
         Global::YIn,
         Global::YOut,
+        Global::RunoffVelocity,
+        Global::DriftPerRevolution,
+        Global::EdgeStressMax,
     ];
 
     /// The JSON name.
@@ -151,6 +160,9 @@ impl Global {
             Global::TensionOut => "tension_out",
             Global::YIn => "y_in",
             Global::YOut => "y_out",
+            Global::RunoffVelocity => "runoff_velocity",
+            Global::DriftPerRevolution => "drift_per_revolution",
+            Global::EdgeStressMax => "edge_stress_max",
         }
     }
     /// The unit of the quantity (SI).
@@ -165,7 +177,9 @@ impl Global {
             | Global::TensionOut => "N",
             Global::MomentUpperMid | Global::MomentLowerMid => "N·m",
             Global::DrivenSpeed | Global::PulleySpeed => "rad/s",
-            Global::TransportRate => "m/s",
+            Global::TransportRate | Global::RunoffVelocity => "m/s",
+            Global::DriftPerRevolution => "m",
+            Global::EdgeStressMax => "Pa",
         }
     }
 
@@ -192,6 +206,11 @@ impl Global {
             Global::TensionOut => "axial force at the outflow end of a one-pulley scene",
             Global::YIn => "y of the centreline at the inflow end section of a one-pulley scene",
             Global::YOut => "y of the centreline at the outflow end section of a one-pulley scene",
+            Global::RunoffVelocity => {
+                "lateral run-off velocity of a shell belt (+z along the drum axes): least-squares slope of its mean lateral offset over the last whole belt revolution of the rotation (over the whole rotation if shorter)"
+            }
+            Global::DriftPerRevolution => "lateral drift of a shell belt per belt revolution L/(ω₁R): runoff_velocity × L/(ω₁R)",
+            Global::EdgeStressMax => "largest |membrane stress along the belt| n_σσ/h at the two belt edges ζ = ±b/2 at the end of a shell run",
         }
     }
 }
@@ -293,6 +312,7 @@ const TABLE: [&str; N_QUANTITIES] = [
     "y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "moment_upper_mid",
     "moment_lower_mid", "tension_tight", "tension_slack", "driven_speed", "transport_rate",
     "pulley_speed", "tension_in", "tension_out", "y_in", "y_out",
+    "runoff_velocity", "drift_per_revolution", "edge_stress_max",
     "driver.contact_arc", "driver.contact_start", "driver.contact_end", "driver.stick_arc",
     "driver.slip_arc", "driver.torque", "driver.edge_force_start", "driver.edge_force_end",
     "driver.edge_pressure_start", "driver.edge_pressure_end",
@@ -504,6 +524,15 @@ pub struct Summary {
     /// y of the centreline at the outflow end section (one-pulley scenes), m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y_out: Option<f64>,
+    /// Lateral run-off velocity of a shell belt, m/s (+z along the drum axes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub runoff_velocity: Option<f64>,
+    /// Lateral drift of a shell belt per belt revolution, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub drift_per_revolution: Option<f64>,
+    /// Largest membrane stress along the belt at its edges, Pa (shell).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_stress_max: Option<f64>,
     /// Driver pulley quantities.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub driver: Option<PulleySummary>,
@@ -521,7 +550,8 @@ impl Summary {
         TensionLowerMid => tension_lower_mid, MomentUpperMid => moment_upper_mid,
         MomentLowerMid => moment_lower_mid, TensionTight => tension_tight, TensionSlack => tension_slack,
         DrivenSpeed => driven_speed, TransportRate => transport_rate, PulleySpeed => pulley_speed,
-        TensionIn => tension_in, TensionOut => tension_out, YIn => y_in, YOut => y_out);
+        TensionIn => tension_in, TensionOut => tension_out, YIn => y_in, YOut => y_out,
+        RunoffVelocity => runoff_velocity, DriftPerRevolution => drift_per_revolution, EdgeStressMax => edge_stress_max);
 
     fn pulley_block(&mut self, p: PulleyId) -> &mut Option<PulleySummary> {
         match p {
@@ -712,8 +742,12 @@ mod tests {
                 "N·m"
             } else if leaf.ends_with("_speed") {
                 "rad/s"
-            } else if leaf == "transport_rate" {
+            } else if leaf == "transport_rate" || leaf.ends_with("_velocity") {
                 "m/s"
+            } else if leaf.starts_with("drift_") {
+                "m"
+            } else if leaf.ends_with("_stress_max") {
+                "Pa"
             } else if leaf.ends_with("_arc") || leaf.starts_with("contact_") {
                 "rad"
             } else {

@@ -31,6 +31,7 @@ fn result(summary: Summary, fields: Option<Fields>) -> RunResult {
         history: None,
         discretisation: None,
         warnings: Vec::new(),
+        measured: None,
     }
 }
 
@@ -65,7 +66,8 @@ fn sorted(mut k: Vec<&str>) -> Vec<String> {
 
 /// The key sets of DESIGN.md's example, level by level (with the one-pulley and
 /// Cosserat names its definitions add: `pulley.*`, `pulley_speed`, `tension_in`,
-/// `tension_out`, `y_in`, `y_out`, `edge_pressure_*`).
+/// `tension_out`, `y_in`, `y_out`, `edge_pressure_*`, and the shell's `runoff_velocity`,
+/// `drift_per_revolution`, `edge_stress_max` of spec §4.15).
 #[test]
 fn keys_and_nesting_exactly_as_design() {
     let fields = Fields {
@@ -111,6 +113,9 @@ fn keys_and_nesting_exactly_as_design() {
             "tension_out",
             "y_in",
             "y_out",
+            "runoff_velocity",
+            "drift_per_revolution",
+            "edge_stress_max",
             "driver",
             "driven",
             "pulley",
@@ -142,8 +147,8 @@ fn keys_and_nesting_exactly_as_design() {
     assert_eq!(v["scene"], json!("string-hanging"));
     assert_eq!(v["converged"], json!(true));
     assert_eq!(v["cost"]["newton_iterations"], json!(12));
-    // driver.contact_arc is the 16th name (after the 15 globals).
-    assert_eq!(v["summary"]["driver"]["contact_arc"], json!(15.5));
+    // driver.contact_arc is the 19th name (after the 18 globals).
+    assert_eq!(v["summary"]["driver"]["contact_arc"], json!(18.5));
 }
 
 #[test]

@@ -227,6 +227,9 @@ pub fn solve_scene_with(scene: &Scene, opts: &FemOptions, settings: &SolverSetti
     if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
         return Err(e.into());
     }
+    if scene.belt.theory == Theory::Shell {
+        return Err(FemError::Unsupported("a shell scene is solved by `fem::shell::scene::solve` (Bogner–Fox–Schmit elements over (σ, ζ)), not by the rod and string formulations".into()));
+    }
     let mut drive_settings = string_drive::DriveSettings::from_scene(scene);
     drive_settings.stop_at_steady = true;
     solve_problem(&FemProblem::from_scene(scene), opts, settings, &drive_settings)

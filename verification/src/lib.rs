@@ -17,6 +17,8 @@
 //! - [`table`]: the convergence tables (terminal text and Markdown);
 //! - [`plot`], [`report`]: SVG plots and the Markdown/JSON reports;
 //! - [`gate`]: the CI gate over the catalogue;
+//! - [`measured`]: a user's measurement (CSV) held against a shell run's history;
+//! - [`vtk`]: the shell's surface over time as VTK files (`.vtu` per frame, a `.pvd`);
 //! - [`outside`] and [`check`]: results of outside codes read from files, studied and
 //!   gated like a built-in method (`beltcheck check`), and the reference exported
 //!   for them (`beltcheck reference`).
@@ -28,6 +30,7 @@ pub mod closed_form;
 pub mod files;
 pub mod gate;
 pub mod measure;
+pub mod measured;
 pub mod outside;
 pub mod plot;
 pub mod reference;
@@ -36,6 +39,7 @@ pub mod run;
 pub mod study;
 pub mod sweep;
 pub mod table;
+pub mod vtk;
 
 use drive::summary::Summary;
 

@@ -189,6 +189,9 @@ pub enum RunError {
     /// The FE solver failed.
     #[error(transparent)]
     Fem(fem::FemError),
+    /// The shell's FE failed, or a self-check of its run did (docs/fem-shell.md §9).
+    #[error(transparent)]
+    Shell(fem::shell::ShellError),
     /// A closed-form reference does not describe the scene or did not converge.
     #[error(transparent)]
     ClosedForm(crate::closed_form::ClosedFormError),
@@ -417,6 +420,9 @@ impl Method for FemFormulation {
         if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
             return Err(RunError::NotYetSolvable(e));
         }
+        if scene.belt.theory == Theory::Shell {
+            return Err(RunError::NotApplicable(format!("formulation `{}` is a rod or string element; the shell is solved by `{SHELL_FE}` ([`ShellFe`])", self.name)));
+        }
         if let Some(theory) = formulation_theory(&self.name).filter(|&t| t != scene.belt.theory) {
             return Err(RunError::NotApplicable(format!(
                 "formulation `{}` discretises theory `{theory}`, the scene's belt is theory `{}` (its formulations: {})",
@@ -454,6 +460,81 @@ impl Method for FemFormulation {
     }
 }
 
+/// The Kirchhoff–Love shell's FE (Bogner–Fox–Schmit elements over (σ, ζ), stages 0–2
+/// of docs/fem-shell.md §9, [`fem::shell::scene::solve`]), refined by a
+/// [`Discretisation::Mesh2d`]: the scene's `fem.elements_sigma`, `fem.elements_zeta` and
+/// `fem.time_step` are replaced by it (the rotation keeps its simulated time
+/// `steps` × Δt of the scene).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ShellFe;
+
+/// The method label of [`ShellFe`].
+pub const SHELL_FE: &str = "fem shell-bfs";
+
+impl ShellFe {
+    /// The scene's own discretisation (its `fem` block with the defaults).
+    pub fn discretisation(scene: &Scene) -> Discretisation {
+        let run = scene.shell_run();
+        Discretisation::Mesh2d { sigma: run.elements_sigma, zeta: run.elements_zeta, time_step: run.time_step }
+    }
+}
+
+impl Method for ShellFe {
+    fn label(&self) -> String {
+        SHELL_FE.to_string()
+    }
+
+    fn family(&self) -> Family {
+        Family::Fem
+    }
+
+    fn solve(&self, scene: &Scene, disc: Discretisation) -> Result<Solved, RunError> {
+        let Discretisation::Mesh2d { sigma, zeta, time_step } = disc else {
+            return Err(RunError::Failed(format!("{SHELL_FE}: the shell is refined by a mesh over (σ, ζ) and a time step, not by {disc}")));
+        };
+        if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
+            return Err(RunError::NotYetSolvable(e));
+        }
+        if scene.belt.theory != Theory::Shell {
+            return Err(RunError::NotApplicable(format!("{SHELL_FE} discretises theory `shell`, the scene's belt is theory `{}`", scene.belt.theory)));
+        }
+        let mut scene = scene.clone();
+        let own = scene.shell_run();
+        let mut f = scene.fem_settings();
+        // the same simulated time of the rotation at another time step
+        let rotation = own.steps as f64 * own.time_step;
+        f.elements_sigma = Some(sigma);
+        f.elements_zeta = Some(zeta);
+        f.time_step = Some(time_step);
+        f.duration = None;
+        f.steps = Some(((rotation / time_step) - 1e-9).ceil().max(1.0) as usize);
+        scene.fem = Some(f);
+        scene.validate().map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
+        let run = fem::shell::scene::solve(&scene).map_err(|e| match e {
+            fem::shell::ShellError::NotModelled(m) => RunError::NotApplicable(m),
+            other => RunError::Shell(other),
+        })?;
+        let cost = RunCost { elements: Some(sigma * zeta), ..RunCost::counted(0.0, run.newton_iterations, run.unknowns) };
+        let [stage0, ramp, rotation] = run.stage_seconds;
+        Ok(Solved {
+            view: Box::new(run.view),
+            summary: run.summary,
+            cost,
+            options: run.options,
+            terms: vec![
+                "membrane (Simpson × Gauss 3, camber as intrinsic strain)".into(),
+                "bending and gravity (Gauss 3 × 3)".into(),
+                "elastic interlayer V_γ, V_⊥ with advected history (trapezoidal × Gauss 2)".into(),
+            ],
+            notes: [vec![format!("stages: static start {stage0:.2} s, ramp {ramp:.2} s, rotation {rotation:.2} s")], run.checks.iter().map(|c| format!("check: {c}")).collect()].concat(),
+            warnings: run.warnings,
+            history: Some(run.history),
+            not_steady: None,
+            unfitted: None,
+        })
+    }
+}
+
 /// The belt theory a registered formulation discretises (`None` if not registered) —
 /// built-in or added from outside `fem` by [`fem::register_formulation`] or
 /// [`fem::formulation::register_element`] (an element of any layout).
@@ -475,6 +556,9 @@ pub fn registered_formulations() -> Vec<&'static str> {
 pub fn default_formulation(scene: &Scene) -> Result<String, RunError> {
     if let Some(e) = drive::not_yet_solvable(scene, drive::Solver::Fem) {
         return Err(RunError::NotYetSolvable(e));
+    }
+    if scene.belt.theory == Theory::Shell {
+        return Ok(SHELL_FE.to_string());
     }
     if let Some(first) = scene.fem_settings().formulations.first() {
         return Ok(first.clone());

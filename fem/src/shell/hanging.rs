@@ -285,6 +285,11 @@ impl HangingBelt {
 /// The 15 point values of the shell at (σ, ζ) from the unknowns `z` of `asm`, and the
 /// point (its element).
 fn point_values(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], sigma: f64, zeta: f64) -> Option<(SurfacePoint, [f64; SHELL_VALUES])> {
+    point_values_at(asm, z, sigma, zeta, 0.0)
+}
+
+/// [`point_values`] with the point at time `time` (the camber κ_c(t) is read there).
+pub(crate) fn point_values_at(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], sigma: f64, zeta: f64, time: f64) -> Option<(SurfacePoint, [f64; SHELL_VALUES])> {
     let (element, _, _) = asm.mesh().locate(sigma, zeta);
     let rows = [Field::S, Field::Nu, Field::Z].map(|f| asm.field_at(z, f, sigma, zeta));
     let rows = [rows[0]?, rows[1]?, rows[2]?];
@@ -295,7 +300,34 @@ fn point_values(asm: &SurfaceAssembler<Shell, SHELL_VALUES>, z: &[f64], sigma: f
         _ => 2,
     };
     let values = std::array::from_fn(|p| rows[slot(vars[p].field)][vars[p].derivative as usize]);
-    Some((SurfacePoint { sigma, zeta, element, time: 0.0, dt: 0.0 }, values))
+    Some((SurfacePoint { sigma, zeta, element, time, dt: 0.0 }, values))
+}
+
+/// The width-integrated [`Station`] at σ of the state of `stepping` at its time
+/// (3-point Gauss per ζ-element; the camber read at that time).
+///
+/// # Errors
+/// [`ShellError::BadParameter`] for a σ where the solution cannot be evaluated.
+pub fn station_of(stepping: &TimeStepping<Shell, SHELL_VALUES>, sigma: f64) -> Result<Station, ShellError> {
+    let asm = stepping.assembler();
+    let z = stepping.unknowns();
+    let shell = asm.kernel();
+    let zeta = asm.mesh().zeta_nodes();
+    let width = zeta[zeta.len() - 1] - zeta[0];
+    let mut out = Station { height: 0.0, tension: 0.0, moment: 0.0 };
+    for pair in zeta.windows(2) {
+        for &(eta, w) in crate::quadrature::Rule::Gauss(3).points() {
+            let at_zeta = 0.5 * (pair[0] + pair[1]) + 0.5 * (pair[1] - pair[0]) * eta;
+            let weight = 0.5 * (pair[1] - pair[0]) * w;
+            let (at, v) = point_values_at(asm, z, sigma, at_zeta, stepping.time()).ok_or(ShellError::BadParameter { what: "station σ", value: sigma })?;
+            let r = shell.position(&at, &v);
+            let stretch = (1.0 + 2.0 * shell.strain(&at, &v)[0]).sqrt();
+            out.height += r[1] * weight / width;
+            out.tension += stretch * shell.forces(&at, &v)[0] * weight;
+            out.moment -= shell.moments(&at, &v)[0] * weight;
+        }
+    }
+    Ok(out)
 }
 
 impl StaticShell {

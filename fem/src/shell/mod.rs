@@ -14,6 +14,8 @@
 //! - [`runoff`]: stages (1)–(2), the ramps of camber and tilt at rest and the
 //!   transient with rotation, the belt's lateral offset and drift velocity
 //!   (docs/fem-shell.md §9.2–§9.3);
+//! - [`scene`]: a `shell` scene solved by stages 0–2 (and the tilt schedule after the
+//!   start), with its histories, surface frames, summary and self-checks (issue 15);
 //! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
 //!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
@@ -22,6 +24,7 @@ pub mod interlayer;
 pub mod kernel;
 pub mod membrane;
 pub mod runoff;
+pub mod scene;
 pub mod transition;
 
 use thiserror::Error;
@@ -51,4 +54,13 @@ pub enum ShellError {
     /// A material or model parameter out of its range.
     #[error("{what} = {value} is out of range")]
     BadParameter { what: &'static str, value: f64 },
+    /// A scene the shell's FE has no model for (named reason).
+    #[error("the shell's FE cannot solve this scene: {0}")]
+    NotModelled(String),
+    /// A step of the run failed (stage and time named).
+    #[error("{stage} failed at t = {time} s (step {step}): {cause}")]
+    Step { stage: &'static str, step: usize, time: f64, cause: Box<crate::analysis::time_stepping::TimeSteppingError> },
+    /// A self-check of a finished run failed: the numbers are not trusted.
+    #[error("self-check failed: {0}")]
+    Check(String),
 }

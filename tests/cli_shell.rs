@@ -1,0 +1,270 @@
+//! End to end, issue 15: `beltcheck solve scenes/shell-runoff.json` runs the shell's
+//! stages 0–2 and writes the result format (summary with `runoff_velocity`,
+//! `drift_per_revolution`, `edge_stress_max` and the planar names; the history of the
+//! lateral channels with frames of surface fields; the cost), overlays a measurement
+//! (`--measured`) with the difference, and writes the surface over time as VTK (`--vtk`),
+//! read back here with an XML reader independent of the writer (`roxmltree` + `base64`).
+//! The refusals (no BVP for a shell, `converge`, flags for shells only, a malformed
+//! measurement, a bad scene) exit 2 and write nothing; `gate` and `report` skip a shell
+//! with the reason.
+//!
+//! One solve of the CI scene (~15 s release on 2 shared cores); everything else is cheap.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use base64::Engine;
+use common::{beltcheck, stderr, stdout, temp};
+use drive::{RunResult, Scene, SurfaceFields};
+
+const SCENE: &str = "scenes/shell-runoff.json";
+
+fn scene() -> Scene {
+    Scene::from_path(Path::new(SCENE)).unwrap()
+}
+
+/// The values of a `<DataArray Name=name>` of a vtkio `.vtu`: base64 of a little-endian
+/// UInt64 byte count, then the little-endian values (f64 or u64 by `type`).
+fn array(doc: &roxmltree::Document, parent: &str, name: &str) -> Vec<f64> {
+    let node = doc
+        .descendants()
+        .filter(|n| n.has_tag_name("DataArray"))
+        .find(|n| n.parent().is_some_and(|p| p.has_tag_name(parent)) && n.attribute("Name").unwrap_or("") == name)
+        .unwrap_or_else(|| panic!("no DataArray {name} in {parent}"));
+    assert_eq!(node.attribute("format"), Some("binary"), "{name}");
+    let text: String = node.text().unwrap_or("").split_whitespace().collect();
+    let bytes = base64::engine::general_purpose::STANDARD.decode(text).unwrap();
+    let count = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+    let body = &bytes[8..8 + count];
+    match node.attribute("type") {
+        Some("Float64") => body.chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect(),
+        Some("UInt64") => body.chunks(8).map(|c| u64::from_le_bytes(c.try_into().unwrap()) as f64).collect(),
+        Some("UInt8") => body.iter().map(|&b| b as f64).collect(),
+        other => panic!("{name}: type {other:?}"),
+    }
+}
+
+/// a and b equal to a few ulp (the frame went through JSON's decimal form).
+fn close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 4e-16 * a.abs().max(b.abs())
+}
+
+/// Checks one `.vtu` against its frame: point and cell counts, positions, the
+/// displacement from g(σ) + ζ e_z, the scalar fields, and the closed quad loop.
+fn check_vtu(file: &Path, frame: &SurfaceFields, contour: &drive::Contour) {
+    let text = std::fs::read_to_string(file).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let piece = doc.descendants().find(|n| n.has_tag_name("Piece")).unwrap();
+    let (ns, nz) = (frame.sigma.len(), frame.zeta.len());
+    assert_eq!(piece.attribute("NumberOfPoints"), Some((ns * nz).to_string().as_str()), "{}", file.display());
+    assert_eq!(piece.attribute("NumberOfCells"), Some((ns * (nz - 1)).to_string().as_str()), "{}", file.display());
+    let points = array(&doc, "Points", "Points");
+    let displacement = array(&doc, "PointData", "displacement");
+    let force = array(&doc, "PointData", "membrane_force");
+    let pressure = array(&doc, "PointData", "contact_pressure");
+    assert_eq!(points.len(), 3 * ns * nz);
+    for (i, &s) in frame.sigma.iter().enumerate() {
+        let g = contour.position(s, 0.0);
+        for (j, &q) in frame.zeta.iter().enumerate() {
+            let k = i * nz + j;
+            let r = [frame.values["x"][i][j], frame.values["y"][i][j], frame.values["z"][i][j]];
+            // the JSON frame (decimal) and the binary VTK carry the same f64 to its last digits
+            for c in 0..3 {
+                assert!(close(points[3 * k + c], r[c]), "point {k} component {c}: {} vs {}", points[3 * k + c], r[c]);
+            }
+            let expected = [r[0] - g[0], r[1] - g[1], r[2] - q];
+            for c in 0..3 {
+                assert!((displacement[3 * k + c] - expected[c]).abs() <= 1e-15, "displacement {k}.{c}: {} vs {}", displacement[3 * k + c], expected[c]);
+            }
+            assert!(close(force[k], frame.values["membrane_force"][i][j]), "membrane force {k}");
+            assert!(close(pressure[k], frame.values["contact_pressure"][i][j]), "contact pressure {k}");
+        }
+    }
+    // the belt rests on the drums (pressure > 0 somewhere), nowhere a negative pressure
+    assert!(pressure.iter().any(|&p| p > 0.0) && pressure.iter().all(|&p| p >= 0.0));
+    let shear = array(&doc, "PointData", "interlayer_shear");
+    assert!(shear.iter().all(|&u| u.is_finite() && u >= 0.0));
+    for (k, u) in shear.iter().enumerate() {
+        let (i, j) = (k / nz, k % nz);
+        assert!(close(*u, frame.values["interlayer_shear"][i][j]), "interlayer shear {k}");
+    }
+    // quads (type 9), four vertices each; the last column connects to the first (closed loop)
+    let connectivity = array(&doc, "Cells", "connectivity");
+    let types = array(&doc, "Cells", "types");
+    assert!(types.iter().all(|&t| t == 9.0) && types.len() == ns * (nz - 1));
+    assert_eq!(connectivity.len(), 4 * ns * (nz - 1));
+    let last = 4 * (ns - 1) * (nz - 1);
+    assert_eq!(&connectivity[last..last + 4], &[((ns - 1) * nz) as f64, 0.0, 1.0, ((ns - 1) * nz + 1) as f64]);
+}
+
+/// The CI scene solved once with every output; the result, the measurement and the VTK
+/// files checked against each other and against their definitions.
+#[test]
+fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
+    let s = scene();
+    let run = s.shell_run();
+    let json = temp("cli-shell", "result.json");
+    let csv = temp("cli-shell", "measured.csv");
+    let vtk = temp("cli-shell", "vtk");
+    let _ = std::fs::remove_dir_all(&vtk);
+    // a "measurement": z = 4e-6 t (m), one sample beyond the simulated rotation
+    let rotation = run.steps as f64 * run.time_step;
+    let times = [0.0, 0.3, 0.9, 1.7, 2.2, rotation + 1.0];
+    let mut text = String::from("# test stand, lateral position of the centre line\ntime,lateral\n");
+    for t in times {
+        text.push_str(&format!("{t},{}\n", 4e-6 * t));
+    }
+    std::fs::write(&csv, text).unwrap();
+    let start = std::time::Instant::now();
+    let o = beltcheck(&["solve", SCENE, "--json", json.to_str().unwrap(), "--measured", csv.to_str().unwrap(), "--vtk", vtk.to_str().unwrap()]);
+    let wall = start.elapsed().as_secs_f64();
+    let out = stdout(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}\n{}", stderr(&o));
+    eprintln!("shell-runoff: {wall:.1} s wall");
+    for part in ["run-off velocity", "drift per revolution", "edge stress", "measured (", "VTK: 5 frame(s)"] {
+        assert!(out.contains(part), "`{part}` missing in\n{out}");
+    }
+
+    let r = RunResult::from_json_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    r.check().unwrap();
+    assert!(r.converged && r.method == "fem" && r.warnings.is_empty(), "{:?}", r.warnings);
+    assert_eq!(r.discretisation, Some(drive::Discretisation::Mesh2d { sigma: 64, zeta: 2, time_step: run.time_step }));
+    // 64 × 2 elements: 12 unknowns per node × 64 × 3 nodes (closed loop)
+    assert_eq!(r.cost.unknowns, 12 * 64 * 3);
+    assert!(r.cost.newton_iterations >= run.steps + run.ramp_steps, "at least one Newton iteration per step");
+
+    // the summary: the definitions hold to round-off
+    let sum = &r.summary;
+    let (v, drift) = (sum.runoff_velocity.unwrap(), sum.drift_per_revolution.unwrap());
+    let revolution = s.belt.length / (s.drive.driver_speed * s.drive.pulley_radius);
+    assert!((drift - v * revolution).abs() <= 1e-12 * drift.abs(), "drift {drift} vs v·L/(ωR) {}", v * revolution);
+    let h = r.history.as_ref().unwrap();
+    assert_eq!(h.len(), 1 + run.ramp_steps + run.steps, "one sample at the end of stage (0), one per step");
+    let stage = h.channel("stage").unwrap();
+    let first = stage.iter().position(|&x| x == 2.0).unwrap() - 1;
+    // the rotation is shorter than a revolution here: the slope over all its samples
+    assert!(rotation < revolution);
+    let (t, z) = (&h.time[first..], &h.channel("lateral_offset").unwrap()[first..]);
+    let (tm, zm) = (t.iter().sum::<f64>() / t.len() as f64, z.iter().sum::<f64>() / z.len() as f64);
+    let slope = t.iter().zip(z).map(|(a, b)| (a - tm) * (b - zm)).sum::<f64>() / t.iter().map(|a| (a - tm) * (a - tm)).sum::<f64>();
+    assert!((slope - v).abs() <= 1e-9 * v.abs(), "least-squares slope {slope} vs runoff_velocity {v}");
+    // camber and swivel make the belt run off: the offset at the end is far above the
+    // ramp's (the E-3 round-off of a perfect belt is 1e-16 m)
+    assert!(z[z.len() - 1].abs() > 10.0 * z[0].abs() && z[z.len() - 1].abs() > 1e-7, "z̄ {} → {}", z[0], z[z.len() - 1]);
+    // the planar names: the belt sags below the contour on both spans, in tension
+    let radius = s.drive.pulley_radius;
+    let (yu, yl) = (sum.y_upper_mid.unwrap(), sum.y_lower_mid.unwrap());
+    assert!(yu < radius && yu > radius - 0.05 && yl < -radius && yl > -radius - 0.05, "y {yu}, {yl}");
+    let (tu, tl) = (sum.tension_upper_mid.unwrap(), sum.tension_lower_mid.unwrap());
+    assert!(tu > 0.0 && tl > 0.0);
+    // the edge stress: the largest |n_σσ|/h at the edges is at least the mean stress of a
+    // mid-span (the camber's stress is linear across the width, so one edge carries more)
+    let plate = s.belt.plate().unwrap();
+    assert!(sum.edge_stress_max.unwrap() >= tu.max(tl) / (plate.width * plate.thickness), "{:?}", sum.edge_stress_max);
+    assert_eq!(sum.driven_speed, Some(s.drive.driver_speed));
+    // the width-integrated belt along σ (`fields`, the common view): each point on the
+    // contour's normal at its σ (DESIGN.md's fields; `check` relies on it), to round-off
+    let f = r.fields.as_ref().unwrap();
+    assert_eq!(f.sigma.len(), 200);
+    let c = s.contour();
+    for ((&sg, &x), &y) in f.sigma.iter().zip(&f.x).zip(&f.y) {
+        let (back, _) = c.sigma_nu([x, y]);
+        let d = (back - sg).abs().min(c.length() - (back - sg).abs());
+        assert!(d <= 1e-9, "σ = {sg}: the point lies on the normal at {back}");
+    }
+
+    // frames: the start of the rotation, every 6 steps, the end
+    assert_eq!(h.frames.len(), 1 + run.steps / run.frame_every);
+    assert!((h.frames[0].time - h.time[first]).abs() < 1e-12 && h.frames.last().unwrap().time == *h.time.last().unwrap());
+
+    // the measurement: model at the measured times, the difference model − measured
+    let m = r.measured.as_ref().unwrap();
+    assert_eq!(m.channel, "lateral_offset");
+    assert_eq!(m.time.len(), times.len() - 1);
+    assert_eq!(m.outside, 1);
+    let start = h.time[first];
+    for (k, &tk) in m.time.iter().enumerate() {
+        assert_eq!(m.measured[k], 4e-6 * tk);
+        assert!((m.difference[k] - (m.model[k] - m.measured[k])).abs() <= 1e-18);
+        // the model interpolated independently here
+        let tt = start + tk;
+        let i = h.time.partition_point(|&x| x <= tt).clamp(1, h.len() - 1);
+        let zc = h.channel("lateral_offset").unwrap();
+        let w = (tt - h.time[i - 1]) / (h.time[i] - h.time[i - 1]);
+        let model = zc[i - 1] + w.clamp(0.0, 1.0) * (zc[i] - zc[i - 1]);
+        assert!((m.model[k] - model).abs() <= 1e-15, "t = {tk}: {} vs {model}", m.model[k]);
+    }
+    let rms = (m.difference.iter().map(|d| d * d).sum::<f64>() / m.difference.len() as f64).sqrt();
+    assert!((m.rms_difference - rms).abs() <= 1e-15 * rms.max(1e-300));
+
+    // VTK: one .vtu per frame, read back independently, and the series
+    let contour = s.contour();
+    let pvd = std::fs::read_to_string(vtk.join("shell-runoff.pvd")).unwrap();
+    let doc = roxmltree::Document::parse(&pvd).unwrap();
+    let sets: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("DataSet")).collect();
+    assert_eq!(sets.len(), h.frames.len());
+    for (k, (set, frame)) in sets.iter().zip(&h.frames).enumerate() {
+        let file: PathBuf = vtk.join(set.attribute("file").unwrap());
+        assert_eq!(file, vtk.join(format!("shell-runoff_{k:04}.vtu")));
+        let time: f64 = set.attribute("timestep").unwrap().parse().unwrap();
+        assert!((time - frame.time).abs() <= 1e-15 * frame.time);
+        check_vtu(&file, frame.surface.as_ref().unwrap(), &contour);
+    }
+    // the turning drums shear the interlayer: |u| > 0 on the drums at the end
+    let last = h.frames.last().unwrap().surface.as_ref().unwrap();
+    assert!(last.values["interlayer_shear"].iter().flatten().any(|&u| u > 0.0));
+}
+
+/// What a shell scene is refused for, with exit 2 and nothing written; `gate` and
+/// `report` skip it with the reason.
+#[test]
+fn shell_refusals_name_the_reason_and_write_nothing() {
+    let json = temp("cli-shell-refusals", "out.json");
+    let _ = std::fs::remove_file(&json);
+    let j = json.to_str().unwrap();
+    let refused = |args: &[&str], parts: &[&str]| {
+        let o = beltcheck(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        for p in parts {
+            assert!(err.contains(p), "{args:?}: `{p}` missing in {err}");
+        }
+        assert!(!json.exists(), "{args:?}: a file was written");
+    };
+    refused(&["solve", SCENE, "--method", "bvp-collocation", "--json", j], &["no BVP exists for theory `shell`", "--method fem", "nothing was solved"]);
+    refused(&["solve", SCENE, "--method", "bvp-shooting", "--json", j], &["no BVP exists"]);
+    refused(&["converge", SCENE, "--json", j], &["`converge` cannot study a shell scene", "no BVP exists"]);
+    refused(&["solve", SCENE, "--elements", "32", "--json", j], &["--elements is not used", "elements_sigma"]);
+    refused(&["solve", "scenes/rod-hanging.json", "--vtk", temp("cli-shell-refusals", "vtk").to_str().unwrap(), "--json", j], &["--vtk is for shell scenes", "kirchhoff"]);
+    refused(&["solve", "scenes/rod-hanging.json", "--measured", "x.csv", "--json", j], &["--measured is for shell scenes"]);
+    refused(&["solve", SCENE, "--measured-channel", "lateral_offset", "--json", j], &["--measured-channel needs --measured"]);
+    // a malformed measurement is refused before the solve (it would take ~15 s)
+    let csv = temp("cli-shell-refusals", "bad.csv");
+    std::fs::write(&csv, "time,lateral\n0,0\n0.5,1e-6\n0.5,2e-6\n").unwrap();
+    let start = std::time::Instant::now();
+    refused(&["solve", SCENE, "--measured", csv.to_str().unwrap(), "--json", j], &["line 4", "does not follow", "increase strictly"]);
+    assert!(start.elapsed().as_secs_f64() < 5.0, "the file is read before the solve");
+    std::fs::write(&csv, "0,0\n1\n").unwrap();
+    refused(&["solve", SCENE, "--measured", csv.to_str().unwrap(), "--json", j], &["line 2", "one field, two expected"]);
+    refused(&["solve", SCENE, "--measured", "/nonexistent/m.csv", "--json", j], &["cannot read"]);
+    // --vtk onto a file
+    let file = temp("cli-shell-refusals", "a-file");
+    std::fs::write(&file, "x").unwrap();
+    refused(&["solve", SCENE, "--vtk", file.to_str().unwrap(), "--json", j], &["not a directory"]);
+    // impossible scene fields (exit 2 before solving, the path named)
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    v["drive"]["driven_speed"] = serde_json::json!(-2.0);
+    let bad = temp("cli-shell-refusals", "bad-scene.json");
+    std::fs::write(&bad, v.to_string()).unwrap();
+    refused(&["solve", bad.to_str().unwrap(), "--json", j], &["drive.driven_speed", "opposite senses"]);
+    // gate and report skip the shell and say why
+    let o = beltcheck(&["gate", SCENE]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("gate: skipped scene `shell-runoff`") && stdout(&o).contains("no BVP exists"), "{}", stdout(&o));
+    let dir = temp("cli-shell-refusals", "report");
+    let o = beltcheck(&["report", SCENE, "-o", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(stdout(&o).contains("report: skipped scene `shell-runoff`"), "{}", stdout(&o));
+    assert!(!dir.join("shell-runoff").exists(), "no report directory for a skipped scene");
+}
