@@ -1456,6 +1456,15 @@ impl Scene {
                 reason: "it chooses the sense of a prescribed `stick_slip_angle` (φ_B fixes the slip arc, not its sense); with the two tensions or `pulley_speed` given the sense follows from them".into(),
             });
         }
+        if let Some(g) = self.effects.gravity.filter(|&g| g != 0.0) {
+            return Err(SceneError::NotAllowed {
+                path: "effects.gravity".into(),
+                reason: format!(
+                    "layout `one-pulley` is Paper C's belt over one pulley without gravity (spec §2.2: its open ends carry no weight, and neither solver has the load on this layout); got {} m/s² — remove it or set it to 0",
+                    crate::error::num(&g)
+                ),
+            });
+        }
         if self.analysis != Analysis::Steady {
             return Err(SceneError::NotAllowed {
                 path: "analysis".into(),

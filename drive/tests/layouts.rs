@@ -154,6 +154,16 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
     assert!(matches!(&e, SceneError::SpeedAtOrAboveCritical { path, stiffness, .. } if path == "belt.shear_stiffness" && *stiffness == 1e3), "{e}");
     assert!(e.to_string().contains("`belt.shear_stiffness` = 1000 N must exceed χ = ρc² = 0.1·200² = 4000 N"), "{e}");
 
+    // gravity: neither solver has it on this layout (the BVP ignored it before)
+    let mut v = one_pulley();
+    v["effects"]["gravity"] = json!(9.81);
+    let e = err(&v);
+    assert!(matches!(&e, SceneError::NotAllowed { path, .. } if path == "effects.gravity"), "{e}");
+    assert!(e.to_string().contains("9.81"), "{e}");
+    let mut v = one_pulley();
+    v["effects"]["gravity"] = json!(0.0);
+    assert!(read(&v).is_ok());
+
     let mut v = one_pulley();
     v["analysis"] = json!("transient");
     assert!(matches!(err(&v), SceneError::NotAllowed { path, .. } if path == "analysis"));
