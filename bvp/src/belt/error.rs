@@ -43,11 +43,17 @@ pub enum BeltError {
     /// positive (the belt would buckle under its own momentum flux).
     #[error("no steady solution: effective tension T̃ = {} N ≤ 0 at the {end} end (axial force {} N, ρc² = {} N)", Sig(*effective), Sig(*tension), Sig(*chi))]
     EffectiveTensionNotPositive { end: &'static str, tension: f64, effective: f64, chi: f64 },
-    /// One pulley: the tension ratio needs more slip than the wrap offers — the creep
-    /// slip arc ln(T̃_high/T̃_low)/μ exceeds the contact arc (the belt slides over the
-    /// whole contact: no steady creep solution).
-    #[error("no steady creep solution: friction capacity exceeded — slip arc ln(T̃_high/T̃_low)/μ = {} rad (T̃_in = {} N, T̃_out = {} N, μ = {}) exceeds the contact arc {} rad", Sig(*slip_arc), Sig(*effective_in), Sig(*effective_out), Sig(*mu), Sig(*contact_arc))]
-    CapstanLimitExceeded { slip_arc: f64, contact_arc: f64, effective_in: f64, effective_out: f64, mu: f64 },
+    /// One pulley, mode `tensions`: the tension ratio is beyond the friction the wrap can
+    /// hold — φ_B was moved up to the contact start (the stick arc shrunk to `stick_arc`)
+    /// and the free tension reached only `reached` against the scene's `target` (the
+    /// string's capstan estimate for comparison: it ignores the rod's edge pressure peaks).
+    #[error("no steady creep solution: friction capacity exceeded — with the stick arc shrunk to {} rad the {end} tension reaches {} N, not the given {} N (μ = {}; the string's capstan slip arc ln(T̃_high/T̃_low)/μ = {} rad against its contact arc {} rad)", Sig(*stick_arc), Sig(*reached), Sig(*target), Sig(*mu), Sig(*string_slip_arc), Sig(*contact_arc))]
+    CapstanLimitExceeded { end: &'static str, target: f64, reached: f64, stick_arc: f64, string_slip_arc: f64, contact_arc: f64, mu: f64 },
+    /// One pulley, mode `tensions` beyond the string's capstan: the search of φ_B toward
+    /// the contact start stopped at a failed solve before it met the scene's free tension
+    /// or the contact start — no statement about the capacity.
+    #[error("mode `tensions` beyond the string's capstan: the search of the stick → slip angle stopped at φ_B = {} rad, where the solve failed ({cause}); the {end} tension had reached {} N (given {} N) at a stick arc of {} rad", Sig(*phi), Sig(*reached), Sig(*target), Sig(*stick_arc))]
+    CapstanSearchFailed { end: &'static str, target: f64, reached: f64, stick_arc: f64, phi: f64, cause: Box<BeltError> },
     /// One pulley: an admissibility condition of the assumed stick/slip topology fails
     /// after the solve (spec §2.4), with the numbers.
     #[error("inadmissible one-pulley solution: {0}")]

@@ -208,7 +208,8 @@ impl CosseratPulley {
 }
 
 /// Validate the data (spec §2.2): every input finite and > 0, b₁, b₂ > χ, T̃ > 0 at both
-/// ends, and the string creep slip arc within the wrap.
+/// ends. (The string creep slip arc beyond the wrap is not a refusal: the rod's edge
+/// pressure peaks carry friction the string has not, [`solve`].)
 pub fn validate(d: &CosseratPulley, opts: &BeltOptions) -> Result<(), BeltError> {
     opts.check_tolerance()?;
     let geometry = [("pulley_radius", d.radius), ("end_distance", d.end_distance), ("transport_rate", d.transport_rate)];
@@ -228,19 +229,137 @@ pub fn validate(d: &CosseratPulley, opts: &BeltOptions) -> Result<(), BeltError>
             return Err(BeltError::EffectiveTensionNotPositive { end, tension, effective, chi });
         }
     }
-    let (t_in, t_out) = (d.effective(d.tension_in), d.effective(d.tension_out));
-    let layers = ((d.bending_stiffness / t_in).sqrt() + (d.bending_stiffness / t_out).sqrt()) / d.radius;
-    let contact_arc = PI - layers;
-    if d.string_slip_arc() >= contact_arc {
-        return Err(BeltError::CapstanLimitExceeded {
-            slip_arc: d.string_slip_arc(),
-            contact_arc,
-            effective_in: t_in,
-            effective_out: t_out,
-            mu: d.friction,
-        });
-    }
     Ok(())
+}
+
+/// The string's estimate of the contact arc, π − (√(a/T̃_in) + √(a/T̃_out))/R (rad): the
+/// wrap less the two bending layers.
+fn string_contact_arc(d: &CosseratPulley) -> f64 {
+    let (t_in, t_out) = (d.effective(d.tension_in), d.effective(d.tension_out));
+    PI - ((d.bending_stiffness / t_in).sqrt() + (d.bending_stiffness / t_out).sqrt()) / d.radius
+}
+
+/// Mode `tensions` beyond the string's capstan ([`solve`]): the larger tension given,
+/// the other free, φ_B searched from the middle of the string contact arc toward the
+/// contact start (the slip arc growing, the free tension moving away from the given) until
+/// the free tension passes the scene's; Brent's method on that bracket; then the
+/// `tensions` solve from the root's solution (its parameters less the free end's force).
+fn beyond_the_capstan(data: &CosseratPulley, opts: &BeltOptions, clock: Instant) -> Result<CosseratPulleySolution, BeltError> {
+    let driving = data.tension_in >= data.tension_out;
+    let (given, target, free_name) = if driving { (End::In, data.tension_out, "outflow") } else { (End::Out, data.tension_in, "inflow") };
+    // continued from a solution at a nearby φ_B (near the contact start the string creep
+    // start is too far off: braking N_in = 7, N_out = 15 N failed from it 0.13 rad before
+    // the contact start), else from the creep start
+    let at = |phi: f64, from: Option<&Solution>| -> Result<CosseratPulleySolution, BeltError> {
+        let d = data.with_mode(Mode::Transition { stick_slip_angle: phi, given, driving })?;
+        match from.map(|f| solve_from(&d, opts, Some(f), clock)) {
+            Some(Ok(s)) => Ok(s),
+            _ => solve_from(&d, opts, None, clock),
+        }
+    };
+    let free = |s: &CosseratPulleySolution| if driving { s.data.tension_out } else { s.data.tension_in };
+    // g > 0: the free tension (the smaller) still above the scene's, nearer the given
+    // one — too little slip
+    let g = |s: &CosseratPulleySolution| (free(s) - target) / target;
+    let contact = string_contact_arc(data);
+    let phi_c = -FRAC_PI_2 + (data.bending_stiffness / data.effective(data.tension_out)).sqrt() / data.radius;
+    let mut lo = phi_c + 0.5 * contact;
+    let mut s_lo = at(lo, None)?;
+    let mut work = s_lo.stats.clone();
+    let mut hi = None;
+    // the free tension met with less than half the string contact arc of slip (large μ:
+    // the edge peaks carry most of it): the bracket lies below, toward the contact end
+    if g(&s_lo) <= 0.0 {
+        let mut upper = (lo, s_lo);
+        let mut found = None;
+        for _ in 0..20 {
+            let phi = phi_c + 0.5 * (upper.0 - phi_c);
+            let s = at(phi, Some(&upper.1.solution))?;
+            work.add_iterations(&s.stats);
+            if g(&s) > 0.0 {
+                found = Some((phi, s));
+                break;
+            }
+            upper = (phi, s);
+        }
+        let Some(lower) = found else {
+            return Err(BeltError::Inadmissible(format!("mode `tensions` beyond the string's capstan: no stick → slip angle above the contact end φ_C ≈ {phi_c:.6} rad leaves the {free_name} tension above {target} N")));
+        };
+        (lo, s_lo) = lower;
+        hi = Some(upper);
+    }
+    // toward the contact start of the last solution, each step half the stick arc left
+    // (a quarter of the step after a failed solve, down to 1e-3 of the stick arc); the
+    // capacity is met when the stick arc is gone (1e-9 of the contact arc)
+    let mut frac = 0.5;
+    let mut last_failure = None;
+    for _ in 0..80 {
+        if hi.is_some() {
+            break;
+        }
+        let [a, b, _] = s_lo.contact_angles();
+        let stick = a - b;
+        if stick <= 1e-9 * contact {
+            return Err(BeltError::CapstanLimitExceeded {
+                end: free_name,
+                target,
+                reached: free(&s_lo),
+                stick_arc: stick,
+                string_slip_arc: data.string_slip_arc(),
+                contact_arc: contact,
+                mu: data.friction,
+            });
+        }
+        let phi = lo + frac * stick;
+        match at(phi, Some(&s_lo.solution)) {
+            Ok(s) => {
+                work.add_iterations(&s.stats);
+                if g(&s) <= 0.0 {
+                    hi = Some((phi, s));
+                } else {
+                    (lo, s_lo, frac) = (phi, s, (2.0 * frac).min(0.5));
+                }
+            }
+            Err(cause) => {
+                last_failure = Some((phi, cause));
+                frac /= 4.0;
+                if frac < 1e-3 {
+                    break;
+                }
+            }
+        }
+    }
+    let Some((hi, s_hi)) = hi else {
+        let [a, b, _] = s_lo.contact_angles();
+        let (phi, cause) = last_failure.unwrap_or((lo, BeltError::Inadmissible("80 steps".into())));
+        return Err(BeltError::CapstanSearchFailed { end: free_name, target, reached: free(&s_lo), stick_arc: a - b, phi, cause: Box::new(cause) });
+    };
+    let mut best = s_hi;
+    let root = numerics::roots::brent(
+        |phi: f64| -> Result<f64, BeltError> {
+            let s = at(phi, Some(&best.solution))?;
+            work.add_iterations(&s.stats);
+            let v = g(&s);
+            if v.abs() < g(&best).abs() {
+                best = s;
+            }
+            Ok(v)
+        },
+        lo,
+        hi,
+        1e-10,
+    );
+    if let Err(e) = root {
+        return Err(BeltError::Inadmissible(format!("mode `tensions` beyond the string's capstan: the search of φ_B for the {free_name} tension {target} N failed ({e})")));
+    }
+    let mut start = best.solution.clone();
+    start.params.truncate(LAMBDA_B + 1);
+    let mut sol = solve_from(data, opts, Some(&start), clock)?;
+    work.add_iterations(&sol.stats);
+    sol.stats.newton_iterations = work.newton_iterations;
+    sol.stats.jacobian_evaluations = work.jacobian_evaluations;
+    sol.stats.refinements = work.refinements;
+    Ok(sol)
 }
 
 /// A solved one-pulley scene: data, the scaled problem on the open topology, the BVP
@@ -376,9 +495,26 @@ pub fn effective_force(d: &CosseratPulley, p: &BeltPoint) -> [f64; 2] {
 }
 
 /// Solve a one-pulley scene in mode `tensions` from its data alone (module docs).
+///
+/// Mode `tensions` with a tension ratio beyond the string's capstan over the wrap
+/// (ln(T̃_high/T̃_low)/μ ≥ the string contact arc) has no string start; the rod may still
+/// carry it (μ times its edge pressure peaks adds friction, docs/cosserat-pulley.md). Such
+/// a scene is solved through mode `transition` (the larger tension given, φ_B searched
+/// toward the contact start until the other tension is met) and then in mode `tensions`
+/// from that solution; where φ_B reaches the contact start first,
+/// [`BeltError::CapstanLimitExceeded`] names the tension the friction can hold.
 pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulleySolution, BeltError> {
     let clock = Instant::now();
     validate(data, opts)?;
+    if data.mode == Mode::Tensions && data.string_slip_arc() >= string_contact_arc(data) {
+        return beyond_the_capstan(data, opts, clock);
+    }
+    solve_from(data, opts, None, clock)
+}
+
+/// [`solve`] after validation, from `start` (a solution at η = 1 of the same topology
+/// and parameters) or else the string creep start with its homotopy.
+fn solve_from(data: &CosseratPulley, opts: &BeltOptions, start: Option<&Solution>, clock: Instant) -> Result<CosseratPulleySolution, BeltError> {
     let contour = OpenContour::new(data.radius, data.end_distance)
         .map_err(|_| BeltError::InvalidInput { name: "end_distance", value: data.end_distance, reason: "R and D must be finite and > 0" })?;
     let (law, scales) = scaled(data);
@@ -387,7 +523,9 @@ pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulley
     let (window, slack) = problem.law.admissible_window();
     let accept = |s: &Solution| problem.topology.check(&s.params, window, slack);
     // the start at the scene's a needs no homotopy: straight to the path and final solves
-    let stages = if problem.law.bending_start == problem.law.bending {
+    let stages = if let Some(start) = start {
+        run::direct_and_final_solve(&problem, start, opts, clock)
+    } else if problem.law.bending_start == problem.law.bending {
         run::direct_and_final_solve(&problem, &Solution { eta: 1.0, ..guess }, opts, clock)
     } else {
         run::homotopy_and_final_solve(&problem, &guess, opts, accept, clock)
