@@ -1,6 +1,6 @@
 //! The Cosserat rod element (`fem::formulation::cosserat`, docs/fem-cosserat.md) through
 //! the layout-generic static analysis: on the data of `rod-hanging` (the Kirchhoff rod's
-//! loop; a Cosserat scene has no FE path yet) with a growing shear stiffness b₂ the
+//! loop, so that both elements see the same scene) with a growing shear stiffness b₂ the
 //! Cosserat solution approaches `rod-simpson`'s (same rules for the shared terms) — the
 //! Kirchhoff limit (spec §1.9, check C-12) as a trend.
 
