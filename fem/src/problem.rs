@@ -11,6 +11,15 @@ use crate::error::FemError;
 use crate::options::{FemOptions, SolverSettings};
 use crate::static_homotopy::StringHanging;
 
+/// The Cosserat rod's default penalty is at least this times b₂²/a (N/m²): its penalty
+/// layer √(b₂/P) is then ≤ √(a/b₂)/10. Below b₂ = √(κ EA a/R²)/10 (4.0e3 N on
+/// `cosserat-hanging`) κ EA/R² is the larger and nothing changes. Measured on
+/// `cosserat-hanging` at 512 elements against the BVP's contact arc, with P = κ EA/R²
+/// (3.1e11) → this floor: b₂ = 2e4 N 0.29° → 0.009°, b₂ = 1e5 N 0.47° → 0.001° (the
+/// error of κ EA/R² alone did not fall with the mesh: 113.0247° at 512, 1024 and 2048
+/// elements against 112.5565°); a factor 10 left 0.025° at 1e5.
+pub const SHEAR_PENALTY_FACTOR: f64 = 100.0;
+
 /// Pulley geometry: two equal pulleys, centres on the x axis.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Geometry {
@@ -148,10 +157,18 @@ impl FemProblem {
         self.effects.gravity.map(|g| g * self.belt.mass_per_length)
     }
 
-    /// The normal penalty P: `opts.penalty`, or κ EA/R² (docs/fem-string.md §9).
+    /// The normal penalty P: `opts.penalty`, or κ EA/R² (docs/fem-string.md §9) — for a
+    /// Cosserat rod at least [`SHEAR_PENALTY_FACTOR`]·b₂²/a, so that the penalty layer
+    /// √(b₂/P) at a contact edge stays a tenth of the shear layer √(a/b₂) that carries the
+    /// edge pressure peak (docs/fem-cosserat.md §9.6).
     pub fn penalty(&self, opts: &FemOptions, settings: &SolverSettings) -> f64 {
         let r = self.geometry.radius;
-        opts.penalty.unwrap_or(settings.penalty_factor * self.belt.axial_stiffness / (r * r))
+        let axial = settings.penalty_factor * self.belt.axial_stiffness / (r * r);
+        let shear = match (self.belt.shear_stiffness, self.belt.bending_stiffness) {
+            (Some(b2), Some(a)) => SHEAR_PENALTY_FACTOR * b2 * b2 / a,
+            _ => 0.0,
+        };
+        opts.penalty.unwrap_or(axial.max(shear))
     }
 
     /// True for a friction drive of a string (analysis steady or transient, Coulomb
