@@ -125,16 +125,24 @@ fn stick_slip_angle_round_trip() {
 /// Bound 2e-3 relative: the FE's free-tension error at 128 (3.6e-3 driving, §12.7).
 #[test]
 fn stick_slip_angle_round_trip_with_the_belt_driving_the_pulley() {
-    let tensions = fe(&scene(&[("tension_in", 10.0), ("tension_out", 15.0)], 0.3), 128).unwrap();
+    braking_round_trip(128, 2e-2);
+}
+
+/// The braking `tensions` solve (N_in = 10 < N_out = 15 N) at `elements`, its φ_B fed
+/// back with N_out and `belt_drives_pulley`: φ_B to 1e-9 rad, N_in to `n_in_bound` N of
+/// 10 N, a positive torque. Returns the two runs.
+fn braking_round_trip(elements: usize, n_in_bound: f64) -> (FemRun, FemRun) {
+    let tensions = fe(&scene(&[("tension_in", 10.0), ("tension_out", 15.0)], 0.3), elements).unwrap();
     let phi = stick_slip_angle(&tensions.summary);
     let mut sc = scene(&[("stick_slip_angle", phi), ("tension_out", 15.0)], 0.3);
     sc.drive.belt_drives_pulley = Some(true);
-    let back = fe(&sc, 128).unwrap();
+    let back = fe(&sc, elements).unwrap();
     let s = &back.summary;
-    eprintln!("braking φ_B = {phi}: N_in = {:?}, φ_B = {} ({:.2} s, {} Newton iterations)", s.tension_in, stick_slip_angle(s), back.stats.wall_seconds, back.stats.newton_iterations);
+    eprintln!("braking φ_B = {phi} at {elements}: N_in = {:?}, φ_B = {} ({:.2} s, {} Newton iterations), notes {:?}", s.tension_in, stick_slip_angle(s), back.stats.wall_seconds, back.stats.newton_iterations, back.notes);
     assert!((stick_slip_angle(s) - phi).abs() < 1e-9, "φ_B {} vs {phi}", stick_slip_angle(s));
-    assert!((s.tension_in.unwrap() - 10.0).abs() <= 2e-2, "N_in = {:?}", s.tension_in);
+    assert!((s.tension_in.unwrap() - 10.0).abs() <= n_in_bound, "N_in = {:?}", s.tension_in);
     assert!(s.pulley.as_ref().unwrap().torque.unwrap() > 0.49, "the belt drives the pulley");
+    (tensions, back)
 }
 
 /// The braking φ_B search at 64 elements (docs/fem-drive.md §12 "A transition that
@@ -147,16 +155,7 @@ fn stick_slip_angle_round_trip_with_the_belt_driving_the_pulley() {
 /// not its own.
 #[test]
 fn braking_stick_slip_angle_round_trip_at_64_elements() {
-    let tensions = fe(&scene(&[("tension_in", 10.0), ("tension_out", 15.0)], 0.3), 64).unwrap();
-    let phi = stick_slip_angle(&tensions.summary);
-    let mut sc = scene(&[("stick_slip_angle", phi), ("tension_out", 15.0)], 0.3);
-    sc.drive.belt_drives_pulley = Some(true);
-    let back = fe(&sc, 64).unwrap();
-    let s = &back.summary;
-    eprintln!("braking φ_B = {phi} at 64: N_in = {:?}, φ_B = {} ({:.2} s, {} Newton iterations), notes {:?}", s.tension_in, stick_slip_angle(s), back.stats.wall_seconds, back.stats.newton_iterations, back.notes);
-    assert!((stick_slip_angle(s) - phi).abs() < 1e-9, "φ_B {} vs {phi}", stick_slip_angle(s));
-    assert!((s.tension_in.unwrap() - 10.0).abs() <= 1e-8, "N_in = {:?}", s.tension_in);
-    assert!(s.pulley.as_ref().unwrap().torque.unwrap() > 0.49, "the belt drives the pulley");
+    let (tensions, back) = braking_round_trip(64, 1e-8);
     assert!(tensions.notes.is_empty() && back.notes.is_empty(), "{:?} {:?}", tensions.notes, back.notes);
 }
 
