@@ -236,6 +236,21 @@ impl Contour {
         }
     }
 
+    /// ϑ_g(σ), rad: the angle of t_g from +x, continuous on σ ∈ [0, L_geom) (σ wrapped) —
+    /// 0 on the upper span, falling by π over the driven arc, −π on the lower span, −2π at
+    /// the end of the driver arc, where it jumps back to 0. The reference of the section
+    /// rotation θ = ϑ_g + ψ (docs/fem-cosserat.md (C0)); a rotation that is continuous
+    /// along the belt is unwrapped to lie within π of it.
+    pub fn tangent_angle(&self, sigma: f64) -> f64 {
+        let (region, u) = self.locate(sigma);
+        match region {
+            Region::UpperSpan => 0.0,
+            Region::DrivenArc => -u / self.radius,
+            Region::LowerSpan => -PI,
+            Region::DriverArc => -PI - u / self.radius,
+        }
+    }
+
     /// Centre of a pulley, m: (−H/2, 0) for the driver, (+H/2, 0) for the driven.
     pub fn pulley_centre(&self, pulley: Pulley) -> [f64; 2] {
         let half = 0.5 * self.centre_distance;
@@ -447,6 +462,17 @@ impl OpenContour {
         [n[1], -n[0]]
     }
 
+    /// ϑ_g(σ), rad: the angle of t_g from +x, continuous along σ — 0 on the inflow span,
+    /// falling by π over the arc, −π on the outflow span (the end conditions θ = 0 and
+    /// θ = −π of a rod on it).
+    pub fn tangent_angle(&self, sigma: f64) -> f64 {
+        match self.locate(sigma) {
+            (OpenRegion::InflowSpan, _) => 0.0,
+            (OpenRegion::PulleyArc, u) => -u / self.radius,
+            (OpenRegion::OutflowSpan, _) => -PI,
+        }
+    }
+
     /// g(σ), m.
     pub fn g(&self, sigma: f64) -> [f64; 2] {
         let (d, r) = (self.end_distance, self.radius);
@@ -573,6 +599,23 @@ impl Path {
         }
     }
 
+    /// ϑ_g(σ), rad: the angle of the contour tangent from +x ([`Contour::tangent_angle`],
+    /// [`OpenContour::tangent_angle`]).
+    pub fn tangent_angle(&self, sigma: f64) -> f64 {
+        match self {
+            Path::Loop(c) => c.tangent_angle(sigma),
+            Path::Open(c) => c.tangent_angle(sigma),
+        }
+    }
+
+    /// The angle `theta` shifted by a multiple of 2π to lie within π of ϑ_g(σ): a section
+    /// rotation unwrapped as [`Contour::tangent_angle`] (on the loop, continuous on
+    /// [0, L_geom), jumping by 2π at σ = 0).
+    pub fn unwrap_near_tangent(&self, sigma: f64, theta: f64) -> f64 {
+        let reference = self.tangent_angle(sigma);
+        theta + (2.0 * PI) * ((reference - theta) / (2.0 * PI)).round()
+    }
+
     /// True on an arc (polar region).
     pub fn is_polar(&self, sigma: f64) -> bool {
         self.alpha(sigma) > 0.0
@@ -638,6 +681,42 @@ mod tests {
 
     fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
         (a[0] - b[0]).hypot(a[1] - b[1])
+    }
+
+    /// ϑ_g is the angle of t_g (cos, sin to round-off), falls with ∂σϑ_g = −α by central
+    /// differences inside every region, is continuous at the inner transitions and spans
+    /// [0, −2π) round the loop, [0, −π] along the open contour.
+    #[test]
+    fn tangent_angle_is_the_angle_of_t_g() {
+        let open = OpenContour::new(R, 0.5).unwrap();
+        for path in [Path::Loop(contour()), Path::Open(open)] {
+            let l = path.length();
+            let t_g = |s: f64| match path {
+                Path::Loop(c) => c.t_g(s),
+                Path::Open(c) => c.t_g(s),
+            };
+            let mut rng = Rng(0x5eed_1234);
+            for _ in 0..200 {
+                let s = l * (0.001 + 0.998 * rng.next());
+                let (th, t) = (path.tangent_angle(s), t_g(s));
+                assert!((th.cos() - t[0]).abs() < 1e-14 && (th.sin() - t[1]).abs() < 1e-14, "σ = {s}");
+                let d = 1e-7;
+                let (a, b) = (s - d, s + d);
+                if path.regions().iter().any(|&(x, y, _)| a >= x && b < y) {
+                    let fd = (path.tangent_angle(b) - path.tangent_angle(a)) / (2.0 * d);
+                    assert!((fd + path.alpha(s)).abs() < 1e-7, "σ = {s}: {fd} against −α = {}", -path.alpha(s));
+                }
+                assert!(th <= 0.0 && th > -2.0 * PI, "σ = {s}: {th}");
+                let theta = th + 0.3 + 6.0 * PI;
+                assert!((path.unwrap_near_tangent(s, theta) - (th + 0.3)).abs() < 1e-12);
+            }
+            for &(a, _, _) in &path.regions()[1..] {
+                let jump = path.tangent_angle(a) - path.tangent_angle(a - 1e-12);
+                assert!(jump.abs() < 1e-9, "jump {jump} at σ = {a}");
+            }
+        }
+        assert!((OpenContour::new(R, 0.5).unwrap().tangent_angle(1.0 + PI * R) + PI).abs() < 1e-15);
+        assert!((contour().tangent_angle(contour().length() - 1e-12) + 2.0 * PI).abs() < 1e-9);
     }
 
     #[test]

@@ -113,9 +113,11 @@ pub fn sample_fields<V: SolutionView + ?Sized>(view: &V, n: usize) -> Fields {
 /// Samples a view at the given σ, in their order (`beltcheck reference --sigma`).
 ///
 /// `moment` is present only if the view returns a moment at every σ (absent for a
-/// string, and for no σ at all). On an open path (one-pulley scenes) the fields of an
-/// open belt are written too — θ, Q, Γ₂, p, f_t and the contact state, each where the
-/// view has it at every σ; the two-pulley result format keeps its five fields.
+/// string, and for no σ at all). On an open path (one-pulley scenes) and for a
+/// shear-deformable rod (the Cosserat rod: a view with a shear strain) the fields of
+/// issue 13 are written too — θ, Q, Γ₂, p, f_t and the contact state, each where the
+/// view has it at every σ; the string's and the Kirchhoff rod's two-pulley results keep
+/// their five fields (DESIGN's result format).
 pub fn fields_at<V: SolutionView + ?Sized>(view: &V, sigma: Vec<f64>) -> Fields {
     let pos: Vec<[f64; 2]> = sigma.iter().map(|&s| view.position(s)).collect();
     let every = |f: &dyn Fn(f64) -> Option<f64>| -> Option<Vec<f64>> {
@@ -124,8 +126,8 @@ pub fn fields_at<V: SolutionView + ?Sized>(view: &V, sigma: Vec<f64>) -> Fields 
         }
         sigma.iter().map(|&s| f(s)).collect()
     };
-    let open = view.path().is_open();
-    let extra = |f: &dyn Fn(f64) -> Option<f64>| if open { every(f) } else { None };
+    let extended = view.path().is_open() || sigma.first().is_some_and(|&s| view.shear_strain(s).is_some());
+    let extra = |f: &dyn Fn(f64) -> Option<f64>| if extended { every(f) } else { None };
     Fields {
         x: pos.iter().map(|p| p[0]).collect(),
         y: pos.iter().map(|p| p[1]).collect(),
@@ -136,7 +138,7 @@ pub fn fields_at<V: SolutionView + ?Sized>(view: &V, sigma: Vec<f64>) -> Fields 
         shear_strain: extra(&|s| view.shear_strain(s)),
         pressure: extra(&|s| view.contact_pressure(s)),
         friction: extra(&|s| view.friction_traction(s)),
-        state: (open && !sigma.is_empty()).then(|| sigma.iter().map(|&s| view.contact_state(s)).collect()),
+        state: (extended && !sigma.is_empty()).then(|| sigma.iter().map(|&s| view.contact_state(s)).collect()),
         sigma,
     }
 }

@@ -613,7 +613,8 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
 
     fn pulley_summary(&self, pulley: Pulley) -> PulleySummary {
         // the Cosserat rod has no concentrated edge forces (its pressure is finite)
-        let rod = self.params.bending_stiffness.is_some() && self.kernel.theory() != drive::scene::Theory::Cosserat;
+        let cosserat = self.kernel.theory() == drive::scene::Theory::Cosserat;
+        let rod = self.params.bending_stiffness.is_some() && !cosserat;
         match self.zone(pulley) {
             None => PulleySummary {
                 contact_arc: Some(0.0),
@@ -627,6 +628,9 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
                 contact_end: Some(z.angle_end),
                 edge_force_start: z.edge_force_start,
                 edge_force_end: z.edge_force_end,
+                // its finite pressure just inside the zone instead (issue 13)
+                edge_pressure_start: cosserat.then(|| self.edge_pressure(pulley, z.sigma_start, 1.0)).flatten(),
+                edge_pressure_end: cosserat.then(|| self.edge_pressure(pulley, z.sigma_end, -1.0)).flatten(),
                 ..Default::default()
             },
         }
@@ -805,7 +809,7 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
             return self.force_edge(pulley, sigma_b, inward).map(|(_, p)| p / ds).filter(|p| p.is_finite());
         }
         let (nodes, g_at) = self.inward_forces(pulley, sigma_b, inward);
-        let floor = 1e-12 * self.mesh.contour().length();
+        let floor = (1e-12 * self.mesh.contour().length()).max(EDGE_LAYER_SKIP * self.penalty_layer().unwrap_or(0.0));
         let inside: Vec<f64> = nodes.into_iter().filter(|d| *d > floor).collect();
         let x: [f64; 3] = inside.get(..3)?.try_into().ok()?;
         let g = x.map(&g_at);
@@ -1038,6 +1042,14 @@ fn lagrange(points: &[(f64, f64)], xi: f64) -> f64 {
 /// at or below the penalty's 6.1e-5, and at 512 elements it gives 1.4e-6.
 const FORCE_EDGE_NODES: usize = 6;
 
+/// Nodes closer to a Cosserat contact edge than this many penalty layers ℓ_P
+/// ([`FemSolution::penalty_layer`]) are not used by [`FemSolution::edge_pressure`]: inside
+/// the layer the penalty's force G(x) from the gap crossing is not yet the limit
+/// solution's from the edge (G at the edge itself is not 0 but the layer's force), and a
+/// node there bends the cubic — on `cosserat-hanging` at 2048 elements a node 1.1 ℓ_P
+/// inside gave 651 N/m against the BVP's 549.5 (docs/fem-cosserat.md §12.5).
+const EDGE_LAYER_SKIP: f64 = 4.0;
+
 /// Root of a continuous f on [a, b] with f(a), f(b) on different sides of 0 (bisection
 /// to |b − a| < 1e-15 in ξ, i.e. 1e-15·h/2 in σ).
 fn bisect(f: &dyn Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
@@ -1082,6 +1094,21 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for FemSolution<
     /// V = −∂σM/|∂σr| (docs/fem-rod.md K5) for a rod, `None` for a string.
     fn transverse_force(&self, sigma: f64) -> Option<f64> {
         self.rod_resultants(sigma).map(|x| x.1)
+    }
+
+    /// The section rotation θ of a rod: the Cosserat rod's θ = ϑ_g + ψ
+    /// ([`LayoutElement::rotation_at`]), the Kirchhoff rod's tangent angle of ∂σr; unwrapped
+    /// to lie within π of the contour's tangent angle (continuous on [0, L_geom)); `None`
+    /// for a string.
+    fn rotation(&self, sigma: f64) -> Option<f64> {
+        self.params.bending_stiffness?;
+        let (e, xi) = self.mesh.locate(sigma);
+        let el = self.context(e);
+        let theta = self.kernel.rotation_at(&el, &self.local[e], xi).unwrap_or_else(|| {
+            let [_, r1, _] = el.curve_at(&self.point(e, xi));
+            r1[1].atan2(r1[0])
+        });
+        Some(drive::contour::Path::Loop(*self.mesh.contour()).unwrap_near_tangent(sigma, theta))
     }
 
     /// Γ₂ of a shear-deformable element at σ from its fields ([`LayoutElement::shear_strain_at`]);

@@ -75,6 +75,13 @@ fn catalogue_scene_converges_to_the_bvp_with_its_balances() {
         let c6 = 0.1 * (ft(10.0) - ft(15.0));
         assert!((p.torque.unwrap() - c6).abs() < 1e-4 * c6.abs(), "C-6: torque {:?} vs R(F̃_in − F̃_out) = {c6}", p.torque);
         assert!(p.torque.unwrap() < 0.0 && p.stick_arc.unwrap() > 0.3 && p.slip_arc.unwrap() > 0.3, "{p:?}");
+        // the section rotation field (issue 13): θ = 0 at the inflow end and −π at the
+        // outflow end (ψ essential there), continuous and falling by π round the pulley
+        let l = r.view.path().length();
+        let f = drive::view::fields_at(r.view.as_ref(), (0..=400).map(|i| l * i as f64 / 400.0).collect());
+        let theta = f.rotation.expect("the FE writes θ");
+        assert!(theta[0].abs() < 1e-12 && (theta[400] + std::f64::consts::PI).abs() < 1e-12, "θ at the ends {} {}", theta[0], theta[400]);
+        assert!(theta.windows(2).all(|w| (w[1] - w[0]).abs() < 0.05), "θ jumps");
     }
     let (first, last) = (all[0], all[2]);
     for (q, name, factor) in [(4, "slip arc", 4.0), (6, "edge pressure at A", 8.0), (7, "edge pressure at C", 8.0), (3, "contact arc", 16.0)] {

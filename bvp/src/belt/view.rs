@@ -27,7 +27,7 @@ pub fn per_contour_length(value: Option<f64>, point: &BeltPoint) -> f64 {
 }
 
 /// The σ-sampled methods of `SolutionView` (position, axial and transverse force,
-/// bending moment, shear strain, contact pressure, friction traction, contact state,
+/// bending moment, section rotation, shear strain, contact pressure, friction traction, contact state,
 /// material coordinate), expanded inside `impl SolutionView for T` of a belt solution `T` with
 /// `fn at_sigma(&self, σ) -> (usize, BeltPoint)` (segment and point at σ) and
 /// `fn topology(&self) -> &Topology`. The friction traction is `None` for a topology
@@ -53,6 +53,16 @@ macro_rules! sampled_view_methods {
 
         fn shear_strain(&self, sigma: f64) -> Option<f64> {
             self.at_sigma(sigma).1.shear_strain
+        }
+
+        /// The section rotation θ of a rod (the director angle of a Cosserat rod, the
+        /// tangent angle of a Kirchhoff rod), unwrapped to lie within π of the contour's
+        /// tangent angle ([`drive::contour::Path::unwrap_near_tangent`]); `None` for a
+        /// string (no moment, no section rotation of its own).
+        fn rotation(&self, sigma: f64) -> Option<f64> {
+            let (_, pt) = self.at_sigma(sigma);
+            pt.moment?;
+            Some(self.path().unwrap_near_tangent(sigma, pt.theta?))
         }
 
         fn contact_pressure(&self, sigma: f64) -> Option<f64> {

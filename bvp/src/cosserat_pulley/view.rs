@@ -43,10 +43,6 @@ impl SolutionView for CosseratPulleySolution {
 
     crate::belt::view::sampled_view_methods!();
 
-    fn rotation(&self, sigma: f64) -> Option<f64> {
-        self.at_sigma(sigma).1.theta
-    }
-
     fn summary(&self) -> Summary {
         CosseratPulleySolution::summary(self)
     }

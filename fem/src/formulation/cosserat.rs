@@ -546,6 +546,12 @@ impl LayoutElement<NC> for CosseratElement {
         Some(Self::point(el, q, xi).strains(el)[1])
     }
 
+    /// θ = ϑ_g(σ) + ψ (C0).
+    fn rotation_at(&self, el: &ElementContext, q: &[f64; NC], xi: f64) -> Option<f64> {
+        let p = Self::point(el, q, xi);
+        Some(el.contour.tangent_angle(p.sigma) + p.psi)
+    }
+
     /// The tributary penalty pressure: at the default penalty the element's cubic ν sits
     /// above the pulley at the nodes while the penalty presses it in between, at the
     /// contact rule's points (docs/fem-cosserat.md §11.1, §12.5).

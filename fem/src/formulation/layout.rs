@@ -86,6 +86,12 @@ pub trait LayoutElement<const N: usize>: ElementKernel<N> {
     fn shear_strain_at(&self, _el: &ElementContext, _q: &[f64; N], _xi: f64) -> Option<f64> {
         None
     }
+    /// The section rotation θ (rad, the director's angle from +x, any branch) at ξ of an
+    /// element with a rotation field of its own; `None` (the default) where the section
+    /// follows the tangent of the centreline (the Kirchhoff rod: θ is the tangent angle).
+    fn rotation_at(&self, _el: &ElementContext, _q: &[f64; N], _xi: f64) -> Option<f64> {
+        None
+    }
     /// How a friction point of the closed loop's direct steady solve reads its normal
     /// load (`string_drive::steady`, docs/fem-cosserat.md §11.1): the penalty of the gap
     /// at the node ([`FrictionNormal::Nodal`], the default: the string's and the

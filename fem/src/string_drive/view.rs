@@ -138,6 +138,11 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> SolutionView for DriveSolutio
         self.base.transverse_force(sigma)
     }
 
+    /// The rod's section rotation θ ([`FemSolution`]'s; `None` for the string).
+    fn rotation(&self, sigma: f64) -> Option<f64> {
+        self.base.rotation(sigma)
+    }
+
     /// The element's shear strain Γ₂ ([`FemSolution`]'s; `None` for the string).
     fn shear_strain(&self, sigma: f64) -> Option<f64> {
         self.base.shear_strain(sigma)
