@@ -59,13 +59,36 @@ pub enum StampError {
         onset: f64,
         full: f64,
     },
+    /// Cosserat rod (docs/rod-stamp.md, C-10): b₂ ≤ F makes β² = (b₂ − F)/EI ≤ 0 — the
+    /// pre-tension reaches the shear stiffness (shear-critical), no edge layer exists.
+    #[error(
+        "shear-critical Cosserat rod: shear stiffness b₂ = {shear_stiffness} N must exceed the axial force F = {axial_force} N (β² = (b₂ − F)/EI > 0, docs/rod-stamp.md C2)"
+    )]
+    ShearCritical {
+        shear_stiffness: f64,
+        axial_force: f64,
+    },
+    /// Cosserat rod: δ ≤ 0, the stamp apex does not rise above the supports (any δ > 0
+    /// gives a contact zone: the shearable rod has no point-contact regime).
+    #[error(
+        "no contact: indentation δ = {indentation} m ≤ 0, the stamp does not reach the straight rod (docs/rod-stamp.md C9)"
+    )]
+    NoContact { indentation: f64 },
+    /// Cosserat rod: δ ≥ ℓ²/(2ρ), the stamp face reaches the supports.
+    #[error(
+        "stamp wider than the span: indentation δ = {indentation} m ≥ ℓ²/(2ρ) = {full} m, the stamp face reaches the supports (docs/rod-stamp.md C9)"
+    )]
+    StampWiderThanSpan { indentation: f64, full: f64 },
+    /// Cosserat rod: the free rod dips below the stamp face (gap < 0 outside the zone).
+    #[error("the free rod penetrates the stamp: gap {gap} m at x = {x} m (docs/rod-stamp.md C10)")]
+    Penetration { x: f64, gap: f64 },
     /// The scalar root of (T5) or the FE Newton iteration failed.
     #[error("stamp solver: {0}")]
     Solver(String),
 }
 
 impl Stamp {
-    fn validate(&self) -> Result<(), StampError> {
+    pub(crate) fn validate(&self) -> Result<(), StampError> {
         for (name, value) in [
             ("half_span", self.half_span),
             ("bending_stiffness", self.bending_stiffness),
