@@ -36,6 +36,8 @@
 //!   and contact pressure, contact boundaries recovered from the free spans, summary;
 //! - [`stamp`]: a standalone check: the linearised rod on a rigid stamp (§6.3, Fig. 5a)
 //!   against its closed form — how a penalty FE carries concentrated edge forces;
+//! - [`stamp_cosserat`]: its shearable (Cosserat, Fig. 5b, check C-10) version — closed
+//!   form with finite edge pressure peaks, and a locking-free Timoshenko penalty FE;
 //! - [`surface`], [`analysis`]: the 2-D discretisation over (σ, ζ) (periodic BFS mesh,
 //!   numbering, assembly over a surface kernel, per-point history advected along σ) and
 //!   the time stepping with history and optional inertia the shell runs on
@@ -104,6 +106,7 @@ pub mod quadrature;
 pub mod shell;
 pub mod solution;
 pub mod stamp;
+pub mod stamp_cosserat;
 pub mod string_drive;
 pub mod static_homotopy;
 pub mod surface;
