@@ -16,6 +16,8 @@ pub fn group<'a>(c: &'a mut Criterion, name: &str) -> BenchmarkGroup<'a, WallTim
     g
 }
 
+/// (Not every benchmark uses it: `cosserat` solves whole scene files.)
+#[allow(dead_code)]
 /// Benchmarks `solve(data, opts)` for every `(name, method, scheme)` of `methods` at every
 /// tolerance of `tols`, as `{prefix}{name}/tol={tol:.0e}`.
 pub fn bench_methods<D, S, E: Debug>(
