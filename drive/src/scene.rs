@@ -1482,6 +1482,30 @@ impl Scene {
                 return Err(SceneError::SpeedAtOrAboveCritical { path: path.into(), stiffness: k, mass_per_length: rho, transport_rate: c });
             }
         }
+        // a tensioned shear rod softer in shear than its tension: the edge layers of the
+        // linearised theory decay with β² = (b₂ − χ − T̃)/a (spec C-10's (b₂ − F)/a with the
+        // moving belt's b₂ − χ and T̃), so at b₂ − χ ≤ T̃ they oscillate instead — measured:
+        // both methods fail from their start there (docs/cosserat-pulley.md, hard cases)
+        if let (Theory::Cosserat, Some(b2)) = (self.belt.theory, self.belt.shear_stiffness) {
+            let chi = if self.effects.inertia == Some(true) { chi } else { 0.0 };
+            let b1 = self.belt.axial_stiffness;
+            for (end, n) in [("tension_in", d.tension_in), ("tension_out", d.tension_out)] {
+                let Some(n) = n else { continue };
+                let effective = n - chi * (1.0 + n / b1);
+                if b2 - chi <= effective {
+                    return Err(SceneError::NotAllowed {
+                        path: "belt.shear_stiffness".into(),
+                        reason: format!(
+                            "b₂ − ρc² = {} N does not exceed the effective tension T̃ = {} N at `drive.{end}` = {} N: a tensioned rod that soft in shear has no decaying edge layers (β² = (b₂ − ρc² − T̃)/a ≤ 0 in the linearised theory, spec C-10), so neither method has a solution to offer; b₂ must exceed {} N",
+                            crate::error::num(&(b2 - chi)),
+                            crate::error::num(&effective),
+                            crate::error::num(&n),
+                            crate::error::num(&(effective + chi))
+                        ),
+                    });
+                }
+            }
+        }
         Ok(())
     }
 

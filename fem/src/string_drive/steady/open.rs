@@ -645,7 +645,51 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     };
     let arc = (start - end).rem_euclid(2.0 * PI);
     let any_slip = state.results.iter().any(|p| p.slip);
-    let slip = if any_slip { transition(&state.results, &contour, pulley).map_or(arc, |s| (angle(s) - end).rem_euclid(2.0 * PI).min(arc)) } else { 0.0 };
+    let located = transition(&state.results, &contour, pulley);
+    // the stick and slip runs of the contact points in the order of travel (+σ): Paper C's
+    // topology is one stick run followed by one slip run (or either alone)
+    let mut pts: Vec<&PointResult> = state.results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
+    pts.sort_by(|a, b| (a.point.sigma, a.point.part.offset()).partial_cmp(&(b.point.sigma, b.point.part.offset())).unwrap_or(std::cmp::Ordering::Equal));
+    let mut runs: Vec<(bool, f64, f64)> = Vec::new();
+    for p in &pts {
+        match runs.last_mut() {
+            Some(run) if run.0 == p.slip => run.2 = p.point.sigma,
+            _ => runs.push((p.slip, p.point.sigma, p.point.sigma)),
+        }
+    }
+    let paper_c = runs.len() <= 1 || (runs.len() == 2 && !runs[0].0);
+    let mut topology_note = None;
+    let slip = if !any_slip {
+        0.0
+    } else if paper_c {
+        located.map_or(arc, |s| (angle(s) - end).rem_euclid(2.0 * PI).min(arc))
+    } else {
+        // another topology (a slip run at the entry, several stick runs): the slip arc is
+        // the total of the slip runs, each bounded midway between its outer points and the
+        // neighbouring runs' (the trailing stick→slip point where it is located), the
+        // first and last by the contact zone's edges
+        let (s0, s1) = zone.map_or((runs[0].1, runs[runs.len() - 1].2), |z| (z.sigma_start, z.sigma_end));
+        let n = runs.len();
+        let bound = |i: usize| -> f64 {
+            // the boundary between run i − 1 and run i (0 < i < n)
+            if i == n - 1 && runs[i].0 {
+                located.unwrap_or(0.5 * (runs[i - 1].2 + runs[i].1))
+            } else {
+                0.5 * (runs[i - 1].2 + runs[i].1)
+            }
+        };
+        let extent = |i: usize| -> (f64, f64) { (if i == 0 { s0 } else { bound(i) }, if i + 1 == n { s1 } else { bound(i + 1) }) };
+        let sweep = |(from, to): (f64, f64)| if to > from { (angle(from) - angle(to)).rem_euclid(2.0 * PI) } else { 0.0 };
+        let described: Vec<String> = (0..n).map(|i| format!("{} {:.3}° → {:.3}°", if runs[i].0 { "slip" } else { "stick" }, angle(extent(i).0).to_degrees(), angle(extent(i).1).to_degrees())).collect();
+        let total: f64 = (0..n).filter(|&i| runs[i].0).map(|i| sweep(extent(i))).sum();
+        topology_note = Some(format!(
+            "the contact zone is not Paper C's stick → slip but {} runs in the order of travel: {}; `pulley.slip_arc` is the total of the slip runs ({:.3}°) and `pulley.stick_arc` the rest, each run bounded midway between neighbouring friction points (± half an element). The BVP models one stick and one slip zone only: it is no reference for this scene",
+            n,
+            described.join(", "),
+            total.min(arc).to_degrees()
+        ));
+        total.min(arc)
+    };
     let end_sigma = mesh.end_sigma();
     let summary = Summary {
         transport_rate: Some(c),
@@ -706,6 +750,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     // the stated warnings (the augmented Lagrangian's fallback to the penalty, §12.5; an
     // edge pressure of a contact zone that could not be read is said, not left out silently)
     let mut notes = report.warnings;
+    notes.extend(topology_note);
     if let (Some(_), Some(p)) = (zone, &summary.pulley) {
         for (edge, value) in [("start", p.edge_pressure_start), ("end", p.edge_pressure_end)] {
             if value.is_none() {
