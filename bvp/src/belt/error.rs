@@ -54,6 +54,11 @@ pub enum BeltError {
     /// or the contact start — no statement about the capacity.
     #[error("mode `tensions` beyond the string's capstan: the search of the stick → slip angle stopped at φ_B = {} rad, where the solve failed ({cause}); the {end} tension had reached {} N (given {} N) at a stick arc of {} rad", Sig(*phi), Sig(*reached), Sig(*target), Sig(*stick_arc))]
     CapstanSearchFailed { end: &'static str, target: f64, reached: f64, stick_arc: f64, phi: f64, cause: Box<BeltError> },
+    /// A prescribed stick → slip angle outside the pulley's contact arc (the drive with
+    /// the driver's φ_B given and M₂ released, spec §3.4): checked against the contact
+    /// angles of the solution the solve starts from, polar angles unwrapped.
+    #[error("invalid input: the {pulley} pulley's stick → slip angle φ_B = {} rad lies outside its contact arc, first contact {} rad, last contact {} rad (polar angles, unwrapped, of the solution it starts from): the stick or the slip arc would vanish", Sig(*angle), Sig(*first_contact), Sig(*last_contact))]
+    TransitionOutsideContact { pulley: &'static str, angle: f64, first_contact: f64, last_contact: f64 },
     /// One pulley: an admissibility condition of the assumed stick/slip topology fails
     /// after the solve (spec §2.4), with the numbers.
     #[error("inadmissible one-pulley solution: {0}")]

@@ -426,6 +426,16 @@ impl Topology {
         self.arcs_on(pulley).into_iter().find(|&k| self.segments[k].kind == SegmentKind::Arc(kind))
     }
 
+    /// Parameter index of the stick ↔ slip angle of `pulley` (`phi1t`, `phi2t`: the
+    /// junction between its two arcs) in either running direction; `None` on a pulley
+    /// with a single arc (frictionless).
+    pub fn transition_angle(&self, pulley: Pulley) -> Option<usize> {
+        match self.junction(self.first_arc(pulley)) {
+            Junction::ArcToArc { angle, .. } => Some(angle),
+            _ => None,
+        }
+    }
+
     /// The span segments whose end is the mid-span point x = 0: (upper, lower).
     pub fn mid_spans(&self) -> (usize, usize) {
         let mid = |side: Side| {
@@ -577,6 +587,7 @@ mod tests {
         assert_eq!(t.mid_spans(), (0, 3));
         assert_eq!(t.spans_around(Pulley::Driver), (4, 0));
         assert_eq!(t.spans_around(Pulley::Driven), (1, 3));
+        assert_eq!(t.transition_angle(Pulley::Driver), None);
     }
 
     /// With friction: each arc splits into stick then slip, sharing the angle φ_t; the
@@ -600,6 +611,7 @@ mod tests {
         assert_eq!(t.junction(7), Junction::ContactEnd { pulley: Pulley::Driver, angle: 9, closes_loop: true });
         assert_eq!(t.arc(Pulley::Driver, ArcKind::Stick), Some(6));
         assert_eq!(t.arc(Pulley::Driver, ArcKind::Frictionless), None);
+        assert_eq!((t.transition_angle(Pulley::Driver), t.transition_angle(Pulley::Driven)), (Some(8), Some(5)));
         assert_eq!((t.first_arc(Pulley::Driver), t.last_arc(Pulley::Driver)), (6, 7));
         assert_eq!(t.mid_spans(), (0, 4));
         let p = t.tight_params(0.4);
@@ -625,6 +637,7 @@ mod tests {
         assert_eq!(t.segment(2).scaling, Scaling::Arc { pulley: Pulley::Driven, start: 4, end: 5 });
         assert_eq!(t.segment(3).scaling, Scaling::Arc { pulley: Pulley::Driven, start: 5, end: 6 });
         assert_eq!(t.arc(Pulley::Driver, ArcKind::Stick), Some(7));
+        assert_eq!((t.transition_angle(Pulley::Driver), t.transition_angle(Pulley::Driven)), (Some(8), Some(5)));
         let mut p = t.tight_params(0.4);
         assert_eq!(t.contact_angles(Pulley::Driven, &p), [FRAC_PI_2, FRAC_PI_2, -FRAC_PI_2]);
         assert_eq!(t.check(&p, FRAC_PI_2, 1e-9), Ok(()));

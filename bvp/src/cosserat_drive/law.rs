@@ -8,7 +8,9 @@
 //! `cosserat_pulley`'s `arc_slopes` at χ = 0 and no weight, in lengths of R) plus the
 //! transport and weight terms of (CD3). Contact boundaries: `contact_rows` of the static
 //! loop with the effective force (CD2). The stick stretches λ₁, λ₂ are the law's own
-//! parameters after the topology's twelve.
+//! parameters after the topology's twelve; with the driver's stick → slip angle
+//! prescribed ([`DriveMode::StickSlipAngle`]) the load torque M₂ follows them as an
+//! unknown, closed by φ_B1 = the given angle (spec §3.4).
 
 use std::f64::consts::FRAC_PI_2;
 
@@ -23,7 +25,7 @@ use crate::problem::Scalar;
 use crate::string_drive::{ScaledStringDrive, StringDriveSolution};
 use crate::string_hanging::law::on_pulley;
 
-use super::CosseratDrive;
+use super::{CosseratDrive, DriveMode};
 
 /// Arc state components (the one-pulley belt's): θ, M, s, τ; λ (slip only).
 const THETA: usize = 0;
@@ -37,6 +39,9 @@ pub const TRANSPORT: usize = 10;
 pub const DRIVEN_SPEED: usize = 11;
 pub const LAMBDA_DRIVER: usize = 12;
 pub const LAMBDA_DRIVEN: usize = 13;
+/// Parameter index of the load torque M₂/(F_ref H) when it is released
+/// ([`DriveMode::StickSlipAngle`]).
+pub const LOAD_TORQUE: usize = 14;
 
 /// The scaled Cosserat drive: the string drive's scaled scene (at η = 1 of its own path:
 /// R/H, b₁, weight, μ, ω₁, M₂, d₂, L, power flow) and the Cosserat constants, with the
@@ -51,6 +56,9 @@ pub struct ScaledCosseratDrive {
     pub bending_start: f64,
     /// a / (F_ref H²).
     pub bending: f64,
+    /// What closes the driven torque balance: M₂ given (the string law's `torque`), or
+    /// the driver's stick → slip angle given with M₂ the parameter [`LOAD_TORQUE`].
+    pub mode: DriveMode,
 }
 
 impl ScaledCosseratDrive {
@@ -81,6 +89,15 @@ impl ScaledCosseratDrive {
     /// χ/F_ref = c̃² with the inertia effect, else 0.
     pub fn chi<D: Scalar>(&self, p: &[D]) -> D {
         if self.string.inertia { p[TRANSPORT] * p[TRANSPORT] } else { D::from(0.0) }
+    }
+
+    /// The load torque M₂/(F_ref H): the scene's, or the parameter [`LOAD_TORQUE`] when
+    /// the mode releases it.
+    pub fn load_torque<D: Scalar>(&self, p: &[D]) -> D {
+        match self.mode {
+            DriveMode::LoadTorque => D::from(self.string.torque),
+            DriveMode::StickSlipAngle { .. } => p[LOAD_TORQUE],
+        }
     }
 
     /// Stick stretch λ_i of `pulley`.
@@ -181,8 +198,12 @@ impl SectionLaw for ScaledCosseratDrive {
         self.one_pulley(1.0).state_names(kind)
     }
 
+    /// λ₁, λ₂; M₂ after them when the mode releases it.
     fn extra_params(&self) -> &'static [&'static str] {
-        &["lambda1", "lambda2"]
+        match self.mode {
+            DriveMode::LoadTorque => &["lambda1", "lambda2"],
+            DriveMode::StickSlipAngle { .. } => &["lambda1", "lambda2", "load_torque"],
+        }
     }
 
     /// Spans and arcs read c (χ = ρc²); the stick arcs λ₁, λ₂.
@@ -232,13 +253,18 @@ impl SectionLaw for ScaledCosseratDrive {
     }
 
     fn loop_conditions<D: Scalar>(&self, topology: &Topology, _: &[&[D]], yb: &[&[D]], p: &[D], _: D, rows: &mut Rows<D>) {
-        // (CD6): length, the stick kinematics of both pulleys, the driven torque balance.
+        // (CD6): length, the stick kinematics of both pulleys, the driven torque balance;
+        // with M₂ released (one more unknown) the prescribed φ_B1 (one more row).
         let s = &self.string;
         let (c, omega2) = (p[TRANSPORT], p[DRIVEN_SPEED]);
         rows.push(yb[topology.len() - 1][MATERIAL] - s.length);
         rows.push(c * p[LAMBDA_DRIVER] - s.driver_speed * s.radius);
         rows.push(c * p[LAMBDA_DRIVEN] - omega2 * s.radius);
-        rows.push(yb[topology.last_arc(Pulley::Driven)][TORQUE] - (omega2 * s.damping + s.torque));
+        rows.push(yb[topology.last_arc(Pulley::Driven)][TORQUE] - (omega2 * s.damping + self.load_torque(p)));
+        if let DriveMode::StickSlipAngle { driver } = self.mode {
+            let angle = topology.transition_angle(Pulley::Driver).expect("a drive has a stick → slip point on the driver");
+            rows.push(p[angle] - driver);
+        }
     }
 
     fn point(&self, _: &CosseratDrive, sc: &Scales, topology: &Topology, k: usize, phi: Option<f64>, y: &[f64], p: &[f64]) -> BeltPoint {
@@ -267,9 +293,11 @@ impl SectionLaw for ScaledCosseratDrive {
         }
     }
 
+    /// The power balance (D-3) at the solved M₂ (the scene's, or the released one).
     fn check_balance(sol: &BeltSolution<Self>) -> Result<(), BeltError> {
-        let (input, output, dissipation) = balance::drive_power(sol, &sol.data.drive);
-        balance::check_power(input - output - dissipation, balance::drive_power_scale(&sol.data.drive, sol.scales.force))
+        let drive = sol.solved_drive();
+        let (input, output, dissipation) = balance::drive_power(sol, &drive);
+        balance::check_power(input - output - dissipation, balance::drive_power_scale(&drive, sol.scales.force))
     }
 
     fn admissible_window(&self) -> (f64, f64) {

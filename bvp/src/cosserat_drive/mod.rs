@@ -10,6 +10,10 @@
 //! from a₀ to the scene's a (no path when a₀ = a: the scene's bending layer is at least
 //! the start layer), then solves by collocation or shooting and checks the balances and
 //! the admissibility of the stick/slip topology.
+//!
+//! [`DriveMode::StickSlipAngle`] swaps the datum M₂ for the driver's stick → slip angle
+//! φ_B1 (spec §3.4, check D-9): M₂ becomes an unknown of the same BVP, solved by
+//! [`solve_from`] from a standard solution (no homotopy of its own).
 
 pub mod law;
 
@@ -33,8 +37,31 @@ use crate::solution::Solution;
 use crate::string_drive::{self, StringDrive, StringDriveSolution};
 pub use law::ScaledCosseratDrive;
 
+/// What a Cosserat drive prescribes besides ω₁, L and d₂ (spec §3.3–§3.4): the load
+/// torque M₂, or the driver's stick → slip angle with M₂ released. Either keeps the BVP
+/// square (docs/cosserat-drive.md, "Prescribed stick→slip angle").
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub enum DriveMode {
+    /// M₂ given (`drive.driven_torque`): the catalogue drive of spec §3.3.
+    #[default]
+    LoadTorque,
+    /// The driver's stick → slip angle φ_B1 given, M₂ an unknown (spec §3.4 (i), Paper C's
+    /// swap of a kinetic datum for a transition point). `driver` is the polar angle (rad)
+    /// of the point between the driver's stick and slip arcs, unwrapped as the driver's
+    /// contact angles (docs/cosserat-drive.md, "Conventions"): its arc runs from
+    /// φ₁ₐ ≈ −π/2 down to φ₁_b ≈ −3π/2, so φ_B1 ≈ −4.33 rad on the catalogue scene (the
+    /// summary's wrapped `contact_start` − `stick_arc` + 2π·k). `drive.driven_torque`
+    /// then sets only the power flow (its sign) and the standard solve [`solve`] starts
+    /// from; the solution's `data` carries the solved M₂.
+    StickSlipAngle {
+        /// φ_B1, rad.
+        driver: f64,
+    },
+}
+
 /// Physical data of a Cosserat drive scene (SI units): the string drive's (pulleys, belt
-/// with b₁ = EA, gravity, inertia, μ, ω₁, M₂, d₂) and the Cosserat constants.
+/// with b₁ = EA, gravity, inertia, μ, ω₁, M₂, d₂), the Cosserat constants and what is
+/// prescribed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CosseratDrive {
     /// The drive with the belt as an extensible string (a = 0).
@@ -43,6 +70,8 @@ pub struct CosseratDrive {
     pub bending_stiffness: f64,
     /// Shear stiffness b₂ (N).
     pub shear_stiffness: f64,
+    /// M₂ given (scenes) or φ_B1 given with M₂ released.
+    pub mode: DriveMode,
 }
 
 /// A solved Cosserat drive; its `start` is the string drive solution of the same scene.
@@ -62,6 +91,7 @@ impl CosseratDrive {
             drive: string_drive_data(scene, mu),
             bending_stiffness: scene.belt.bending_stiffness.unwrap_or(f64::NAN),
             shear_stiffness: scene.belt.shear_stiffness.unwrap_or(f64::NAN),
+            mode: DriveMode::LoadTorque,
         })
     }
 
@@ -121,6 +151,7 @@ fn scaled_law(d: &CosseratDrive, string: &StringDriveSolution, opts: &BeltOption
         shear: d.shear_stiffness / fr,
         bending_start: bending.max(opts.start_layer * opts.start_layer * t_mid),
         bending,
+        mode: DriveMode::LoadTorque,
     }
 }
 
@@ -167,8 +198,19 @@ pub fn cosserat_guess(string: &StringDriveSolution, problem: &BeltProblem<Scaled
     })
 }
 
-/// Solve a Cosserat drive from its data alone (module docs).
+/// Solve a Cosserat drive from its data alone (module docs). With the driver's stick →
+/// slip angle prescribed ([`DriveMode::StickSlipAngle`]): the standard drive at the
+/// data's M₂, then [`solve_from`] it with φ_B1 given and M₂ released; the work of both
+/// is counted.
 pub fn solve(data: &CosseratDrive, opts: &BeltOptions) -> Result<CosseratDriveSolution, BeltError> {
+    if let DriveMode::StickSlipAngle { .. } = data.mode {
+        let standard = solve(&CosseratDrive { mode: DriveMode::LoadTorque, ..*data }, opts)?;
+        let mut sol = solve_from(data, opts, &standard).expect("the standard drive of the same data has its topology and power flow")?;
+        sol.stats.add_work(&standard.stats);
+        sol.stats.wall_seconds += standard.stats.wall_seconds;
+        sol.homotopy_steps = standard.homotopy_steps;
+        return Ok(sol);
+    }
     let clock = Instant::now();
     validate(data, opts)?;
     let string = string_start(data, opts)?;
@@ -193,6 +235,15 @@ pub fn solve(data: &CosseratDrive, opts: &BeltOptions) -> Result<CosseratDriveSo
 /// scales, on its topology. The solution keeps `previous`'s string drive as its `start`
 /// (the string solution the continuation began from, not one of this scene). `None` when
 /// `previous` cannot start it: another running direction or power flow.
+///
+/// Either mode from a solution of either mode: with the driver's stick → slip angle
+/// prescribed ([`DriveMode::StickSlipAngle`]) M₂ starts at `previous`'s (solved or given)
+/// load torque and the solution's `data` carries the solved one.
+///
+/// # Errors
+/// Those of [`solution::solve_from`]; [`BeltError::TransitionOutsideContact`] when the
+/// prescribed φ_B1 does not lie strictly inside `previous`'s driver contact arc,
+/// [`BeltError::InvalidInput`] when it is not finite.
 pub fn solve_from(data: &CosseratDrive, opts: &BeltOptions, previous: &CosseratDriveSolution) -> Option<Result<CosseratDriveSolution, BeltError>> {
     let clock = Instant::now();
     let scales = string_drive::warm_scales(&data.drive, previous.scales);
@@ -201,19 +252,44 @@ pub fn solve_from(data: &CosseratDrive, opts: &BeltOptions, previous: &CosseratD
         return None;
     }
     let bending = data.bending_stiffness / (scales.force * scales.length * scales.length);
-    let law = ScaledCosseratDrive { string: string.law, shear: data.shear_stiffness / scales.force, bending_start: bending, bending };
-    let solved = validate(data, opts).and_then(|()| {
+    let law = ScaledCosseratDrive { string: string.law, shear: data.shear_stiffness / scales.force, bending_start: bending, bending, mode: data.mode };
+    // the guess's parameters: the topology's and λ₁, λ₂, then M₂ where it is an unknown
+    let mut params = previous.solution.params[..law::LOAD_TORQUE].to_vec();
+    if let DriveMode::StickSlipAngle { .. } = data.mode {
+        params.push(previous.load_torque() / (scales.force * scales.length));
+    }
+    let guess = Solution { params, ..previous.solution.clone() };
+    let solved = validate(data, opts).and_then(|()| transition_inside_contact(data, previous)).and_then(|()| {
         let run = Run {
             data: *data,
             problem: BeltProblem::new(string.topology, law),
             scales,
             pulleys: data.drive.pulleys(),
-            guess: &previous.solution,
+            guess: &guess,
             start: previous.start.clone(),
         };
         solution::solve_from(run, opts, clock)
     });
-    Some(solved.and_then(|sol| sol.check_admissible().map(|()| sol)))
+    Some(solved.and_then(|mut sol| {
+        sol.check_admissible()?;
+        sol.data.drive.driven_torque = sol.load_torque();
+        Ok(sol)
+    }))
+}
+
+/// A prescribed φ_B1 finite and strictly inside the driver's contact arc of `previous`
+/// (the solve's start), else the named error; nothing to check in mode `LoadTorque`.
+fn transition_inside_contact(data: &CosseratDrive, previous: &CosseratDriveSolution) -> Result<(), BeltError> {
+    let DriveMode::StickSlipAngle { driver } = data.mode else { return Ok(()) };
+    if !driver.is_finite() {
+        return Err(BeltError::InvalidInput { name: "stick_slip_angle", value: driver, reason: "must be finite" });
+    }
+    let angles = previous.contact_angles(Pulley::Driver);
+    let (first, last) = (angles[0], angles[angles.len() - 1]);
+    if driver < first.max(last) && driver > first.min(last) {
+        return Ok(());
+    }
+    Err(BeltError::TransitionOutsideContact { pulley: Pulley::Driver.name(), angle: driver, first_contact: first, last_contact: last })
 }
 
 /// The named error of a stalled homotopy in log a: the friction capacity or a reversed
@@ -253,9 +329,30 @@ impl CosseratDriveSolution {
         self.problem.law.bending_start * self.scales.force * self.scales.length * self.scales.length
     }
 
-    /// Power balance (W): (input, output, slip dissipation), spec D-3.
+    /// Power balance (W): (input, output, slip dissipation), spec D-3, at the solved M₂.
     pub fn power_balance(&self) -> (f64, f64, f64) {
-        crate::belt::balance::drive_power(self, &self.data.drive)
+        crate::belt::balance::drive_power(self, &self.solved_drive())
+    }
+
+    /// The load torque M₂ (N·m): the data's, or the solved one where the mode releases it
+    /// (the summary's driven `torque` is the torque it balances, M₂ + d₂ω₂).
+    pub fn load_torque(&self) -> f64 {
+        match self.problem.law.mode {
+            DriveMode::LoadTorque => self.data.drive.driven_torque,
+            DriveMode::StickSlipAngle { .. } => self.solution.params[law::LOAD_TORQUE] * self.scales.force * self.scales.length,
+        }
+    }
+
+    /// The drive at the solved load torque: the data's with M₂ = [`Self::load_torque`].
+    pub fn solved_drive(&self) -> StringDrive {
+        StringDrive { driven_torque: self.load_torque(), ..self.data.drive }
+    }
+
+    /// The stick → slip angles (φ_B1 driver, φ_B2 driven), rad: polar angles, unwrapped as
+    /// the contact angles (docs/cosserat-drive.md, "Conventions").
+    pub fn stick_slip_angles(&self) -> (f64, f64) {
+        let at = |pulley| self.solution.params[self.topology().transition_angle(pulley).expect("a drive has stick and slip arcs")];
+        (at(Pulley::Driver), at(Pulley::Driven))
     }
 
     /// The admissibility check the loop's `check_contact` does not make (spec §3.3): b₁,
