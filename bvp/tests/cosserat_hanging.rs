@@ -183,6 +183,19 @@ fn shooting_agrees_with_collocation() {
     assert!(d < 1e-6, "shooting vs collocation: {d:e}");
 }
 
+/// (e′) Shooting across a thin shear layer: at b₂ = 1e5 N the layer √(a/b₂) = 0.22 mm is
+/// 1/140 of a shooting interval on an arc (8 per segment, πR/8 = 31 mm), the flows
+/// overflow and the integrator stops ("step size is too small"; measured from b₂ = 1e4
+/// N on, where 32 intervals sufficed): a named error with the layer, the interval and
+/// the way out, not the integrator's message alone.
+#[test]
+fn shooting_across_a_thin_shear_layer_fails_by_name() {
+    let e = solve(&scene(1e5), &BeltOptions { method: BvpMethod::Shooting, tolerance: 1e-8, ..Default::default() }).expect_err("shooting overflows");
+    let text = e.to_string();
+    assert!(matches!(e, bvp::belt::BeltError::ShootingAcrossLayer { intervals: 8, layer, interval, .. } if (layer - (0.005f64 / 1e5).sqrt()).abs() < 1e-12 && interval > 100.0 * layer), "{text}");
+    assert!(text.contains("bvp-collocation solves such scenes") && text.contains("bvp.shooting_intervals"), "{text}");
+}
+
 /// (f) The hard end of the b₂ sweep (issue 13: 1e2 … 1e6 N): b₂ = 1e2, a shear layer of
 /// 7 mm on a pulley of 80 mm, solves from the file's data alone, passes the contact
 /// checks (p ≥ 0, no span inside a pulley), and its contact arcs are longer than the

@@ -356,7 +356,8 @@ fn tension_ratios_beyond_the_string_capstan_solve() {
 
 /// Named errors before any solve (spec §2.2, §2.8): b₂ at the transport term ρc²
 /// (shear-critical speed), T̃ ≤ 0 at an end, a tension ratio beyond the friction
-/// capacity of the wrap; b₂ − χ small with a shear layer longer than R fails by name.
+/// capacity of the wrap; b₂ − χ small with a shear layer longer than R fails by name, as
+/// does shooting across a shear layer far thinner than its intervals.
 #[test]
 fn hard_cases_fail_by_name() {
     let d = catalogue();
@@ -367,8 +368,20 @@ fn hard_cases_fail_by_name() {
     assert!(matches!(e, BeltError::EffectiveTensionNotPositive { end: "outflow", effective, .. } if effective < 0.0), "{e}");
     let e = cosserat_pulley::solve(&CosseratPulley { friction: 0.1, ..d }, &BeltOptions::default()).unwrap_err();
     assert!(matches!(e, BeltError::CapstanLimitExceeded { reached, target, .. } if reached > target), "{e}");
-    let e = cosserat_pulley::solve(&CosseratPulley { shear_stiffness: 1.0, ..d }, &BeltOptions::default()).unwrap_err();
-    assert!(matches!(e, BeltError::HomotopyStalled { .. } | BeltError::Inadmissible(_) | BeltError::Solver { .. }), "{e}");
+    // b₂ − χ ≤ T̃ (1 N; a scene file is refused before, drive's validation) and just above
+    // it (16 N): the first solve from the string's creep state at the scene's a fails —
+    // said so, not as a homotopy "stalled at η = 0" from a₀ = a (the message before)
+    for b2 in [1.0, 16.0] {
+        let e = cosserat_pulley::solve(&CosseratPulley { shear_stiffness: b2, ..d }, &BeltOptions::default()).unwrap_err();
+        let text = e.to_string();
+        assert!(matches!(e, BeltError::StartFailed { .. }) && text.contains("no continuation in a needed") && text.contains("shear layer") && !text.contains("stalled"), "b₂ = {b2}: {text}");
+    }
+    // b₂ = 1e6 N by shooting: its 8 intervals per segment span ≈ 390 shear layers of
+    // 0.1 mm, the flows overflow; named with the layer and the interval, while
+    // collocation solves it (very_stiff_shear_solves)
+    let shooting = BeltOptions { method: bvp::belt::BvpMethod::Shooting, ..BeltOptions::default() };
+    let e = cosserat_pulley::solve(&CosseratPulley { shear_stiffness: 1e6, ..d }, &shooting).unwrap_err();
+    assert!(matches!(e, BeltError::ShootingAcrossLayer { layer, intervals: 8, .. } if (layer - 1e-4).abs() < 1e-9), "{e}");
 }
 
 /// The catalogue scene file (`scenes/cosserat-pulley.json`, exactly the format

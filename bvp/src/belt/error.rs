@@ -71,6 +71,16 @@ pub enum BeltError {
     /// dimensionless number of the scene that makes that part of the path hard.
     #[error("{stage} stalled at η = {} — {at}; {hard} ({cause})", Sig(*eta))]
     HomotopyStalled { stage: &'static str, eta: f64, at: String, hard: String, cause: BvpError },
+    /// The first solve, at the scene's own parameters from a start that needs no
+    /// continuation (a closed-form state or a previous solution), did not converge: `stage`
+    /// names the start, `hard` the scene's layers.
+    #[error("{stage} did not converge — {hard} ({cause})")]
+    StartFailed { stage: &'static str, hard: String, cause: BvpError },
+    /// Shooting: the integration of a flow failed inside a shooting interval many lengths
+    /// of the scene's shear layer long — the flow grows like e^{interval/layer} across it
+    /// ([`across_layer`]).
+    #[error("cannot integrate across the shear layer √(a/(b₂ − ρc²)) = {} m: its {intervals} shooting intervals per segment are ≈ {} m long on an arc, {} layer lengths, so a flow grows by up to e^{} across one ({cause}); bvp-collocation solves such scenes, or raise `bvp.shooting_intervals` (at b₂ = 1e4 N on `cosserat-hanging`, 32 sufficed; at 1e6 N, 64 did not)", Sig(*layer), Sig(*interval), (interval / layer).round(), (interval / layer).round())]
+    ShootingAcrossLayer { layer: f64, interval: f64, intervals: usize, cause: BvpError },
     /// The solver failed (homotopy or final solve).
     #[error("{stage}: {cause}")]
     Solver { stage: &'static str, cause: BvpError },
@@ -83,4 +93,18 @@ pub enum BeltError {
     /// distance of 1e50 m).
     #[error("self-check failed: {0}; the solution is not trustworthy (scene numbers such as an axial stiffness of 1e17 N or a centre distance of 1e50 m lie beyond what double precision resolves against the belt's weight and load)")]
     BalanceFailed(Balance),
+}
+
+/// `e`, or [`BeltError::ShootingAcrossLayer`] where it is a shooting final solve whose
+/// integration failed and a shooting interval on an arc (`arc` m of contact split into
+/// `opts.shooting_intervals`) spans more than ten shear layers `layer` (m): the failure
+/// then has that cause, measured on `cosserat-hanging` and `cosserat-pulley` from b₂ = 1e4
+/// N on (docs/cosserat-hanging.md).
+pub fn across_layer(e: BeltError, opts: &super::BeltOptions, layer: f64, arc: f64) -> BeltError {
+    let intervals = opts.shooting_intervals.max(1);
+    let interval = arc / intervals as f64;
+    match e {
+        BeltError::Solver { cause: cause @ BvpError::IntegrationFailed { .. }, .. } if opts.method == super::BvpMethod::Shooting && interval > 10.0 * layer => BeltError::ShootingAcrossLayer { layer, interval, intervals, cause },
+        e => e,
+    }
 }

@@ -98,7 +98,8 @@ pub fn solve(data: &CosseratHanging, opts: &BeltOptions) -> Result<CosseratHangi
         },
         shear_stiffness: data.shear_stiffness / fr,
     };
-    rod_hanging::solve_from_string(*data, law, string, &path, |s, pb| cosserat_guess(s, pb, 81), opts, clock)
+    let shear_layer = (data.rod.bending_stiffness / data.shear_stiffness).sqrt();
+    rod_hanging::solve_from_string(*data, law, string, &path, |s, pb| cosserat_guess(s, pb, 81), opts, clock).map_err(|e| crate::belt::error::across_layer(e, opts, shear_layer, std::f64::consts::PI * data.rod.radius))
 }
 
 impl CosseratHangingSolution {

@@ -506,10 +506,11 @@ pub fn effective_force(d: &CosseratPulley, p: &BeltPoint) -> [f64; 2] {
 pub fn solve(data: &CosseratPulley, opts: &BeltOptions) -> Result<CosseratPulleySolution, BeltError> {
     let clock = Instant::now();
     validate(data, opts)?;
+    let across_layer = |e| crate::belt::error::across_layer(e, opts, data.shear_layer(), PI * data.radius);
     if data.mode == Mode::Tensions && data.string_slip_arc() >= string_contact_arc(data) {
-        return beyond_the_capstan(data, opts, clock);
+        return beyond_the_capstan(data, opts, clock).map_err(across_layer);
     }
-    solve_from(data, opts, None, clock)
+    solve_from(data, opts, None, clock).map_err(across_layer)
 }
 
 /// [`solve`] after validation, from `start` (a solution at η = 1 of the same topology
@@ -530,7 +531,15 @@ fn solve_from(data: &CosseratPulley, opts: &BeltOptions, start: Option<&Solution
     } else {
         run::homotopy_and_final_solve(&problem, &guess, opts, accept, clock)
     };
+    let hard = || format!("bending layer √(a/T̃_out) = {:.3e} R, shear layer √(a/(b₂ − ρc²)) = {:.3e} R", (data.bending_stiffness / data.effective(data.tension_out)).sqrt() / data.radius, data.shear_layer() / data.radius);
+    // without a path in a the first solve is the start itself: no homotopy to have stalled
+    let direct = start.is_some() || problem.law.bending_start == problem.law.bending;
     let solved = stages.map_err(|e| match e {
+        StageError::Homotopy(cause) if direct => BeltError::StartFailed {
+            stage: if start.is_some() { "the solve from the previous solution" } else { "the solve at the scene's a from the string's creep state (no continuation in a needed)" },
+            hard: hard(),
+            cause,
+        },
         StageError::Homotopy(cause) => BeltError::HomotopyStalled {
             stage: "homotopy in log a",
             // a failure before the first continuation step is the corrector at the start
@@ -539,7 +548,7 @@ fn solve_from(data: &CosseratPulley, opts: &BeltOptions, start: Option<&Solution
                 _ => 0.0,
             },
             at: format!("bending stiffness from a₀ = {:.3e} N·m² to a = {:.3e} N·m²", problem.law.bending_start * scales.force * scales.length * scales.length, data.bending_stiffness),
-            hard: format!("bending layer √(a/T̃_out) = {:.3e} R, shear layer √(a/(b₂ − ρc²)) = {:.3e} R", (data.bending_stiffness / data.effective(data.tension_out)).sqrt() / data.radius, data.shear_layer() / data.radius),
+            hard: hard(),
             cause,
         },
         StageError::Final(cause) => BeltError::Solver { stage: "final solve", cause },
