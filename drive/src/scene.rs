@@ -1438,11 +1438,15 @@ impl Scene {
         }
         if let Some(phi) = d.stick_slip_angle {
             check_finite("drive.stick_slip_angle", phi)?;
-            if phi.abs() > std::f64::consts::PI {
+            // the string wraps the half from the top (π/2) to the bottom (−π/2) between its
+            // horizontal spans, and a rod's contact lies inside the string's: a stick → slip
+            // point elsewhere has no contact to lie in (both methods failed on φ_B = 2 rad,
+            // the BVP's Newton and the FE's load path, under unrelated messages)
+            if phi.abs() >= std::f64::consts::FRAC_PI_2 {
                 return Err(SceneError::OutOfRange {
                     path: "drive.stick_slip_angle".into(),
                     value: phi,
-                    range: "a polar angle about the pulley centre, −π ≤ φ_B ≤ π rad".into(),
+                    range: "a polar angle about the pulley centre on the wrapped half, −π/2 < φ_B < π/2 rad (the belt touches the pulley at most from its top, φ = π/2, to its bottom, φ = −π/2: the string's contact arc between horizontal spans, which a rod's lies inside)".into(),
                 });
             }
         }

@@ -146,6 +146,15 @@ fn one_pulley_errors_name_the_field_and_the_numbers() {
     v["drive"].as_object_mut().unwrap().remove("tension_out");
     v["drive"]["stick_slip_angle"] = json!(4.0);
     assert!(matches!(err(&v), SceneError::OutOfRange { path, value, .. } if path == "drive.stick_slip_angle" && value == 4.0));
+    // off the wrapped half (|φ_B| ≥ π/2): no contact there to hold a stick → slip point
+    for phi in [2.0, -1.6, std::f64::consts::FRAC_PI_2] {
+        v["drive"]["stick_slip_angle"] = json!(phi);
+        let e = err(&v);
+        assert!(matches!(&e, SceneError::OutOfRange { path, value, .. } if path == "drive.stick_slip_angle" && *value == phi), "{e}");
+        assert!(e.to_string().contains("π/2"), "{e}");
+    }
+    v["drive"]["stick_slip_angle"] = json!(1.5);
+    assert!(Scene::from_json_str(&v.to_string()).is_ok());
 
     // χ = ρc² = 0.1·200² = 4000 N ≥ GA = 1000 N
     let mut v = one_pulley();

@@ -751,6 +751,24 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     // edge pressure of a contact zone that could not be read is said, not left out silently)
     let mut notes = report.warnings;
     notes.extend(topology_note);
+    // a slip zone shorter than a few arc elements is not resolved (the loop's rule); one
+    // that no friction point catches at all, while the tensions differ, is said too: its
+    // `slip_arc` 0 is the mesh's (N_in = 15, N_out = 14.999 N: the creep estimate is
+    // 2.2e-4 rad against arc elements of ≈ 1e-2 rad at 128)
+    let arc_count = mesh.elements().iter().filter(|e| e.region == Region::DrivenArc).count().max(1);
+    let element = PI * r / arc_count as f64;
+    notes.extend(super::output::slip_resolution_warning(pulley, slip * r, element, opts.elements, run.params.bending_stiffness));
+    let [n_in, n_out] = [run.tensions[0], run.tensions[1]];
+    let creep = (n_in / n_out).ln().abs() / run.mu;
+    if slip == 0.0 && creep > 0.0 && creep.is_finite() {
+        notes.push(format!(
+            "unresolved slip zone on the pulley: no friction point slips although N_in = {n_in} N ≠ N_out = {n_out} N (torque {} N·m); the string's creep estimate of the slip arc, |ln(N_in/N_out)|/μ = {} rad, is {:.2} arc elements of {} rad, so `pulley.slip_arc` = 0 and `pulley.stick_arc` are the mesh's, not the belt's",
+            Sig(torque),
+            Sig(creep),
+            creep * r / element,
+            Sig(element / r)
+        ));
+    }
     if let (Some(_), Some(p)) = (zone, &summary.pulley) {
         for (edge, value) in [("start", p.edge_pressure_start), ("end", p.edge_pressure_end)] {
             if value.is_none() {
