@@ -54,14 +54,7 @@ fn main() {
         ),
     ];
     for (b2, row) in table {
-        let cf = closed_form(&CosseratStamp::fig_5b(b2)).expect("closed form");
-        let got = [
-            cf.half_width,
-            cf.pressure_centre,
-            cf.pressure_edge,
-            cf.excess,
-            cf.support_reaction,
-        ];
+        let got = closed_form(&CosseratStamp::fig_5b(b2)).expect("closed form").table_row();
         let worst = row
             .iter()
             .zip(got)

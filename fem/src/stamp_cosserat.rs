@@ -132,6 +132,12 @@ pub struct CosseratClosedForm {
 }
 
 impl CosseratClosedForm {
+    /// The five numbers of a row of spec C-10's table, in its column order: a_c, p(0),
+    /// p(a_c), the excess, the support reaction.
+    pub fn table_row(&self) -> [f64; 5] {
+        [self.half_width, self.pressure_centre, self.pressure_edge, self.excess, self.support_reaction]
+    }
+
     fn beta(&self) -> f64 {
         self.data.beta()
     }
