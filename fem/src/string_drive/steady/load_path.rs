@@ -124,23 +124,27 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// the named error with the whole load; else [`FemError::HomotopyStalled`].
     fn stalled(&self, eta: f64, step: f64, target: f64, reason: &dyn std::fmt::Display) -> FemError {
         let sp = (self.at)(1.0);
+        // R Σ w μ P⟨−γ⟩ over a pulley's loaded points of the last converged state; `None`
+        // without any
+        let capacity_of = |pulley: Pulley| {
+            let pts: Vec<&PointResult> = self.results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
+            (!pts.is_empty()).then(|| sp.radius * pts.iter().map(|p| p.point.weight * sp.mu * p.normal).sum::<f64>())
+        };
         // the open one-pulley layout in mode `tensions`: the load is the end fluxes'
         // difference, carried by the friction (C21: ∫τλ dσ = 𝓗_out − 𝓗_in, λ ≈ 1), so the
         // torque R|𝓗_out − 𝓗_in| the step aimed at against R Σ w μ P⟨−γ⟩ (measured: N_in =
         // 1000 N, N_out = 10 N, μ = 0.3 stalled at η = 0.627, N_out(η) ≈ 379 N, where the
         // BVP's capacity search ends at 390 N); the error names the whole load's torque
-        if let (Ends::Open { flux_in, flux_out, pulley_speed: None, .. }, Ends::Open { flux_out: step_out, .. }) = (sp.ends, (self.at)(target).ends) {
-            let pts: Vec<&PointResult> = self.results.iter().filter(|p| p.normal > 0.0).collect();
-            let capacity = sp.radius * pts.iter().map(|p| p.point.weight * sp.mu * p.normal).sum::<f64>();
-            if !pts.is_empty() && sp.radius * (step_out - flux_in).abs() >= 0.95 * capacity {
+        // (the layout's pulley is the loop's driven one)
+        if let (Ends::Open { flux_in, flux_out, pulley_speed: None, .. }, Ends::Open { flux_out: step_out, .. }, Some(capacity)) = (sp.ends, (self.at)(target).ends, capacity_of(Pulley::Driven)) {
+            if sp.radius * (step_out - flux_in).abs() >= 0.95 * capacity {
                 return FemError::FrictionCapacityExceeded { pulley: "single".to_string(), torque: sp.radius * (flux_out - flux_in).abs(), capacity, time: None };
             }
         }
         let demand = sp.torque + sp.damping * self.x[self.problem.asm.len() + 1];
         for pulley in [Pulley::Driven, Pulley::Driver] {
-            let pts: Vec<&PointResult> = self.results.iter().filter(|p| p.point.pulley == pulley && p.normal > 0.0).collect();
-            let capacity = sp.radius * pts.iter().map(|p| p.point.weight * sp.mu * p.normal).sum::<f64>();
-            if !pts.is_empty() && target * demand >= 0.95 * capacity {
+            let Some(capacity) = capacity_of(pulley) else { continue };
+            if target * demand >= 0.95 * capacity {
                 return FemError::FrictionCapacityExceeded { pulley: pulley.name().to_string(), torque: demand, capacity, time: None };
             }
         }

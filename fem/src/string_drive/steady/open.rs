@@ -757,8 +757,7 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     // 2.2e-4 rad against arc elements of ≈ 1e-2 rad at 128)
     let arc_count = mesh.elements().iter().filter(|e| e.region == Region::DrivenArc).count().max(1);
     let element = PI * r / arc_count as f64;
-    // (the loop's driven pulley is this layout's only one: named as such)
-    notes.extend(super::output::slip_resolution_warning(pulley, slip * r, element, opts.elements, run.params.bending_stiffness).map(|w| w.replacen("on the driven pulley", "on the pulley", 1)));
+    notes.extend(super::output::slip_resolution_warning("pulley", slip * r, element, opts.elements, run.params.bending_stiffness));
     let [n_in, n_out] = [run.tensions[0], run.tensions[1]];
     let creep = (n_in / n_out).ln().abs() / run.mu;
     if slip == 0.0 && creep > 0.0 && creep.is_finite() {

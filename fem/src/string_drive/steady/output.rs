@@ -80,7 +80,7 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
         } else {
             located(pulley).map_or(0.0, |s| slip_from(s).min(arc))
         };
-        warnings.extend(slip_resolution_warning(pulley, slip * r, PI * r / arc_elements as f64, opts.elements, params.bending_stiffness));
+        warnings.extend(slip_resolution_warning(&format!("{} pulley", pulley.name()), slip * r, PI * r / arc_elements as f64, opts.elements, params.bending_stiffness));
         let block = if k == 0 { &mut summary.driver } else { &mut summary.driven };
         let ps = block.get_or_insert_with(drive::summary::PulleySummary::default);
         ps.contact_arc = ps.contact_arc.or(Some(arc));
@@ -197,20 +197,21 @@ pub(super) fn view_points<const N: usize, K: LayoutElement<N> + ?Sized>(state: &
 /// warned.
 pub const SLIP_ELEMENTS: f64 = 2.5;
 
-/// The stated warning for the slip zone of `pulley` of length `slip` (m along the
+/// The stated warning for the slip zone on `pulley` (its name in the sentence: "driver
+/// pulley" on the loop, "pulley" on the one-pulley layout) of length `slip` (m along the
 /// arc) when a belt with bending stiffness (`bending`) has it over fewer than
 /// [`SLIP_ELEMENTS`] arc elements of length `element` (m) of a mesh of `elements`
 /// elements; `None` for a resolved zone, no slip zone, or a string (whose slip zone is
 /// a front in a smooth exponential field: its arcs converge at 128 elements to 4e-3,
 /// docs/fem-drive.md §12).
-pub fn slip_resolution_warning(pulley: Pulley, slip: f64, element: f64, elements: usize, bending: Option<f64>) -> Option<String> {
+pub fn slip_resolution_warning(pulley: &str, slip: f64, element: f64, elements: usize, bending: Option<f64>) -> Option<String> {
     bending?;
     let spans = slip / element;
     (slip > 0.0 && spans < SLIP_ELEMENTS).then(|| {
         let needed = (elements as f64 * SLIP_ELEMENTS / spans).ceil();
         format!(
-            "unresolved slip zone on the {} pulley: {} m long, {:.1} arc elements of {} m (≥ {SLIP_ELEMENTS} needed): its stick and slip arcs are not resolved (measured: 3–17 % off at 0.5–1.7 elements, 2–3 % at 2.1–2.2, ≤ 1.5 % from 3.4 on) — refine the mesh beyond {needed} elements",
-            pulley.name(),
+            "unresolved slip zone on the {}: {} m long, {:.1} arc elements of {} m (≥ {SLIP_ELEMENTS} needed): its stick and slip arcs are not resolved (measured: 3–17 % off at 0.5–1.7 elements, 2–3 % at 2.1–2.2, ≤ 1.5 % from 3.4 on) — refine the mesh beyond {needed} elements",
+            pulley,
             numerics::Sig(slip),
             spans,
             numerics::Sig(element),
@@ -228,10 +229,10 @@ mod tests {
     #[test]
     fn slip_zone_resolution_rule() {
         let element = 0.01;
-        assert_eq!(slip_resolution_warning(Pulley::Driver, 0.02, element, 128, None), None, "a string");
-        assert_eq!(slip_resolution_warning(Pulley::Driver, 0.0, element, 128, Some(5e-3)), None, "no slip zone");
-        assert_eq!(slip_resolution_warning(Pulley::Driven, 0.025, element, 128, Some(5e-3)), None, "2.5 elements");
-        let w = slip_resolution_warning(Pulley::Driven, 0.0149, element, 128, Some(5e-3)).expect("1.5 elements");
+        assert_eq!(slip_resolution_warning("driver pulley", 0.02, element, 128, None), None, "a string");
+        assert_eq!(slip_resolution_warning("driver pulley", 0.0, element, 128, Some(5e-3)), None, "no slip zone");
+        assert_eq!(slip_resolution_warning("driven pulley", 0.025, element, 128, Some(5e-3)), None, "2.5 elements");
+        let w = slip_resolution_warning("driven pulley", 0.0149, element, 128, Some(5e-3)).expect("1.5 elements");
         assert!(w.starts_with("unresolved slip zone on the driven pulley: 0.0149 m long, 1.5 arc elements"), "{w}");
         // 128 · 2.5 / 1.49 = 214.8
         assert!(w.contains("beyond 215 elements"), "{w}");
