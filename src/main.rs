@@ -711,8 +711,15 @@ fn print_one_pulley(s: &drive::Summary) {
         line("stick arc         [deg]", p.stick_arc.map(deg));
         line("slip arc          [deg]", p.slip_arc.map(deg));
         line("torque on pulley  [N·m]", p.torque);
+        line("stick → slip point [deg]", p.stick_slip_angle.map(deg));
         line("edge pressure, first [N/m]", p.edge_pressure_start);
         line("edge pressure, last [N/m]", p.edge_pressure_end);
+        line("pressure, smallest [N/m]", p.pressure_min);
+        line("shear strain, largest", p.shear_strain_max);
+        line("moment, first contact [N·m]", p.moment_start);
+        line("moment, last contact [N·m]", p.moment_end);
+        line("stretch of the stick zone", p.stretch_stick);
+        line("slip dissipation    [W]", p.dissipation);
     }
 }
 
@@ -775,6 +782,15 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         };
         force("edge force, first   [N]", d1.edge_force_start, d2.edge_force_start);
         force("edge force, last    [N]", d1.edge_force_end, d2.edge_force_end);
+        row("stick → slip point [deg]", d1.stick_slip_angle, d2.stick_slip_angle);
+        value("stretch of the stick zone", d1.stretch_stick, d2.stretch_stick);
+        force("slip dissipation    [W]", d1.dissipation, d2.dissipation);
+        force("edge pressure, first [N/m]", d1.edge_pressure_start, d2.edge_pressure_start);
+        force("edge pressure, last [N/m]", d1.edge_pressure_end, d2.edge_pressure_end);
+        force("pressure, smallest [N/m]", d1.pressure_min, d2.pressure_min);
+        force("shear strain, largest", d1.shear_strain_max, d2.shear_strain_max);
+        force("moment, first contact [N·m]", d1.moment_start, d2.moment_start);
+        force("moment, last contact [N·m]", d1.moment_end, d2.moment_end);
     }
     print_one_pulley(s);
     for note in &run.notes {

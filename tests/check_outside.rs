@@ -470,7 +470,7 @@ fn the_one_pulley_layout_is_checked_on_its_open_contour() {
         assert!((a - b).abs() <= 1e-6 * a.abs().max(1e-12), "{q}: gate {a:e}, check {b:e}");
         compared += 1;
     }
-    assert_eq!(compared, 9, "every gated quantity of cosserat-pulley compared");
+    assert_eq!(compared, 16, "every gated quantity of cosserat-pulley compared");
 
     // the other layout's σ convention is named
     let o = beltcheck(&["check", "scenes/cosserat-hanging.json", csv.to_str().unwrap()]);

@@ -513,3 +513,46 @@ fn d9_round_trip_by_shooting() {
     let (name, worst) = worst_summary_difference(&std, &back);
     assert!(worst <= 1e-9, "{name} differs by {worst:e}");
 }
+
+/// Spec §3.7's per-pulley outputs, each against what it must equal: the stick zone's
+/// stretch gives the pulley's surface speed (cλ_B = ωR, D-4, a BVP condition: round-off);
+/// the two dissipations add up to the power balance's D (the same quadrature:
+/// round-off) and are positive; the stick → slip angle lies inside the contact arc and
+/// splits it into the stick and slip arcs (round-off); the moments at the edges are the
+/// points' M; the smallest pressure and the largest |Γ₂| are no worse than a dense
+/// sampling of the contact zone (64 points per mesh interval: they must be at least as
+/// extreme, and within 1e-6 relative of it: the sampled extremum is O(h²/64²) off).
+#[test]
+fn spec_3_7_outputs_match_their_definitions() {
+    let sol = solved();
+    let d = &sol.data.drive;
+    let summary = sol.summary();
+    let c = sol.transport_rate().unwrap();
+    let speeds = [(Pulley::Driver, d.driver_speed), (Pulley::Driven, sol.driven_speed().unwrap())];
+    let (_, _, dissipation) = sol.power_balance();
+    let mut total = 0.0;
+    for ((pulley, omega), ps) in speeds.into_iter().zip([summary.driver.unwrap(), summary.driven.unwrap()]) {
+        let name = pulley.name();
+        let lambda = ps.stretch_stick.unwrap();
+        assert!((c * lambda - omega * d.radius).abs() <= 1e-12 * omega.abs() * d.radius, "{name}: cλ_B = {} vs ωR = {}", c * lambda, omega * d.radius);
+        let dp = ps.dissipation.unwrap();
+        assert!(dp > 0.0, "{name}: D = {dp}");
+        total += dp;
+        // the angles, unwrapped from the contact start clockwise
+        let (start, phi_b) = (ps.contact_start.unwrap(), ps.stick_slip_angle.unwrap());
+        let stick = (start - phi_b).rem_euclid(std::f64::consts::TAU);
+        assert!((stick - ps.stick_arc.unwrap()).abs() <= 1e-10, "{name}: φ_A − φ_B = {stick} vs stick arc {}", ps.stick_arc.unwrap());
+        let topo = sol.topology();
+        let (first, last) = (topo.first_arc(pulley), topo.last_arc(pulley));
+        assert_eq!(ps.moment_start, sol.point(first, 0.0).moment);
+        assert_eq!(ps.moment_end, sol.point(last, 1.0).moment);
+        let dense: Vec<BeltPoint> = sol.samples(64).into_iter().filter(|(k, _, _)| topo.arcs_on(pulley).contains(k)).map(|(_, _, p)| p).collect();
+        let p_min = dense.iter().map(|p| p.pressure.unwrap()).fold(f64::INFINITY, f64::min);
+        let g_max = dense.iter().map(|p| p.shear_strain.unwrap().abs()).fold(0.0, f64::max);
+        let (pm, gm) = (ps.pressure_min.unwrap(), ps.shear_strain_max.unwrap());
+        assert!(pm <= p_min * (1.0 + 1e-12) && pm >= p_min * (1.0 - 1e-6) && pm > 0.0, "{name}: p_min {pm} vs dense {p_min}");
+        assert!(gm >= g_max * (1.0 - 1e-12) && gm <= g_max * (1.0 + 1e-6), "{name}: max|Γ₂| {gm} vs dense {g_max}");
+        assert!(pm < ps.edge_pressure_start.unwrap().min(ps.edge_pressure_end.unwrap()), "{name}: the pressure peaks at the edges");
+    }
+    assert!((total - dissipation).abs() <= 1e-12 * dissipation.max(1e-300) + 1e-15, "D₁ + D₂ = {total} vs D = {dissipation}");
+}

@@ -108,6 +108,20 @@ pub enum PulleyQuantity {
     EdgePressureStart,
     /// Contact pressure just inside the zone at its last point, N/m.
     EdgePressureEnd,
+    /// Smallest contact pressure over the contact zone, N/m (Cosserat rods).
+    PressureMin,
+    /// Polar angle of the stick → slip point, rad (Coulomb friction in steady motion).
+    StickSlipAngle,
+    /// Largest |shear strain Γ₂| over the contact zone (Cosserat rods).
+    ShearStrainMax,
+    /// Bending moment at the first contact point, N·m (Cosserat rods).
+    MomentStart,
+    /// Bending moment at the last contact point, N·m (Cosserat rods).
+    MomentEnd,
+    /// Stretch λ of the stick zone (Coulomb friction in steady motion).
+    StretchStick,
+    /// Power dissipated by slip on the pulley, W (Coulomb friction in steady motion).
+    Dissipation,
 }
 
 /// A summary quantity: the typed id behind each flat name of [`SCALAR_NAMES`].
@@ -231,7 +245,7 @@ impl PulleyId {
 
 impl PulleyQuantity {
     /// Every pulley quantity, in the order of the result format.
-    pub const ALL: [PulleyQuantity; 10] = [
+    pub const ALL: [PulleyQuantity; 17] = [
         PulleyQuantity::ContactArc,
         PulleyQuantity::ContactStart,
         PulleyQuantity::ContactEnd,
@@ -242,6 +256,13 @@ impl PulleyQuantity {
         PulleyQuantity::EdgeForceEnd,
         PulleyQuantity::EdgePressureStart,
         PulleyQuantity::EdgePressureEnd,
+        PulleyQuantity::PressureMin,
+        PulleyQuantity::StickSlipAngle,
+        PulleyQuantity::ShearStrainMax,
+        PulleyQuantity::MomentStart,
+        PulleyQuantity::MomentEnd,
+        PulleyQuantity::StretchStick,
+        PulleyQuantity::Dissipation,
     ];
 
     /// The JSON name inside a pulley block.
@@ -257,6 +278,13 @@ impl PulleyQuantity {
             PulleyQuantity::EdgeForceEnd => "edge_force_end",
             PulleyQuantity::EdgePressureStart => "edge_pressure_start",
             PulleyQuantity::EdgePressureEnd => "edge_pressure_end",
+            PulleyQuantity::PressureMin => "pressure_min",
+            PulleyQuantity::StickSlipAngle => "stick_slip_angle",
+            PulleyQuantity::ShearStrainMax => "shear_strain_max",
+            PulleyQuantity::MomentStart => "moment_start",
+            PulleyQuantity::MomentEnd => "moment_end",
+            PulleyQuantity::StretchStick => "stretch_stick",
+            PulleyQuantity::Dissipation => "dissipation",
         }
     }
 }
@@ -269,10 +297,14 @@ impl PulleyQuantity {
             | PulleyQuantity::ContactStart
             | PulleyQuantity::ContactEnd
             | PulleyQuantity::StickArc
-            | PulleyQuantity::SlipArc => "rad",
+            | PulleyQuantity::SlipArc
+            | PulleyQuantity::StickSlipAngle => "rad",
             PulleyQuantity::Torque => "N·m",
             PulleyQuantity::EdgeForceStart | PulleyQuantity::EdgeForceEnd => "N",
-            PulleyQuantity::EdgePressureStart | PulleyQuantity::EdgePressureEnd => "N/m",
+            PulleyQuantity::EdgePressureStart | PulleyQuantity::EdgePressureEnd | PulleyQuantity::PressureMin => "N/m",
+            PulleyQuantity::ShearStrainMax | PulleyQuantity::StretchStick => "1",
+            PulleyQuantity::MomentStart | PulleyQuantity::MomentEnd => "N·m",
+            PulleyQuantity::Dissipation => "W",
         }
     }
 
@@ -299,6 +331,21 @@ impl PulleyQuantity {
             PulleyQuantity::EdgePressureEnd => {
                 "contact pressure per unit reference length just inside the zone at its last point (Cosserat rods)"
             }
+            PulleyQuantity::PressureMin => {
+                "smallest contact pressure per unit reference length over the contact zone, its edges included (Cosserat rods; admissibility needs it > 0)"
+            }
+            PulleyQuantity::StickSlipAngle => {
+                "polar angle atan2(y − y_c, x − x_c) ∈ (−π, π] of the stick → slip point (friction drives in steady motion with a slip zone)"
+            }
+            PulleyQuantity::ShearStrainMax => "largest |shear strain Γ₂| over the contact zone, its edges included (Cosserat rods)",
+            PulleyQuantity::MomentStart => "bending moment at the first contact point in the direction of σ (Cosserat rods)",
+            PulleyQuantity::MomentEnd => "bending moment at the last contact point in the direction of σ (Cosserat rods)",
+            PulleyQuantity::StretchStick => {
+                "stretch λ of the stick zone, at the middle of the stick arc (friction drives in steady motion; the pulley's surface speed is c λ)"
+            }
+            PulleyQuantity::Dissipation => {
+                "power dissipated by slip on the pulley, ∫_slip f_t (ωR − cλ) ds ≥ 0 (friction drives in steady motion)"
+            }
         }
     }
 }
@@ -316,12 +363,18 @@ const TABLE: [&str; N_QUANTITIES] = [
     "driver.contact_arc", "driver.contact_start", "driver.contact_end", "driver.stick_arc",
     "driver.slip_arc", "driver.torque", "driver.edge_force_start", "driver.edge_force_end",
     "driver.edge_pressure_start", "driver.edge_pressure_end",
+    "driver.pressure_min", "driver.stick_slip_angle", "driver.shear_strain_max", "driver.moment_start",
+    "driver.moment_end", "driver.stretch_stick", "driver.dissipation",
     "driven.contact_arc", "driven.contact_start", "driven.contact_end", "driven.stick_arc",
     "driven.slip_arc", "driven.torque", "driven.edge_force_start", "driven.edge_force_end",
     "driven.edge_pressure_start", "driven.edge_pressure_end",
+    "driven.pressure_min", "driven.stick_slip_angle", "driven.shear_strain_max", "driven.moment_start",
+    "driven.moment_end", "driven.stretch_stick", "driven.dissipation",
     "pulley.contact_arc", "pulley.contact_start", "pulley.contact_end", "pulley.stick_arc",
     "pulley.slip_arc", "pulley.torque", "pulley.edge_force_start", "pulley.edge_force_end",
     "pulley.edge_pressure_start", "pulley.edge_pressure_end",
+    "pulley.pressure_min", "pulley.stick_slip_angle", "pulley.shear_strain_max", "pulley.moment_start",
+    "pulley.moment_end", "pulley.stretch_stick", "pulley.dissipation",
 ];
 
 /// Every flat name [`Summary::scalars`] can produce, in its order (a unit test holds
@@ -452,14 +505,35 @@ pub struct PulleySummary {
     /// Contact pressure just inside the zone at its last point, N/m (Cosserat rods).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge_pressure_end: Option<f64>,
+    /// Smallest contact pressure over the contact zone, N/m (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pressure_min: Option<f64>,
+    /// Polar angle of the stick → slip point, rad, (−π, π] (friction drives).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stick_slip_angle: Option<f64>,
+    /// Largest |shear strain Γ₂| over the contact zone (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_strain_max: Option<f64>,
+    /// Bending moment at the first contact point, N·m (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moment_start: Option<f64>,
+    /// Bending moment at the last contact point, N·m (Cosserat rods).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub moment_end: Option<f64>,
+    /// Stretch λ of the stick zone (friction drives).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stretch_stick: Option<f64>,
+    /// Power dissipated by slip on the pulley, W (friction drives).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dissipation: Option<f64>,
 }
 
 impl PulleySummary {
     /// The field names, in the order of the result format.
-    pub const NAMES: [&'static str; 10] = {
-        let mut names = [""; 10];
+    pub const NAMES: [&'static str; 17] = {
+        let mut names = [""; 17];
         let mut q = 0;
-        while q < 10 {
+        while q < 17 {
             names[q] = PulleyQuantity::ALL[q].name();
             q += 1;
         }
@@ -470,7 +544,9 @@ impl PulleySummary {
         ContactArc => contact_arc, ContactStart => contact_start, ContactEnd => contact_end,
         StickArc => stick_arc, SlipArc => slip_arc, Torque => torque,
         EdgeForceStart => edge_force_start, EdgeForceEnd => edge_force_end,
-        EdgePressureStart => edge_pressure_start, EdgePressureEnd => edge_pressure_end);
+        EdgePressureStart => edge_pressure_start, EdgePressureEnd => edge_pressure_end,
+        PressureMin => pressure_min, StickSlipAngle => stick_slip_angle, ShearStrainMax => shear_strain_max,
+        MomentStart => moment_start, MomentEnd => moment_end, StretchStick => stretch_stick, Dissipation => dissipation);
 }
 
 /// Named scalars of one solution; see the module docs for units and signs, and
@@ -649,6 +725,9 @@ impl Summary {
                 edge_force_end: p.edge_force_start,
                 edge_pressure_start: p.edge_pressure_end,
                 edge_pressure_end: p.edge_pressure_start,
+                moment_start: p.moment_end,
+                moment_end: p.moment_start,
+                stick_slip_angle: angle(p.stick_slip_angle),
                 ..p.clone()
             })
         };
@@ -702,6 +781,9 @@ mod tests {
         assert_eq!(m.get("driven.contact_start"), s.get("driven.contact_end").map(|v| -v));
         assert_eq!(m.get("driver.contact_end"), Some(std::f64::consts::PI));
         assert_eq!(m.get("driver.edge_force_start"), s.get("driver.edge_force_end"));
+        assert_eq!(m.get("driver.moment_end"), s.get("driver.moment_start"));
+        assert_eq!(m.get("driven.stick_slip_angle"), s.get("driven.stick_slip_angle").map(|v| -v));
+        assert_eq!(m.get("driven.stretch_stick"), s.get("driven.stretch_stick"));
         assert_eq!(m.get("driven.slip_arc"), s.get("driven.slip_arc"));
         assert_eq!(m.mirror_y(), s);
     }
@@ -734,8 +816,12 @@ mod tests {
             let leaf = name.rsplit('.').next().unwrap();
             let expected = if leaf.starts_with("tension") || leaf.starts_with("edge_force") {
                 "N"
-            } else if leaf.starts_with("edge_pressure") {
+            } else if leaf.starts_with("edge_pressure") || leaf.starts_with("pressure") {
                 "N/m"
+            } else if leaf.starts_with("shear_strain") || leaf.starts_with("stretch") {
+                "1"
+            } else if leaf == "dissipation" {
+                "W"
             } else if leaf.starts_with("y_") {
                 "m"
             } else if leaf.starts_with("moment") || leaf == "torque" {
@@ -748,7 +834,7 @@ mod tests {
                 "m"
             } else if leaf.ends_with("_stress_max") {
                 "Pa"
-            } else if leaf.ends_with("_arc") || leaf.starts_with("contact_") {
+            } else if leaf.ends_with("_arc") || leaf.starts_with("contact_") || leaf.ends_with("_angle") {
                 "rad"
             } else {
                 panic!("{name}: no unit family")

@@ -132,6 +132,13 @@ fn keys_and_nesting_exactly_as_design() {
         "edge_force_end",
         "edge_pressure_start",
         "edge_pressure_end",
+        "pressure_min",
+        "stick_slip_angle",
+        "shear_strain_max",
+        "moment_start",
+        "moment_end",
+        "stretch_stick",
+        "dissipation",
     ]);
     assert_eq!(keys(&v["summary"]["driver"]), pulley);
     assert_eq!(keys(&v["summary"]["driven"]), pulley);

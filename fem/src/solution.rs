@@ -64,6 +64,29 @@ pub struct ContactZone {
     pub edge_force_end: Option<f64>,
 }
 
+/// Spec §2.6/§3.7's Cosserat quantities of one contact zone ([`FemSolution::cosserat_zone`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CosseratZone {
+    /// Smallest contact pressure per unit reference length over the zone, N/m.
+    pub pressure_min: Option<f64>,
+    /// Largest |Γ₂| over the zone, its edges included.
+    pub shear_strain_max: Option<f64>,
+    /// Bending moment at the first contact point, N·m.
+    pub moment_start: Option<f64>,
+    /// Bending moment at the last contact point, N·m.
+    pub moment_end: Option<f64>,
+}
+
+impl CosseratZone {
+    /// Write the quantities into a pulley's summary block.
+    pub fn fill(&self, ps: &mut PulleySummary) {
+        ps.pressure_min = self.pressure_min;
+        ps.shear_strain_max = self.shear_strain_max;
+        ps.moment_start = self.moment_start;
+        ps.moment_end = self.moment_end;
+    }
+}
+
 /// 8-point Gauss–Legendre rule on [−1, 1].
 const GL8: [(f64, f64); 8] = [
     (-0.960_289_856_497_536_3, 0.101_228_536_290_376_3),
@@ -622,17 +645,23 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
                 edge_force_end: rod.then_some(0.0),
                 ..Default::default()
             },
-            Some(z) => PulleySummary {
-                contact_arc: Some((z.angle_start - z.angle_end).rem_euclid(2.0 * PI)),
-                contact_start: Some(z.angle_start),
-                contact_end: Some(z.angle_end),
-                edge_force_start: z.edge_force_start,
-                edge_force_end: z.edge_force_end,
-                // its finite pressure just inside the zone instead (issue 13)
-                edge_pressure_start: cosserat.then(|| self.edge_pressure(pulley, z.sigma_start, 1.0)).flatten(),
-                edge_pressure_end: cosserat.then(|| self.edge_pressure(pulley, z.sigma_end, -1.0)).flatten(),
-                ..Default::default()
-            },
+            Some(z) => {
+                let mut ps = PulleySummary {
+                    contact_arc: Some((z.angle_start - z.angle_end).rem_euclid(2.0 * PI)),
+                    contact_start: Some(z.angle_start),
+                    contact_end: Some(z.angle_end),
+                    edge_force_start: z.edge_force_start,
+                    edge_force_end: z.edge_force_end,
+                    // its finite pressure just inside the zone instead (issue 13)
+                    edge_pressure_start: cosserat.then(|| self.edge_pressure(pulley, z.sigma_start, 1.0)).flatten(),
+                    edge_pressure_end: cosserat.then(|| self.edge_pressure(pulley, z.sigma_end, -1.0)).flatten(),
+                    ..Default::default()
+                };
+                if cosserat {
+                    self.cosserat_zone(z.sigma_start, z.sigma_end).fill(&mut ps);
+                }
+                ps
+            }
         }
     }
 
@@ -827,6 +856,66 @@ impl<const N: usize, K: LayoutElement<N> + ?Sized> FemSolution<N, K> {
         let ds = self.context(e).field(self.layout, &self.local[e], 0, xi)[1];
         let per_material = slope / ds;
         (per_material.is_finite() && per_material > 0.0).then_some(per_material)
+    }
+
+    /// Spec §2.6/§3.7's Cosserat quantities of the contact zone [σ_start, σ_end]
+    /// (unwrapped, σ_start < σ_end; docs/fem-cosserat.md §12.10):
+    /// - `pressure_min`: the smallest element-mean pressure F_e/(h_e ∂σS) over the
+    ///   elements inside the zone (F_e the contact force the element's rule applies),
+    ///   the penalty layer's [`EDGE_LAYER_SKIP`] ℓ_P at each edge left out (there the
+    ///   regularised pressure falls to 0, the limit's does not). The pointwise penalty
+    ///   pressure oscillates from node to node; the element's force does not, and its
+    ///   mean is the pressure at the element's middle to O(h²). `None` if no element
+    ///   lies inside.
+    /// - `shear_strain_max`: max |Γ₂| at the zone's edges and 8 points per element
+    ///   inside.
+    /// - `moment_start`, `moment_end`: M at the edges.
+    pub fn cosserat_zone(&self, sigma_start: f64, sigma_end: f64) -> CosseratZone {
+        let c = *self.mesh.contour();
+        let l = c.length();
+        let skip = EDGE_LAYER_SKIP * self.penalty_layer().unwrap_or(0.0);
+        let (inner_a, inner_b) = (sigma_start + skip, sigma_end - skip);
+        let mut pressure_min: Option<f64> = None;
+        let mut strain_max: Option<f64> = None;
+        let mut strain = |sigma: f64| {
+            if let Some(g) = self.shear_strain(c.wrap(sigma)) {
+                strain_max = Some(strain_max.map_or(g.abs(), |m: f64| m.max(g.abs())));
+            }
+        };
+        // Γ₂ peaks at a kink on the edge; the regularised solution rounds it off over
+        // the penalty layer, between the gap's crossings ℓ_P outside the zone
+        let layer = self.penalty_layer().unwrap_or(0.0);
+        let (outer_a, outer_b) = (sigma_start - layer, sigma_end + layer);
+        strain(outer_a);
+        strain(outer_b);
+        let rule = self.kernel.rules().contact;
+        for (e, g) in self.mesh.elements().iter().enumerate() {
+            for off in [-l, 0.0, l] {
+                let (sa, sb) = (g.sigma_a + off, g.sigma_a + g.h + off);
+                if sb <= outer_a || sa >= outer_b {
+                    continue;
+                }
+                for j in 0..8 {
+                    let sigma = sa + (sb - sa) * (j as f64 + 0.5) / 8.0;
+                    if sigma > outer_a && sigma < outer_b {
+                        strain(sigma);
+                    }
+                }
+                let Some(penalty) = self.params.penalty else { continue };
+                if sa < inner_a || sb > inner_b {
+                    continue;
+                }
+                let el = self.context(e);
+                let force: f64 = rule.points().iter().map(|&(xi, wt)| wt * el.jacobian() * self.kernel.contact_traction(penalty, el.sigma(xi), el.gap(&self.point(e, xi)))).sum();
+                let ds = el.field(self.layout, &self.local[e], 0, 0.0)[1];
+                let p = force / (g.h * ds);
+                if p.is_finite() {
+                    pressure_min = Some(pressure_min.map_or(p, |m| m.min(p)));
+                }
+            }
+        }
+        let moment = |sigma: f64| self.rod_resultants(c.wrap(sigma)).map(|x| x.0);
+        CosseratZone { pressure_min, shear_strain_max: strain_max, moment_start: moment(sigma_start), moment_end: moment(sigma_end) }
     }
 
     /// The decay length ℓ_P = 1/k of the penalty's own mode at a contact edge of a

@@ -102,29 +102,13 @@ pub fn drive_power_scale(d: &crate::string_drive::StringDrive, force_scale: f64)
 /// (docs/string-drive.md, "Torques, power"; the Cosserat drive's D-3). Any law on the
 /// drive topology whose points carry the torque, the friction and the stretch.
 pub fn drive_power<L: super::law::SectionLaw>(sol: &super::solution::BeltSolution<L>, d: &crate::string_drive::StringDrive) -> (f64, f64, f64) {
-    use super::topology::{ArcKind, Pulley, Scaling};
+    use super::topology::Pulley;
     let input = -sol.torque(Pulley::Driver).expect("the drive integrates the torque") * d.driver_speed;
     let omega2 = sol.driven_speed().expect("a drive has its motion");
     let output = (d.driven_torque + d.driven_damping * omega2) * omega2;
-    let c = sol.transport_rate().expect("a drive has its motion");
-    const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
-    const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
-    let mut dissipation = 0.0;
-    let topo = sol.topology();
-    for pulley in [Pulley::Driven, Pulley::Driver] {
-        let k = topo.arc(pulley, ArcKind::Slip).expect("a drive has slip arcs");
-        let omega = if pulley == Pulley::Driver { d.driver_speed } else { omega2 };
-        let Scaling::Arc { start: ia, end: ib, .. } = topo.segment(k).scaling else { unreachable!("an arc") };
-        let dphi = (sol.solution.params[ib] - sol.solution.params[ia]).abs();
-        for w in sol.solution.segments[k].mesh.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            for (gx, gw) in GX.iter().zip(GW) {
-                let xi = 0.5 * (a + b) + 0.5 * (b - a) * gx;
-                let pt = sol.point(k, xi);
-                let ds = d.radius / pt.stretch * dphi * 0.5 * (b - a) * gw;
-                dissipation += pt.friction.unwrap_or(0.0) * (omega * d.radius - c * pt.stretch) * ds;
-            }
-        }
-    }
+    let dissipation = [(Pulley::Driven, omega2), (Pulley::Driver, d.driver_speed)]
+        .into_iter()
+        .map(|(pulley, omega)| sol.slip_dissipation(pulley, omega).expect("a drive has slip arcs"))
+        .sum();
     (input, output, dissipation)
 }

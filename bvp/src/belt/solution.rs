@@ -21,6 +21,55 @@ use super::run::{self, StageError};
 use super::topology::{ArcKind, Pulley, Scaling, SegmentKind, Topology};
 use super::{BeltError, BeltOptions};
 
+/// The largest value of g(k, ξ) over the segments k of `segments` (each with its mesh
+/// in ξ ∈ [0, 1]): the best of the mesh nodes and 8 points per mesh interval, refined by
+/// golden section between the best sample's neighbours, so that an interior extremum of
+/// a smooth g is found to ~1e-10 of the interval rather than to the sampling's O(h²).
+/// NaN if g is NaN everywhere.
+pub fn sampled_extremum(segments: &[(usize, &[f64])], g: impl Fn(usize, f64) -> f64) -> f64 {
+    const SUB: usize = 8;
+    let mut best = (f64::NEG_INFINITY, 0, 0.0, 0.0);
+    for &(k, mesh) in segments {
+        let mut xis: Vec<f64> = Vec::with_capacity(SUB * mesh.len());
+        for w in mesh.windows(2) {
+            xis.extend((0..SUB).map(|j| w[0] + (w[1] - w[0]) * j as f64 / SUB as f64));
+        }
+        xis.extend(mesh.last());
+        for (i, &xi) in xis.iter().enumerate() {
+            let v = g(k, xi);
+            if v > best.0 {
+                best = (v, k, xis[i.saturating_sub(1)], xis[(i + 1).min(xis.len() - 1)]);
+            }
+        }
+    }
+    let (mut value, k, mut a, mut b) = best;
+    if !value.is_finite() {
+        return if value == f64::NEG_INFINITY { f64::NAN } else { value };
+    }
+    let r = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+    let (mut gc, mut gd) = (g(k, c), g(k, d));
+    for _ in 0..48 {
+        if gc > gd {
+            b = d;
+            (d, gd) = (c, gc);
+            c = b - r * (b - a);
+            gc = g(k, c);
+        } else {
+            a = c;
+            (c, gc) = (d, gd);
+            d = a + r * (b - a);
+            gd = g(k, d);
+        }
+    }
+    for v in [gc, gd] {
+        if v.is_finite() && v > value {
+            value = v;
+        }
+    }
+    value
+}
+
 /// Wrap an angle to (−π, π].
 pub fn wrap_angle(a: f64) -> f64 {
     let mut w = a.rem_euclid(2.0 * PI);
@@ -479,6 +528,38 @@ impl<L: SectionLaw> BeltSolution<L> {
         (k, self.point(k, xi))
     }
 
+    /// The largest value of `f` over the segments `ks` (its smallest: pass −f), by
+    /// [`sampled_extremum`] on their meshes.
+    pub fn arc_extremum(&self, ks: &[usize], f: impl Fn(&BeltPoint) -> f64) -> f64 {
+        let meshes: Vec<(usize, &[f64])> = ks.iter().map(|&k| (k, self.solution.segments[k].mesh.as_slice())).collect();
+        sampled_extremum(&meshes, |k, xi| f(&self.point(k, xi)))
+    }
+
+    /// Slip dissipation D = ∫_slip f_t (ωR − cλ) ds on `pulley` turning at `omega`
+    /// (rad/s) (W), by 5-point Gauss–Legendre quadrature on each mesh interval of the
+    /// slip arc's dense output (spec §1 (D)); `None` without a slip arc or transport.
+    pub fn slip_dissipation(&self, pulley: Pulley, omega: f64) -> Option<f64> {
+        const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
+        const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
+        let topo = self.topology();
+        let k = topo.arc(pulley, ArcKind::Slip)?;
+        let c = self.transport_rate()?;
+        let r = self.pulleys.radius;
+        let Scaling::Arc { start: ia, end: ib, .. } = topo.segment(k).scaling else { return None };
+        let dphi = (self.solution.params[ib] - self.solution.params[ia]).abs();
+        let mut dissipation = 0.0;
+        for w in self.solution.segments[k].mesh.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            for (gx, gw) in GX.iter().zip(GW) {
+                let xi = 0.5 * (a + b) + 0.5 * (b - a) * gx;
+                let pt = self.point(k, xi);
+                let ds = r / pt.stretch * dphi * 0.5 * (b - a) * gw;
+                dissipation += pt.friction.unwrap_or(0.0) * (omega * r - c * pt.stretch) * ds;
+            }
+        }
+        Some(dissipation)
+    }
+
     fn pulley_summary(&self, pulley: Pulley, edges: Option<EdgeForces>) -> PulleySummary {
         let angles = self.contact_angles(pulley);
         let (a, b) = (angles[0], angles[angles.len() - 1]);
@@ -499,9 +580,29 @@ impl<L: SectionLaw> BeltSolution<L> {
             ContactEdges::Forces => None,
         };
         let topo = self.topology();
+        let arcs = topo.arcs_on(pulley);
+        // spec §2.6/§3.7's Cosserat additions: over the contact zone, its edges included
+        let cosserat = L::CONTACT_EDGES == ContactEdges::Pressures;
+        let pressure_min = cosserat.then(|| -self.arc_extremum(&arcs, |p| -p.pressure.unwrap_or(f64::NAN))).filter(|v| v.is_finite());
+        let shear_strain_max = cosserat.then(|| self.arc_extremum(&arcs, |p| p.shear_strain.map_or(f64::NAN, f64::abs))).filter(|v| v.is_finite());
+        let moment = |k: usize, xi: f64| if cosserat { self.point(k, xi).moment } else { None };
+        // steady friction: the stick zone's stretch (constant there), the stick → slip
+        // angle and the slip zone's dissipation at the stick kinematics ω = cλ_B/R (D-4)
+        let stretch_stick = topo.arc(pulley, ArcKind::Stick).map(|k| self.point(k, 0.5).stretch);
+        let dissipation = match (stretch_stick, self.transport_rate()) {
+            (Some(lambda), Some(c)) => self.slip_dissipation(pulley, c * lambda / self.pulleys.radius),
+            _ => None,
+        };
         PulleySummary {
             edge_pressure_start: edge_pressure(topo.first_arc(pulley), 0.0),
             edge_pressure_end: edge_pressure(topo.last_arc(pulley), 1.0),
+            pressure_min,
+            stick_slip_angle: (angles.len() == 3).then(|| wrap_angle(angles[1])),
+            shear_strain_max,
+            moment_start: moment(topo.first_arc(pulley), 0.0),
+            moment_end: moment(topo.last_arc(pulley), 1.0),
+            stretch_stick,
+            dissipation,
             contact_arc: Some(a - b),
             contact_start: Some(wrap_angle(a)),
             contact_end: Some(wrap_angle(b)),

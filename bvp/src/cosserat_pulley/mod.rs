@@ -615,17 +615,32 @@ impl CosseratPulleySolution {
         self.point(2, 1.0).torque.unwrap_or(f64::NAN)
     }
 
-    /// Slip dissipation D = ∫_slip f_t (ωR − cλ) ds ≥ 0 (W), by the trapezoidal rule over
-    /// 8 dense points per mesh interval of the slip arc.
+    /// Slip dissipation D = ∫_slip f_t (ωR − cλ) ds ≥ 0 (W), by 5-point Gauss–Legendre
+    /// quadrature on each mesh interval of the slip arc's dense output (ds = R dφ/λ on
+    /// an arc, φ linear in ξ), as the loop's [`crate::belt::solution::BeltSolution::slip_dissipation`].
     pub fn dissipation(&self) -> f64 {
+        const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
+        const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
         let (w, r, c) = (self.pulley_speed(), self.data.radius, self.data.transport_rate);
-        let pts: Vec<BeltPoint> = self.samples(8).into_iter().filter(|(k, _, _)| *k == 2).map(|(_, _, p)| p).collect();
-        pts.windows(2)
-            .map(|q| {
-                let g = |p: &BeltPoint| p.friction.unwrap_or(0.0) * (w * r - c * p.stretch);
-                0.5 * (g(&q[0]) + g(&q[1])) * (q[1].material - q[0].material)
-            })
-            .sum()
+        let [_, b, cc] = self.contact_angles();
+        let dphi = (b - cc).abs();
+        let mut total = 0.0;
+        for m in self.solution.segments[2].mesh.windows(2) {
+            for (gx, gw) in GX.iter().zip(GW) {
+                let xi = 0.5 * (m[0] + m[1]) + 0.5 * (m[1] - m[0]) * gx;
+                let p = self.point(2, xi);
+                total += p.friction.unwrap_or(0.0) * (w * r - c * p.stretch) * r / p.stretch * dphi * 0.5 * (m[1] - m[0]) * gw;
+            }
+        }
+        total
+    }
+
+    /// The largest value of `f` over the contact zone (the stick arc 1 and the slip arc
+    /// 2, edges included) by [`crate::belt::solution::sampled_extremum`]; its smallest:
+    /// pass −f.
+    pub fn arc_extremum(&self, f: impl Fn(&BeltPoint) -> f64) -> f64 {
+        let meshes: Vec<(usize, &[f64])> = [1, 2].into_iter().map(|k| (k, self.solution.segments[k].mesh.as_slice())).collect();
+        crate::belt::solution::sampled_extremum(&meshes, |k, xi| f(&self.point(k, xi)))
     }
 
     /// The admissibility of the stick/slip topology (spec §2.4): φ_A > φ_B ≥ φ_C, p > 0
@@ -701,6 +716,13 @@ impl CosseratPulleySolution {
                 torque: Some(self.torque()),
                 edge_pressure_start: self.point(1, 0.0).pressure,
                 edge_pressure_end: self.point(2, 1.0).pressure,
+                pressure_min: Some(-self.arc_extremum(|p| -p.pressure.unwrap_or(f64::NAN))),
+                stick_slip_angle: Some(wrap_angle(b)),
+                shear_strain_max: Some(self.arc_extremum(|p| p.shear_strain.map_or(f64::NAN, f64::abs))),
+                moment_start: self.point(1, 0.0).moment,
+                moment_end: self.point(2, 1.0).moment,
+                stretch_stick: Some(self.stick_stretch()),
+                dissipation: Some(self.dissipation()),
                 ..PulleySummary::default()
             }),
             ..Summary::default()

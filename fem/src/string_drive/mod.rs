@@ -605,16 +605,22 @@ fn drive_start<const N: usize, K: LayoutElement<N> + ?Sized>(problem: &FemProble
 /// transition `transition` (σ; the whole zone without one); `None` without a recovered
 /// zone or with the transition outside it.
 fn stick_zone_force<const N: usize, K: LayoutElement<N> + ?Sized>(base: &FemSolution<N, K>, pulley: Pulley, transition: Option<f64>, direction: Direction) -> Option<f64> {
+    stick_zone_middle(base, pulley, transition, direction).map(|sigma| base.axial_force(sigma))
+}
+
+/// σ (wrapped) of the middle of the stick zone of [`stick_zone_force`], where it and
+/// `stretch_stick` are read; `None` as there.
+fn stick_zone_middle<const N: usize, K: LayoutElement<N> + ?Sized>(base: &FemSolution<N, K>, pulley: Pulley, transition: Option<f64>, direction: Direction) -> Option<f64> {
     let contour = base.mesh().contour();
     let zone = base.zone(pulley)?;
     let span = zone.sigma_end - zone.sigma_start;
     if direction == Direction::CounterClockwise {
         // the belt runs on at the zone's end along σ: stick from the transition to there
         let stick = transition.map_or(span, |t| (zone.sigma_end - t).rem_euclid(contour.length()));
-        return (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_end - 0.5 * stick)));
+        return (stick > 0.0 && stick <= span).then(|| contour.wrap(zone.sigma_end - 0.5 * stick));
     }
     let stick = transition.map_or(span, |t| (t - zone.sigma_start).rem_euclid(contour.length()));
-    (stick > 0.0 && stick <= span).then(|| base.axial_force(contour.wrap(zone.sigma_start + 0.5 * stick)))
+    (stick > 0.0 && stick <= span).then(|| contour.wrap(zone.sigma_start + 0.5 * stick))
 }
 
 /// R Δθ_k of the pulley of a point: `driver` for the driver, `driven` for the driven one.

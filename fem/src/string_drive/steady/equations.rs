@@ -314,11 +314,20 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// Slip dissipation D = ∫ τ v dσ, v = cλ − Rω_k, with the quadrature and the
     /// linear τ of the friction load — so P_in = P_out + D holds by (DS2) to round-off.
     pub fn dissipation(&self, x: &[f64]) -> f64 {
+        self.dissipation_on(x, None)
+    }
+
+    /// The part of [`Self::dissipation`] on one pulley's friction load (all of it with
+    /// `None`).
+    pub fn dissipation_on(&self, x: &[f64], pulley: Option<Pulley>) -> f64 {
         let z = &x[..self.asm.len()];
         let (c, w2) = (x[self.ic()], x[self.iw()]);
         let mut d = 0.0;
         for (e, o) in self.edge_owners().into_iter().enumerate() {
             let Some(first) = o[0].or(o[1]) else { continue };
+            if pulley.is_some_and(|p| self.points[first].pulley != p) {
+                continue;
+            }
             let (omega, _) = self.sp.point_speed(self.points[first].pulley == Pulley::Driven, w2);
             let tau = [o[0].map_or(0.0, |i| x[self.it(i)]), o[1].map_or(0.0, |i| x[self.it(i)])];
             let el = self.asm.context(e, &self.params);

@@ -690,8 +690,17 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
         ));
         total.min(arc)
     };
+    // spec §2.6: the stick → slip point of Paper C's topology, the stick zone's stretch
+    // at its middle (entry → transition, the whole zone in pure stick)
+    let transition_inside = paper_c && slip > 0.0 && slip < arc;
+    let stick_middle = match (zone, located) {
+        (Some(z), Some(t)) if transition_inside => Some(0.5 * (z.sigma_start + t)),
+        (Some(z), _) if !any_slip => Some(0.5 * (z.sigma_start + z.sigma_end)),
+        _ => None,
+    };
+    let cosserat = kernel.theory() == drive::scene::Theory::Cosserat;
     let end_sigma = mesh.end_sigma();
-    let summary = Summary {
+    let mut summary = Summary {
         transport_rate: Some(c),
         pulley_speed: Some(omega),
         tension_in: Some(base.recovered_axial_force(0.0)),
@@ -707,10 +716,15 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
             torque: Some(torque),
             edge_pressure_start: zone.and_then(|z| base.edge_pressure(pulley, z.sigma_start, 1.0)),
             edge_pressure_end: zone.and_then(|z| base.edge_pressure(pulley, z.sigma_end, -1.0)),
+            stick_slip_angle: transition_inside.then(|| located.map(angle)).flatten(),
+            stretch_stick: stick_middle.map(|s| base.stretch(s)),
             ..PulleySummary::default()
         }),
         ..Summary::default()
     };
+    if let (true, Some(z), Some(ps)) = (cosserat, zone, summary.pulley.as_mut()) {
+        base.cosserat_zone(z.sigma_start, z.sigma_end).fill(ps);
+    }
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
     }
@@ -718,6 +732,9 @@ fn open_finish<const N: usize, const P: usize, const E: usize, K: LayoutElement<
     let prob = SteadyProblem::<N, P, E, K> { asm, params: run.params, length: 0.0, points: &points, sp: run.sp, strain_rule: kernel.rules().strain };
     // power (§12.4): −torque·ω = c(𝓗_in − 𝓗_out) + D to round-off by (C21)
     let dissipation = prob.dissipation(&state.x);
+    if let Some(ps) = summary.pulley.as_mut() {
+        ps.dissipation = Some(dissipation).filter(|d| d.is_finite());
+    }
     let [flux_in, flux_out] = run.fluxes;
     let power_in = -torque * omega;
     let power_ends = c * (flux_in - flux_out);

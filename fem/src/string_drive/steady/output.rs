@@ -87,13 +87,23 @@ pub(super) fn finish<const N: usize, const P: usize, const E: usize, K: LayoutEl
         ps.slip_arc = Some(slip);
         ps.stick_arc = Some((ps.contact_arc.unwrap_or(arc) - slip).max(0.0));
         ps.torque = Some(torques[k]);
+        // spec §3.7: the stick → slip point (where both zones are resolved), the stick
+        // zone's stretch at its middle, the pulley's share of the dissipation below
+        ps.stick_slip_angle = (slip > 0.0 && slip < ps.contact_arc.unwrap_or(arc)).then(|| located(pulley).map(angle)).flatten();
+        ps.stretch_stick = super::super::stick_zone_middle(&base, pulley, located(pulley), direction).map(|s| base.stretch(s));
     }
     if let Err(e) = summary.check_finite() {
         return Err(FemError::NonFinite { what: e.to_string() });
     }
     let points: Vec<FrictionPoint> = state.results.iter().map(|p| p.point).collect();
     let sp = SteadyParams { mu, penalty, kappa, radius: r, omega1, torque: load_torque, damping, inertia: None, ends: Ends::Loop };
-    let dissipation = SteadyProblem::<N, P, E, K> { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain }.dissipation(&state.x);
+    let prob = SteadyProblem::<N, P, E, K> { asm, params, length, points: &points, sp, strain_rule: kernel.rules().strain };
+    let dissipation = prob.dissipation(&state.x);
+    for (pulley, block) in [(Pulley::Driver, &mut summary.driver), (Pulley::Driven, &mut summary.driven)] {
+        if let Some(ps) = block {
+            ps.dissipation = Some(prob.dissipation_on(&state.x, Some(pulley))).filter(|d| d.is_finite());
+        }
+    }
     let power_in = -torques[0] * omega1;
     let power_out = (load_torque + damping * omega2) * omega2;
     let max_penetration = base.max_penetration();
