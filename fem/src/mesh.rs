@@ -6,7 +6,8 @@
 //! ≥ 1 refines near the pulleys), at least one per region and symmetrically: ⌊N/2⌋ is
 //! split between one span and one arc by rounding (each ≥ 1) and mirrored to the other
 //! span and arc; an odd N puts the extra element on the upper span. Within a region the
-//! elements are uniform. Node 0 sits at
+//! elements are uniform (the open mesh of the one-pulley layout grades a span longer
+//! than [`OPEN_SPAN_RADII`] R geometrically from its arc, [`Mesh::open`]). Node 0 sits at
 //! σ = 0 (top of the driver); node k at the start of element k; element N − 1 ends at
 //! σ = L_c ≡ 0 (the loop closure).
 
@@ -82,8 +83,8 @@ impl Mesh {
     /// driver arc, shifted by −D/2 in x). Elements per region in proportion to the
     /// weighted lengths (spans min(D, D_s), arc w·πR, D_s = [`OPEN_SPAN_RADII`]·R; ≥ 1
     /// each; the spans split equally, an odd remainder on the upper span), so that the
-    /// arc's share does not shrink with D beyond D_s (a span of length D_s or shorter is
-    /// the D_s-span of before). The arc is uniform; a span of D ≤ D_s too; a longer span
+    /// arc's share does not shrink with D beyond D_s (D ≤ D_s: the distribution and the
+    /// uniform mesh of before). The arc is uniform; a span of D ≤ D_s too; a longer span
     /// is graded geometrically from the arc outwards: its first element is the uniform
     /// element D_s/n of its n elements at D_s, the next ones grow by a constant ratio
     /// q = (1 + κD)^{1/n} (the density 1/(1 + κd), d the distance from the arc, [`span_growth`])
