@@ -6,7 +6,8 @@
 //! ≥ 1 refines near the pulleys), at least one per region and symmetrically: ⌊N/2⌋ is
 //! split between one span and one arc by rounding (each ≥ 1) and mirrored to the other
 //! span and arc; an odd N puts the extra element on the upper span. Within a region the
-//! elements are uniform. Node 0 sits at
+//! elements are uniform (the open mesh of the one-pulley layout grades a span longer
+//! than [`OPEN_SPAN_RADII`] R geometrically from its arc, [`Mesh::open`]). Node 0 sits at
 //! σ = 0 (top of the driver); node k at the start of element k; element N − 1 ends at
 //! σ = L_c ≡ 0 (the loop closure).
 
@@ -41,6 +42,9 @@ pub struct Mesh {
     transition_nodes: [usize; 4],
     /// An open mesh ([`Mesh::open`]): the first three regions only, N + 1 distinct nodes.
     open: bool,
+    /// Growth rate κ (1/m) of each region's base density 1/(1 + κ d), d the distance
+    /// from the arc the region joins ([`Mesh::open`]'s long spans); 0: uniform.
+    growth: [f64; 4],
 }
 
 impl Mesh {
@@ -70,29 +74,49 @@ impl Mesh {
         let per_region = distribute(&contour, elements, arc_weight);
         let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
         nodes.push(contour.length());
-        Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes, open: false })
+        Ok(Mesh { contour, nodes, elements: els, per_region, transition_nodes, open: false, growth: [0.0; 4] })
     }
 
     /// An **open** mesh of `elements` elements (≥ 4) on the first three regions of
     /// `contour` — upper span, driven arc, lower span — for the one-pulley layout
     /// (docs/fem-cosserat.md §12.1: its open contour is the loop's of H = D without the
     /// driver arc, shifted by −D/2 in x). Elements per region in proportion to the
-    /// weighted lengths (spans H, arc w·πR; ≥ 1 each; the spans split equally, an odd
-    /// remainder on the upper span), uniform within a region. N + 1 distinct nodes: node 0
-    /// at σ = 0 (the inflow end), node N at σ = 2H + πR (the outflow end); no closure.
+    /// weighted lengths (spans min(D, D_s), arc w·πR, D_s = [`OPEN_SPAN_RADII`]·R; ≥ 1
+    /// each; the spans split equally, an odd remainder on the upper span), so that the
+    /// arc's share does not shrink with D beyond D_s (D ≤ D_s: the distribution and the
+    /// uniform mesh of before). The arc is uniform; a span of D ≤ D_s too; a longer span
+    /// is graded geometrically from the arc outwards: its first element is the uniform
+    /// element D_s/n of its n elements at D_s, the next ones grow by a constant ratio
+    /// q = (1 + κD)^{1/n} (the density 1/(1 + κd), d the distance from the arc, [`span_growth`])
+    /// so that the n elements cover D — the belt is straight there beyond the bending
+    /// layer √(a/T̃) at the arc, and the cubic elements are exact on a straight belt.
+    /// N + 1 distinct nodes: node 0 at σ = 0 (the inflow end), node N at σ = 2D + πR
+    /// (the outflow end); no closure.
     ///
     /// # Errors
     /// As [`Mesh::new`].
     pub fn open(contour: Contour, elements: usize, arc_weight: f64) -> Result<Mesh, FemError> {
         let closed = Mesh::new(contour, elements, arc_weight)?;
         let span = contour.centre_distance();
+        let measured = span.min(OPEN_SPAN_RADII * contour.radius());
         let arc = arc_weight * std::f64::consts::PI * contour.radius();
-        let arcs = ((elements as f64 * arc / (2.0 * span + arc)).round() as usize).clamp(1, elements - 2);
+        let arcs = ((elements as f64 * arc / (2.0 * measured + arc)).round() as usize).clamp(1, elements - 2);
         let spans = elements - arcs;
         let per_region = [spans - spans / 2, arcs, spans / 2, 0];
-        let (mut nodes, els, transition_nodes) = uniform_regions(&contour, per_region);
+        let growth = [span_growth(span, measured, per_region[0]), 0.0, span_growth(span, measured, per_region[2]), 0.0];
+        let (mut nodes, els, transition_nodes) = if growth == [0.0; 4] {
+            uniform_regions(&contour, per_region)
+        } else {
+            based_regions(&contour, per_region, growth)
+        };
         nodes.push(contour.region_bounds(Region::LowerSpan).1);
-        Ok(Mesh { nodes, elements: els, per_region, transition_nodes, open: true, ..closed })
+        Ok(Mesh { nodes, elements: els, per_region, transition_nodes, open: true, growth, ..closed })
+    }
+
+    /// The growth rates κ (1/m) of the regions' base densities 1/(1 + κd) ([`Mesh::open`]);
+    /// 0 for a uniform region.
+    pub fn growth(&self) -> [f64; 4] {
+        self.growth
     }
 
     /// True for an open mesh ([`Mesh::open`]).
@@ -183,8 +207,15 @@ impl Mesh {
             edges.push(b);
             used.extend(kept);
             let pieces = edges.len() - 1;
-            // the measure of a piece: its length, or ∫ρ over it when graded
-            let measure = |x: f64| grading.map_or(x, |g| g.cumulative(x, breakpoints, &contour));
+            // the measure of a piece: its length, or ∫ρ over it when graded; on a region
+            // of a base density (a long open span), its ∫ plus the grading's excess
+            let kappa = base.growth[k];
+            let based = kappa > 0.0;
+            let measure = |x: f64| match (based, grading) {
+                (false, _) => grading.map_or(x, |g| g.cumulative(x, breakpoints, &contour)),
+                (true, None) => base_measure(*region, &contour, kappa, x),
+                (true, Some(g)) => base_measure(*region, &contour, kappa, x) + (g.cumulative(x, breakpoints, &contour) - x),
+            };
             let lengths: Vec<f64> = edges.windows(2).map(|w| measure(w[1]) - measure(w[0])).collect();
             let total = measure(b) - measure(a);
             let spare = (m - pieces) as f64;
@@ -196,9 +227,10 @@ impl Mesh {
                 let h = (pb - pa) / n as f64;
                 // node j of the piece: uniform, or where ∫ρ reaches j/n of the piece's
                 let (ma, mb) = (measure(pa), measure(pb));
-                let node = |j: usize| match grading {
-                    None => pa + j as f64 * h,
-                    Some(_) => invert(&measure, ma + (mb - ma) * j as f64 / n as f64, pa, pb),
+                let node = |j: usize| match (based, grading) {
+                    (false, None) => pa + j as f64 * h,
+                    (true, None) => base_inverse(*region, &contour, kappa, ma + (mb - ma) * j as f64 / n as f64),
+                    (_, Some(_)) => invert(&measure, ma + (mb - ma) * j as f64 / n as f64, pa, pb),
                 };
                 for j in 0..n {
                     let sa = if j == 0 { pa } else { node(j) };
@@ -209,7 +241,7 @@ impl Mesh {
             }
         }
         nodes.push(base.end_sigma());
-        let mesh = Mesh { contour, nodes, elements: els, per_region: base.per_region, transition_nodes: base.transition_nodes, open: base.open };
+        let mesh = Mesh { contour, nodes, elements: els, per_region: base.per_region, transition_nodes: base.transition_nodes, open: base.open, growth: base.growth };
         (mesh, used)
     }
 
@@ -355,6 +387,88 @@ fn uniform_regions(contour: &Contour, per_region: [usize; 4]) -> (Vec<f64>, Vec<
             nodes.push(sa);
             let sb = if i + 1 == n { b } else { a + (i + 1) as f64 * h };
             els.push(ElementGeometry { sigma_a: sa, h: sb - sa, region: *region });
+        }
+    }
+    (nodes, els, transition_nodes)
+}
+
+/// Spans of an open mesh longer than this many pulley radii are weighed in the element
+/// distribution as this long and graded ([`Mesh::open`]): 5 R, the catalogue scene's
+/// D = 0.5 m at R = 0.1 m, whose mesh is unchanged.
+pub const OPEN_SPAN_RADII: f64 = 5.0;
+
+/// The growth rate κ (1/m) of a span of length `span` with `n` elements whose first
+/// element (at the arc) is `measured`/n: the root of ((1 + κD)^{1/n} − 1)/κ = D_s/n
+/// (the first element of the density 1/(1 + κd) equidistributed); 0 when `span` ≤
+/// `measured` (uniform) or for a single element.
+pub fn span_growth(span: f64, measured: f64, n: usize) -> f64 {
+    if n < 2 || span <= measured || !(span.is_finite() && measured > 0.0) {
+        return 0.0;
+    }
+    let n = n as f64;
+    let h0 = measured / n;
+    // the first element; decreasing in κ from D/n (κ → 0) to 0
+    let first = |kappa: f64| (kappa * span).ln_1p() / n;
+    let first = |kappa: f64| first(kappa).exp_m1() / kappa;
+    let (mut lo, mut hi) = (0.0, 1.0 / span);
+    while first(hi) > h0 {
+        lo = hi;
+        hi *= 2.0;
+    }
+    // bisection in κ to round-off (the first element is monotone in κ)
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if first(mid) > h0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The base measure ∫ dσ/(1 + κd) (m, increasing in σ) of a span region, d the distance
+/// from the arc it joins: the upper span ends at the arc, the lower span starts there.
+fn base_measure(region: Region, contour: &Contour, kappa: f64, sigma: f64) -> f64 {
+    let (a, b) = contour.region_bounds(region);
+    match region {
+        Region::UpperSpan => -(kappa * (b - sigma)).ln_1p() / kappa,
+        _ => (kappa * (sigma - a)).ln_1p() / kappa,
+    }
+}
+
+/// σ of the base measure `m` ([`base_measure`]'s inverse).
+fn base_inverse(region: Region, contour: &Contour, kappa: f64, m: f64) -> f64 {
+    let (a, b) = contour.region_bounds(region);
+    match region {
+        Region::UpperSpan => b - (-kappa * m).exp_m1() / kappa,
+        _ => a + (kappa * m).exp_m1() / kappa,
+    }
+}
+
+/// [`uniform_regions`] with the regions of a growth rate κ > 0 graded by their base
+/// density ([`base_measure`]): node j of n where the measure reaches j/n of the region's.
+fn based_regions(contour: &Contour, per_region: [usize; 4], growth: [f64; 4]) -> (Vec<f64>, Vec<ElementGeometry>, [usize; 4]) {
+    let (mut nodes, mut els, transition_nodes) = uniform_regions(contour, per_region);
+    for (k, region) in Region::ALL.iter().enumerate() {
+        let kappa = growth[k];
+        if kappa <= 0.0 {
+            continue;
+        }
+        let (a, b) = contour.region_bounds(*region);
+        let (ma, mb) = (base_measure(*region, contour, kappa, a), base_measure(*region, contour, kappa, b));
+        let first = transition_nodes[k];
+        let n = per_region[k];
+        for j in 1..n {
+            nodes[first + j] = base_inverse(*region, contour, kappa, ma + (mb - ma) * j as f64 / n as f64);
+        }
+        for j in 0..n {
+            let sa = nodes[first + j];
+            let sb = if j + 1 == n { b } else { nodes[first + j + 1] };
+            els[first + j] = ElementGeometry { sigma_a: sa, h: sb - sa, region: *region };
         }
     }
     (nodes, els, transition_nodes)
@@ -539,6 +653,67 @@ mod tests {
         assert!(Mesh::new(contour(), 64, 0.5).is_err());
         assert!(Mesh::new(contour(), 64, f64::NAN).is_err());
         assert!(Mesh::new(contour(), MAX_ELEMENTS + 1, 1.0).is_err());
+    }
+
+    /// A long open span (D > [`OPEN_SPAN_RADII`] R, issue 13 "long D"): the arc keeps the
+    /// element count of D = 5R at every D, both spans are graded geometrically from the
+    /// arc (first element D_s/n, constant ratio, the last node at the end), a refit keeps
+    /// the span nodes, and D = 5R itself is the uniform mesh of before.
+    #[test]
+    fn long_open_spans_are_graded_and_keep_the_arc_elements() {
+        let r = 0.1;
+        let ds = OPEN_SPAN_RADII * r;
+        for n in [16, 64, 128, 256] {
+            let reference = Mesh::open(Contour::new(r, ds).unwrap(), n, 1.0).unwrap();
+            assert_eq!(reference.growth(), [0.0; 4], "D = 5R is uniform");
+            let per0 = reference.elements_per_region();
+            for d in [0.5 + 1e-9, 1.0, 10.0, 20.0, 50.0, 1000.0] {
+                let c = Contour::new(r, d).unwrap();
+                let m = Mesh::open(c, n, 1.0).unwrap();
+                let per = m.elements_per_region();
+                assert_eq!(per, per0, "D = {d}, {n} elements");
+                assert!(m.node_sigmas().windows(2).all(|w| w[1] > w[0]), "D = {d}: nodes increasing");
+                assert_eq!(m.end_sigma(), c.region_bounds(Region::LowerSpan).1);
+                for (k, e) in m.elements().iter().enumerate() {
+                    assert!((m.node_sigmas()[k + 1] - (e.sigma_a + e.h)).abs() <= 1e-12 * d, "D = {d}: element {k} contiguous");
+                    assert_eq!(c.region(e.sigma_a + 0.5 * e.h), e.region);
+                }
+                // the spans, ordered from the arc outwards: first element D_s/n, ratio q
+                let upper: Vec<f64> = m.elements()[..per[0]].iter().rev().map(|e| e.h).collect();
+                let lower: Vec<f64> = m.elements()[per[0] + per[1]..].iter().map(|e| e.h).collect();
+                for span in [upper, lower] {
+                    let k = span.len();
+                    assert!((span[0] / (ds / k as f64) - 1.0).abs() < 1e-9, "D = {d}: first span element {} against D_s/n = {}", span[0], ds / k as f64);
+                    assert!((span.iter().sum::<f64>() / d - 1.0).abs() < 1e-12, "D = {d}: the span is covered");
+                    let q = span[1] / span[0];
+                    assert!(q >= 1.0 && span.windows(2).all(|w| (w[1] / w[0] / q - 1.0).abs() < 1e-6), "D = {d}, {n} elements: not geometric");
+                }
+                // the arc: uniform, its elements those of D = 5R
+                let arc = &m.elements()[per[0]..per[0] + per[1]];
+                let arc0 = &reference.elements()[per[0]..per[0] + per[1]];
+                assert!(arc.iter().zip(arc0).all(|(a, b)| (a.h - b.h).abs() < 1e-12), "D = {d}: arc elements");
+                // a refit to two points on the arc (the contact edges) keeps the spans
+                let (a, b) = c.region_bounds(Region::DrivenArc);
+                let (g, used) = m.regraded(&[a + 0.3 * (b - a), a + 0.6 * (b - a)], None, 0.0);
+                if n >= 64 {
+                    assert_eq!(used.len(), 2);
+                }
+                assert_eq!(g.growth(), m.growth());
+                for k in (0..per[0]).chain(per[0] + per[1]..n) {
+                    assert!((g.node_sigmas()[k] - m.node_sigmas()[k]).abs() <= 1e-12 * d, "D = {d}: refit moved span node {k}");
+                }
+                // graded towards the points: the span's far elements as before to 1 %
+                let (gg, _) = m.regraded(&[a + 0.3 * (b - a), a + 0.6 * (b - a)], Some(Grading { width: 0.006, ratio: 8.0 }), 0.0);
+                assert!((gg.elements()[0].h / m.elements()[0].h - 1.0).abs() < 1e-2 && (gg.elements()[n - 1].h / m.elements()[n - 1].h - 1.0).abs() < 1e-2);
+            }
+        }
+        // the growth: 0 up to D_s and for a single element, and (1 + κD)^{1/n} at 256
+        assert_eq!(span_growth(0.5, 0.5, 97), 0.0);
+        assert_eq!(span_growth(0.4, 0.5, 97), 0.0);
+        assert_eq!(span_growth(10.0, 0.5, 1), 0.0);
+        let kappa = span_growth(10.0, 0.5, 97);
+        let q = (kappa * 10.0).ln_1p() / 97.0;
+        assert!((q.exp() - 1.048).abs() < 2e-3, "ratio {}", q.exp());
     }
 
     /// The open mesh (docs/fem-cosserat.md §12.1): three regions, ≥ 1 element each,
