@@ -646,27 +646,13 @@ impl BorderedBand {
     /// [`BandFailure`]: a zero pivot of A (the caller may fall back to a general LU of
     /// the whole matrix) or of the Schur complement (the matrix is singular).
     pub fn factorize(&mut self, values: &[f64], shift: &[f64]) -> Result<(), BandFailure> {
-        self.factorize_from(values.iter().copied().enumerate(), shift)
-    }
-
-    /// [`Self::factorize`] with the values given as (pattern position, value) pairs, each
-    /// added to its entry in the order given (positions not given are zero): a caller
-    /// whose own pattern holds this one scatters its values once, straight into the band
-    /// ([`crate::linear::BorderedLu`]), instead of into a value list first.
-    ///
-    /// # Errors
-    /// As [`Self::factorize`].
-    ///
-    /// # Panics
-    /// If a position is not one of the pattern's.
-    pub fn factorize_from(&mut self, values: impl Iterator<Item = (usize, f64)>, shift: &[f64]) -> Result<(), BandFailure> {
         let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
         self.band.clear();
         let mut b = vec![0.0; ni * m];
         let mut c = vec![0.0; m * ni];
         let mut d = vec![0.0; m * m];
-        for (k, v) in values {
-            match self.slots[k] {
+        for (slot, &v) in self.slots.iter().zip(values) {
+            match *slot {
                 Slot::Band(p) => self.band.add_at(p, v),
                 Slot::B(i, k) => b[k * ni + i] += v,
                 Slot::C(k, j) => c[k * ni + j] += v,

@@ -16,7 +16,7 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 use faer::MatMut;
 use thiserror::Error;
-use crate::banded::{BandFailure, BandStructure, BorderedBand};
+use crate::banded::{BandStructure, BorderedBand};
 use crate::phases::{timed, Phase};
 
 /// Why a sparse factorisation or solve failed.
@@ -240,22 +240,6 @@ impl<E: From<LinearError>> SparseLu<E> {
         Ok(())
     }
 
-    /// The numeric banded LU of the matrix whose values are given as (pattern position,
-    /// value) pairs ([`BorderedBand::factorize_from`]), if this pattern is factorised by
-    /// the banded LU (`None`: it is not, call [`Self::factorize`]). The values must be
-    /// finite. On a refusal (`Some(Err)`) nothing is factorised and the band is kept:
-    /// [`Self::factorize`] with the same values then hands the matrix to faer's LU.
-    pub fn factorize_band_from(&mut self, values: impl Iterator<Item = (usize, f64)>) -> Option<Result<(), BandFailure>> {
-        let band = self.band.as_mut()?;
-        self.factors = Factors::None;
-        let factorised = timed(Phase::NumericFactorisation, || band.factorize_from(values, &[]));
-        if factorised.is_ok() {
-            self.numeric_factorisations += 1;
-            self.factors = Factors::Band;
-        }
-        Some(factorised)
-    }
-
     /// Overwrite `b` with A⁻¹ b.
     ///
     /// # Errors
@@ -369,9 +353,6 @@ pub struct BorderedLu<E = LinearError> {
     entries: Vec<Entry>,
     inner_len: usize,
     inner_diagonal: Vec<usize>,
-    /// The global unknown whose diagonal shift each inner entry carries (the entry at
-    /// `inner_diagonal`), `usize::MAX` for the others.
-    shifted: Vec<usize>,
     lu: SparseLu<E>,
 }
 
@@ -432,14 +413,8 @@ impl<E: From<LinearError>> BorderedLu<E> {
                 inner_diagonal[r] = k;
             }
         }
-        let mut shifted = vec![usize::MAX; ir.len()];
-        for (i, &pos) in inner_diagonal.iter().enumerate() {
-            if pos != usize::MAX {
-                shifted[pos] = global_of[i];
-            }
-        }
         lu.set_pattern(global_of.len(), &ir, &ic)?;
-        Ok(BorderedLu { border, global_of, entries, inner_len: ir.len(), inner_diagonal, shifted, lu })
+        Ok(BorderedLu { border, global_of, entries, inner_len: ir.len(), inner_diagonal, lu })
     }
 
     /// Size n of the whole system (A and its border).
@@ -461,56 +436,29 @@ impl<E: From<LinearError>> BorderedLu<E> {
     /// [`LinearError::SingularSchur`], [`LinearError::NonFiniteSolution`].
     pub fn solve(&mut self, values: &[f64], shift: &[f64], rhs: &mut [f64]) -> Result<(), E> {
         let m = self.global_of.len();
+        let mut a = vec![0.0; self.inner_len];
         let mut b = [vec![0.0; m], vec![0.0; m]];
         let mut c = [vec![0.0; m], vec![0.0; m]];
         let mut d = [[0.0; 2]; 2];
-        // a banded A takes its values straight from `values` (one scatter, no value list
-        // of A): the same sums in the same order as A's list would give, so the same
-        // factors. Non-finite values go the list's way, for its error
-        let fused = self.lu.band_structure().is_some() && first_non_finite(values).is_none() && {
-            let (shifted, (b, c, d)) = (&self.shifted, (&mut b, &mut c, &mut d));
-            let inner = self.entries.iter().zip(values).filter_map(|(e, &v)| match *e {
-                Entry::Inner(k) => Some((k, if shift.is_empty() || shifted[k] == usize::MAX { v } else { v + shift[shifted[k]] })),
-                Entry::B(i, k) => {
-                    b[k][i] += v;
-                    None
-                }
-                Entry::C(k, j) => {
-                    c[k][j] += v;
-                    None
-                }
-                Entry::D(k, l) => {
-                    d[k][l] += v;
-                    None
-                }
-            });
-            matches!(self.lu.factorize_band_from(inner), Some(Ok(())))
-        };
-        if !fused {
-            (b, c, d) = ([vec![0.0; m], vec![0.0; m]], [vec![0.0; m], vec![0.0; m]], [[0.0; 2]; 2]);
-            let mut a = vec![0.0; self.inner_len];
-            for (e, &v) in self.entries.iter().zip(values) {
-                match *e {
-                    Entry::Inner(k) => a[k] += v,
-                    Entry::B(i, k) => b[k][i] += v,
-                    Entry::C(k, j) => c[k][j] += v,
-                    Entry::D(k, l) => d[k][l] += v,
-                }
+        for (e, &v) in self.entries.iter().zip(values) {
+            match *e {
+                Entry::Inner(k) => a[k] += v,
+                Entry::B(i, k) => b[k][i] += v,
+                Entry::C(k, j) => c[k][j] += v,
+                Entry::D(k, l) => d[k][l] += v,
             }
-            if !shift.is_empty() {
-                for (i, &pos) in self.inner_diagonal.iter().enumerate() {
-                    if pos != usize::MAX {
-                        a[pos] += shift[self.global_of[i]];
-                    }
-                }
-            }
-            self.lu.factorize(&a)?;
         }
         if !shift.is_empty() {
+            for (i, &pos) in self.inner_diagonal.iter().enumerate() {
+                if pos != usize::MAX {
+                    a[pos] += shift[self.global_of[i]];
+                }
+            }
             for k in 0..2 {
                 d[k][k] += shift[self.border[k]];
             }
         }
+        self.lu.factorize(&a)?;
         let mut u: Vec<f64> = self.global_of.iter().map(|&g| rhs[g]).collect();
         self.lu.solve_in_place(&mut u)?;
         for col in b.iter_mut() {
@@ -714,19 +662,5 @@ mod tests {
             assert_eq!(bordered.solve(&vs, &[], &mut x), Err(LinearError::SingularSchur { det: 0.0 }));
         }
         assert!(matches!(BorderedLu::<LinearError>::new(&r, &c, n, [3, 3]), Err(LinearError::InvalidPattern { .. })));
-        // values scattered straight into the band: a non-finite one is still reported at
-        // its position in A's value list, and a singular band block still goes to faer's
-        // LU, whose verdict stands
-        let mut banded: BorderedLu = BorderedLu::banded(&r, &c, n, border).unwrap();
-        let mut nan = v.clone();
-        let at = (0..r.len()).find(|&k| r[k] == 5 && c[k] == 6).unwrap();
-        nan[at] = f64::NAN;
-        let inner_position = (0..at).filter(|&k| !border.contains(&r[k]) && !border.contains(&c[k])).count();
-        assert_eq!(banded.solve(&nan, &[], &mut rhs.clone()), Err(LinearError::NonFiniteMatrix { index: inner_position }));
-        let singular: Vec<f64> = r.iter().zip(&c).zip(&v).map(|((&ri, &ci), &vi)| if ri == 5 || ci == 5 { 0.0 } else { vi }).collect();
-        assert!(matches!(banded.solve(&singular, &[], &mut rhs.clone()), Err(LinearError::Singular { .. } | LinearError::NonFiniteSolution)));
-        let mut x = rhs.clone();
-        banded.solve(&v, &[], &mut x).unwrap();
-        assert_eq!(banded.lu.band_structure(), None, "the singular block moved the pattern to faer's LU");
     }
 }
