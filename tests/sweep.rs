@@ -50,7 +50,10 @@ fn warm_started_b2_sweep_reproduces_independent_solves() {
         assert_eq!(cold.len(), summary.len(), "point {i}: the same scalars");
         for ((name, a), (_, b)) in summary.iter().zip(&cold) {
             let scale = a.abs().max(b.abs()).max(1e-3);
-            assert!((a - b).abs() <= 1e-8 * scale, "b₂ = {v}: {name} warm {a} vs cold {b}");
+            // the smallest pressure is an extremum of p, which the law computes from the
+            // solution's derivatives: 1e-7 (measured 1.4e-8 at b₂ = 4e3)
+            let tol = if name.ends_with("pressure_min") { 1e-7 } else { 1e-8 };
+            assert!((a - b).abs() <= tol * scale, "b₂ = {v}: {name} warm {a} vs cold {b}");
         }
     }
 }
@@ -76,7 +79,8 @@ fn a_halved_step_counts_its_failed_attempt() {
     let cold = bvp::scene::solve_scene(&s, &bvp::scene::BvpRunOptions::from_scene(&s).unwrap()).unwrap().summary.scalars();
     for ((name, a), (_, b)) in summary.iter().zip(&cold) {
         let scale = a.abs().max(b.abs()).max(1e-3);
-        assert!((a - b).abs() <= 1e-8 * scale, "{name}: halved {a} vs cold {b}");
+        let tol = if name.ends_with("pressure_min") { 1e-7 } else { 1e-8 };
+        assert!((a - b).abs() <= tol * scale, "{name}: halved {a} vs cold {b}");
     }
 }
 
