@@ -275,7 +275,7 @@ fn very_stiff_shear_solves() {
 /// share of the tension drop: measured 0.19 rad (capstan 0.42) at μ = 1, 0.023 rad
 /// (capstan 0.14) at μ = 3; the inflow side (stick) does not see μ, the torque hardly
 /// (1e-5), and the solves stay admissible. N_in = N_out: pure stick — the slip arc is 0
-/// (not a failure) and the torque vanishes.
+/// (not a failure), the torque vanishes and the summary has no `stick_slip_angle`.
 #[test]
 fn large_friction_and_equal_tensions() {
     let d = catalogue();
@@ -294,6 +294,10 @@ fn large_friction_and_equal_tensions() {
     let p = equal.summary().pulley.unwrap();
     assert!(p.slip_arc.unwrap().abs() < 1e-12, "slip arc {:?}", p.slip_arc);
     assert!(equal.torque().abs() < 1e-12, "torque {}", equal.torque());
+    // no stick → slip point without a slip zone (the FE writes none either); the
+    // catalogue scene's is there
+    assert_eq!(p.stick_slip_angle, None, "pure stick has no transition");
+    assert!(base.summary().pulley.unwrap().stick_slip_angle.is_some());
 }
 
 /// Spec C-13: doubling the end distance changes the outputs by O(exp(−D√(T̃_out/a))),

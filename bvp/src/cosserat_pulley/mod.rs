@@ -362,6 +362,10 @@ fn beyond_the_capstan(data: &CosseratPulley, opts: &BeltOptions, clock: Instant)
     Ok(sol)
 }
 
+/// Stick and slip arcs below this (rad) are round-off, not zones: the pure-stick
+/// solution (N_in = N_out) has a slip arc of ~1e-16 and no stick → slip point.
+const SLIP_ARC_FLOOR: f64 = 1e-12;
+
 /// A solved one-pulley scene: data, the scaled problem on the open topology, the BVP
 /// solution at η = 1, scales and the work of the run.
 #[derive(Debug, Clone)]
@@ -695,7 +699,7 @@ impl CosseratPulleySolution {
         Ok(())
     }
 
-    /// The summary (issue 13, "Outputs"): the single pulley under `pulley.*`, the end
+    /// The summary (issue 13, "Outputs", and spec §2.6's additions): the single pulley under `pulley.*`, the end
     /// quantities, ω and c; quantities the scene does not produce stay absent.
     pub fn summary(&self) -> Summary {
         let [a, b, c] = self.contact_angles();
@@ -716,9 +720,11 @@ impl CosseratPulleySolution {
                 torque: Some(self.torque()),
                 edge_pressure_start: self.point(1, 0.0).pressure,
                 edge_pressure_end: self.point(2, 1.0).pressure,
-                pressure_min: Some(-self.arc_extremum(|p| -p.pressure.unwrap_or(f64::NAN))),
-                stick_slip_angle: Some(wrap_angle(b)),
-                shear_strain_max: Some(self.arc_extremum(|p| p.shear_strain.map_or(f64::NAN, f64::abs))),
+                pressure_min: Some(-self.arc_extremum(|p| -p.pressure.unwrap_or(f64::NAN))).filter(|v| v.is_finite()),
+                // a stick → slip point only between a stick and a slip zone (pure stick,
+                // N_in = N_out: the slip arc is 0 to round-off and B is C, not a transition)
+                stick_slip_angle: (a - b > SLIP_ARC_FLOOR && b - c > SLIP_ARC_FLOOR).then(|| wrap_angle(b)),
+                shear_strain_max: Some(self.arc_extremum(|p| p.shear_strain.map_or(f64::NAN, f64::abs))).filter(|v| v.is_finite()),
                 moment_start: self.point(1, 0.0).moment,
                 moment_end: self.point(2, 1.0).moment,
                 stretch_stick: Some(self.stick_stretch()),
