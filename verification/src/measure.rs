@@ -3,7 +3,9 @@
 //! # Definitions (also in docs/verification.md)
 //! - **Summary scalar** q (a flat name of [`drive::summary::SCALAR_NAMES`]): relative
 //!   error e = |q − q_ref| / |q_ref|. Undefined (`None`, shown "—") if either value is
-//!   absent or q_ref = 0.
+//!   absent or q_ref = 0. A polar angle on a pulley (`contact_start`, `contact_end`,
+//!   `stick_slip_angle`, [`is_polar_angle`]): e = |q − q_ref| wrapped into (−π, π], over
+//!   π (relative to a half turn).
 //! - **Field norms** ([`drive::result::FIELD_NORM_NAMES`]) of a field f ∈ {deflection ν,
 //!   axial force N, moment M} sampled at the n uniform points σ_i = i·L_geom/n of the
 //!   harness ([`crate::run::Samples`]):
@@ -109,7 +111,7 @@ impl Quantity {
     /// The error of `run` against `reference` (module docs).
     pub fn error(&self, run: &RunData, reference: &RunData) -> Option<f64> {
         match &self.kind {
-            QuantityKind::Scalar => relative(run.summary.get(&self.name)?, reference.summary.get(&self.name)?),
+            QuantityKind::Scalar => scalar_error(&self.name, run.summary.get(&self.name)?, reference.summary.get(&self.name)?),
             QuantityKind::FieldNorm { field, norm } => {
                 field_error(run.samples.field(field)?, reference.samples.field(field)?, *norm)
             }
@@ -120,6 +122,26 @@ impl Quantity {
 /// A finite value or `None`.
 pub fn finite(v: f64) -> Option<f64> {
     v.is_finite().then_some(v)
+}
+
+/// True for a summary scalar that is a polar angle on a pulley (a position in (−π, π]:
+/// `contact_start`, `contact_end`, `stick_slip_angle` of any pulley), whose error
+/// [`scalar_error`] measures against a half turn.
+pub fn is_polar_angle(name: &str) -> bool {
+    matches!(name.rsplit('.').next(), Some("contact_start" | "contact_end" | "stick_slip_angle"))
+}
+
+/// The error of summary scalar `name` (module docs): [`relative`], but for a polar angle
+/// ([`is_polar_angle`]) the difference wrapped into (−π, π] over π — relative to a half
+/// turn, since an angle's size says where its zero is, not how large it is (a stick →
+/// slip point near φ = 0 made the relative error arbitrary, and ±π are the same point).
+pub fn scalar_error(name: &str, value: f64, reference: f64) -> Option<f64> {
+    if is_polar_angle(name) {
+        let pi = std::f64::consts::PI;
+        let d = (value - reference + pi).rem_euclid(2.0 * pi) - pi;
+        return finite(d.abs() / pi);
+    }
+    relative(value, reference)
 }
 
 /// |value − reference| / |reference|; `None` if reference = 0 or anything is not finite.
@@ -218,6 +240,13 @@ mod tests {
     #[test]
     fn undefined_measures_are_none_never_nan() {
         assert_eq!(relative(1.0, 0.0), None);
+        // polar angles against a half turn, wrapped: near 0 and across ±π
+        let pi = std::f64::consts::PI;
+        assert!((scalar_error("pulley.stick_slip_angle", 1e-3, -2e-3).unwrap() - 3e-3 / pi).abs() < 1e-15);
+        assert!((scalar_error("driver.contact_start", pi - 1e-3, -pi + 1e-3).unwrap() - 2e-3 / pi).abs() < 1e-12);
+        assert_eq!(scalar_error("driver.contact_start", 0.5, 0.5), Some(0.0));
+        assert_eq!(scalar_error("driver.contact_arc", 1.1, 1.0), relative(1.1, 1.0));
+        assert!(!is_polar_angle("driver.stick_arc") && is_polar_angle("driven.contact_end"));
         assert_eq!(relative(f64::NAN, 1.0), None);
         assert_eq!(observed_order(Some(0.0), Some(1.0), 2.0), None);
         assert_eq!(observed_order(None, Some(1.0), 2.0), None);

@@ -382,7 +382,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     let _ = writeln!(m, "## Convergence tables\n");
     let _ = writeln!(
         m,
-        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars; field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(n_k/n_(k−1)). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
+        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(n_k/n_(k−1)). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
         study.quantities.iter().filter(|q| q.is_scalar()).count(),
         study.plan.samples
     );

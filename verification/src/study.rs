@@ -669,7 +669,7 @@ fn extrapolate(rows: &[Row], reference: &Run, quantities: &[Quantity]) -> Vec<Ex
                         e.order = measure::self_order(q1, q2, q3, r);
                         e.value = e.order.and_then(|p| measure::richardson(q2, q3, r, p));
                         e.mutual = match (e.value, q.value(refd)) {
-                            (Some(v), Some(qr)) => measure::relative(v, qr),
+                            (Some(v), Some(qr)) => measure::scalar_error(&q.name, v, qr),
                             _ => None,
                         };
                     }
