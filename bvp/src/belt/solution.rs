@@ -21,6 +21,25 @@ use super::run::{self, StageError};
 use super::topology::{ArcKind, Pulley, Scaling, SegmentKind, Topology};
 use super::{BeltError, BeltOptions};
 
+/// ∫ g ds over an arc segment whose dense output `point`(ξ) runs over `mesh` (ξ ∈ [0, 1])
+/// and sweeps the angle `dphi` (rad) on a pulley of radius `radius`: ds = R dφ/λ with φ
+/// linear in ξ; Gauss–Legendre with 5 points ([`numerics::Rule`]) on each mesh interval.
+pub fn arc_integral(mesh: &[f64], dphi: f64, radius: f64, point: impl Fn(f64) -> BeltPoint, g: impl Fn(&BeltPoint) -> f64) -> f64 {
+    let rule = numerics::Rule::Gauss(5);
+    mesh.windows(2)
+        .map(|w| {
+            let (a, b) = (w[0], w[1]);
+            rule.points()
+                .iter()
+                .map(|&(x, wt)| {
+                    let pt = point(0.5 * (a + b) + 0.5 * (b - a) * x);
+                    g(&pt) * radius / pt.stretch * dphi * 0.5 * (b - a) * wt
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
 /// The largest value of g(k, ξ) over the segments k of `segments` (each with its mesh
 /// in ξ ∈ [0, 1]): the best of the mesh nodes and 8 points per mesh interval, refined by
 /// golden section between the best sample's neighbours, so that an interior extremum of
@@ -539,25 +558,13 @@ impl<L: SectionLaw> BeltSolution<L> {
     /// (rad/s) (W), by 5-point Gauss–Legendre quadrature on each mesh interval of the
     /// slip arc's dense output (spec §1 (D)); `None` without a slip arc or transport.
     pub fn slip_dissipation(&self, pulley: Pulley, omega: f64) -> Option<f64> {
-        const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
-        const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
         let topo = self.topology();
         let k = topo.arc(pulley, ArcKind::Slip)?;
         let c = self.transport_rate()?;
         let r = self.pulleys.radius;
         let Scaling::Arc { start: ia, end: ib, .. } = topo.segment(k).scaling else { return None };
         let dphi = (self.solution.params[ib] - self.solution.params[ia]).abs();
-        let mut dissipation = 0.0;
-        for w in self.solution.segments[k].mesh.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            for (gx, gw) in GX.iter().zip(GW) {
-                let xi = 0.5 * (a + b) + 0.5 * (b - a) * gx;
-                let pt = self.point(k, xi);
-                let ds = r / pt.stretch * dphi * 0.5 * (b - a) * gw;
-                dissipation += pt.friction.unwrap_or(0.0) * (omega * r - c * pt.stretch) * ds;
-            }
-        }
-        Some(dissipation)
+        Some(arc_integral(&self.solution.segments[k].mesh, dphi, r, |xi| self.point(k, xi), |pt| pt.friction.unwrap_or(0.0) * (omega * r - c * pt.stretch)))
     }
 
     fn pulley_summary(&self, pulley: Pulley, edges: Option<EdgeForces>) -> PulleySummary {

@@ -620,23 +620,12 @@ impl CosseratPulleySolution {
     }
 
     /// Slip dissipation D = ∫_slip f_t (ωR − cλ) ds ≥ 0 (W), by 5-point Gauss–Legendre
-    /// quadrature on each mesh interval of the slip arc's dense output (ds = R dφ/λ on
-    /// an arc, φ linear in ξ), as the loop's [`crate::belt::solution::BeltSolution::slip_dissipation`].
+    /// quadrature on each mesh interval of the slip arc's dense output
+    /// ([`crate::belt::solution::arc_integral`]), as the loop's [`crate::belt::solution::BeltSolution::slip_dissipation`].
     pub fn dissipation(&self) -> f64 {
-        const GX: [f64; 5] = [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
-        const GW: [f64; 5] = [0.236_926_885_056_189, 0.478_628_670_499_366, 0.568_888_888_888_889, 0.478_628_670_499_366, 0.236_926_885_056_189];
         let (w, r, c) = (self.pulley_speed(), self.data.radius, self.data.transport_rate);
         let [_, b, cc] = self.contact_angles();
-        let dphi = (b - cc).abs();
-        let mut total = 0.0;
-        for m in self.solution.segments[2].mesh.windows(2) {
-            for (gx, gw) in GX.iter().zip(GW) {
-                let xi = 0.5 * (m[0] + m[1]) + 0.5 * (m[1] - m[0]) * gx;
-                let p = self.point(2, xi);
-                total += p.friction.unwrap_or(0.0) * (w * r - c * p.stretch) * r / p.stretch * dphi * 0.5 * (m[1] - m[0]) * gw;
-            }
-        }
-        total
+        crate::belt::solution::arc_integral(&self.solution.segments[2].mesh, (b - cc).abs(), r, |xi| self.point(2, xi), |p| p.friction.unwrap_or(0.0) * (w * r - c * p.stretch))
     }
 
     /// The largest value of `f` over the contact zone (the stick arc 1 and the slip arc
