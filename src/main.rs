@@ -27,9 +27,6 @@ enum CliError {
     /// A flag that only a shell scene uses.
     #[error("--{flag} is for shell scenes (theory `shell`, a run-off transient); this scene's belt is theory `{theory}`")]
     FlagNotForScene { flag: &'static str, theory: String },
-    /// A shell scene given to `converge`: it has no reference to converge to.
-    #[error("scene `{scene}`: `{command}` cannot study a shell scene: {NO_SHELL_REFERENCE}")]
-    ShellNotStudied { scene: String, command: &'static str },
     /// A flag that only works with another.
     #[error("--{flag} needs --{needs}")]
     FlagNeeds { flag: &'static str, needs: &'static str },
@@ -134,6 +131,12 @@ struct StudyArgs {
     /// meshes (three or more, one refinement ratio; for models with no BVP).
     #[arg(long, value_enum, default_value_t = ReferenceArg::Bvp)]
     reference: ReferenceArg,
+    /// Shell scenes only: the levels n_σ×n_ζ, coarsest first (e.g. 64x2,128x2,256x2 or
+    /// 64x2,128x4,256x8), each with Δt scaled like the σ spacing; the reference is the
+    /// Richardson extrapolation of the three finest. Default: the scene's mesh, then
+    /// twice and four times its n_σ at its n_ζ.
+    #[arg(long, value_delimiter = ',', value_name = "NσxNζ,…")]
+    levels: Vec<String>,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -890,6 +893,12 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
             return Err(CliError::OutOfRange { flag: "tolerances", value: num(&t), range: format!("a BVP tolerance, {} < tolerance ≤ {}", num(&lo), num(&hi)) }.into());
         }
     }
+    if scene.belt.theory == drive::scene::Theory::Shell {
+        return shell_study_plan(scene, args);
+    }
+    if !args.levels.is_empty() {
+        return Err(CliError::FlagNotForScene { flag: "levels", theory: scene.belt.theory.to_string() }.into());
+    }
     let mut plan = verification::study::StudyPlan::convergence(scene);
     if !args.tolerances.is_empty() {
         plan = plan.with_tolerances(&args.tolerances);
@@ -917,15 +926,53 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
     Ok(plan)
 }
 
-/// Why the harness's studies (`converge`, `report`, `gate`) do not take a shell scene:
-/// they hold every run against a reference, and the shell has none yet.
-const NO_SHELL_REFERENCE: &str = "no BVP exists for the shell (only its planar limit is the rod's BVP), and its own reference — the finest FE run with Richardson extrapolation over n_σ × n_ζ and Δt refined together (issue 15, docs/fem-shell.md) — is not built yet; solve it with `beltcheck solve` (at two or more `fem` settings to judge the discretisation)";
+/// The study of a shell scene (`StudyPlan::shell`): its levels from `--levels` or the
+/// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ); the flags of the 1-D
+/// studies are refused by name.
+fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
+    const SHELL: &str = "fem shell-bfs (the shell's study)";
+    const HINT: &str = "a shell study refines n_σ × n_ζ with Δt: give them with --levels (e.g. 64x2,128x2,256x2); its reference is always the Richardson extrapolation of the three finest levels";
+    unused(!args.elements.is_empty(), "elements", SHELL, HINT)?;
+    unused(!args.tolerances.is_empty(), "tolerances", SHELL, HINT)?;
+    unused(!args.formulations.is_empty(), "formulation", SHELL, "the shell has one element (Bogner–Fox–Schmit, docs/fem-shell.md)")?;
+    unused(matches!(args.reference, ReferenceArg::ClosedForm), "reference closed-form", SHELL, "the shell has no closed form; its reference is the Richardson extrapolation of its three finest levels")?;
+    let own = scene.shell_run();
+    let sizes: Vec<(usize, usize)> = if args.levels.is_empty() {
+        (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect()
+    } else {
+        args.levels.iter().map(|l| parse_level(l)).collect::<Result<_, _>>()?
+    };
+    let levels: Vec<Discretisation> = sizes.into_iter().map(|(ns, nz)| verification::run::ShellFe::level(scene, ns, nz)).collect();
+    // each level is a valid scene (n_ζ even, the step count within range): refused
+    // before anything runs, not as a failed run minutes later
+    for &level in &levels {
+        if let Discretisation::Mesh2d { sigma, zeta, time_step } = level {
+            verification::run::ShellFe::scene_at(scene, sigma, zeta, time_step).with_context(|| format!("--levels: the level {level}"))?;
+        }
+    }
+    let mut plan = verification::study::StudyPlan::shell(levels);
+    plan.samples = args.samples;
+    plan.validate_for(scene)?;
+    Ok(plan)
+}
+
+/// One `--levels` entry `NσxNζ` (`x` or `×`), each count within the scene format's range.
+fn parse_level(text: &str) -> Result<(usize, usize), CliError> {
+    let bad = || CliError::OutOfRange { flag: "levels", value: text.to_string(), range: "a level n_σxn_ζ such as 64x2: n_σ and n_ζ whole numbers (n_ζ even, docs/fem-shell.md §9.1)".to_string() };
+    let (a, b) = text.trim().split_once(['x', 'X', '×']).ok_or_else(bad)?;
+    let ns: usize = a.trim().parse().map_err(|_| bad())?;
+    let nz: usize = b.trim().parse().map_err(|_| bad())?;
+    if ns == 0 || nz == 0 {
+        return Err(bad());
+    }
+    Ok((ns, nz))
+}
+
+/// Why `report` and `gate` do not take a shell scene yet.
+const NO_SHELL_REFERENCE: &str = "the shell's study (its FE at three or more levels n_σ × n_ζ with Δt, held against their Richardson extrapolation) is run by `beltcheck converge` on the scene; `report` and `gate` do not take it yet (issue 15)";
 
 fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
-    if scene.belt.theory == drive::scene::Theory::Shell {
-        return Err(CliError::ShellNotStudied { scene: scene.name.clone(), command: "converge" }.into());
-    }
     let plan = study_plan(&scene, &args.study)?;
     let bar = progress_bar();
     let study = study_with_progress(&scene, &plan, &bar)?;

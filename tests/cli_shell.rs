@@ -4,11 +4,14 @@
 //! lateral channels with frames of surface fields; the cost), overlays a measurement
 //! (`--measured`) with the difference, and writes the surface over time as VTK (`--vtk`),
 //! read back here with an XML reader independent of the writer (`roxmltree` + `base64`).
-//! The refusals (no BVP for a shell, `converge`, flags for shells only, a malformed
-//! measurement, a bad scene) exit 2 and write nothing; `gate` and `report` skip a shell
-//! with the reason.
+//! The refusals (no BVP for a shell, the 1-D study's flags and impossible levels in
+//! `converge`, flags for shells only, a malformed measurement, a bad scene) exit 2 and
+//! write nothing; `gate` and `report` skip a shell with the reason. `converge` studies
+//! a shortened scene at three levels and its Richardson reference is recomputed here
+//! from the levels' own summaries.
 //!
-//! One solve of the CI scene (~15 s release on 2 shared cores); everything else is cheap.
+//! One solve of the CI scene (~15 s release on 2 shared cores) and the study (~20 s CPU);
+//! everything else is cheap.
 
 mod common;
 
@@ -234,7 +237,16 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     };
     refused(&["solve", SCENE, "--method", "bvp-collocation", "--json", j], &["no BVP exists for theory `shell`", "--method fem", "nothing was solved"]);
     refused(&["solve", SCENE, "--method", "bvp-shooting", "--json", j], &["no BVP exists"]);
-    refused(&["converge", SCENE, "--json", j], &["`converge` cannot study a shell scene", "no BVP exists"]);
+    // `converge` on a shell: the 1-D study's flags and impossible levels, before any run
+    refused(&["converge", SCENE, "--elements", "64,128,256", "--json", j], &["--elements is not used", "--levels"]);
+    refused(&["converge", SCENE, "--tolerances", "1e-6", "--json", j], &["--tolerances is not used"]);
+    refused(&["converge", SCENE, "--reference", "closed-form", "--json", j], &["no closed form"]);
+    refused(&["converge", SCENE, "--levels", "64x2,128x2", "--json", j], &["three or more levels"]);
+    refused(&["converge", SCENE, "--levels", "64x2,128x2,192x2", "--json", j], &["the same ratio over the three finest"]);
+    refused(&["converge", SCENE, "--levels", "32x2,64x6,128x8", "--json", j], &["three or more levels"]);
+    refused(&["converge", SCENE, "--levels", "32x1,64x1,128x1", "--json", j], &["the level 32×1", "fem.elements_zeta", "even"]);
+    refused(&["converge", SCENE, "--levels", "64by2", "--json", j], &["--levels = 64by2"]);
+    refused(&["converge", "scenes/rod-hanging.json", "--levels", "64x2,128x2,256x2", "--json", j], &["--levels is for shell scenes"]);
     refused(&["solve", SCENE, "--elements", "32", "--json", j], &["--elements is not used", "elements_sigma"]);
     refused(&["solve", "scenes/rod-hanging.json", "--vtk", temp("cli-shell-refusals", "vtk").to_str().unwrap(), "--json", j], &["--vtk is for shell scenes", "kirchhoff"]);
     refused(&["solve", "scenes/rod-hanging.json", "--measured", "x.csv", "--json", j], &["--measured is for shell scenes"]);
@@ -261,10 +273,75 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     // gate and report skip the shell and say why
     let o = beltcheck(&["gate", SCENE]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stdout(&o).contains("gate: skipped scene `shell-runoff`") && stdout(&o).contains("no BVP exists"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("gate: skipped scene `shell-runoff`") && stdout(&o).contains("beltcheck converge"), "{}", stdout(&o));
     let dir = temp("cli-shell-refusals", "report");
     let o = beltcheck(&["report", SCENE, "-o", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(stdout(&o).contains("report: skipped scene `shell-runoff`"), "{}", stdout(&o));
     assert!(!dir.join("shell-runoff").exists(), "no report directory for a skipped scene");
+}
+
+/// `converge` on a shell scene (issue 15): the levels 32×2, 64×2, 128×2 with Δt scaled
+/// like the σ spacing over the same simulated time; the reference is the Richardson
+/// extrapolation of the three levels, recomputed here from the rows' summaries (order
+/// p = ln(|q₂ − q₁|/|q₃ − q₂|)/ln 2, q_R = q₃ + (q₃ − q₂)/(2^p − 1)); oscillating
+/// quantities are left out and named; the rows' errors are |q − q_R|/|q_R|; n_ζ held is
+/// stated.
+#[test]
+fn shell_converge_extrapolates_its_levels_and_holds_them_against_the_extrapolation() {
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    v["fem"]["steps"] = serde_json::json!(2);
+    v["fem"]["frame_every"] = serde_json::json!(0);
+    let short = temp("cli-shell-converge", "short.json");
+    std::fs::write(&short, v.to_string()).unwrap();
+    let dt = v["fem"]["time_step"].as_f64().unwrap();
+    let json = temp("cli-shell-converge", "study.json");
+    let _ = std::fs::remove_file(&json);
+    let o = beltcheck(&["converge", short.to_str().unwrap(), "--levels", "32x2,64x2,128x2", "--samples", "256", "--json", json.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(out.contains("reference: Richardson extrapolation of fem shell-bfs (levels 32×2"), "{out}");
+    assert!(out.contains("n_ζ is held at 2"), "{out}");
+    assert!(out.contains("the reference's values: Richardson extrapolation"), "{out}");
+    let study: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let rows = study["series"][0]["rows"].as_array().unwrap();
+    assert_eq!(study["series"][0]["method"], "fem shell-bfs");
+    assert_eq!(rows.len(), 3);
+    // the levels: n_σ as asked, n_ζ held, Δt scaled like the σ spacing
+    for (row, (ns, f)) in rows.iter().zip([(32, 2.0), (64, 1.0), (128, 0.5)]) {
+        let d = &row["run"]["discretisation"]["mesh2d"];
+        assert_eq!(d["sigma"], ns);
+        assert_eq!(d["zeta"], 2);
+        assert!((d["time_step"].as_f64().unwrap() - f * dt).abs() <= 1e-15 * dt, "{d}");
+        assert_eq!(row["run"]["status"], "solved", "{}", row["run"]);
+    }
+    let value = |run: &serde_json::Value, q: &str| run["summary"].pointer(&format!("/{q}")).and_then(serde_json::Value::as_f64);
+    let reference = &study["reference"];
+    let estimates = study["reference_estimates"].as_array().unwrap();
+    let notes: Vec<&str> = study["notes"].as_array().unwrap().iter().filter_map(|n| n.as_str()).collect();
+    let (mut extrapolated, mut refused) = (0, 0);
+    for q in ["y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "moment_upper_mid", "moment_lower_mid", "runoff_velocity", "drift_per_revolution", "edge_stress_max"] {
+        let [q1, q2, q3] = [0, 1, 2].map(|k| value(&rows[k]["run"], q).unwrap_or_else(|| panic!("{q} missing at level {k}")));
+        let (d21, d32) = (q2 - q1, q3 - q2);
+        let in_reference = value(reference, q);
+        if d21 * d32 < 0.0 || d32.abs() >= d21.abs() {
+            refused += 1;
+            assert!(in_reference.is_none(), "{q}: not asymptotic ({q1}, {q2}, {q3}) but in the reference");
+            assert!(notes.iter().any(|n| n.starts_with("refused") && n.contains(q)), "{q}: refusal not noted: {notes:?}");
+            continue;
+        }
+        extrapolated += 1;
+        let p = (d21.abs() / d32.abs()).ln() / 2f64.ln();
+        let qr = q3 + d32 / (2f64.powf(p) - 1.0);
+        let got = in_reference.unwrap_or_else(|| panic!("{q}: asymptotic but not in the reference"));
+        assert!((got - qr).abs() <= 1e-12 * qr.abs(), "{q}: reference {got} against {qr}");
+        let e = estimates.iter().find(|e| e["quantity"] == q).unwrap();
+        assert!((e["order"].as_f64().unwrap() - p).abs() <= 1e-9 * p, "{q}: order {} against {p}", e["order"]);
+        assert!((e["error_estimate"].as_f64().unwrap() - (qr - q3).abs()).abs() <= 1e-12 * qr.abs(), "{q}: estimate");
+        let err = rows[2]["errors"][q].as_f64().unwrap();
+        assert!((err - (q3 - qr).abs() / qr.abs()).abs() <= 1e-9 * err.max(1e-300), "{q}: row error {err}");
+    }
+    assert!(extrapolated >= 1, "no quantity extrapolated: {notes:?}");
+    assert_eq!(estimates.len(), extrapolated + usize::from(value(reference, "driven_speed").is_some()), "{estimates:?}");
+    eprintln!("shell study: {extrapolated} extrapolated, {refused} refused");
 }

@@ -75,8 +75,13 @@ fn two_d_discretisation_prints_and_serialises() {
     assert_eq!(serde_json::from_value::<Discretisation>(json).unwrap(), d);
     let fine = Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.005 };
     assert_eq!(d.refinement_ratio(fine), Some(2.0));
-    // refined in space only: no single h to extrapolate in
+    // refined in space only or time only: no single h to extrapolate in
     assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.01 }), None);
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 64, zeta: 4, time_step: 0.005 }), None);
+    // σ and Δt refined together at one n_ζ: a sequence of that n_ζ (the study says so)
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.005 }), Some(2.0));
+    // ζ refined by another ratio than σ and Δt: none
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 6, time_step: 0.005 }), None);
     assert_eq!(Discretisation::Elements(64).refinement_ratio(Discretisation::Elements(128)), Some(2.0));
     assert_eq!(Discretisation::Elements(64).refinement_ratio(d), None);
 }

@@ -31,7 +31,7 @@ use serde::Serialize;
 
 use crate::closed_form::{CatenaryLoop, CATENARY_TOLERANCE};
 use crate::measure::{self, Norm};
-use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Run, RunCost, RunData, RunError, Samples};
+use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Run, RunCost, RunData, RunError, Samples, ShellFe, SHELL_FORMULATION};
 
 /// The reference of a study.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -117,7 +117,8 @@ fn finest_cells(levels: &[Discretisation]) -> String {
     levels[levels.len() - n..].iter().map(|d| d.cell()).collect::<Vec<_>>().join(", ")
 }
 
-fn list(levels: &[Discretisation]) -> String {
+/// The levels, comma-separated, as messages print them.
+pub(crate) fn list(levels: &[Discretisation]) -> String {
     levels.iter().map(ToString::to_string).collect::<Vec<_>>().join(", ")
 }
 
@@ -225,8 +226,12 @@ impl Reference {
                 ReferenceRun { run, estimates: Vec::new(), notes: Vec::new() }
             }
             Reference::Richardson { formulation, levels } => {
-                let method = FemFormulation { name: formulation.clone(), penalty: None };
-                let runs: Vec<Run> = levels.iter().map(|&d| execute(&method, scene, d, samples)).collect();
+                let runs: Vec<Run> = if formulation == SHELL_FORMULATION {
+                    levels.iter().map(|&d| execute(&ShellFe, scene, d, samples)).collect()
+                } else {
+                    let method = FemFormulation { name: formulation.clone(), penalty: None };
+                    levels.iter().map(|&d| execute(&method, scene, d, samples)).collect()
+                };
                 self.richardson(&runs)
             }
             Reference::Supplied { method, .. } => {
@@ -247,8 +252,10 @@ impl Reference {
         (reference, computed)
     }
 
-    /// The Richardson reference from the runs of its levels (coarsest first).
-    fn richardson(&self, runs: &[Run]) -> ReferenceRun {
+    /// The Richardson reference from the runs of its levels (coarsest first): a study
+    /// whose series are those same runs (the shell's) computes them once and passes them
+    /// here.
+    pub(crate) fn richardson(&self, runs: &[Run]) -> ReferenceRun {
         let wall: f64 = runs.iter().map(|r| r.wall_seconds).sum();
         let finest = runs.last().map_or(Discretisation::Elements(0), |r| r.discretisation);
         let mut notes = Vec::new();

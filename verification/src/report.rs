@@ -164,6 +164,7 @@ pub fn study_json(scene: &Scene, study: &Study) -> Result<String, serde_json::Er
         "quantities": study.quantities,
         "reference": run_out(&study.reference),
         "reference_fields": study.reference.data().map(|d| fields_out(d, every)),
+        "reference_estimates": study.reference_estimates,
         "series": series,
         "registered_formulations": study.registered_formulations,
         "notes": study.notes,

@@ -471,6 +471,39 @@ pub struct ShellFe;
 /// The method label of [`ShellFe`].
 pub const SHELL_FE: &str = "fem shell-bfs";
 
+/// The name of [`ShellFe`] as a Richardson reference names its formulation
+/// ([`crate::reference::Reference::Richardson`]): the shell's element is not in the
+/// `fem` registry of 1-D formulations, so a reference of this name runs [`ShellFe`].
+pub const SHELL_FORMULATION: &str = "shell-bfs";
+
+impl ShellFe {
+    /// The scene with its `fem` block at `sigma` × `zeta` elements and the time step
+    /// `time_step`, keeping the simulated time of the rotation (`steps` × Δt of the
+    /// scene, rounded up to whole steps), validated.
+    ///
+    /// # Errors
+    /// The scene's validation error at that discretisation (e.g. an odd n_ζ).
+    pub fn scene_at(scene: &Scene, sigma: usize, zeta: usize, time_step: f64) -> Result<Scene, drive::error::SceneError> {
+        let mut scene = scene.clone();
+        let own = scene.shell_run();
+        let mut f = scene.fem_settings();
+        let rotation = own.steps as f64 * own.time_step;
+        (f.elements_sigma, f.elements_zeta, f.time_step, f.duration) = (Some(sigma), Some(zeta), Some(time_step), None);
+        f.steps = Some(((rotation / time_step) - 1e-9).ceil().max(1.0) as usize);
+        scene.fem = Some(f);
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// The scene's discretisation refined to `sigma` × `zeta` elements with the time
+    /// step scaled like the σ spacing (Δt = Δt_scene · n_σ,scene / `sigma`): the levels of
+    /// a shell study, where space and time are refined together.
+    pub fn level(scene: &Scene, sigma: usize, zeta: usize) -> Discretisation {
+        let run = scene.shell_run();
+        Discretisation::Mesh2d { sigma, zeta, time_step: run.time_step * run.elements_sigma as f64 / sigma as f64 }
+    }
+}
+
 impl ShellFe {
     /// The scene's own discretisation (its `fem` block with the defaults).
     pub fn discretisation(scene: &Scene) -> Discretisation {
@@ -498,18 +531,7 @@ impl Method for ShellFe {
         if scene.belt.theory != Theory::Shell {
             return Err(RunError::NotApplicable(format!("{SHELL_FE} discretises theory `shell`, the scene's belt is theory `{}`", scene.belt.theory)));
         }
-        let mut scene = scene.clone();
-        let own = scene.shell_run();
-        let mut f = scene.fem_settings();
-        // the same simulated time of the rotation at another time step
-        let rotation = own.steps as f64 * own.time_step;
-        f.elements_sigma = Some(sigma);
-        f.elements_zeta = Some(zeta);
-        f.time_step = Some(time_step);
-        f.duration = None;
-        f.steps = Some(((rotation / time_step) - 1e-9).ceil().max(1.0) as usize);
-        scene.fem = Some(f);
-        scene.validate().map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
+        let scene = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
         let run = fem::shell::scene::solve(&scene).map_err(|e| match e {
             fem::shell::ShellError::NotModelled(m) => RunError::NotApplicable(m),
             other => RunError::Shell(other),

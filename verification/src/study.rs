@@ -20,7 +20,7 @@ use serde::Serialize;
 
 use crate::measure::{self, Quantity, QuantityKind};
 use crate::reference::{Estimate, Reference, ReferenceRun};
-use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, Run, RunError};
+use crate::run::{execute, BvpSolver, BvpVariant, Discretisation, Family, FemFormulation, Method, Run, RunError, ShellFe, SHELL_FE, SHELL_FORMULATION};
 
 /// Default σ samples of the field norms: enough that the sampling error of an L2 norm
 /// (trapezoidal rule, O(n⁻²) with the kinks at contact points) stays far below the
@@ -125,6 +125,20 @@ pub enum PlanError {
     /// Mesh sequence not strictly increasing or outside 4 … [`MAX_ELEMENTS`].
     #[error("element counts must lie in {MIN_ELEMENTS} … {MAX_ELEMENTS} and increase strictly, got {0:?}")]
     Meshes(Vec<usize>),
+    /// The levels of a shell study are not three or more 2-D meshes, each refined from
+    /// the one before with σ and Δt by one ratio > 1 and n_ζ by it or held (or the plan
+    /// also names BVP or 1-D FE runs, which a shell scene has none of).
+    #[error("a shell study needs three or more levels n_σ × n_ζ with Δt, each refined from the one before with σ and Δt by one ratio > 1 (the same ratio over the three finest, for the Richardson extrapolation) and n_ζ by that ratio or held, and nothing else; got {}", crate::reference::list(.0))]
+    ShellLevels(Vec<Discretisation>),
+    /// A shell scene with a plan that is not a shell study, or a shell study of a scene
+    /// that is not a shell.
+    #[error("scene theory `{theory}`: {why}")]
+    ShellMismatch {
+        /// The scene's belt theory.
+        theory: drive::scene::Theory,
+        /// What does not match.
+        why: &'static str,
+    },
     /// σ samples outside [`SAMPLES_RANGE`].
     #[error("{n} σ samples: the field norms take {lo} … {hi}", n = .0, lo = SAMPLES_RANGE.start(), hi = SAMPLES_RANGE.end())]
     Samples(usize),
@@ -169,6 +183,32 @@ impl StudyPlan {
             max_nodes: Some(STUDY_MAX_NODES),
         }
         .without_unsolvable_fem(scene)
+    }
+
+    /// The convergence study of a shell scene (issue 15; docs/verification.md "The
+    /// shell's study"): no BVP exists, so the shell FE ([`crate::run::ShellFe`]) runs at
+    /// `levels` — n_σ × n_ζ with Δt, coarsest first, σ and Δt refined together by one
+    /// ratio, n_ζ by the same ratio or held — and the reference is the Richardson
+    /// extrapolation of its three finest runs ([`Reference::Richardson`] of
+    /// [`SHELL_FORMULATION`]). The study computes each level once: the series is the
+    /// reference's own runs, held against the extrapolated values.
+    pub fn shell(levels: Vec<Discretisation>) -> StudyPlan {
+        StudyPlan {
+            reference: Reference::Richardson { formulation: SHELL_FORMULATION.to_string(), levels },
+            bvp: Vec::new(),
+            formulations: Formulations::Named(Vec::new()),
+            meshes: Vec::new(),
+            samples: DEFAULT_SAMPLES,
+            max_nodes: None,
+        }
+    }
+
+    /// The levels of a shell study ([`StudyPlan::shell`]), if this is one.
+    pub fn shell_levels(&self) -> Option<&[Discretisation]> {
+        match &self.reference {
+            Reference::Richardson { formulation, levels } if formulation == SHELL_FORMULATION => Some(levels),
+            _ => None,
+        }
     }
 
     /// No FE runs for a scene the FE does not solve yet ([`drive::not_yet_solvable`], e.g.
@@ -236,7 +276,21 @@ impl StudyPlan {
             Reference::Bvp { tolerance, .. } => Some(tolerance),
             _ => None,
         };
-        if let Reference::Richardson { formulation, levels } = &self.reference {
+        if let Some(levels) = self.shell_levels() {
+            let shell_levels_valid = levels.len() >= 3
+                && levels.iter().all(|d| matches!(d, Discretisation::Mesh2d { .. }) && d.check().is_ok())
+                && levels.windows(2).all(|w| w[0].refinement_ratio(w[1]).is_some())
+                && levels.windows(3).last().is_some_and(|w| match (w[0].refinement_ratio(w[1]), w[1].refinement_ratio(w[2])) {
+                    (Some(a), Some(b)) => (a - b).abs() <= 1e-9 * b,
+                    _ => false,
+                });
+            if !shell_levels_valid {
+                return Err(PlanError::ShellLevels(levels.to_vec()));
+            }
+            if !self.bvp.is_empty() || !self.meshes.is_empty() {
+                return Err(PlanError::ShellLevels(levels.to_vec()));
+            }
+        } else if let Reference::Richardson { formulation, levels } = &self.reference {
             if !fem::available_formulations().contains(&formulation.as_str()) {
                 return Err(PlanError::UnknownFormulation { name: formulation.clone(), registered: fem::available_formulations().join(", ") });
             }
@@ -261,6 +315,17 @@ impl StudyPlan {
     /// The first problem found.
     pub fn validate_for(&self, scene: &Scene) -> Result<(), PlanError> {
         self.validate()?;
+        let shell = scene.belt.theory == drive::scene::Theory::Shell;
+        match (shell, self.shell_levels().is_some()) {
+            (true, false) => {
+                return Err(PlanError::ShellMismatch {
+                    theory: scene.belt.theory,
+                    why: "no BVP exists for the shell and its element is not a 1-D formulation: its study is the shell FE over levels n_σ × n_ζ with Δt, held against their Richardson extrapolation",
+                })
+            }
+            (false, true) => return Err(PlanError::ShellMismatch { theory: scene.belt.theory, why: "a shell study (levels n_σ × n_ζ with Δt) studies a shell scene only" }),
+            _ => {}
+        }
         let mut named: Vec<&String> = Vec::new();
         if let (Formulations::Named(names), false) = (&self.formulations, self.meshes.is_empty()) {
             named.extend(names);
@@ -402,6 +467,9 @@ impl Study {
     /// An invalid plan. Failed runs are not errors: they are rows with a reason.
     pub fn run(scene: &Scene, plan: &StudyPlan, progress: &mut dyn FnMut(&Progress)) -> Result<Study, PlanError> {
         plan.validate_for(scene)?;
+        if let Some(levels) = plan.shell_levels() {
+            return Ok(Study::run_shell(scene, plan, levels, progress));
+        }
         let mut bvp: Vec<(Box<dyn Method>, Vec<Discretisation>)> = Vec::new();
         for s in &plan.bvp {
             let solver = BvpSolver { variant: s.variant, max_nodes: plan.max_nodes };
@@ -414,6 +482,30 @@ impl Study {
         }
         let strict = matches!(plan.formulations, Formulations::Named(_));
         Ok(Study::run_methods(scene, plan, methods, strict, progress))
+    }
+
+    /// The shell's study ([`StudyPlan::shell`]): each level solved once, the reference
+    /// extrapolated from those runs, and the same runs held against it as the series.
+    fn run_shell(scene: &Scene, plan: &StudyPlan, levels: &[Discretisation], progress: &mut dyn FnMut(&Progress)) -> Study {
+        let start = std::time::Instant::now();
+        let total = levels.len();
+        let mut runs = Vec::with_capacity(total);
+        for (done, &d) in levels.iter().enumerate() {
+            progress(&Progress { done, total, label: format!("{SHELL_FE} {d}") });
+            runs.push(execute(&ShellFe, scene, d, plan.samples));
+        }
+        progress(&Progress { done: total, total, label: String::new() });
+        let mut computed = plan.reference.richardson(&runs);
+        if let (Some(Discretisation::Mesh2d { zeta: first, .. }), Some(Discretisation::Mesh2d { zeta: last, .. })) = (levels.first(), levels.last()) {
+            if first == last {
+                computed.notes.push(format!(
+                    "n_ζ is held at {last} over the levels: the sequence converges to that n_ζ's limit, so the error across the width is not in the estimates (refine ζ with σ to include it)"
+                ));
+            }
+        }
+        let mut study = Study::of_runs(scene, plan, computed, vec![(SHELL_FE.to_string(), Family::Fem, runs)]);
+        study.wall_seconds = start.elapsed().as_secs_f64();
+        study
     }
 
     /// Runs the reference of `plan` and then `methods`, each over its discretisations

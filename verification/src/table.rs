@@ -304,6 +304,10 @@ pub fn study_text(study: &Study) -> String {
     for n in &study.notes {
         out.push_str(&format!("note: {n}\n"));
     }
+    if !study.reference_estimates.is_empty() {
+        out.push_str("\nthe reference's values: Richardson extrapolation of the three finest levels, with its error estimate |q_R − q_finest|\n");
+        out.push_str(&estimate_table(&study.reference_estimates).to_text("  "));
+    }
     for s in &study.series {
         out.push('\n');
         match &s.status {
@@ -335,6 +339,17 @@ pub fn study_text(study: &Study) -> String {
         out.push_str(&mutual_table(s).to_text("  "));
     }
     out
+}
+
+/// The extrapolated reference values with their observed orders and error estimates
+/// (absolute and relative to the value).
+pub fn estimate_table(estimates: &[crate::reference::Estimate]) -> Table {
+    let mut t = Table::new(["quantity", "finest level", "extrapolated", "order", "error estimate", "relative"]);
+    for e in estimates {
+        let relative = (e.value != 0.0).then(|| e.error_estimate / e.value.abs());
+        t.push(vec![e.quantity.clone(), fmt_value(Some(e.finest)), fmt_value(Some(e.value)), fmt_order(e.order), fmt_error(Some(e.error_estimate)), fmt_error(relative)]);
+    }
+    t
 }
 
 #[cfg(test)]
