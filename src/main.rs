@@ -27,6 +27,9 @@ enum CliError {
     /// A flag that only a shell scene uses.
     #[error("--{flag} is for shell scenes (theory `shell`, a run-off transient); this scene's belt is theory `{theory}`")]
     FlagNotForScene { flag: &'static str, theory: String },
+    /// `gate` flags of the 1-D studies with a shell scene among the scenes.
+    #[error("--elements, --tolerance and --formulation set the 1-D studies; {} is a shell scene, gated at its `gate.levels` (give the other scenes without it)", .file.display())]
+    ShellGateFlags { file: PathBuf },
     /// A flag that only works with another.
     #[error("--{flag} needs --{needs}")]
     FlagNeeds { flag: &'static str, needs: &'static str },
@@ -968,8 +971,8 @@ fn parse_level(text: &str) -> Result<(usize, usize), CliError> {
     Ok((ns, nz))
 }
 
-/// Why `report` and `gate` do not take a shell scene yet.
-const NO_SHELL_REFERENCE: &str = "the shell's study (its FE at three or more levels n_σ × n_ζ with Δt, held against their Richardson extrapolation) is run by `beltcheck converge` on the scene; `report` and `gate` do not take it yet (issue 15)";
+/// Why `report` does not take a shell scene yet.
+const NO_SHELL_REPORT: &str = "the shell's study (its FE at three or more levels n_σ × n_ζ with Δt, held against their Richardson extrapolation) is run by `beltcheck converge` and `beltcheck gate`; `report` does not take it yet (issue 15)";
 
 fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
@@ -1015,10 +1018,10 @@ fn scene_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>> {
 }
 
 /// Drops the shell scenes from a `report` or `gate` run, saying so on stdout.
-fn without_shells(command: &str, scenes: Vec<(PathBuf, Scene)>) -> Vec<(PathBuf, Scene)> {
+fn without_shells(command: &str, scenes: Vec<(PathBuf, Scene)>, why: &str) -> Vec<(PathBuf, Scene)> {
     let (shells, others): (Vec<_>, Vec<_>) = scenes.into_iter().partition(|(_, s)| s.belt.theory == drive::scene::Theory::Shell);
     for (file, scene) in &shells {
-        println!("{command}: skipped scene `{}` ({}): {NO_SHELL_REFERENCE}", scene.name, file.display());
+        println!("{command}: skipped scene `{}` ({}): {why}", scene.name, file.display());
     }
     others
 }
@@ -1026,7 +1029,7 @@ fn without_shells(command: &str, scenes: Vec<(PathBuf, Scene)>) -> Vec<(PathBuf,
 fn run_report(args: &ReportArgs) -> Result<()> {
     let files = scene_files(&args.inputs)?;
     let scenes: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
-    let scenes = without_shells("report", scenes);
+    let scenes = without_shells("report", scenes, NO_SHELL_REPORT);
     for (i, (file, scene)) in scenes.iter().enumerate() {
         if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name.eq_ignore_ascii_case(&scene.name)) {
             return Err(CliError::DuplicateSceneName { name: scene.name.clone(), first: first.clone(), second: file.clone() }.into());
@@ -1076,7 +1079,16 @@ fn run_gate(args: &GateArgs) -> Result<bool> {
     }
     let files = scene_files(&args.scenes)?;
     let loaded: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
-    let (files, scenes): (Vec<PathBuf>, Vec<Scene>) = without_shells("gate", loaded).into_iter().unzip();
+    // --bvp-only: a shell has no BVP, so nothing of it would be gated
+    let loaded = if args.bvp_only { without_shells("gate --bvp-only", loaded, "no BVP exists for the shell") } else { loaded };
+    let (files, scenes): (Vec<PathBuf>, Vec<Scene>) = loaded.into_iter().unzip();
+    let shells: Vec<&PathBuf> = files.iter().zip(&scenes).filter(|(_, s)| s.belt.theory == drive::scene::Theory::Shell).map(|(f, _)| f).collect();
+    // the 1-D study's flags have no meaning for a shell's levels: refused, not ignored
+    if let (Some(file), true) = (shells.first(), !args.elements.is_empty() || args.tolerance.is_some() || !args.formulations.is_empty()) {
+        return Err(CliError::ShellGateFlags { file: (*file).clone() }.into());
+    }
+    // a shell scene is gated as its `gate.steps` part of the rotation
+    let scenes: Vec<Scene> = scenes.iter().map(gate::gate_scene).collect();
     let meshes = (!args.elements.is_empty()).then_some(args.elements.as_slice());
     let formulations = if args.bvp_only {
         Some(verification::study::Formulations::Named(Vec::new()))

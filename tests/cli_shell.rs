@@ -6,7 +6,8 @@
 //! read back here with an XML reader independent of the writer (`roxmltree` + `base64`).
 //! The refusals (no BVP for a shell, the 1-D study's flags and impossible levels in
 //! `converge`, flags for shells only, a malformed measurement, a bad scene) exit 2 and
-//! write nothing; `gate` and `report` skip a shell with the reason. `converge` studies
+//! write nothing; `gate --bvp-only` and `report` skip a shell with the reason (the
+//! whole catalogue's gate, tests/harness.rs, gates it). `converge` studies
 //! a shortened scene at three levels and its Richardson reference is recomputed here
 //! from the levels' own summaries.
 //!
@@ -270,10 +271,19 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     let bad = temp("cli-shell-refusals", "bad-scene.json");
     std::fs::write(&bad, v.to_string()).unwrap();
     refused(&["solve", bad.to_str().unwrap(), "--json", j], &["drive.driven_speed", "opposite senses"]);
-    // gate and report skip the shell and say why
-    let o = beltcheck(&["gate", SCENE]);
+    // gate: the 1-D flags are refused with a shell among the scenes; --bvp-only skips
+    // a shell (it has no BVP); report skips it, saying why
+    refused(&["gate", SCENE, "--elements", "64,128", "--json", j], &["shell-runoff.json is a shell scene", "gate.levels"]);
+    refused(&["gate", SCENE, "--tolerance", "1e-6", "--json", j], &["is a shell scene"]);
+    let o = beltcheck(&["gate", "--bvp-only", SCENE, "scenes/string-hanging.json"]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stdout(&o).contains("gate: skipped scene `shell-runoff`") && stdout(&o).contains("beltcheck converge"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("gate --bvp-only: skipped scene `shell-runoff`") && stdout(&o).contains("no BVP exists for the shell"), "{}", stdout(&o));
+    // a shell study whose rotation is not a whole number of a level's steps
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    v["fem"]["steps"] = serde_json::json!(3);
+    let odd = temp("cli-shell-refusals", "odd-steps.json");
+    std::fs::write(&odd, v.to_string()).unwrap();
+    refused(&["converge", odd.to_str().unwrap(), "--levels", "32x2,64x2,128x2", "--json", j], &["the level 32×2", "fem.steps", "not a whole number"]);
     let dir = temp("cli-shell-refusals", "report");
     let o = beltcheck(&["report", SCENE, "-o", dir.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));

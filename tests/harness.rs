@@ -74,7 +74,7 @@ fn gate_passes_on_the_catalogue() {
     let out = stdout(&o);
     assert_eq!(o.status.code(), Some(0), "gate failed on the catalogue:\n{out}\n{}", stderr(&o));
     assert!(out.contains("passed: every gated quantity within its limit"), "{out}");
-    for scene in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel"] {
+    for scene in ["string-hanging", "string-hanging-slack", "string-hanging-very-slack", "string-hanging-steel", "shell-runoff"] {
         assert!(out.contains(scene), "{scene} missing from the pass table:\n{out}");
     }
     assert_no_nan("gate output", &out);

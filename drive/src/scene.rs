@@ -1113,6 +1113,17 @@ pub struct GateSettings {
     /// in its notes. `converge` and `report` still study the FE.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fem: Option<bool>,
+    /// Shell scenes only: the levels n_σ × n_ζ of the gate's study, coarsest first, each
+    /// with Δt scaled like the σ spacing, held against the Richardson extrapolation of the
+    /// three finest (docs/verification.md "The shell's study"). Default absent = the
+    /// scene's mesh, then 2× and 4× its n_σ at its n_ζ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub levels: Option<Vec<[usize; 2]>>,
+    /// Shell scenes only: the rotation steps of the gate's runs at the scene's own
+    /// Δt (the other levels take the same simulated time) — a CI-sized part of the
+    /// scene's `fem.steps`. Default absent = the scene's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub steps: Option<usize>,
 }
 
 // ---------------------------------------------------------------------------
@@ -2011,6 +2022,17 @@ impl GateSettings {
         }
         if let Some(p) = self.min_order {
             check_positive("gate.min_order", p)?;
+        }
+        if let Some(levels) = &self.levels {
+            if levels.len() < 3 {
+                return Err(SceneError::OutOfRange { path: "gate.levels".into(), value: levels.len() as f64, range: "three or more levels [n_σ, n_ζ] (Richardson extrapolation of the three finest)".into() });
+            }
+            if let Some(k) = levels.iter().position(|&[ns, nz]| ns == 0 || nz == 0) {
+                return Err(SceneError::Invalid { path: format!("gate.levels[{k}]"), reason: "n_σ and n_ζ must be at least 1".into() });
+            }
+        }
+        if self.steps == Some(0) {
+            return Err(SceneError::OutOfRange { path: "gate.steps".into(), value: 0.0, range: "at least one rotation step".into() });
         }
         if let Some(t) = self.reference_tolerance {
             check_relative_tolerance("gate.reference_tolerance", t)?;

@@ -40,6 +40,8 @@ pub(crate) enum Kind {
     Contact,
     /// A history `[[t, value], …]`: an array of two-number arrays.
     History,
+    /// Levels `[[n_σ, n_ζ], …]`: an array of pairs of counts.
+    CountPairs,
 }
 
 impl Kind {
@@ -58,6 +60,7 @@ impl Kind {
             Kind::TextList => "an array of strings".into(),
             Kind::Contact => r#""frictionless", {"coulomb": μ} or {"elastic_layer": {...}}"#.into(),
             Kind::History => "an array of [t, value] pairs of numbers".into(),
+            Kind::CountPairs => "an array of [n_σ, n_ζ] pairs of non-negative integers".into(),
         }
     }
 }
@@ -304,6 +307,8 @@ pub(crate) const GATE: &[Field] = &[
     opt("reference_tolerance", Kind::Number, "tolerance of the gate's BVP reference"),
     opt("bvp_tolerance", Kind::Number, "tolerance of the gated BVP runs"),
     opt("fem", Kind::Bool, "whether the gate runs the FE studies (default true)"),
+    opt_in(Cond::Shell, "levels", Kind::CountPairs, "levels [[n_σ, n_ζ], …] of the gate's shell study (shell)"),
+    opt_in(Cond::Shell, "steps", Kind::Count, "rotation steps of the gate's shell runs at the scene's Δt (shell)"),
 ];
 
 pub(crate) const PEER: &[Field] = &[
@@ -611,6 +616,18 @@ fn check_value(v: &mut Value, kind: Kind, path: &str, ctx: Ctx) -> Result<(), Sc
             }
             true
         }
+        Kind::CountPairs => {
+            let Value::Array(items) = v else {
+                return Err(wrong_type(path, kind, v));
+            };
+            for (i, item) in items.iter().enumerate() {
+                let pair = item.as_array().is_some_and(|p| p.len() == 2 && p.iter().all(is_count));
+                if !pair {
+                    return Err(SceneError::WrongType { path: format!("{path}[{i}]"), expected: "a level [n_σ, n_ζ] of two non-negative integers".into(), found: describe(item) });
+                }
+            }
+            true
+        }
     };
     if ok {
         Ok(())
@@ -758,6 +775,8 @@ mod tests {
             reference_tolerance: Some(1e-9),
             bvp_tolerance: Some(1e-7),
             fem: Some(false),
+            levels: Some(vec![[32, 2], [64, 2], [128, 2]]),
+            steps: Some(2),
             ..Default::default()
         })
         .unwrap();

@@ -274,7 +274,13 @@ fn catalogue_mutations_are_named_errors() {
             assert!(e.path().is_some_and(|p| p.ends_with(key)), "{file}: {e}");
         }
         // numbers replaced by extreme, NaN-like or wrongly typed text
-        let spots: Vec<usize> = text.match_indices(": ").map(|(i, _)| i + 2).filter(|&i| text[i..].starts_with(|c: char| c.is_ascii_digit() || c == '-')).collect();
+        // (values of keys only: a `: 64` inside a description string is text, and a
+        // mutation there stays valid JSON)
+        let spots: Vec<usize> = text
+            .match_indices("\": ")
+            .map(|(i, _)| i + 3)
+            .filter(|&i| text[i..].starts_with(|c: char| c.is_ascii_digit() || c == '-'))
+            .collect();
         for _ in 0..60 {
             let at = spots[next(spots.len())];
             let end = at + text[at..].find([',', '\n', '}', ']']).unwrap();

@@ -116,8 +116,11 @@ fn validate(root: &Value, schema: &Value, v: &Value, path: &str) -> Result<(), S
 fn every_catalogue_scene_validates_and_mutations_do_not() {
     let schema = scene_schema();
     let mut n = 0;
-    for entry in std::fs::read_dir(repo("scenes")).unwrap() {
-        let path = entry.unwrap().path();
+    // the catalogue and its study scenes (scenes/studies/)
+    let files = |dir: std::path::PathBuf| -> Vec<std::path::PathBuf> {
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().path()).filter(|p| p.extension().is_some_and(|x| x == "json")).collect()
+    };
+    for path in files(repo("scenes")).into_iter().chain(files(repo("scenes").join("studies"))) {
         let v: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
         validate(&schema, &schema, &v, "").unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         n += 1;

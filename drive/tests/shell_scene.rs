@@ -35,7 +35,7 @@ fn roundtrip(s: &Scene) {
 
 #[test]
 fn shipped_shell_scenes_read_and_round_trip() {
-    for text in [include_str!("../../scenes/shell-runoff.json"), include_str!("../../scenes/shell-runoff-study.json")] {
+    for text in [include_str!("../../scenes/shell-runoff.json"), include_str!("../../scenes/studies/shell-runoff-study.json")] {
         let s = Scene::from_json_str(text).unwrap();
         assert_eq!(s.belt.theory, drive::Theory::Shell);
         roundtrip(&s);
@@ -192,4 +192,31 @@ fn defaults_of_the_shell_run() {
     // one revolution of the belt L/(ωR)
     let revolution = s.belt.length / (omega * s.drive.pulley_radius);
     assert_eq!(run.steps, (revolution / run.time_step).ceil() as usize);
+}
+
+/// `gate.levels` and `gate.steps` (the gate's shell study, docs/verification.md "The
+/// shell's study"): read and round-tripped on a shell, checked, and refused on a rod.
+#[test]
+fn the_gate_block_of_a_shell_names_its_levels_and_steps() {
+    let s = read(&ci()).unwrap();
+    let g = s.gate_settings();
+    assert_eq!(g.levels, Some(vec![[32, 2], [64, 2], [128, 2]]));
+    assert_eq!(g.steps, Some(2));
+    roundtrip(&s);
+    let with = |key: &str, value: Value| {
+        let mut v = ci();
+        v["gate"][key] = value;
+        v
+    };
+    refused(&with("levels", json!([[32, 2], [64, 2]])), "gate.levels", &["three or more levels", "2"]);
+    refused(&with("levels", json!([[32, 2], [0, 2], [128, 2]])), "gate.levels[1]", &["at least 1"]);
+    refused(&with("levels", json!([[32, 2], [64], [128, 2]])), "gate.levels[1]", &["[n_σ, n_ζ]"]);
+    refused(&with("levels", json!([[32, 2.5], [64, 2], [128, 2]])), "gate.levels[0]", &["[n_σ, n_ζ]"]);
+    refused(&with("steps", json!(0)), "gate.steps", &["at least one"]);
+    let mut rod: Value = serde_json::from_str(include_str!("../../scenes/rod-hanging.json")).unwrap();
+    rod["gate"]["levels"] = json!([[32, 2], [64, 2], [128, 2]]);
+    refused(&rod, "gate.levels", &["theory `shell`"]);
+    rod["gate"].as_object_mut().unwrap().remove("levels");
+    rod["gate"]["steps"] = json!(2);
+    refused(&rod, "gate.steps", &["theory `shell`"]);
 }

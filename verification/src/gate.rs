@@ -57,6 +57,9 @@ pub fn gate_plan(scene: &Scene, bvp_tolerance: f64, meshes: Option<&[usize]>) ->
 /// and the tolerance of the gauss4 and shooting runs `bvp_tolerance`, else the scene's
 /// `gate.bvp_tolerance`, else [`GATE_BVP_TOLERANCE`].
 pub fn gate_plan_with(scene: &Scene, bvp_tolerance: Option<f64>, meshes: Option<&[usize]>, formulations: Option<Formulations>) -> StudyPlan {
+    if scene.belt.theory == drive::scene::Theory::Shell {
+        return shell_gate_plan(scene);
+    }
     let fem = scene.fem_settings();
     let gate = scene.gate_settings();
     let bvp_tolerance = bvp_tolerance.or(gate.bvp_tolerance).unwrap_or(GATE_BVP_TOLERANCE);
@@ -75,6 +78,27 @@ pub fn gate_plan_with(scene: &Scene, bvp_tolerance: Option<f64>, meshes: Option<
     }
     .without_unsolvable_fem(scene)
     .without_fem_unless(gate.fem.unwrap_or(true))
+}
+
+/// The scene a gate studies: a shell scene with `gate.steps` runs that many rotation
+/// steps at its own Δt (a CI-sized part of its `fem.steps`); every other scene as it is.
+pub fn gate_scene(scene: &Scene) -> Scene {
+    let mut scene = scene.clone();
+    if let (drive::scene::Theory::Shell, Some(steps)) = (scene.belt.theory, scene.gate_settings().steps) {
+        let mut f = scene.fem_settings();
+        (f.steps, f.duration) = (Some(steps), None);
+        scene.fem = Some(f);
+    }
+    scene
+}
+
+/// The gate's study of a shell scene ([`StudyPlan::shell`]): `gate.levels`, else the
+/// scene's mesh and 2× and 4× its n_σ at its n_ζ, each with Δt scaled like the σ
+/// spacing. Run it on [`gate_scene`].
+pub fn shell_gate_plan(scene: &Scene) -> StudyPlan {
+    let own = scene.shell_run();
+    let sizes: Vec<[usize; 2]> = scene.gate_settings().levels.unwrap_or_else(|| (0..3).map(|k| [own.elements_sigma << k, own.elements_zeta]).collect());
+    StudyPlan::shell(sizes.into_iter().map(|[ns, nz]| crate::run::ShellFe::level(scene, ns, nz)).collect())
 }
 
 /// What a check compares.

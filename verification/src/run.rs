@@ -479,17 +479,31 @@ pub const SHELL_FORMULATION: &str = "shell-bfs";
 impl ShellFe {
     /// The scene with its `fem` block at `sigma` × `zeta` elements and the time step
     /// `time_step`, keeping the simulated time of the rotation (`steps` × Δt of the
-    /// scene, rounded up to whole steps), validated.
+    /// scene), validated.
     ///
     /// # Errors
-    /// The scene's validation error at that discretisation (e.g. an odd n_ζ).
+    /// The scene's validation error at that discretisation (e.g. an odd n_ζ), or
+    /// `fem.steps` when the rotation is not a whole number of the level's steps (the
+    /// levels would not compare one simulated time).
     pub fn scene_at(scene: &Scene, sigma: usize, zeta: usize, time_step: f64) -> Result<Scene, drive::error::SceneError> {
         let mut scene = scene.clone();
         let own = scene.shell_run();
         let mut f = scene.fem_settings();
         let rotation = own.steps as f64 * own.time_step;
+        let steps = rotation / time_step;
+        if (steps - steps.round()).abs() > 1e-6 * steps.max(1.0) || steps.round() < 1.0 {
+            return Err(drive::error::SceneError::Invalid {
+                path: "fem.steps".into(),
+                reason: format!(
+                    "the rotation of {} steps of {} s is not a whole number of steps of {} s ({steps:.4}): the level would simulate another time; choose steps divisible by the σ refinement ratio",
+                    own.steps,
+                    drive::error::num(&own.time_step),
+                    drive::error::num(&time_step)
+                ),
+            });
+        }
         (f.elements_sigma, f.elements_zeta, f.time_step, f.duration) = (Some(sigma), Some(zeta), Some(time_step), None);
-        f.steps = Some(((rotation / time_step) - 1e-9).ceil().max(1.0) as usize);
+        f.steps = Some(steps.round() as usize);
         scene.fem = Some(f);
         scene.validate()?;
         Ok(scene)
