@@ -971,8 +971,6 @@ fn parse_level(text: &str) -> Result<(usize, usize), CliError> {
     Ok((ns, nz))
 }
 
-/// Why `report` does not take a shell scene yet.
-const NO_SHELL_REPORT: &str = "the shell's study (its FE at three or more levels n_σ × n_ζ with Δt, held against their Richardson extrapolation) is run by `beltcheck converge` and `beltcheck gate`; `report` does not take it yet (issue 15)";
 
 fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
@@ -1029,7 +1027,6 @@ fn without_shells(command: &str, scenes: Vec<(PathBuf, Scene)>, why: &str) -> Ve
 fn run_report(args: &ReportArgs) -> Result<()> {
     let files = scene_files(&args.inputs)?;
     let scenes: Vec<(PathBuf, Scene)> = files.iter().map(|f| Ok((f.clone(), load_scene(f)?))).collect::<Result<_>>()?;
-    let scenes = without_shells("report", scenes, NO_SHELL_REPORT);
     for (i, (file, scene)) in scenes.iter().enumerate() {
         if let Some((first, _)) = scenes[..i].iter().find(|(_, s)| s.name.eq_ignore_ascii_case(&scene.name)) {
             return Err(CliError::DuplicateSceneName { name: scene.name.clone(), first: first.clone(), second: file.clone() }.into());

@@ -6,8 +6,9 @@
 //! read back here with an XML reader independent of the writer (`roxmltree` + `base64`).
 //! The refusals (no BVP for a shell, the 1-D study's flags and impossible levels in
 //! `converge`, flags for shells only, a malformed measurement, a bad scene) exit 2 and
-//! write nothing; `gate --bvp-only` and `report` skip a shell with the reason (the
-//! whole catalogue's gate, tests/harness.rs, gates it). `converge` studies
+//! write nothing; `gate --bvp-only` skips a shell with the reason (the whole
+//! catalogue's gate, tests/harness.rs, gates it; `report` of a shell study is tested on
+//! a synthetic study in `verification::plot_shell`). `converge` studies
 //! a shortened scene at three levels and its Richardson reference is recomputed here
 //! from the levels' own summaries.
 //!
@@ -220,8 +221,8 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     assert!(last.values["interlayer_shear"].iter().flatten().any(|&u| u > 0.0));
 }
 
-/// What a shell scene is refused for, with exit 2 and nothing written; `gate` and
-/// `report` skip it with the reason.
+/// What a shell scene is refused for, with exit 2 and nothing written; `gate
+/// --bvp-only` skips it with the reason.
 #[test]
 fn shell_refusals_name_the_reason_and_write_nothing() {
     let json = temp("cli-shell-refusals", "out.json");
@@ -284,11 +285,12 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     let odd = temp("cli-shell-refusals", "odd-steps.json");
     std::fs::write(&odd, v.to_string()).unwrap();
     refused(&["converge", odd.to_str().unwrap(), "--levels", "32x2,64x2,128x2", "--json", j], &["the level 32×2", "fem.steps", "not a whole number"]);
+    // report: the shell's study takes the same levels and refuses the same flags
     let dir = temp("cli-shell-refusals", "report");
-    let o = beltcheck(&["report", SCENE, "-o", dir.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(stdout(&o).contains("report: skipped scene `shell-runoff`"), "{}", stdout(&o));
-    assert!(!dir.join("shell-runoff").exists(), "no report directory for a skipped scene");
+    let o = beltcheck(&["report", SCENE, "--elements", "64,128,256", "-o", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--elements is not used"), "{}", stderr(&o));
+    assert!(!dir.join("shell-runoff").exists(), "no report directory for a refused scene");
 }
 
 /// `converge` on a shell scene (issue 15): the levels 32×2, 64×2, 128×2 with Δt scaled

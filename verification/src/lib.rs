@@ -33,6 +33,7 @@ pub mod measure;
 pub mod measured;
 pub mod outside;
 pub mod plot;
+pub mod plot_shell;
 pub mod reference;
 pub mod report;
 pub mod run;

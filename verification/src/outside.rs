@@ -599,6 +599,7 @@ fn harness_run(label: &str, family: Family, r: &OutsideRun, scene: &Scene, n: us
         notes: vec![format!("read from {}", r.file.display())],
         warnings: r.result.warnings.clone(),
         samples,
+        history: r.result.history.clone(),
     };
     Run { method: label.to_string(), family, discretisation: r.discretisation, wall_seconds: c.wall_seconds, outcome: Ok(data) }
 }

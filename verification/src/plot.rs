@@ -27,7 +27,7 @@ use crate::study::{Series, SeriesStatus, Study};
 /// Canvas width, px.
 pub const WIDTH: u32 = 1200;
 
-type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+pub(crate) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 
 /// Why a plot could not be drawn (a plotters error, as text).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -39,7 +39,7 @@ pub struct PlotError {
     pub message: String,
 }
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     e.to_string()
 }
 
@@ -95,7 +95,7 @@ fn state_name(s: ContactState) -> &'static str {
 }
 
 /// Renders `draw` into an SVG string of `WIDTH × height`.
-fn render(plot: &'static str, height: u32, draw: impl FnOnce(&Area) -> Result<(), String>) -> Result<String, PlotError> {
+pub(crate) fn render(plot: &'static str, height: u32, draw: impl FnOnce(&Area) -> Result<(), String>) -> Result<String, PlotError> {
     let mut buf = String::new();
     {
         let root = SVGBackend::with_string(&mut buf, (WIDTH, height)).into_drawing_area();
@@ -392,7 +392,7 @@ fn region_labels<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, scene: &Scene) -> Result
 }
 
 /// The legend box every chart uses, at `pos`, labels in `font` px.
-fn legend_box<'a, 'b: 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, SVGBackend<'b>, CT>, pos: SeriesLabelPosition, font: u32) -> Result<(), String> {
+pub(crate) fn legend_box<'a, 'b: 'a, CT: CoordTranslate>(chart: &mut ChartContext<'a, SVGBackend<'b>, CT>, pos: SeriesLabelPosition, font: u32) -> Result<(), String> {
     chart
         .configure_series_labels()
         .position(pos)
@@ -409,7 +409,7 @@ fn legend<'a, 'b: 'a>(chart: &mut Chart<'a, 'b>, pos: SeriesLabelPosition) -> Re
 
 /// The grid and label style of every chart: bold grid lines only, tick labels in
 /// `font` px, axis descriptions 2 px larger.
-fn grid_style<'m, 'a, 'b, X, Y, DB>(mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>, font: u32) -> &'m mut MeshStyle<'a, 'b, X, Y, DB>
+pub(crate) fn grid_style<'m, 'a, 'b, X, Y, DB>(mesh: &'m mut MeshStyle<'a, 'b, X, Y, DB>, font: u32) -> &'m mut MeshStyle<'a, 'b, X, Y, DB>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -420,7 +420,7 @@ where
 
 /// One labelled curve: solid or dashed (10/6 px) in `col` of `width` px, with a short
 /// line of the same style as its legend entry.
-fn labelled_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
+pub(crate) fn labelled_line<'a, 'b: 'a, CT: CoordTranslate<From = (f64, f64)>>(
     chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
     pts: Vec<(f64, f64)>,
     col: RGBColor,
@@ -818,7 +818,7 @@ fn log_legend<'a, 'b: 'a>(chart: &mut LogChart<'a, 'b>, pos: SeriesLabelPosition
 }
 
 /// Draws a message in the middle of an area.
-fn area_message(area: &Area, title: &str, text: &str) -> Result<(), String> {
+pub(crate) fn area_message(area: &Area, title: &str, text: &str) -> Result<(), String> {
     let (w, h) = area.dim_in_pixel();
     area.draw(&Text::new(title.to_string(), (20, 12), ("sans-serif", 20).into_font())).map_err(err)?;
     let grey = BLACK.mix(0.6);

@@ -221,6 +221,7 @@ impl Reference {
                     notes: vec!["summary scalars only: the closed form gives no fields, so no field norms are measured against it".into()],
                     warnings: Vec::new(),
                     samples: Samples::default(),
+                    history: None,
                 });
                 let run = Run { method: self.label(), family: Family::ClosedForm, discretisation: Discretisation::Tolerance(CATENARY_TOLERANCE), wall_seconds: wall, outcome };
                 ReferenceRun { run, estimates: Vec::new(), notes: Vec::new() }
@@ -325,7 +326,7 @@ fn richardson_data(runs: &[Run], estimates: &mut Vec<Estimate>, notes: &mut Vec<
         elements: finest.cost.elements,
         phases: None,
     };
-    Ok(RunData { summary, cost, options: finest.options.clone(), terms: finest.terms.clone(), notes: finest.notes.clone(), warnings: finest.warnings.clone(), samples })
+    Ok(RunData { summary, cost, options: finest.options.clone(), terms: finest.terms.clone(), notes: finest.notes.clone(), warnings: finest.warnings.clone(), samples, history: None })
 }
 
 /// Pointwise extrapolation of the sampled fields; a field whose levels do not converge in

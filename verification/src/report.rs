@@ -20,7 +20,7 @@ use drive::scene::{Scene, Theory};
 use serde::{Deserialize, Serialize};
 
 use crate::plot;
-use crate::run::{fmt_tolerance, Family, Run, RunData};
+use crate::run::{fmt_tolerance, Discretisation, Family, Run, RunData};
 use crate::study::{Formulations, SeriesStatus, Study};
 use crate::table::{self, fmt_error, fmt_seconds, Table};
 
@@ -228,9 +228,16 @@ fn fem_status(study: &Study) -> String {
 pub fn write_scene_report(scene: &Scene, scene_file: &Path, study: &Study, dir: &Path) -> Result<ReportEntry, ReportError> {
     let sdir = dir.join(&scene.name);
     crate::files::create_dir(&sdir)?;
+    // a shell's study is a transient over (σ, ζ): its run-off in time and its contact
+    // maps in place of the belt's shape and axial force along σ
+    let (first, second) = if study.plan.shell_levels().is_some() {
+        (("runoff.svg", crate::plot_shell::runoff_svg(study)?), ("contact-maps.svg", crate::plot_shell::contact_maps_svg(study)?))
+    } else {
+        (("shape.svg", plot::shape_svg(scene, study)?), ("force.svg", plot::force_svg(scene, study)?))
+    };
     let texts = [
-        ("shape.svg", plot::shape_svg(scene, study)?),
-        ("force.svg", plot::force_svg(scene, study)?),
+        first,
+        second,
         ("convergence.svg", plot::convergence_svg(scene, study)?),
         ("work-precision.svg", plot::work_precision_svg(scene, study)?),
         ("study.json", study_json(scene, study)?),
@@ -261,6 +268,11 @@ pub fn write_scene_report(scene: &Scene, scene_file: &Path, study: &Study, dir: 
 /// The command that regenerates a plan's study (for the report's "reproduce" line).
 fn command_of(scene_file: &Path, study: &Study) -> String {
     let mut c = format!("beltcheck converge {}", scene_file.display());
+    if let Some(levels) = study.plan.shell_levels() {
+        let sizes: Vec<String> = levels.iter().filter_map(|d| if let Discretisation::Mesh2d { sigma, zeta, .. } = d { Some(format!("{sigma}x{zeta}")) } else { None }).collect();
+        let _ = write!(c, " --levels {}", sizes.join(","));
+        return c;
+    }
     if let Formulations::Named(n) = &study.plan.formulations {
         for f in n {
             let _ = write!(c, " --formulation {f}");
@@ -317,8 +329,14 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     for n in &study.notes {
         let _ = writeln!(m, "- note: {n}");
     }
-    let _ = writeln!(m, "- largest relative error of a summary scalar at the finest successful tolerance, BVP variants: {}", fmt_error(worst_finest(study, Family::Bvp)));
-    if study.has_fem() {
+    let shell = study.plan.shell_levels().is_some();
+    if shell {
+        let _ = writeln!(m, "- no BVP exists for the shell: every level is held against the Richardson extrapolation of the three finest, so the finest level's error is the reference's own error estimate");
+        let _ = writeln!(m, "- largest relative error of an extrapolated summary scalar at the finest level: {}", fmt_error(worst_finest(study, Family::Fem)));
+    } else {
+        let _ = writeln!(m, "- largest relative error of a summary scalar at the finest successful tolerance, BVP variants: {}", fmt_error(worst_finest(study, Family::Bvp)));
+    }
+    if study.has_fem() && !shell {
         let _ = writeln!(m, "- largest relative error of a summary scalar at the finest successful mesh, FE: {}", fmt_error(worst_finest(study, Family::Fem)));
         let _ = writeln!(m, "- largest error of a Richardson-extrapolated FE scalar against the reference (mutual convergence; over the scalars where the extrapolation is defined): {}", fmt_error(worst_mutual(study)));
     }
@@ -361,6 +379,12 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     m.push('\n');
 
     // Plots.
+    let shell_plots = [
+        ("Run-off in time", "The belt's lateral offset z̄(t) (the width-averaged lateral position of the belt, docs/fem-shell.md §9.3) and its rate, every level of the study (light to dark: coarse to fine). The reference text gives no measured run-off: `beltcheck solve SCENE --measured FILE.csv` overlays a user's (t, lateral) samples with the difference.", "run-off", "runoff.svg"),
+        ("Contact maps", "Contact pressure Pγ and interlayer shear P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed state at the nearest history point).", "contact maps", "contact-maps.svg"),
+        ("Convergence", "Error of each level against the Richardson extrapolation of the three finest, against elements along σ, with reference slopes.", "convergence", "convergence.svg"),
+        ("Work–precision", "Error against wall time, every level of this scene.", "work–precision", "work-precision.svg"),
+    ];
     let plots = [
         ("Belt shape", "The reference belt to scale with the pulleys (radius to the belt centreline); contact zones thick, contact boundaries as dots; FE finest meshes dashed. Below: the deflection ν(σ) from the contour, magnified.", "belt shape", "shape.svg"),
         ("Axial force along σ", "The reference and the finest mesh of each FE formulation; bottom: |N − N_ref| of the finest run of every method.", "axial force", "force.svg"),
@@ -368,7 +392,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         ("Work–precision", "Error against wall time, every method of this scene on one axis (the reference run itself is not plotted).", "work–precision", "work-precision.svg"),
     ];
     let refined = study.reference.data().and_then(|d| d.samples.edges.as_ref());
-    for (title, caption, alt, file) in plots {
+    for (title, caption, alt, file) in if shell { shell_plots } else { plots } {
         match refined {
             Some(d) if file == "force.svg" => {
                 let _ = writeln!(m, "## {title}, contact pressure and shear strain\n\n{caption} {}\n\n![{alt}]({file})\n", refined_caption(d, study.plan.samples));
@@ -381,6 +405,11 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
 
     // Tables.
     let _ = writeln!(m, "## Convergence tables\n");
+    if !study.reference_estimates.is_empty() {
+        let _ = writeln!(m, "### The reference's values\n\nRichardson extrapolation of the three finest levels: per scalar the extrapolated value, the observed order and the error estimate |q_R − q_finest| (quantities whose levels oscillate or do not converge are left out; the notes above name them).\n");
+        m.push_str(&table::estimate_table(&study.reference_estimates).to_markdown());
+        m.push('\n');
+    }
     let _ = writeln!(
         m,
         "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(n_k/n_(k−1)). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
@@ -405,9 +434,14 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     let _ = writeln!(m, "### Error per quantity at the finest discretisation\n");
     m.push_str(&table::quantity_table(study).to_markdown());
     m.push('\n');
-    let _ = writeln!(m, "### Mutual convergence FE ↔ BVP\n");
-    let fe_studied: Vec<_> = study.series.iter().filter(|s| s.family == Family::Fem && s.status == SeriesStatus::Studied).collect();
-    if fe_studied.is_empty() {
+    // a shell's series extrapolates to the reference itself: nothing mutual to show
+    let fe_studied: Vec<_> = study.series.iter().filter(|s| !shell && s.family == Family::Fem && s.status == SeriesStatus::Studied).collect();
+    if shell {
+        let _ = writeln!(m, "### Mutual convergence\n\n— (no BVP exists for the shell: the reference is the extrapolation of these levels, tabled above)\n");
+    } else {
+        let _ = writeln!(m, "### Mutual convergence FE ↔ BVP\n");
+    }
+    if fe_studied.is_empty() && !shell {
         let _ = writeln!(m, "— ({}: nothing to extrapolate)\n", fem_status(study));
     }
     for s in fe_studied {

@@ -874,6 +874,10 @@ pub struct RunData {
     /// they plot).
     #[serde(skip)]
     pub samples: Samples,
+    /// Quantities in time (a transient's channels and frames: the shell's lateral
+    /// positions and surface fields), for the report's plots; not serialised.
+    #[serde(skip)]
+    pub history: Option<drive::result::TimeSeries>,
 }
 
 /// One run: method + discretisation → data or error.
@@ -921,7 +925,7 @@ pub fn execute(method: &dyn Method, scene: &Scene, disc: Discretisation, samples
         s.summary.check_finite()?;
         let samples = Samples::of_view(s.view.as_ref(), samples)?;
         let cost = s.cost;
-        Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, warnings: s.warnings, samples })
+        Ok(RunData { summary: s.summary, cost, options: s.options, terms: s.terms, notes: s.notes, warnings: s.warnings, samples, history: s.history })
     });
     Run { method: method.label(), family: method.family(), discretisation: disc, wall_seconds: wall, outcome }
 }
