@@ -253,6 +253,40 @@ impl BandStructure {
         }
     }
 
+    /// The split of the n × n pattern (`rows`, `cols`) with the unknowns `border` (in
+    /// this order) as the border and all others, in their given order, as the band, its
+    /// half-widths read from the pattern — for a caller that knows its structure, e.g. a
+    /// closed loop of a mesh's nodes numbered node by node and cut at one node: that
+    /// node's unknowns as the border, the band the rest (a closed surface mesh whose
+    /// band is wider than [`MAX_HALF_BAND`] or whose cut is larger than [`MAX_BORDER`],
+    /// the caps of [`Self::detect`]'s search, which do not apply here). `None` if a
+    /// border index is ≥ n or given twice.
+    pub fn with_border(n: usize, rows: &[usize], cols: &[usize], border: &[usize]) -> Option<BandStructure> {
+        let mut inner_of = vec![usize::MAX; n];
+        for &b in border {
+            if b >= n || inner_of[b] == usize::MAX - 1 {
+                return None;
+            }
+            inner_of[b] = usize::MAX - 1;
+        }
+        let mut inner = Vec::with_capacity(n - border.len());
+        for g in 0..n {
+            if inner_of[g] == usize::MAX {
+                inner_of[g] = inner.len();
+                inner.push(g);
+            }
+        }
+        let (mut kl, mut ku) = (0, 0);
+        for (&r, &c) in rows.iter().zip(cols) {
+            let (i, j) = (inner_of[r], inner_of[c]);
+            if i < n && j < n {
+                kl = kl.max(i.saturating_sub(j));
+                ku = ku.max(j.saturating_sub(i));
+            }
+        }
+        Some(BandStructure { n, border: border.to_vec(), inner, kl, ku })
+    }
+
     /// Estimated flops of one factorisation: n w (3w + 1) for the band's LU and solves
     /// (w = max(kl, ku)), m n (3w + 1) + m² n for the border of m unknowns.
     pub fn flops(&self) -> f64 {
@@ -942,6 +976,109 @@ mod tests {
             let mut x = b.clone();
             sparse.solve_in_place(&mut x).unwrap();
             assert!(relative_difference(&x, &dense_solve(dense_of(n, &r, &c, &v), b.clone())) < AGREE);
+        }
+    }
+
+    /// A closed surface mesh of `ns` × `nz` elements with `d` unknowns per node,
+    /// numbered node by node (σ-node i, ζ-node j: unknowns d((nz + 1) i + j) …), each
+    /// element coupling all unknowns of its four nodes, the last σ-element the last
+    /// σ-nodes with the first (the belt's wrap-around); a small diagonal.
+    fn closed_surface(ns: usize, nz: usize, d: usize, rng: &mut Lcg) -> (usize, Triplets) {
+        let per = d * (nz + 1);
+        let n = ns * per;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..ns {
+            for j in 0..nz {
+                let corners = [(i, j), ((i + 1) % ns, j), (i, j + 1), ((i + 1) % ns, j + 1)];
+                let unknowns: Vec<usize> = corners.iter().flat_map(|&(a, b)| (0..d).map(move |k| a * per + b * d + k)).collect();
+                for &r in &unknowns {
+                    for &c in &unknowns {
+                        push(&mut t, r, c, if r == c { 0.01 * rng.next() } else { rng.next() });
+                    }
+                }
+            }
+        }
+        (n, t)
+    }
+
+    /// The cut of a closed surface mesh at σ-node 0 (the shell's split): the border is
+    /// that node's unknowns, the band the rest in order with the half-width from a
+    /// σ-node's first unknown to the last of the next σ-node's second ζ-node; the solve
+    /// agrees with faer's general sparse LU and a dense LU to round-off, with the band
+    /// and faer chosen by the same `SparseLu`; the split is the one
+    /// [`BandStructure::detect`] finds where its caps allow; bad borders are refused.
+    #[test]
+    fn a_closed_surface_cut_at_one_sigma_node_is_a_band_and_a_border() {
+        let mut rng = Lcg(17);
+        for (ns, nz, d) in [(12, 2, 4), (9, 4, 3), (3, 1, 2), (40, 2, 12), (2, 3, 2)] {
+            let (n, (r, c, v)) = closed_surface(ns, nz, d, &mut rng);
+            let per = d * (nz + 1);
+            let border: Vec<usize> = (0..per).collect();
+            let s = BandStructure::with_border(n, &r, &c, &border).unwrap();
+            assert_eq!(s.border, border);
+            assert_eq!(s.inner, (per..n).collect::<Vec<_>>());
+            let w = if ns == 2 { 2 * d - 1 } else { per + 2 * d - 1 };
+            assert_eq!((s.kl, s.ku), (w, w), "{ns} × {nz} × {d}");
+            if ns >= 9 && w <= MAX_HALF_BAND && per <= MAX_BORDER {
+                let found = BandStructure::detect(n, &r, &c, &[]).unwrap();
+                assert_eq!((found.kl, found.ku, found.border.len()), (w, w, per), "{ns} × {nz} × {d}: detect");
+            }
+            let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+            let mut band: SparseLu = SparseLu::new();
+            band.set_pattern_with_border(n, &r, &c, &border).unwrap();
+            band.factorize(&v).unwrap();
+            assert!(band.band_structure().is_some() && band.band_refusals == 0);
+            let mut x = b.clone();
+            band.solve_in_place(&mut x).unwrap();
+            let mut general: SparseLu = SparseLu::new();
+            general.set_pattern(n, &r, &c).unwrap();
+            general.factorize(&v).unwrap();
+            assert!(general.band_structure().is_none());
+            let mut y = b.clone();
+            general.solve_in_place(&mut y).unwrap();
+            assert!(relative_difference(&x, &y) < AGREE, "{ns} × {nz} × {d}: against faer {}", relative_difference(&x, &y));
+            if n <= 500 {
+                let expected = dense_solve(dense_of(n, &r, &c, &v), b.clone());
+                assert!(relative_difference(&x, &expected) < AGREE, "{ns} × {nz} × {d}: against dense");
+            }
+        }
+        let (n, (r, c, _)) = closed_surface(5, 2, 2, &mut rng);
+        assert_eq!(BandStructure::with_border(n, &r, &c, &[0, 1, 1]), None);
+        assert_eq!(BandStructure::with_border(n, &r, &c, &[n]), None);
+        let mut lu: SparseLu = SparseLu::new();
+        assert!(lu.set_pattern_with_border(n, &r, &c, &[2, n + 3]).is_err());
+        // an empty border: the natural order's band, as wide as the wrap-around (σ-node
+        // 0's first unknown with the last of σ-node 4's second ζ-node: 4 × 6 + 2 × 2 − 1)
+        let s = BandStructure::with_border(n, &r, &c, &[]).unwrap();
+        assert_eq!((s.kl, s.ku), (27, 27));
+    }
+
+    /// The time of one numeric factorisation of the shell's study-scene pattern
+    /// (128 × 4 elements, 12 unknowns per node: 7 680 unknowns) by the band cut at
+    /// σ-node 0 and by faer's general sparse LU (`cargo test --release -p numerics
+    /// shell_shaped -- --ignored --nocapture`).
+    #[test]
+    #[ignore]
+    fn shell_shaped_band_against_faer_timing() {
+        let mut rng = Lcg(5);
+        for (ns, nz) in [(32, 2), (64, 2), (128, 2), (128, 4), (256, 4)] {
+            let (n, (r, c, v)) = closed_surface(ns, nz, 12, &mut rng);
+            let border: Vec<usize> = (0..12 * (nz + 1)).collect();
+            let time = |lu: &mut SparseLu| {
+                (0..3)
+                    .map(|_| {
+                        let start = std::time::Instant::now();
+                        lu.factorize(&v).unwrap();
+                        start.elapsed().as_secs_f64()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let mut band: SparseLu = SparseLu::new();
+            band.set_pattern_with_border(n, &r, &c, &border).unwrap();
+            let mut general: SparseLu = SparseLu::new();
+            general.set_pattern(n, &r, &c).unwrap();
+            let (tb, tg) = (time(&mut band), time(&mut general));
+            println!("{ns} × {nz}: {n} unknowns, band {:?}: {tb:.4} s, faer {tg:.4} s", band.band_structure().map(|s| (s.kl, s.border.len())));
         }
     }
 
