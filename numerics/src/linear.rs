@@ -99,6 +99,8 @@ pub struct SparseLu<E = LinearError> {
     pub symbolic_factorisations: usize,
     /// Numeric factorisations done.
     pub numeric_factorisations: usize,
+    /// Matrices the banded LU refused (each switched the pattern to faer's LU).
+    pub band_refusals: usize,
     error: PhantomData<fn() -> E>,
 }
 
@@ -122,6 +124,7 @@ impl<E> Default for SparseLu<E> {
             factors: Factors::None,
             symbolic_factorisations: 0,
             numeric_factorisations: 0,
+            band_refusals: 0,
             error: PhantomData,
         }
     }
@@ -173,8 +176,31 @@ impl<E: From<LinearError>> SparseLu<E> {
     /// factorisation fails.
     pub fn set_pattern(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), E> {
         check_pattern(n, rows, cols)?;
-        self.factors = Factors::None;
         let band = self.try_band.then(|| timed(Phase::SymbolicFactorisation, || BandStructure::detect(n, rows, cols, &[]))).flatten();
+        self.install(n, rows, cols, band)
+    }
+
+    /// [`Self::set_pattern`] with the band-and-border split given by its border instead
+    /// of detected ([`BandStructure::with_border`]: the unknowns `border` the border,
+    /// the others in their order the band, without [`BandStructure::detect`]'s caps):
+    /// for a caller that knows its structure, e.g. a closed mesh numbered node by node
+    /// with one node's unknowns as the border. The banded LU is used whether or not the
+    /// factorisation was made by [`Self::banded`]; a matrix it refuses goes to faer's LU
+    /// as there.
+    ///
+    /// # Errors
+    /// As [`Self::set_pattern`]; [`LinearError::InvalidPattern`] for a border index
+    /// outside or repeated.
+    pub fn set_pattern_with_border(&mut self, n: usize, rows: &[usize], cols: &[usize], border: &[usize]) -> Result<(), E> {
+        check_pattern(n, rows, cols)?;
+        let structure = timed(Phase::SymbolicFactorisation, || BandStructure::with_border(n, rows, cols, border))
+            .ok_or_else(|| LinearError::InvalidPattern { n, detail: format!("border of {} unknowns outside or repeated", border.len()) })?;
+        self.install(n, rows, cols, Some(structure))
+    }
+
+    /// The pattern's band split if `band`, else faer's symbolic LU.
+    fn install(&mut self, n: usize, rows: &[usize], cols: &[usize], band: Option<BandStructure>) -> Result<(), E> {
+        self.factors = Factors::None;
         if let Some(structure) = band {
             self.band = Some(BorderedBand::new(structure, rows, cols));
             self.indices = Some((rows.to_vec(), cols.to_vec()));
@@ -221,6 +247,7 @@ impl<E: From<LinearError>> SparseLu<E> {
                 // may be small only because its row is badly scaled, the Schur
                 // complement's test may be met by cancellation
                 Err(_) => {
+                    self.band_refusals += 1;
                     let (rows, cols) = self.indices.take().unwrap_or_default();
                     self.pattern = Some(timed(Phase::SymbolicFactorisation, || faer_symbolic(self.n, &rows, &cols))?);
                     self.band = None;

@@ -393,6 +393,11 @@ mod tests {
         println!("aligned, {steps} steps: max |z̄| = {worst:e} m, S̃(0, 0) = {slip:e} of c₀ωRΔt, Newton {:?}", series.channel("newton_iterations").unwrap());
         assert!(worst < 1e-13, "a perfect belt ran off by {worst:e} m");
         assert!(slip.abs() < 2e-2 * steps as f64, "S̃(0, 0) moved by {slip} × c₀ωRΔt in {steps} steps: the belt does not follow the drums");
+        // every Newton system of the run went through the band cut at σ-node 0
+        // (docs/fem-shell.md §14): none refused, so none went to faer's general LU
+        let per_node = r.stepping.assembler().sigma_node_unknowns(0).len();
+        let band = r.stepping.band_structure().expect("the banded LU in use");
+        assert_eq!((band.border.len(), r.stepping.band_refusals()), (per_node, 0));
     }
 
     /// E-4/E-5 for the steering drum's swivel β_y (rotation of its axis in the plane of

@@ -258,6 +258,25 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         (&self.rows, &self.cols)
     }
 
+    /// The numbered unknowns of σ-node `i` (every ζ-node, field and nodal derivative),
+    /// ascending. The numbering runs node by node with σ outermost, so the Hessian is a
+    /// band of half-width ≈ (the unknowns of a σ-node and of two ζ-nodes) except where
+    /// the closed loop's last σ-element couples the last σ-node with σ-node 0: with
+    /// σ-node 0's unknowns as the border the rest is that band
+    /// ([`numerics::banded::BandStructure::with_border`]; docs/fem-shell.md §14).
+    pub fn sigma_node_unknowns(&self, i: usize) -> Vec<usize> {
+        let nf = self.dofs.fields().len();
+        let mut out: Vec<usize> = (0..=self.mesh.zeta_elements())
+            .flat_map(|j| {
+                let node = self.mesh.node(i, j);
+                (0..nf).flat_map(move |slot| PointDerivative::NODAL.into_iter().map(move |d| (node, slot, d)))
+            })
+            .filter_map(|(node, slot, d)| self.dofs.node_unknown(node, slot, d))
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     /// The integration points of `term` on element e at time `time`, step `dt`.
     pub(crate) fn points(&self, e: usize, term: usize, time: f64, dt: f64) -> impl Iterator<Item = QuadraturePoint> + '_ {
         let el: BfsRectangle = self.mesh.element(e);
