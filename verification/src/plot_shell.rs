@@ -66,7 +66,10 @@ fn channel_panel(area: &Area, histories: &[(String, f64, &TimeSeries)], channel:
         .build_cartesian_2d(t0..t1, y0..y1)
         .map_err(err)?;
     let mut mesh = chart.configure_mesh();
-    grid_style(&mut mesh, 16).x_desc("t − t₀ [s] (t₀: the start of the rotation)").y_desc(ydesc).y_label_formatter(&|v| format!("{v:.2e}"));
+    // a tick at round-off from 0 reads 0, not −1.7e-21
+    let tiny = 1e-9 * (y1 - y0).abs();
+    let label = move |v: &f64| if v.abs() <= tiny { "0".to_string() } else { format!("{v:.2e}") };
+    grid_style(&mut mesh, 16).x_desc("t − t₀ [s] (t₀: the start of the rotation)").y_desc(ydesc).y_label_formatter(&label);
     mesh.draw().map_err(err)?;
     let n = curves.len();
     for (k, (label, pts)) in curves.into_iter().enumerate() {
@@ -103,10 +106,11 @@ pub fn heat_color(f: f64) -> RGBColor {
 /// One field of a frame as a heat map over (σ, ζ): each cell of the node grid coloured
 /// by the mean of its four corner values on a linear scale from 0 (or the smallest value,
 /// if negative) to the largest, with a colour bar.
-fn heat_panel(area: &Area, frame: &SurfaceFields, field: &str, title: &str, unit: &str) -> Result<(), String> {
+fn heat_panel(area: &Area, frame: &SurfaceFields, field: &str, factor: f64, title: &str, unit: &str) -> Result<(), String> {
     let Some(values) = frame.values.get(field) else {
         return area_message(area, title, &format!("no `{field}` in the frame"));
     };
+    let values: Vec<Vec<f64>> = values.iter().map(|row| row.iter().map(|v| factor * v).collect()).collect();
     let (ns, nz) = (frame.sigma.len(), frame.zeta.len());
     if ns < 2 || nz < 2 {
         return area_message(area, title, "the frame's grid has fewer than 2 × 2 nodes");
@@ -153,19 +157,22 @@ fn heat_panel(area: &Area, frame: &SurfaceFields, field: &str, title: &str, unit
     Ok(())
 }
 
-/// The last frame of the finest level with surface fields: (label, time, fields).
-fn last_frame(study: &Study) -> Option<(String, f64, &SurfaceFields)> {
-    studied_rows(study)
-        .rev()
-        .find_map(|r| {
-            let h = r.run.data()?.history.as_ref()?;
-            let f = h.frames.iter().rev().find(|f| f.surface.is_some())?;
-            Some((crate::table::fmt_disc(r.run.discretisation), f.time, f.surface.as_ref()?))
-        })
+/// The last frame of the finest level with surface fields: (label, time, fields, the
+/// interlayer's tangential stiffness P_⊥ of the run's options if it states it).
+fn last_frame(study: &Study) -> Option<(String, f64, &SurfaceFields, Option<f64>)> {
+    studied_rows(study).rev().find_map(|r| {
+        let d = r.run.data()?;
+        let h = d.history.as_ref()?;
+        let f = h.frames.iter().rev().find(|f| f.surface.is_some())?;
+        let p_t = d.options.pointer("/shell/interlayer/tangential_stiffness").and_then(serde_json::Value::as_f64);
+        Some((crate::table::fmt_disc(r.run.discretisation), f.time, f.surface.as_ref()?, p_t))
+    })
 }
 
-/// Heat maps over (σ, ζ) of the contact pressure Pγ and the interlayer shear P_⊥|u| of
-/// the finest level at its last frame (the fields of docs/fem-shell.md §14).
+/// Heat maps over (σ, ζ) of the contact pressure Pγ and the interlayer shear stress
+/// P_⊥|u| (the frame's `interlayer_shear` is |u|, scaled by the run's P_⊥; |u| itself
+/// where the options do not state P_⊥) of the finest level at its last frame (the fields
+/// of docs/fem-shell.md §14).
 ///
 /// # Errors
 /// A plot plotters cannot draw.
@@ -173,11 +180,14 @@ pub fn contact_maps_svg(study: &Study) -> Result<String, PlotError> {
     let frame = last_frame(study);
     render("contact-maps", 760, |root| {
         let panels = root.split_evenly((2, 1));
-        let Some((label, t, f)) = frame else {
+        let Some((label, t, f, p_t)) = frame else {
             return area_message(root, "contact maps", "no level of the study wrote a frame of surface fields");
         };
-        heat_panel(&panels[0], f, "contact_pressure", &format!("contact pressure Pγ over (σ, ζ), {label}, t = {t:.3} s"), "Pγ [N/m²]")?;
-        heat_panel(&panels[1], f, "interlayer_shear", &format!("interlayer shear P_⊥|u| over (σ, ζ), {label}, t = {t:.3} s"), "P_⊥|u| [N/m²]")
+        heat_panel(&panels[0], f, "contact_pressure", 1.0, &format!("contact pressure Pγ over (σ, ζ), {label}, t = {t:.3} s"), "Pγ [N/m²]")?;
+        match p_t {
+            Some(p) => heat_panel(&panels[1], f, "interlayer_shear", p, &format!("interlayer shear stress P_⊥|u| over (σ, ζ), {label}, t = {t:.3} s"), "P_⊥|u| [N/m²]"),
+            None => heat_panel(&panels[1], f, "interlayer_shear", 1.0, &format!("interlayer displacement |u| over (σ, ζ), {label}, t = {t:.3} s"), "|u| [m]"),
+        }
     })
 }
 
@@ -236,7 +246,7 @@ mod tests {
                 let data = RunData {
                     summary,
                     cost: RunCost::counted(1.0 + k as f64, 10, 100),
-                    options: serde_json::json!({"shell": {"rotation_start": t0}}),
+                    options: serde_json::json!({"shell": {"rotation_start": t0, "interlayer": {"tangential_stiffness": 1e8}}}),
                     terms: Vec::new(),
                     notes: Vec::new(),
                     warnings: Vec::new(),
@@ -277,6 +287,8 @@ mod tests {
         assert!(maps.matches(&hex(heat_color(0.5))).count() >= 8, "the four cells of both maps at the corner mean");
         assert_eq!(maps.matches(&hex(heat_color(0.0))).count(), 0, "no cell at the bottom of the scale");
         assert!(maps.contains("128×2"), "labelled with its level");
+        // |u| of the frame scaled by P_⊥ = 1e8 of the options: the bar tops at 3e8
+        assert!(maps.contains("interlayer shear stress P_⊥|u|") && maps.contains("3.00e8"), "the shear map in N/m²");
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -291,7 +303,7 @@ mod tests {
             row[1] = 4.0; // the cells (1, 0) and (1, 1) touch two hot corners each; (0, *) and (2, *) one
         }
         let frame = SurfaceFields { sigma, zeta, values: [("contact_pressure".to_string(), p.clone()), ("interlayer_shear".to_string(), p)].into() };
-        let svg = render("test", 760, |root| heat_panel(root, &frame, "contact_pressure", "t", "Pγ")).unwrap();
+        let svg = render("test", 760, |root| heat_panel(root, &frame, "contact_pressure", 1.0, "t", "Pγ")).unwrap();
         // corner means: 1.0 (four cells), 2.0 (two cells): scale 0 … 4
         let half = heat_color(0.5);
         let quarter = heat_color(0.25);

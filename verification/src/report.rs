@@ -200,6 +200,10 @@ fn worst_finest(study: &Study, family: Family) -> Option<f64> {
 /// The worst mutual-convergence error over the summary scalars of the FE formulations
 /// (over the scalars where it is computable).
 fn worst_mutual(study: &Study) -> Option<f64> {
+    // a shell's extrapolation is its reference: no mutual convergence to state
+    if study.plan.shell_levels().is_some() {
+        return None;
+    }
     study
         .series
         .iter()
@@ -381,7 +385,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     // Plots.
     let shell_plots = [
         ("Run-off in time", "The belt's lateral offset z̄(t) (the width-averaged lateral position of the belt, docs/fem-shell.md §9.3) and its rate, every level of the study (light to dark: coarse to fine). The reference text gives no measured run-off: `beltcheck solve SCENE --measured FILE.csv` overlays a user's (t, lateral) samples with the difference.", "run-off", "runoff.svg"),
-        ("Contact maps", "Contact pressure Pγ and interlayer shear P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed state at the nearest history point).", "contact maps", "contact-maps.svg"),
+        ("Contact maps", "Contact pressure Pγ and interlayer shear stress P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed tangential displacement at the nearest history point).", "contact maps", "contact-maps.svg"),
         ("Convergence", "Error of each level against the Richardson extrapolation of the three finest, against elements along σ, with reference slopes.", "convergence", "convergence.svg"),
         ("Work–precision", "Error against wall time, every level of this scene.", "work–precision", "work-precision.svg"),
     ];
