@@ -70,6 +70,7 @@ macro_rules! small_n {
         }
     };
 }
+pub(crate) use small_n;
 
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
