@@ -505,8 +505,11 @@ pub fn scaled_norm(v: &[f64], z: &[f64]) -> f64 {
     v.iter().zip(z).fold(0.0_f64, |m, (&vi, &zi)| m.max(vi.abs() / (1.0 + zi.abs())))
 }
 
+/// Whether every entry is finite — one pass without an early exit, which vectorises
+/// (the early-exit `all` compared one entry per branch: ~1.5 % of a gauss8 elastica
+/// solve, run 11 of `docs/performance.md`'s issue-17 section).
 fn all_finite(v: &[f64]) -> bool {
-    v.iter().all(|x| x.is_finite())
+    v.iter().fold(true, |ok, x| ok & x.is_finite())
 }
 
 fn max_abs(v: &[f64]) -> f64 {

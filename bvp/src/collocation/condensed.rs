@@ -569,8 +569,11 @@ pub(crate) struct CondensedLu {
 /// with its meshes to ~0.9 MB (the gauss8 elastica's 212 intervals), and returned to the
 /// allocator at the end of a solve they went back to the operating system, so every
 /// solve page-faulted them in again — 183 faults and ~14 % of the CPU time of a gauss8
-/// elastica solve (`docs/performance.md`, issue 17, run 10). Every buffer is emptied
-/// before reuse, so each solve starts from zero-filled buffers exactly as before.
+/// elastica solve (`docs/performance.md`, issue 17, run 10). The per-interval buffers
+/// keep their length and contents as well (zero-filling the ~0.6 MB again on every
+/// solve was ~3 % of its CPU time, run 11): every entry a factorisation or solve reads
+/// it has written first (K, Vᵀ, the used columns of G, Φ, Ψ, the pivots and the stage
+/// right-hand sides of every interval of the layout), so stale values are never read.
 #[derive(Debug, Default)]
 struct Spare {
     phis: Vec<f64>,
@@ -634,15 +637,12 @@ impl Drop for CondensedLu {
 }
 
 impl CondensedLu {
-    /// A factorisation object with no layout yet; it takes over the emptied buffers
-    /// of this thread's last dropped one ([`Spare`]).
+    /// A factorisation object with no layout yet; it takes over the buffers of this
+    /// thread's last dropped one ([`Spare`]).
     pub fn new() -> Self {
         let mut lu = Self::default();
         if let Some(mut spare) = SPARE.try_with(std::cell::Cell::take).ok().flatten() {
-            for v in [&mut spare.phis, &mut spare.psis, &mut spare.k_lu, &mut spare.v, &mut spare.g, &mut spare.scratch, &mut spare.rhs] {
-                v.clear();
-            }
-            spare.piv.clear();
+            spare.rhs.clear();
             lu.phis = spare.phis;
             lu.psis = spare.psis;
             lu.k_lu = spare.k_lu;
@@ -695,13 +695,15 @@ impl CondensedLu {
                 t += sn;
             }
         }
-        self.k_lu.resize(lu, 0.0);
-        self.piv.resize(piv, 0);
-        self.v.resize(v, 0.0);
-        self.g.resize(g, 0.0);
-        self.scratch.resize(t, 0.0);
-        self.phis.resize(phi, 0.0);
-        self.psis.resize(psi, 0.0);
+        // grown, never shrunk or refilled: every entry of the layout is written before
+        // it is read ([`Spare`])
+        grow(&mut self.k_lu, lu);
+        grow(&mut self.piv, piv);
+        grow(&mut self.v, v);
+        grow(&mut self.g, g);
+        grow(&mut self.scratch, t);
+        grow(&mut self.phis, phi);
+        grow(&mut self.psis, psi);
     }
 
     /// Condensed row of the first continuity equation of interval i of segment k.
@@ -965,7 +967,7 @@ impl CondensedLu {
                 }
             }
         }
-        if x.iter().any(|v| !v.is_finite()) {
+        if !x.iter().fold(true, |ok, v| ok & v.is_finite()) {
             return Err(BvpError::SingularJacobian {
                 iteration: 0,
                 detail: "condensed collocation solve produced non-finite values".into(),
@@ -1117,6 +1119,13 @@ fn condense_interval(
         qi += 1;
     }
     true
+}
+
+/// `v` at least `len` long (new entries zero; existing ones kept).
+pub(crate) fn grow<T: Copy + Default>(v: &mut Vec<T>, len: usize) {
+    if v.len() < len {
+        v.resize(len, T::default());
+    }
 }
 
 /// Σ_{k' < k} n_k': the condensed rows of segment k start this far before its first
@@ -1307,8 +1316,8 @@ mod tests {
     }
 
     /// A `CondensedLu` dropped at the end of a solve leaves its buffers to the next one
-    /// of the thread ([`Spare`]), emptied: the next solve takes them (no allocation, its
-    /// capacity is the previous solve's) and gives the same result to the bit as a
+    /// of the thread ([`Spare`]), with their stale contents: the next solve takes them
+    /// (no allocation or zero-filling) and gives the same result to the bit as a
     /// solve in a new thread (no spare), also with another problem's (other n, other
     /// sizes) buffers in between.
     #[test]
@@ -1357,11 +1366,13 @@ mod tests {
             // 212 intervals of 16 × 16 LUs: the spare holds at least those
             let (bytes, k_lu, steps) = spare().expect("the solve left its buffers");
             assert!(k_lu >= 212 * 16 * 16 && steps > 0 && bytes >= k_lu * 8, "{bytes} {k_lu} {steps}");
-            // a new CondensedLu takes them, emptied
+            // a new CondensedLu takes them with their lengths (no zero-filling again)
             let mut lu = CondensedLu::new();
             assert!(spare().is_none());
-            assert!(lu.k_lu.is_empty() && lu.k_lu.capacity() == k_lu && lu.v.is_empty() && lu.piv.is_empty());
-            assert_eq!(lu.block.take_buffers().0.capacity(), steps);
+            assert!(lu.k_lu.len() >= 212 * 16 * 16 && lu.k_lu.capacity() == k_lu && lu.v.len() >= 212 * 16 * 4 && lu.piv.len() >= 212 * 16);
+            let (block_steps, _) = lu.block.take_buffers();
+            assert_eq!(block_steps.capacity(), steps);
+            assert!(!block_steps.is_empty());
             drop(lu);
             assert_eq!(bits(&elastica()), elastica_fresh, "with its own buffers");
             assert_eq!(bits(&bratu()), bratu_fresh, "after the elastica's buffers");
