@@ -72,6 +72,19 @@ macro_rules! small_n {
 }
 pub(crate) use small_n;
 
+/// `$body` with `$s` bound to the number of stages s = `$value`, a literal constant for
+/// the schemes' s = 2, 3, 4 (as [`small_n`] for the components).
+macro_rules! small_s {
+    ($value:expr, $s:ident => $body:expr) => {
+        match $value {
+            2 => { let $s = 2; $body }
+            3 => { let $s = 3; $body }
+            4 => { let $s = 4; $body }
+            $s => $body,
+        }
+    };
+}
+
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
 /// pivot is not finite or |u_rr| ≤ 10⁻¹⁴ max |a_ij| (numerically singular).
@@ -872,7 +885,7 @@ impl CondensedLu {
                 ph: &mut self.phis[phi..phi + n * n],
                 ps: &mut self.psis[psi..psi + n * np],
             };
-            let regular = small_n!(n, nc => condense_interval(nc, &disc.tab, np, h, jac, used, &mut qcols, &mut coef, &mut out));
+            let regular = small_n!(n, nc => small_s!(s, sc => condense_interval(nc, sc, &disc.tab, np, h, jac, used, &mut qcols, &mut coef, &mut out)));
             if !regular {
                 return true;
             }
@@ -1025,11 +1038,13 @@ struct Condensation<'b> {
 /// Vᵀ = K⁻ᵀ Bᵀ, G, Φ = I + V E and Ψ = h Σ_l b_l P_l + V G; false if K is singular.
 /// Inlined into a call per small n, so that the loops over the components unroll (the
 /// assembly was ~11 k instructions per interval of the gauss8 elastica with n at run
-/// time); the same operations in the same order for every n.
+/// time), and per s = `tab.s` ([`small_s`]); the same operations in the same order for
+/// every n and s.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn condense_interval(
     n: usize,
+    s: usize,
     tab: &Tableau,
     np: usize,
     h: f64,
@@ -1039,7 +1054,8 @@ fn condense_interval(
     coef: &mut Vec<f64>,
     out: &mut Condensation<'_>,
 ) -> bool {
-    let s = tab.s;
+    debug_assert_eq!(s, tab.s);
+    let (ta, tb, jac) = (&tab.a[..s * s], &tab.b[..s], &jac[..s]);
     let sn = s * n;
     for (q, u) in used.iter_mut().enumerate() {
         *u = jac.iter().any(|jl| (0..n).any(|a| jl.dfdp[a * np + q] != 0.0));
@@ -1051,7 +1067,7 @@ fn condense_interval(
     // h b_l (J_l)_·c, column c of B's block l.
     let kk = &mut *out.kk;
     coef.clear();
-    coef.extend(tab.a.iter().map(|&a| -h * a));
+    coef.extend(ta.iter().map(|&a| -h * a));
     for (j, (kblock, cj)) in kk.chunks_exact_mut(n * sn).zip(coef.chunks_exact(s)).enumerate() {
         for (a, krow) in kblock.chunks_exact_mut(sn).enumerate() {
             for ((kl, jl), &k_coef) in krow.chunks_exact_mut(n).zip(jac.iter()).zip(cj) {
@@ -1064,7 +1080,7 @@ fn condense_interval(
     }
     let vv = &mut *out.vv;
     for (l, jl) in jac.iter().enumerate() {
-        let hb = h * tab.b[l];
+        let hb = h * tb[l];
         for c in 0..n {
             for (a, o) in vv[(l * n + c) * n..(l * n + c + 1) * n].iter_mut().enumerate() {
                 *o = hb * jl.dfdy[a * n + c];
@@ -1080,7 +1096,7 @@ fn condense_interval(
             for (o, &q) in grow.iter_mut().zip(qcols.iter()) {
                 let mut acc = 0.0;
                 for (l, jl) in jac.iter().enumerate() {
-                    acc += h * tab.a[j * s + l] * jl.dfdp[a * np + q];
+                    acc += h * ta[j * s + l] * jl.dfdp[a * np + q];
                 }
                 *o = acc;
             }
@@ -1114,7 +1130,7 @@ fn condense_interval(
         }
         for a in 0..n {
             let vg: f64 = (0..sn).map(|r| vv[r * n + a] * gg[r * nq + qi]).sum();
-            ps[a * np + q] = vg + h * (0..s).map(|l| tab.b[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
+            ps[a * np + q] = vg + h * (0..s).map(|l| tb[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
         }
         qi += 1;
     }
