@@ -48,6 +48,11 @@ pub trait NewtonSystem {
         let _ = z;
         Ok(None)
     }
+    /// Whether the residual at the converged iterate is evaluated to check it is finite
+    /// ([`numerics::newton::NewtonProblem::converged_residual`]). Default: `true`.
+    fn converged_residual(&self) -> bool {
+        true
+    }
 }
 
 /// A [`NewtonSystem`] as the shared Newton's problem (default damping, norm and hooks).
@@ -69,6 +74,9 @@ impl<S: NewtonSystem> NewtonProblem for Shared<'_, S> {
     }
     fn correction_floor(&mut self, z: &[f64]) -> Result<Option<f64>, BvpError> {
         self.0.correction_floor(z)
+    }
+    fn converged_residual(&self) -> bool {
+        self.0.converged_residual()
     }
 }
 

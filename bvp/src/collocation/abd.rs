@@ -28,7 +28,7 @@
 //! finite) makes [`BlockLu::factorize`] return false; the caller then factorises with
 //! the general sparse LU.
 
-use super::condensed::{dense_lu, eliminate};
+use super::condensed::{dense_lu, eliminate, grow};
 
 /// One segment's part of the factorisation.
 #[derive(Debug, Clone, Copy)]
@@ -77,11 +77,10 @@ impl BlockLu {
         (std::mem::take(&mut self.steps), std::mem::take(&mut self.pivots))
     }
 
-    /// A new `BlockLu` with the given buffers, emptied (their capacity kept): the same
-    /// state as [`Default`] but for the capacity.
-    pub(crate) fn with_buffers((mut steps, mut pivots): (Vec<f64>, Vec<usize>)) -> Self {
-        steps.clear();
-        pivots.clear();
+    /// A new `BlockLu` with the given buffers, their contents kept: every step's block
+    /// and pivots are written by [`Self::factorize`] before they are read, so this is
+    /// the state of [`Default`] but for the buffers (not zero-filled again).
+    pub(crate) fn with_buffers((steps, pivots): (Vec<f64>, Vec<usize>)) -> Self {
         Self { steps, pivots, ..Self::default() }
     }
 
@@ -113,8 +112,8 @@ impl BlockLu {
             col += 2 * n;
             row += n;
         }
-        self.steps.resize(steps, 0.0);
-        self.pivots.resize(pivots, 0);
+        grow(&mut self.steps, steps);
+        grow(&mut self.pivots, pivots);
         self.dense.clear();
         self.dense.resize(d * d, 0.0);
         self.dense_piv.resize(d, 0);

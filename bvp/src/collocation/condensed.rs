@@ -70,6 +70,20 @@ macro_rules! small_n {
         }
     };
 }
+pub(crate) use small_n;
+
+/// `$body` with `$s` bound to the number of stages s = `$value`, a literal constant for
+/// the schemes' s = 2, 3, 4 (as [`small_n`] for the components).
+macro_rules! small_s {
+    ($value:expr, $s:ident => $body:expr) => {
+        match $value {
+            2 => { let $s = 2; $body }
+            3 => { let $s = 3; $body }
+            4 => { let $s = 4; $body }
+            $s => $body,
+        }
+    };
+}
 
 /// In-place LU with partial pivoting of the m × m row-major matrix `a` (L unit lower,
 /// U upper, both in `a`); `piv[r]` is the row swapped with row r at step r. False if a
@@ -568,8 +582,11 @@ pub(crate) struct CondensedLu {
 /// with its meshes to ~0.9 MB (the gauss8 elastica's 212 intervals), and returned to the
 /// allocator at the end of a solve they went back to the operating system, so every
 /// solve page-faulted them in again — 183 faults and ~14 % of the CPU time of a gauss8
-/// elastica solve (`docs/performance.md`, issue 17, run 10). Every buffer is emptied
-/// before reuse, so each solve starts from zero-filled buffers exactly as before.
+/// elastica solve (`docs/performance.md`, issue 17, run 10). The per-interval buffers
+/// keep their length and contents as well (zero-filling the ~0.6 MB again on every
+/// solve was ~3 % of its CPU time, run 11): every entry a factorisation or solve reads
+/// it has written first (K, Vᵀ, the used columns of G, Φ, Ψ, the pivots and the stage
+/// right-hand sides of every interval of the layout), so stale values are never read.
 #[derive(Debug, Default)]
 struct Spare {
     phis: Vec<f64>,
@@ -633,15 +650,12 @@ impl Drop for CondensedLu {
 }
 
 impl CondensedLu {
-    /// A factorisation object with no layout yet; it takes over the emptied buffers
-    /// of this thread's last dropped one ([`Spare`]).
+    /// A factorisation object with no layout yet; it takes over the buffers of this
+    /// thread's last dropped one ([`Spare`]).
     pub fn new() -> Self {
         let mut lu = Self::default();
         if let Some(mut spare) = SPARE.try_with(std::cell::Cell::take).ok().flatten() {
-            for v in [&mut spare.phis, &mut spare.psis, &mut spare.k_lu, &mut spare.v, &mut spare.g, &mut spare.scratch, &mut spare.rhs] {
-                v.clear();
-            }
-            spare.piv.clear();
+            spare.rhs.clear();
             lu.phis = spare.phis;
             lu.psis = spare.psis;
             lu.k_lu = spare.k_lu;
@@ -694,13 +708,15 @@ impl CondensedLu {
                 t += sn;
             }
         }
-        self.k_lu.resize(lu, 0.0);
-        self.piv.resize(piv, 0);
-        self.v.resize(v, 0.0);
-        self.g.resize(g, 0.0);
-        self.scratch.resize(t, 0.0);
-        self.phis.resize(phi, 0.0);
-        self.psis.resize(psi, 0.0);
+        // grown, never shrunk or refilled: every entry of the layout is written before
+        // it is read ([`Spare`])
+        grow(&mut self.k_lu, lu);
+        grow(&mut self.piv, piv);
+        grow(&mut self.v, v);
+        grow(&mut self.g, g);
+        grow(&mut self.scratch, t);
+        grow(&mut self.phis, phi);
+        grow(&mut self.psis, psi);
     }
 
     /// Condensed row of the first continuity equation of interval i of segment k.
@@ -869,7 +885,7 @@ impl CondensedLu {
                 ph: &mut self.phis[phi..phi + n * n],
                 ps: &mut self.psis[psi..psi + n * np],
             };
-            let regular = small_n!(n, nc => condense_interval(nc, &disc.tab, np, h, jac, used, &mut qcols, &mut coef, &mut out));
+            let regular = small_n!(n, nc => small_s!(s, sc => condense_interval(nc, sc, &disc.tab, np, h, jac, used, &mut qcols, &mut coef, &mut out)));
             if !regular {
                 return true;
             }
@@ -964,7 +980,7 @@ impl CondensedLu {
                 }
             }
         }
-        if x.iter().any(|v| !v.is_finite()) {
+        if !x.iter().fold(true, |ok, v| ok & v.is_finite()) {
             return Err(BvpError::SingularJacobian {
                 iteration: 0,
                 detail: "condensed collocation solve produced non-finite values".into(),
@@ -1022,11 +1038,13 @@ struct Condensation<'b> {
 /// Vᵀ = K⁻ᵀ Bᵀ, G, Φ = I + V E and Ψ = h Σ_l b_l P_l + V G; false if K is singular.
 /// Inlined into a call per small n, so that the loops over the components unroll (the
 /// assembly was ~11 k instructions per interval of the gauss8 elastica with n at run
-/// time); the same operations in the same order for every n.
+/// time), and per s = `tab.s` ([`small_s`]); the same operations in the same order for
+/// every n and s.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn condense_interval(
     n: usize,
+    s: usize,
     tab: &Tableau,
     np: usize,
     h: f64,
@@ -1036,7 +1054,8 @@ fn condense_interval(
     coef: &mut Vec<f64>,
     out: &mut Condensation<'_>,
 ) -> bool {
-    let s = tab.s;
+    debug_assert_eq!(s, tab.s);
+    let (ta, tb, jac) = (&tab.a[..s * s], &tab.b[..s], &jac[..s]);
     let sn = s * n;
     for (q, u) in used.iter_mut().enumerate() {
         *u = jac.iter().any(|jl| (0..n).any(|a| jl.dfdp[a * np + q] != 0.0));
@@ -1048,7 +1067,7 @@ fn condense_interval(
     // h b_l (J_l)_·c, column c of B's block l.
     let kk = &mut *out.kk;
     coef.clear();
-    coef.extend(tab.a.iter().map(|&a| -h * a));
+    coef.extend(ta.iter().map(|&a| -h * a));
     for (j, (kblock, cj)) in kk.chunks_exact_mut(n * sn).zip(coef.chunks_exact(s)).enumerate() {
         for (a, krow) in kblock.chunks_exact_mut(sn).enumerate() {
             for ((kl, jl), &k_coef) in krow.chunks_exact_mut(n).zip(jac.iter()).zip(cj) {
@@ -1061,7 +1080,7 @@ fn condense_interval(
     }
     let vv = &mut *out.vv;
     for (l, jl) in jac.iter().enumerate() {
-        let hb = h * tab.b[l];
+        let hb = h * tb[l];
         for c in 0..n {
             for (a, o) in vv[(l * n + c) * n..(l * n + c + 1) * n].iter_mut().enumerate() {
                 *o = hb * jl.dfdy[a * n + c];
@@ -1077,7 +1096,7 @@ fn condense_interval(
             for (o, &q) in grow.iter_mut().zip(qcols.iter()) {
                 let mut acc = 0.0;
                 for (l, jl) in jac.iter().enumerate() {
-                    acc += h * tab.a[j * s + l] * jl.dfdp[a * np + q];
+                    acc += h * ta[j * s + l] * jl.dfdp[a * np + q];
                 }
                 *o = acc;
             }
@@ -1111,11 +1130,18 @@ fn condense_interval(
         }
         for a in 0..n {
             let vg: f64 = (0..sn).map(|r| vv[r * n + a] * gg[r * nq + qi]).sum();
-            ps[a * np + q] = vg + h * (0..s).map(|l| tab.b[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
+            ps[a * np + q] = vg + h * (0..s).map(|l| tb[l] * jac[l].dfdp[a * np + q]).sum::<f64>();
         }
         qi += 1;
     }
     true
+}
+
+/// `v` at least `len` long (new entries zero; existing ones kept).
+pub(crate) fn grow<T: Copy + Default>(v: &mut Vec<T>, len: usize) {
+    if v.len() < len {
+        v.resize(len, T::default());
+    }
 }
 
 /// Σ_{k' < k} n_k': the condensed rows of segment k start this far before its first
@@ -1306,8 +1332,8 @@ mod tests {
     }
 
     /// A `CondensedLu` dropped at the end of a solve leaves its buffers to the next one
-    /// of the thread ([`Spare`]), emptied: the next solve takes them (no allocation, its
-    /// capacity is the previous solve's) and gives the same result to the bit as a
+    /// of the thread ([`Spare`]), with their stale contents: the next solve takes them
+    /// (no allocation or zero-filling) and gives the same result to the bit as a
     /// solve in a new thread (no spare), also with another problem's (other n, other
     /// sizes) buffers in between.
     #[test]
@@ -1356,11 +1382,13 @@ mod tests {
             // 212 intervals of 16 × 16 LUs: the spare holds at least those
             let (bytes, k_lu, steps) = spare().expect("the solve left its buffers");
             assert!(k_lu >= 212 * 16 * 16 && steps > 0 && bytes >= k_lu * 8, "{bytes} {k_lu} {steps}");
-            // a new CondensedLu takes them, emptied
+            // a new CondensedLu takes them with their lengths (no zero-filling again)
             let mut lu = CondensedLu::new();
             assert!(spare().is_none());
-            assert!(lu.k_lu.is_empty() && lu.k_lu.capacity() == k_lu && lu.v.is_empty() && lu.piv.is_empty());
-            assert_eq!(lu.block.take_buffers().0.capacity(), steps);
+            assert!(lu.k_lu.len() >= 212 * 16 * 16 && lu.k_lu.capacity() == k_lu && lu.v.len() >= 212 * 16 * 4 && lu.piv.len() >= 212 * 16);
+            let (block_steps, _) = lu.block.take_buffers();
+            assert_eq!(block_steps.capacity(), steps);
+            assert!(!block_steps.is_empty());
             drop(lu);
             assert_eq!(bits(&elastica()), elastica_fresh, "with its own buffers");
             assert_eq!(bits(&bratu()), bratu_fresh, "after the elastica's buffers");

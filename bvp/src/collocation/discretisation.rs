@@ -24,6 +24,7 @@
 //! and the Σ n_k + n_p boundary rows g(y_0(0), y_0(1), …, p, η) = 0 come last, so the
 //! system is square.
 
+use super::condensed::small_n;
 use super::scheme::{horner, Scheme, Tableau};
 use crate::error::BvpError;
 use crate::jacobian::{bc_jacobian, rhs_jacobian};
@@ -220,8 +221,8 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     }
 
     /// Every collocation row of F (all but the boundary rows) as `put(row, terms)`:
-    /// F_row = end − start − h Σ_l w_l f_l ([`OdeRow`]), for [`Self::residual`] and
-    /// [`Self::residual_terms`].
+    /// F_row = end − start − h Σ_l w_l f_l ([`OdeRow`]), for [`Self::residual_terms`]
+    /// ([`Self::residual`] computes the same rows by [`interval_residual`]).
     fn ode_rows(&self, z: &[f64], eta: f64, mut put: impl FnMut(usize, OdeRow<'_>)) {
         let s = self.tab.s;
         let mut f = Vec::new();
@@ -250,8 +251,33 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     }
 
     /// Residual F(z, η) of the module documentation into `r` (length n).
+    ///
+    /// Per interval the rows of [`Self::ode_rows`] with the same operations in the same
+    /// order ([`interval_residual`], n a constant for n ≤ 6): the closures and index
+    /// arithmetic of the generic row loop were ~60 % of a residual pass of the gauss8
+    /// elastica.
     pub fn residual(&self, z: &[f64], eta: f64, r: &mut [f64]) {
-        self.ode_rows(z, eta, |row, o| r[row] = o.end - o.start - o.h * o.weighted().fold(0.0, |acc, v| acc + v));
+        let s = self.tab.s;
+        let mut f = Vec::new();
+        for k in 0..self.n_segments() {
+            let n = self.dims[k];
+            f.resize(s * n, 0.0);
+            let mesh = &self.meshes[k];
+            for i in 0..mesh.len() - 1 {
+                let h = mesh[i + 1] - mesh[i];
+                self.stage_rhs(z, eta, k, i, &mut f);
+                let yi = self.node(k, i);
+                let row = self.row(k, i);
+                let zb = &z[yi..yi + (s + 2) * n];
+                let rb = &mut r[row..row + (s + 1) * n];
+                small_n!(n, nc => match s {
+                    2 => interval_residual(nc, 2, &self.tab, h, zb, &f, rb),
+                    3 => interval_residual(nc, 3, &self.tab, h, zb, &f, rb),
+                    4 => interval_residual(nc, 4, &self.tab, h, zb, &f, rb),
+                    _ => interval_residual(nc, s, &self.tab, h, zb, &f, rb),
+                });
+            }
+        }
         let (ya, yb) = self.ends(z);
         let m = self.n_segments();
         self.problem.bc(&ya, &yb, self.params(z), eta, &mut r[self.row_offsets[m]..]);
@@ -413,22 +439,22 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     }
 
     /// The collocation polynomial of interval i of segment k into `c` (length n (s + 1),
-    /// component a at `c[a (s + 1)..]`): u_a(x_i + t h) = Σ_m c_m t^m.
+    /// component a at `c[a (s + 1)..]`): u_a(x_i + t h) = Σ_m c_m t^m
+    /// ([`poly_coefficients`], with n and s constants where they are small).
     fn interval_poly(&self, z: &[f64], slopes: &[f64], k: usize, i: usize, c: &mut [f64]) {
         let (n, s) = (self.dims[k], self.tab.s);
         let mesh = &self.meshes[k];
         let h = mesh[i + 1] - mesh[i];
         let yi = self.node(k, i);
-        for (a, ca) in c.chunks_mut(s + 1).take(n).enumerate() {
-            ca.fill(0.0);
-            ca[0] = z[yi + a];
-            for l in 0..s {
-                let kl = slopes[(i * s + l) * n + a];
-                for (m, &lm) in self.tab.lagrange[l].iter().enumerate() {
-                    ca[m + 1] += h * kl * lm / (m + 1) as f64;
-                }
-            }
-        }
+        let y = &z[yi..yi + n];
+        let kk = &slopes[i * s * n..(i + 1) * s * n];
+        let lag = &self.tab.lagrange;
+        small_n!(n, nc => match s {
+            2 => poly_coefficients(nc, 2, h, y, kk, lag, c),
+            3 => poly_coefficients(nc, 3, h, y, kk, lag, c),
+            4 => poly_coefficients(nc, 4, h, y, kk, lag, c),
+            _ => poly_coefficients(nc, s, h, y, kk, lag, c),
+        });
     }
 
     /// The discrete solution as a [`Solution`] with the collocation polynomials as
@@ -482,6 +508,22 @@ impl<'a, P: Problem> Discretisation<'a, P> {
     /// the boundary residual is max_i |g_i|. Returns (ρ per segment per interval,
     /// boundary residual).
     pub fn residual_norms(&self, z: &[f64], eta: f64) -> Result<(Vec<Vec<f64>>, f64), BvpError> {
+        self.estimate(z, eta, None)
+    }
+
+    /// [`Self::residual_norms`] and the dense output at the same point: the
+    /// [`Solution`] of [`Self::to_solution`] (default stats) to the bit, built from the
+    /// stage slopes and interval polynomials the estimate computes anyway — the mesh
+    /// transfer and the returned solution took them again (~5 % of a gauss8 elastica
+    /// solve).
+    pub fn residual_norms_and_solution(&self, z: &[f64], eta: f64) -> Result<(Vec<Vec<f64>>, f64, Solution), BvpError> {
+        let mut segments = Vec::with_capacity(self.n_segments());
+        let (rho, bc) = self.estimate(z, eta, Some(&mut segments))?;
+        Ok((rho, bc, Solution { segments, params: self.params(z).to_vec(), eta, stats: Stats::default() }))
+    }
+
+    /// The residual estimate; with `output`, each segment's dense output is pushed to it.
+    fn estimate(&self, z: &[f64], eta: f64, mut output: Option<&mut Vec<SegmentSolution>>) -> Result<(Vec<Vec<f64>>, f64), BvpError> {
         let s = self.tab.s;
         let p = self.params(z);
         let mut rho = Vec::with_capacity(self.n_segments());
@@ -498,9 +540,13 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             // ℓ_l(t) at the quadrature points, the same for every interval.
             let basis: Vec<[f64; 5]> =
                 self.tab.lagrange.iter().map(|lag| LOBATTO5_T.map(|t| horner(lag, t))).collect();
+            let mut dense = output.as_ref().map(|_| Vec::with_capacity(mesh.len() - 1));
             for i in 0..mesh.len() - 1 {
                 let h = mesh[i + 1] - mesh[i];
                 self.interval_poly(z, &slopes, k, i, &mut poly);
+                if let Some(d) = dense.as_mut() {
+                    d.push(poly.chunks(s + 1).map(<[f64]>::to_vec).collect());
+                }
                 let mut acc = 0.0;
                 for (q, (&t, &w)) in LOBATTO5_T.iter().zip(&LOBATTO5_W).enumerate() {
                     for (ua, ca) in u.iter_mut().zip(poly.chunks(s + 1)) {
@@ -524,6 +570,10 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             }
             self.count(LOBATTO5_T.len() * (mesh.len() - 1));
             rho.push(rk);
+            if let (Some(out), Some(poly)) = (output.as_mut(), dense) {
+                let nodes = (0..mesh.len()).map(|i| z[self.node(k, i)..self.node(k, i) + n].to_vec()).collect();
+                out.push(SegmentSolution { mesh: mesh.clone(), nodes, poly });
+            }
         }
         let g = self.bc_residual(z, eta);
         let bc = g.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
@@ -531,6 +581,50 @@ impl<'a, P: Problem> Discretisation<'a, P> {
             return Err(BvpError::NonFinite { what: "boundary residual".into() });
         }
         Ok((rho, bc))
+    }
+}
+
+/// The (s + 1) n collocation rows of one interval into `rb`: `zb` = [y_i, Y_1, …, Y_s,
+/// y_{i+1}] (each n entries), `f` the s stage slopes; row (j, a) = Y_ja − y_ia −
+/// h Σ_l a_jl f_la, row (s, a) = y_{i+1,a} − y_ia − h Σ_l b_l f_la, the sum from 0 in
+/// the order of l — [`OdeRow`]'s terms and order, so the bits of the generic loop.
+/// Inlined for a constant n ([`small_n`]) and s = `tab.s`.
+#[inline(always)]
+fn interval_residual(n: usize, s: usize, tab: &Tableau, h: f64, zb: &[f64], f: &[f64], rb: &mut [f64]) {
+    let f = &f[..s * n];
+    let start = &zb[..n];
+    let (a_all, b) = (&tab.a[..s * s], &tab.b[..s]);
+    for j in 0..=s {
+        let w: &[f64] = if j < s { &a_all[j * s..(j + 1) * s] } else { b };
+        let end = &zb[(j + 1) * n..(j + 2) * n];
+        let out = &mut rb[j * n..(j + 1) * n];
+        for a in 0..n {
+            let mut acc = 0.0;
+            for (l, &wl) in w.iter().enumerate() {
+                acc += wl * f[l * n + a];
+            }
+            out[a] = end[a] - start[a] - h * acc;
+        }
+    }
+}
+
+/// The power-basis coefficients of one interval's collocation polynomial into `c`
+/// (n (s + 1) entries): c_a0 = y_a, c_a(m+1) = Σ_l h K_la ℓ_lm / (m + 1), summed from 0 in
+/// the order of l (`kk` the s stage slopes, `lagrange` the s Lagrange polynomials of
+/// degree s − 1). Inlined for constant n and s, so that the loops unroll and the
+/// divisions by 1, 2 and 4 become exact multiplications (the same bits).
+#[inline(always)]
+fn poly_coefficients(n: usize, s: usize, h: f64, y: &[f64], kk: &[f64], lagrange: &[Vec<f64>], c: &mut [f64]) {
+    let (y, kk) = (&y[..n], &kk[..s * n]);
+    for (a, ca) in c[..n * (s + 1)].chunks_exact_mut(s + 1).enumerate() {
+        ca.fill(0.0);
+        ca[0] = y[a];
+        for (l, lag) in lagrange[..s].iter().enumerate() {
+            let kl = kk[l * n + a];
+            for (m, &lm) in lag[..s].iter().enumerate() {
+                ca[m + 1] += h * kl * lm / (m + 1) as f64;
+            }
+        }
     }
 }
 

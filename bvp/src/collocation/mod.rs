@@ -264,6 +264,14 @@ impl<P: Problem> NewtonSystem for FixedEtaSystem<'_, '_, P> {
         let floor = newton::scaled_norm(&delta, z);
         Ok(Some(floor))
     }
+    /// No residual pass at the converged iterate: every caller of
+    /// [`Corrector::correct`] estimates the residual there next
+    /// ([`Discretisation::residual_norms`]), which evaluates f at every stage again and
+    /// fails on a non-finite value (one residual pass per mesh, ~3 % of a gauss8
+    /// elastica solve).
+    fn converged_residual(&self) -> bool {
+        false
+    }
 }
 
 /// Turn the term magnitudes T_i of the residual's rows
@@ -300,39 +308,51 @@ pub(crate) struct Adapted<'a, P: Problem> {
     pub eta: f64,
     /// max(max_i ρ_i, boundary residual).
     pub max_residual: f64,
+    /// The dense output at `z` ([`Discretisation::residual_norms_and_solution`], default
+    /// stats).
+    pub output: Solution,
 }
 
 impl<P: Problem> Adapted<'_, P> {
     /// The solution with its statistics completed (unknowns, nodes, residual, time
     /// since `start`, right-hand-side evaluations counted since the shared counter read
     /// `rhs_baseline`).
-    pub fn solution(&self, mut stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
-        stats.unknowns = self.disc.n;
-        stats.mesh_nodes = self.disc.n_nodes();
-        stats.max_residual = self.max_residual;
-        let mut sol = self.disc.to_solution(&self.z, self.eta, Stats::default());
-        stats.rhs_evaluations = self.disc.rhs_evals.get() - rhs_baseline;
-        stats.wall_seconds = start.elapsed().as_secs_f64();
-        sol.stats = stats;
-        sol
+    pub fn solution(&self, stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
+        self.complete(self.output.clone(), stats, start, rhs_baseline)
     }
 
     /// [`Self::solution`], consuming the point.
     pub fn into_solution(self, stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
-        self.solution(stats, start, rhs_baseline)
+        let Adapted { disc, max_residual, output, .. } = self;
+        complete(&disc, max_residual, output, stats, start, rhs_baseline)
+    }
+
+    fn complete(&self, sol: Solution, stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
+        complete(&self.disc, self.max_residual, sol, stats, start, rhs_baseline)
     }
 }
 
-/// Carry a converged point over to `meshes` with its dense output.
+/// `sol` (the dense output of a converged point on `disc`) with the statistics of
+/// [`Adapted::solution`].
+fn complete<P: Problem>(disc: &Discretisation<'_, P>, max_residual: f64, mut sol: Solution, mut stats: Stats, start: Instant, rhs_baseline: usize) -> Solution {
+    stats.unknowns = disc.n;
+    stats.mesh_nodes = disc.n_nodes();
+    stats.max_residual = max_residual;
+    stats.rhs_evaluations = disc.rhs_evals.get() - rhs_baseline;
+    stats.wall_seconds = start.elapsed().as_secs_f64();
+    sol.stats = stats;
+    sol
+}
+
+/// Carry a converged point over to `meshes` with its dense output `output`
+/// ([`Discretisation::residual_norms_and_solution`]).
 pub(crate) fn remesh<'a, P: Problem>(
     disc: &Discretisation<'a, P>,
-    z: &[f64],
-    eta: f64,
+    output: &Solution,
     meshes: Vec<Vec<f64>>,
 ) -> Result<(Discretisation<'a, P>, Vec<f64>), BvpError> {
     let new = disc.with_meshes(meshes)?;
-    let sol = disc.to_solution(z, eta, Stats::default());
-    let z_new = new.sample(&sol)?;
+    let z_new = new.sample(output)?;
     Ok((new, z_new))
 }
 
@@ -354,11 +374,12 @@ fn adapted_mesh<'a, P: Problem, C: Corrector<P>>(
     disc: &Discretisation<'a, P>,
     z: &[f64],
     eta: f64,
+    output: &Solution,
     meshes: Vec<Vec<f64>>,
     corrector: &mut C,
 ) -> Result<(Discretisation<'a, P>, Vec<f64>), BvpError> {
     timed(Phase::MeshAdaptation, || {
-        let (new_disc, new_z) = remesh(disc, z, eta, meshes)?;
+        let (new_disc, new_z) = remesh(disc, output, meshes)?;
         corrector.transfer(disc, z, eta, &new_disc)?;
         phases::count(phases::Step::MeshRefinement, 1);
         Ok((new_disc, new_z))
@@ -399,14 +420,14 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
         };
         stats.newton_iterations += report.iterations;
         stats.jacobian_evaluations += report.iterations;
-        let (rho, bc) = match timed(Phase::Residuals, || disc.residual_norms(&z, eta)) {
+        let (rho, bc, output) = match timed(Phase::Residuals, || disc.residual_norms_and_solution(&z, eta)) {
             Ok(v) => v,
             Err(e) => return accepted.ok_or(e),
         };
         let max_rho = rho.iter().flatten().fold(0.0_f64, |m, &r| m.max(r));
         let max_residual = max_rho.max(bc);
         if !opts.adapt_mesh {
-            return Ok(Adapted { disc, z, eta, max_residual });
+            return Ok(Adapted { disc, z, eta, max_residual, output });
         }
         if max_rho < tol {
             if bc >= tol {
@@ -423,8 +444,8 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 if coarse.iter().any(Option::is_some) {
                     let meshes =
                         coarse.into_iter().zip(&disc.meshes).map(|(c, m)| c.unwrap_or_else(|| m.clone())).collect();
-                    let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
-                    accepted = Some(Adapted { disc, z, eta, max_residual });
+                    let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, &output, meshes, corrector)?;
+                    accepted = Some(Adapted { disc, z, eta, max_residual, output });
                     disc = new_disc;
                     z = new_z;
                     passes += 1;
@@ -432,7 +453,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                     continue;
                 }
             }
-            return Ok(Adapted { disc, z, eta, max_residual });
+            return Ok(Adapted { disc, z, eta, max_residual, output });
         }
         if let Some(a) = accepted {
             return Ok(a);
@@ -465,7 +486,7 @@ pub(crate) fn adapt<'a, P: Problem, C: Corrector<P>>(
                 return Err(BvpError::MeshCapReached { max_nodes: opts.max_nodes, residual: max_rho, tolerance: tol });
             }
         }
-        let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, meshes, corrector)?;
+        let (new_disc, new_z) = adapted_mesh(&disc, &z, eta, &output, meshes, corrector)?;
         disc = new_disc;
         z = new_z;
         passes += 1;
