@@ -66,7 +66,10 @@ fn pulley_speed_round_trip() {
     let n_in = back.summary.tension_in.unwrap();
     eprintln!("ω = {omega}: N_in = {n_in} ({:.2} s)", back.stats.wall_seconds);
     assert!((n_in - 15.0).abs() < 1e-8, "N_in = {n_in}");
-    assert_eq!(back.summary.pulley_speed, Some(omega));
+    // the reported ω is the given one to round-off (it moved by 1 ulp when the steady
+    // line search's trials changed, docs/performance.md, seventh round)
+    let reported = back.summary.pulley_speed.unwrap();
+    assert!((reported - omega).abs() <= 1e-14 * omega.abs(), "ω {reported} vs {omega}");
     for (a, b) in quantities(&tensions.summary).iter().zip(quantities(&back.summary)) {
         assert!((a - b).abs() <= 1e-7 * a.abs(), "{a} vs {b}");
     }

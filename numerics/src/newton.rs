@@ -52,7 +52,8 @@
 //! 1. Δz_k as above. If ‖Δz_k‖ ≤ tol the full step is taken without a merit test when
 //!    the trial is admissible (finite residual, [`NewtonProblem::admissible`]): the
 //!    merit is at round-off there.
-//! 2. Otherwise α = 1, ½, ¼, … ≥ λ_min; a trial is judged by
+//! 2. Otherwise α = 1, ½, ¼, … ≥ λ_min (after a rejected admissible trial the α of
+//!    [`NewtonProblem::next_damping`], e.g. [`skip_halvings`]); a trial is judged by
 //!    [`NewtonProblem::accept_step`] (by default Armijo's m(z + αΔz) ≤ (1 − c α) m(z),
 //!    c = [`SUFFICIENT_DECREASE`]), which may also abandon the search at once (e.g. Δz
 //!    is not a descent direction of an energy).
@@ -102,7 +103,9 @@
 //!   by max |G|.
 //! - `fem/src/string_drive/steady/semismooth.rs` (the steady semismooth Newton,
 //!   `Semismooth`): `Backtracking { take_best: true }` (the active set may change along
-//!   the step), α ≥ 2⁻¹⁰, trials judged by their residual (no `merit_only`: the active
+//!   the step), α ≥ 2⁻¹⁰ with `next_damping` = [`skip_halvings`] (α/4 where a
+//!   quadratic model of the merit rejects α/2 and α/4), trials judged by their
+//!   residual (no `merit_only`: the active
 //!   set of the trial is needed); `merit` = ½ Σ (F_i/s_i)²; `accept_step` = Armijo with
 //!   c = 10⁻⁴, or any admissible trial of a correction below the tolerance; `solve`
 //!   retries a singular generalised Jacobian with diagonal shifts 10⁻¹², …, 10⁻⁴ of |D|;
@@ -472,6 +475,15 @@ pub trait NewtonProblem {
         let _ = (level, slope);
         true
     }
+    /// Backtracking: the next α after the trial `t` (α = `t.damping`, judged admissible)
+    /// was rejected; `previous` is (α, merit) of the admissible trial judged before it in
+    /// the same search, if any. A value below `min_damping` ends the search. Default:
+    /// α/2 (an inadmissible trial is always followed by α/2). [`skip_halvings`] skips a
+    /// halving that a quadratic model of the merit rejects.
+    fn next_damping(&mut self, t: &TrialStep<'_>, previous: Option<(f64, f64)>) -> f64 {
+        let _ = previous;
+        0.5 * t.damping
+    }
     /// Which evaluations share a pass ([`Evaluation`]). Default: none.
     fn evaluation(&self) -> Evaluation {
         Evaluation::default()
@@ -497,6 +509,50 @@ pub trait NewtonProblem {
         } else {
             Ok(None)
         }
+    }
+}
+
+/// The margin of [`skip_halvings`] on the model's largest accepted step, and on its
+/// prediction of the previous trial: a merit with a kink ahead (its growth from the kink
+/// on, not from α = 0) is less convex near α = 0 than the quadratic from α = 0 through
+/// the trial, so the model's accepted steps are too few.
+const SKIP_MARGIN: f64 = 2.0;
+
+/// The next damping factor of a halving line search, α/4 instead of α/2 where a
+/// quadratic model of the merit rejects α/2 and α/4 with a margin. The model q(s) = φ(0)
+/// + φ'(0) s + C s² of φ(s) = m(z + sΔz) takes C from the rejected trial φ(`alpha`) =
+/// `trial_merit`, with φ(0) = `merit` and φ'(0) = `slope` (< 0); the test accepts φ(s) ≤
+/// φ(0) − `decrease`·s, under the model for s ≤ s* = (−φ'(0) − `decrease`)/C. The result
+/// is α/4 if α/4 ≥ 2s* and α/4 ≥ `min_damping`, and if the model is borne out by the
+/// `previous` trial (α₀, φ(α₀)) of the search: the merit fell from it, and q(α₀) ≥ φ(α₀)/2
+/// (a merit that grows faster than quadratically, e.g. 10⁸× at α = 1 and 40× at ¼
+/// beyond a stiff penalty's kink, is less convex near 0 than the model); else α/2 — so
+/// the trials are those of plain halving less some the model rejects.
+///
+/// For Newton's step on the merit ½‖F‖² the slope is −2φ(0) (FᵀJΔz = −‖F‖²). Where a
+/// kink of F lies a little ahead on the step (e.g. a contact point entering at a small
+/// α), the merit beyond it grows like the squared overshoot (at α = 1 to 100–350 times
+/// its start on the Exudyn drive) and every other halving down to the kink is skipped.
+/// Replayed on the traced line searches of the catalogue's steady FE runs
+/// (`string-drive-exudyn` at 64 … 512 elements, `string-drive`, `cosserat-drive`,
+/// `cosserat-pulley`), each ends where plain halving ends (docs/performance.md, seventh
+/// round).
+///
+/// Tried and not kept: the minimiser of the quadratic/cubic interpolation safeguarded
+/// to [α/10, α/2] (Nocedal & Wright §3.5): on the Exudyn drive's load continuation,
+/// whose merit at α = 1 is only 1.3–3× its start (active-set changes, not a quadratic
+/// bump), it took α ≈ 0.1–0.25 where halving accepted ½, and 37 iterations instead of 11;
+/// skips without the check against the previous trial (from α = 1 on, or up to α/8)
+/// changed the outcome of some searches (docs/performance.md, seventh round).
+pub fn skip_halvings(merit: f64, slope: f64, decrease: f64, alpha: f64, trial_merit: f64, previous: Option<(f64, f64)>, min_damping: f64) -> f64 {
+    let c = (trial_merit - merit - slope * alpha) / (alpha * alpha);
+    let accepted = (-slope - decrease) / c;
+    let half = 0.5 * alpha;
+    let borne_out = previous.is_some_and(|(a0, m0)| m0 > trial_merit && m0 <= SKIP_MARGIN * (merit + slope * a0 + c * a0 * a0));
+    if c > 0.0 && accepted.is_finite() && borne_out && 0.5 * half >= SKIP_MARGIN * accepted && 0.5 * half >= min_damping {
+        0.5 * half
+    } else {
+        half
     }
 }
 
@@ -761,6 +817,8 @@ impl<P: NewtonProblem> Run<'_, P> {
                     }
                     if self.problem.line_search(level, slope) {
                         let mut alpha = 1.0;
+                        // (α, merit) of the last admissible trial of this search
+                        let mut previous: Option<(f64, f64)> = None;
                         while alpha >= self.opts.min_damping {
                             for i in 0..n {
                                 trial[i] = z[i] + alpha * step[i];
@@ -786,9 +844,13 @@ impl<P: NewtonProblem> Run<'_, P> {
                                     Verdict::Abandon => break,
                                     Verdict::Reject => {}
                                 }
+                                let next = self.problem.next_damping(&t, previous);
                                 if take_best && best.as_ref().is_none_or(|b| trial_merit < b.1) {
                                     best = Some((alpha, trial_merit, trial.clone(), (!merit_only).then(|| r_trial.clone())));
                                 }
+                                previous = Some((alpha, trial_merit));
+                                alpha = next;
+                                continue;
                             }
                             alpha *= 0.5;
                         }
@@ -998,6 +1060,100 @@ impl<S: SparseSystem> NewtonProblem for Sparse<S> {
 
 #[cfg(test)]
 mod tests {
+    /// The skip on a quadratic merit 1 − 2s + Cs² (Armijo's decrease 10⁻⁴, s* = (2 −
+    /// 10⁻⁴)/C the largest accepted step): α/4 where α/4 ≥ 2s* and the previous trial
+    /// bears the model out, never below the minimum damping, else plain halving.
+    #[test]
+    fn skip_halvings_skips_what_the_model_rejects_with_a_margin() {
+        let q = |c: f64, a: f64| 1.0 - 2.0 * a + c * a * a;
+        // the previous trial at 2α on the same quadratic
+        let skip = |c: f64, alpha: f64, min: f64| super::skip_halvings(1.0, -2.0, 1e-4, alpha, q(c, alpha), Some((2.0 * alpha, q(c, 2.0 * alpha))), min);
+        // C = 9 (s* = 0.222) from α = ½: ⅛ < 2s*, ¼ is tried; C = 351 (s* = 5.7e-3): ⅛
+        assert_eq!(skip(9.0, 0.5, 1e-3), 0.25);
+        assert_eq!(skip(351.0, 0.5, 1e-3), 0.125);
+        // from α = 1/128 with C = 1e6: 1/512, but not below the minimum damping
+        assert_eq!(skip(1e6, 1.0 / 128.0, 1.0 / 1024.0), 1.0 / 512.0);
+        assert_eq!(skip(1e6, 1.0 / 128.0, 3e-3), 1.0 / 256.0);
+        // s* with its margin exactly at α/4 (C = 16(2 − 10⁻⁴)/α): α/4
+        assert_eq!(skip(16.0 * (2.0 - 1e-4) / 0.5, 0.5, 1e-6), 0.125);
+        // no previous trial (α = 1): halving
+        assert_eq!(super::skip_halvings(1.0, -2.0, 1e-4, 1.0, q(351.0, 1.0), None, 1e-6), 0.5);
+        // the merit did not fall from the previous trial, or grew from it faster than
+        // the model (10⁸ at α = 1, 40 at ¼: q(1) = 634): halving
+        assert_eq!(super::skip_halvings(1.0, -2.0, 1e-4, 0.5, q(351.0, 0.5), Some((1.0, q(351.0, 0.5))), 1e-6), 0.25);
+        assert_eq!(super::skip_halvings(1.0, -2.0, 1e-4, 0.25, 40.0, Some((1.0, 1e8)), 1e-6), 0.125);
+        // … within the margin of 2 it skips: 40 at ¼, 1200 at 1
+        assert_eq!(super::skip_halvings(1.0, -2.0, 1e-4, 0.25, 40.0, Some((1.0, 1200.0)), 1e-6), 0.0625);
+        // flat or concave model, no slope: halving
+        assert_eq!(super::skip_halvings(1.0, -2.0, 1e-4, 0.5, -0.5, Some((1.0, 3.0)), 1e-6), 0.25);
+        assert_eq!(super::skip_halvings(0.0, 0.0, 0.0, 0.25, 0.0, Some((0.5, 1.0)), 1e-6), 0.125);
+    }
+
+    /// F(x) = x − 1 + K⟨x − a⟩ (K = 10⁴, a = 0.003) from x = 0: the Jacobian there does
+    /// not see the kink a little ahead on the step, whose merit at α = 1 is 10⁸ times the
+    /// start's — the situation of a contact point entering along the semismooth steady
+    /// step. Halving tries 1, ½, …, 1/256 before 1/512 is accepted; the skip tries 1, ½,
+    /// then every other α of halving's grid while the model holds, and reaches the same
+    /// root with fewer residuals.
+    #[test]
+    fn skipped_halvings_reach_the_root_with_fewer_trials() {
+        struct Kink {
+            skip: bool,
+            slope: f64,
+            trials: Vec<f64>,
+            iterates: Vec<f64>,
+        }
+        const K: f64 = 1e4;
+        const A: f64 = 0.003;
+        impl super::NewtonProblem for Kink {
+            type Error = super::LinearError;
+            fn size(&self) -> usize {
+                1
+            }
+            fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), super::LinearError> {
+                r[0] = z[0] - 1.0 + K * (z[0] - A).max(0.0);
+                Ok(())
+            }
+            fn factorize(&mut self, z: &[f64]) -> Result<(), super::LinearError> {
+                self.iterates.push(z[0]);
+                self.slope = if z[0] > A { 1.0 + K } else { 1.0 };
+                Ok(())
+            }
+            fn solve(&mut self, b: &mut [f64]) -> Result<(), super::LinearError> {
+                b[0] /= self.slope;
+                Ok(())
+            }
+            fn damping(&self) -> super::Damping {
+                super::Damping::Backtracking { take_best: true }
+            }
+            fn next_damping(&mut self, t: &super::TrialStep<'_>, previous: Option<(f64, f64)>) -> f64 {
+                self.trials.push(t.damping);
+                if self.skip {
+                    super::skip_halvings(t.merit, -2.0 * t.merit, super::SUFFICIENT_DECREASE * t.merit, t.damping, t.trial_merit, previous, 1.0 / 1024.0)
+                } else {
+                    0.5 * t.damping
+                }
+            }
+        }
+        let opts = super::NewtonOptions { tolerance: 1e-12, max_iterations: 30, min_damping: 1.0 / 1024.0 };
+        let root = (1.0 + K * A) / (1.0 + K);
+        let mut runs = vec![];
+        for skip in [false, true] {
+            let mut p = Kink { skip, slope: 0.0, trials: vec![], iterates: vec![] };
+            let mut z = [0.0];
+            let stats = super::solve(&mut p, &mut z, &opts).unwrap();
+            assert!((z[0] - root).abs() < 1e-14, "{z:?}");
+            runs.push((stats, p.trials, p.iterates, z[0]));
+        }
+        let (halving, skipped) = (&runs[0], &runs[1]);
+        // halving's first search rejects 1 … 1/256; the skip tries every other α of
+        // halving's grid (powers of two) and ends at the same root with fewer residuals
+        assert_eq!(&halving.1[..9], &[1.0, 0.5, 0.25, 0.125, 0.0625, 0.03125, 0.015625, 0.0078125, 0.00390625]);
+        assert_eq!(&skipped.1[..2], &[1.0, 0.5]);
+        assert!(skipped.1.iter().all(|a| a.log2().fract() == 0.0), "{:?}", skipped.1);
+        assert!(skipped.0.residual_evaluations + 8 <= halving.0.residual_evaluations, "{:?} against {:?}", skipped.0, halving.0);
+    }
+
     use super::*;
 
     /// F(z) = ((z + 10⁴) − 10⁴) − 0.3: the root 0.3, J = 1, but z + 10⁴ is rounded to
