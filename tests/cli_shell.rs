@@ -183,6 +183,29 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     assert_eq!(h.frames.len(), 1 + run.steps / run.frame_every);
     assert!((h.frames[0].time - h.time[first]).abs() < 1e-12 && h.frames.last().unwrap().time == *h.time.last().unwrap());
 
+    // the peak interlayer shear per drum: P_⊥ × the largest |u| of the history points
+    // nearest each drum, so at least P_⊥ × the frame's |u| (a node's |u| is the mean of
+    // its neighbouring points') on the nodes nearer that drum, and positive once turning
+    let drive::scene::Contact::ElasticLayer(layer) = &s.effects.contact else { panic!("the CI scene has an elastic interlayer") };
+    let p_t = layer.tangential_stiffness;
+    let last = h.frames.last().unwrap().surface.as_ref().unwrap();
+    let (driver_c, driven_c) = (c.pulley_centre(drive::contour::Pulley::Driver), c.pulley_centre(drive::contour::Pulley::Driven));
+    let mut node_peak = [0.0f64; 2];
+    for (i, &sg) in last.sigma.iter().enumerate() {
+        let g = c.g(sg);
+        let d = |p: [f64; 2]| (g[0] - p[0]).hypot(g[1] - p[1]);
+        let k = usize::from(d(driven_c) < d(driver_c));
+        node_peak[k] = last.values["interlayer_shear"][i].iter().fold(node_peak[k], |a, &u| a.max(u));
+    }
+    for (k, name) in ["peak_shear_driver", "peak_shear_driven"].iter().enumerate() {
+        let peak = h.channel(name).unwrap_or_else(|| panic!("{name} missing"));
+        assert_eq!(peak[0], 0.0, "{name}: no shear at the static start");
+        let end = *peak.last().unwrap();
+        assert!(end > 0.0 && end >= p_t * node_peak[k] * (1.0 - 1e-12), "{name}: {end} against P_⊥·max|u| of the nodes {}", p_t * node_peak[k]);
+        // and not far above it: the nodes' mean of two points is at least half the larger
+        assert!(end <= 2.0 * p_t * node_peak[k] * (1.0 + 1e-12), "{name}: {end} against the nodes' {}", p_t * node_peak[k]);
+    }
+
     // the measurement: model at the measured times, the difference model − measured
     let m = r.measured.as_ref().unwrap();
     assert_eq!(m.channel, "lateral_offset");

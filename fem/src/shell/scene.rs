@@ -41,7 +41,9 @@ use super::kernel::{Shell, SHELL_VALUES};
 use super::runoff::{drift_velocity, lateral_offset};
 use super::ShellError;
 
-/// The channels of the history, besides `newton_iterations`, `energy` and `stage`:
+/// The channels of the history, besides `peak_shear_driver`, `peak_shear_driven` (the
+/// largest interlayer shear stress P_⊥|u| on each drum, N/m², [`peak_shear`]),
+/// `newton_iterations`, `energy` and `stage`:
 /// the belt's mean lateral offset z̄ (m, [`lateral_offset`]); z of the centre line ζ = 0
 /// at the middle of the upper and the lower span and at the apex of each drum (m; the
 /// lateral position: z = ζ undeformed); z of the two edges ζ = ∓b/2 at the middle of the
@@ -242,6 +244,32 @@ fn sample(stepping: &TimeStepping<Shell, SHELL_VALUES>, contour: &Contour, width
     ]
 }
 
+/// The largest interlayer shear stress P_⊥|u| (N/m²) over the history points next to
+/// each drum, `[driver, driven]`: the points are the σ-nodes (trapezoidal rule, element
+/// i's columns at σ-nodes i and i + 1) × the ζ-Gauss points, each given to the drum whose
+/// centre is nearer to its σ's contour point (out of contact u = 0, so the spans add
+/// nothing). Zeros without an interlayer.
+fn peak_shear(stepping: &TimeStepping<Shell, SHELL_VALUES>, contour: &Contour) -> [f64; 2] {
+    let (Some(layer), Some(states)) = (stepping.assembler().kernel().interlayer(), stepping.history().term(super::kernel::INTERLAYER)) else {
+        return [0.0; 2];
+    };
+    let sigma = stepping.assembler().mesh().sigma_nodes();
+    let centres = [contour.pulley_centre(drive::contour::Pulley::Driver), contour.pulley_centre(drive::contour::Pulley::Driven)];
+    let (rows, columns) = states.shape();
+    let mut peak = [0.0f64; 2];
+    for c in 0..columns {
+        let Some(&s) = sigma.get(c / 2 + c % 2) else { continue };
+        let g = contour.g(s);
+        let distance = |p: [f64; 2]| (g[0] - p[0]).hypot(g[1] - p[1]);
+        let drum = usize::from(distance(centres[1]) < distance(centres[0]));
+        for r in 0..rows {
+            let u = Interlayer::deformation(states.get(r, c));
+            peak[drum] = peak[drum].max((u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt());
+        }
+    }
+    peak.map(|p| layer.shear * p)
+}
+
 /// Pγ summed over the drums at r (N/m²; 0 out of contact).
 fn pressure(layer: &Interlayer, r: &[f64; 3], time: f64) -> f64 {
     layer.drums.iter().map(|d| d.gap(layer.radius, r, time).0.max(0.0)).sum::<f64>() * layer.normal
@@ -414,6 +442,9 @@ fn push(series: &mut TimeSeries, stepping: &TimeStepping<Shell, SHELL_VALUES>, c
     };
     let mut named: Vec<(&str, f64)> = CHANNELS[..7].iter().copied().zip(values).collect();
     named.push((CHANNELS[7], velocity));
+    let [driver, driven] = peak_shear(stepping, contour);
+    named.push(("peak_shear_driver", driver));
+    named.push(("peak_shear_driven", driven));
     named.push(("newton_iterations", report.map_or(0.0, |r| r.newton.iterations as f64)));
     let energy = report.map(|r| r.energy).unwrap_or_else(|| {
         let at = crate::surface::assembly::Evaluation { time: stepping.time(), dt: 0.0, history: Some(stepping.history()) };
