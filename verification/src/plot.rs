@@ -136,7 +136,7 @@ fn state_runs(states: &[ContactState]) -> Vec<(ContactState, usize, usize)> {
     out
 }
 
-fn range_of<'a>(vals: impl IntoIterator<Item = &'a f64>) -> (f64, f64) {
+pub(crate) fn range_of<'a>(vals: impl IntoIterator<Item = &'a f64>) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for &v in vals {
         if v.is_finite() {
@@ -155,7 +155,7 @@ fn range_of<'a>(vals: impl IntoIterator<Item = &'a f64>) -> (f64, f64) {
 }
 
 /// Linear range with 6 % padding.
-fn padded(lo: f64, hi: f64) -> (f64, f64) {
+pub(crate) fn padded(lo: f64, hi: f64) -> (f64, f64) {
     let d = 0.06 * (hi - lo);
     (lo - d, hi + d)
 }

@@ -6,7 +6,7 @@ use plotters::prelude::*;
 
 use drive::result::{SurfaceFields, TimeSeries};
 
-use crate::plot::{area_message, err, grid_style, labelled_line, legend_box, render, Area, PlotError, WIDTH};
+use crate::plot::{area_message, err, grid_style, labelled_line, legend_box, padded, range_of, render, Area, PlotError, WIDTH};
 use crate::study::{SeriesStatus, Study};
 
 /// The history of every successful level of the study's shell series, coarsest first:
@@ -36,16 +36,6 @@ fn level_color(k: usize, n: usize) -> RGBColor {
     RGBColor(mix(250.0, 150.0), mix(160.0, 0.0), mix(140.0, 20.0))
 }
 
-/// The range of values with a margin, never empty.
-fn span(values: impl IntoIterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.into_iter().filter(|v| v.is_finite()).fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    if !lo.is_finite() {
-        return (-1.0, 1.0);
-    }
-    let d = (hi - lo).max(1e-3 * hi.abs().max(lo.abs())).max(1e-300);
-    (lo - 0.08 * d, hi + 0.08 * d)
-}
-
 /// One channel of every level over t, in one panel.
 fn channel_panel(area: &Area, histories: &[(String, f64, &TimeSeries)], channel: &str, title: &str, ydesc: &str) -> Result<(), String> {
     let curves: Vec<(&String, Vec<(f64, f64)>)> = histories
@@ -55,8 +45,10 @@ fn channel_panel(area: &Area, histories: &[(String, f64, &TimeSeries)], channel:
     if curves.is_empty() {
         return area_message(area, title, &format!("no `{channel}` channel in the runs"));
     }
-    let (t0, t1) = span(curves.iter().flat_map(|(_, p)| p.iter().map(|q| q.0)));
-    let (y0, y1) = span(curves.iter().flat_map(|(_, p)| p.iter().map(|q| q.1)));
+    let (t0, t1) = range_of(curves.iter().flat_map(|(_, p)| p.iter().map(|q| &q.0)));
+    let (t0, t1) = padded(t0, t1);
+    let (y0, y1) = range_of(curves.iter().flat_map(|(_, p)| p.iter().map(|q| &q.1)));
+    let (y0, y1) = padded(y0, y1);
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 20))
         .margin_left(10)
