@@ -624,6 +624,12 @@ fn print_shell_history(run: &Solved) {
             println!("  {name:<24} {:>32.6e} {:>16.6e}", c[first], c[last]);
         }
     }
+    println!("lateral force of each drum on the belt, N (+z)");
+    for name in ["lateral_force_driver", "lateral_force_driven"] {
+        if let Some(c) = h.channel(name) {
+            println!("  {name:<24} {:>32.6e} {:>16.6e}", c[first], c[last]);
+        }
+    }
 }
 
 /// The measurement beside the model, with the difference.

@@ -273,6 +273,8 @@ pub struct TimeStepping<K: SurfaceKernel<P>, const P: usize> {
     step: usize,
     motion: Option<Motion>,
     newton: NewtonOptions,
+    /// The last step's Δt and the advected history its densities read.
+    evaluated: Option<(f64, SurfaceHistory)>,
 }
 
 impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
@@ -294,7 +296,7 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
         let mut lu = SparseLu::new();
         let (rows, cols) = asm.pattern();
         lu.set_pattern_with_border(asm.unknowns(), rows, cols, &asm.sigma_node_unknowns(0))?;
-        Ok(TimeStepping { asm, history, lu, z, time, step: 0, motion: None, newton })
+        Ok(TimeStepping { asm, history, lu, z, time, step: 0, motion: None, newton, evaluated: None })
     }
 
     /// Switch inertia on with the initial velocities `velocity`; Newmark starts from the
@@ -347,10 +349,23 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
             motion.update(&self.z, &z, dt, kappa, &predicted);
         }
         self.history = advected.advance(&self.asm, &z, &ev);
+        self.evaluated = Some((dt, advected));
         self.z = z;
         self.time = end;
         self.step = step;
         Ok(StepReport { step, time: end, energy, newton })
+    }
+
+    /// The evaluation the last step converged in: its end time, Δt and the advected
+    /// history its densities read — the energy, gradient or a resultant of the
+    /// converged state as the step's Newton saw it (the committed history has moved on
+    /// to the next step's start). Before any step: the current time, Δt = 0 and the
+    /// history as it is.
+    pub fn step_evaluation(&self) -> Evaluation<'_> {
+        match &self.evaluated {
+            Some((dt, history)) => Evaluation { time: self.time, dt: *dt, history: Some(history) },
+            None => Evaluation { time: self.time, dt: 0.0, history: Some(&self.history) },
+        }
     }
 
     /// Set the history from the current unknowns as after a converged step of length 0:
@@ -359,6 +374,7 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
     pub fn prime_history(&mut self) {
         let ev = Evaluation { time: self.time, dt: 0.0, history: Some(&self.history) };
         self.history = self.history.advance(&self.asm, &self.z, &ev);
+        self.evaluated = None;
     }
 
     /// `steps` steps of Δt = `dt`, recording channels and frames.

@@ -286,13 +286,21 @@ impl Interlayer {
     /// the committed contact keeps each step's energy continuous: with the current
     /// γ > 0 a point at the contact's edge (the tangent point of a tight belt) switches
     /// ½P_⊥u² on and off between Newton iterates and the iteration chatters.
-    pub fn density<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), jacobian: D, (time, dt): (f64, f64), state: &[f64]) -> D {
-        let mut w = D::zero();
+    pub fn density<D: Scalar>(&self, r: &[D; 3], foot: (&[D; 3], [f64; 3]), jacobian: D, step: (f64, f64), state: &[f64]) -> D {
+        let [driver, driven] = self.shares(r, foot, step, state);
+        (driver + driven) * jacobian
+    }
+
+    /// The density of [`Self::density`] per drum, per reference area of the deformed
+    /// belt (without J): ½Pγ_i² where γ_i > 0, plus ½P_⊥u·u for the drum nearest to r.
+    /// −∂/∂r of drum i's share is the force per area drum i exerts on the belt.
+    pub fn shares<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 2] {
+        let mut w = [D::zero(); 2];
         let mut nearest: Option<(f64, usize, [D; 3])> = None;
         for (i, drum) in self.drums.iter().enumerate() {
             let (gamma, e) = drum.gap(self.radius, r, time);
             if gamma.re() > 0.0 {
-                w += gamma * gamma * (0.5 * self.normal);
+                w[i] += gamma * gamma * (0.5 * self.normal);
             }
             if nearest.as_ref().is_none_or(|n| gamma.re() > n.0) {
                 nearest = Some((gamma.re(), i, e));
@@ -300,9 +308,9 @@ impl Interlayer {
         }
         if let (Some((_, i, e)), false, true) = (nearest, state.is_empty(), self.shear > 0.0) {
             let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
-            w += dot(&u, &u) * (0.5 * self.shear);
+            w[i] += dot(&u, &u) * (0.5 * self.shear);
         }
-        w * jacobian
+        w
     }
 
     /// The state after a converged step: u of the drum in contact (0 out of contact; r

@@ -14,6 +14,7 @@
 //! (docs/fem-shell.md §9.2).
 
 use drive::contour::Contour;
+use num_dual::Dual64;
 
 use crate::element::{BfsRectangle, ElementLayout, Field, SHELL};
 use crate::quadrature::Rule;
@@ -238,6 +239,27 @@ impl Shell {
     pub fn position<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES]) -> [D; 3] {
         let [g, _, n] = self.frame(at.sigma);
         [v[2] * n[0] + g[0], v[2] * n[1] + g[1], v[14]]
+    }
+
+    /// The lateral force per dσ dζ that each drum exerts on the belt at an interlayer
+    /// point, `[driver, driven]` (N/m²): −∂/∂z of the drum's share of V_γ + V_⊥
+    /// ([`Interlayer::shares`]) times J = ∂σS — z enters the energy only through the
+    /// position r = (…, z), and the foot r_n(foot) is the committed history's, so this is
+    /// exactly the integrand of the interlayer's gradient along the lateral translation
+    /// z + d (the mode membrane, bending and gravity are blind to). Zeros without an
+    /// interlayer.
+    pub fn lateral_forces(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES], state: &[f64]) -> [f64; 2] {
+        let dual: [Dual64; SHELL_VALUES] = std::array::from_fn(|k| Dual64::new(v[k], if k == 14 { 1.0 } else { 0.0 }));
+        self.interlayer_shares(at, &dual, state).map(|w| -w.eps)
+    }
+
+    /// The interlayer's density per dσ dζ (V_γ + V_⊥ times J) split by drum,
+    /// `[driver, driven]` ([`Interlayer::shares`]); zeros without an interlayer.
+    pub(crate) fn interlayer_shares<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> [D; 2] {
+        let Some(interlayer) = &self.interlayer else { return [D::zero(); 2] };
+        let (foot, upstream) = self.foot(at, v, state);
+        let jacobian = v[0] + self.gauge;
+        interlayer.shares(&self.position(at, v), (&foot, upstream), (at.time, at.dt), state).map(|w| w * jacobian)
     }
 
     /// r_n(foot) of (S13) at the point from the (advected) interlayer state: the

@@ -16,9 +16,12 @@
 //!   (docs/fem-shell.md §9.2–§9.3);
 //! - [`scene`]: a `shell` scene solved by stages 0–2 (and the tilt schedule after the
 //!   start), with its histories, surface frames, summary and self-checks (issue 15);
+//! - [`compensation`]: the constant swivel of the steering drum that cancels a camber's
+//!   run-off (spec E-5), a scalar root over whole solves;
 //! - [`kernel`]: the shell as one [`crate::surface::assembly::SurfaceKernel`]
 //!   ([`kernel::Shell`]), with the augmented map at the transitions.
 
+pub mod compensation;
 pub mod hanging;
 pub mod interlayer;
 pub mod kernel;

@@ -481,6 +481,38 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         .then_some((total, g, h))
     }
 
+    /// ∬ f dσ dζ over the integration points of `term` (its rule): Σ over elements and
+    /// points of the point's quadrature weight × area times f(point, values, state) —
+    /// a resultant of a point-wise quantity of one term (the shell's lateral force per
+    /// drum). `None` if a point is inadmissible or a sum is not finite.
+    pub fn integrate<const N: usize>(&self, z: &[f64], ev: &Evaluation, term: usize, f: impl Fn(&SurfacePoint, &[f64; P], &[f64]) -> [f64; N] + Sync) -> Option<[f64; N]> {
+        let per: Option<Vec<[f64; N]>> = (0..self.mesh.len())
+            .into_par_iter()
+            .map(|e| {
+                let q = self.dofs.gather(e, z);
+                let mut sum = [0.0; N];
+                for point in self.points(e, term, ev.time, ev.dt) {
+                    let quadratic = self.quadratic(e, point.xi, point.eta);
+                    let v = self.values(&point.weights, &quadratic, &q);
+                    if !self.kernel.admissible(&point.at, &v) {
+                        return None;
+                    }
+                    let state = match (self.terms[term].history, ev.history) {
+                        (0, _) | (_, None) => &[][..],
+                        (_, Some(h)) => h.state(term, e, point.a, point.b),
+                    };
+                    sum.iter_mut().zip(f(&point.at, &v, state)).for_each(|(s, x)| *s += x * point.scale);
+                }
+                Some(sum)
+            })
+            .collect();
+        let total = per?.iter().fold([0.0; N], |mut t, s| {
+            t.iter_mut().zip(s).for_each(|(a, b)| *a += b);
+            t
+        });
+        total.iter().all(|x| x.is_finite()).then_some(total)
+    }
+
     /// Π(z), J; `None` if a point is inadmissible or Π is not finite.
     pub fn energy(&self, z: &[f64], ev: &Evaluation) -> Option<f64> {
         let per: Option<Vec<f64>> = (0..self.mesh.len()).into_par_iter().map(|e| self.element_energy(e, z, ev)).collect();
