@@ -937,7 +937,8 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
 
 /// The study of a shell scene (`StudyPlan::shell`): its levels from `--levels` or the
 /// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ); the flags of the 1-D
-/// studies are refused by name.
+/// studies are refused by name. `converge` and `report` find a cambered belt's
+/// compensating swivel too (`StudyPlan::with_compensation`; the gate does not).
 fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
     const SHELL: &str = "fem shell-bfs (the shell's study)";
     const HINT: &str = "a shell study refines n_σ × n_ζ with Δt: give them with --levels (e.g. 64x2,128x2,256x2); its reference is always the Richardson extrapolation of the three finest levels";
@@ -959,7 +960,7 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
             verification::run::ShellFe::scene_at(scene, sigma, zeta, time_step).with_context(|| format!("--levels: the level {level}"))?;
         }
     }
-    let mut plan = verification::study::StudyPlan::shell(levels);
+    let mut plan = verification::study::StudyPlan::shell(levels).with_compensation();
     plan.samples = args.samples;
     plan.validate_for(scene)?;
     Ok(plan)

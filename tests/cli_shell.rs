@@ -377,6 +377,13 @@ fn shell_converge_extrapolates_its_levels_and_holds_them_against_the_extrapolati
         assert!((err - (q3 - qr).abs() / qr.abs()).abs() <= 1e-9 * err.max(1e-300), "{q}: row error {err}");
     }
     assert!(extrapolated >= 1, "no quantity extrapolated: {notes:?}");
+    // the cambered belt's compensating swivel at the coarsest level (spec E-5): found, and
+    // it cancels the run-off there (Brent's tolerance bounds what is left at ~1e-4 of it)
+    let c = &study["compensation"];
+    let (left, without) = (c["runoff_left"].as_f64().unwrap(), c["runoff_without"].as_f64().unwrap());
+    assert!(without.abs() > 0.0 && left.abs() <= 1e-3 * without.abs(), "{c}");
+    assert_eq!(c["drum"], "driven");
+    assert!(out.contains("the compensating swivel (spec E-5) of the driven drum at the coarsest level"), "{out}");
     assert_eq!(estimates.len(), extrapolated + usize::from(value(reference, "driven_speed").is_some()), "{estimates:?}");
     eprintln!("shell study: {extrapolated} extrapolated, {refused} refused");
 }

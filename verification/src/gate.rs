@@ -75,6 +75,7 @@ pub fn gate_plan_with(scene: &Scene, bvp_tolerance: Option<f64>, meshes: Option<
         meshes: meshes.map_or_else(|| fem.meshes(), <[usize]>::to_vec),
         samples: DEFAULT_SAMPLES,
         max_nodes: Some(STUDY_MAX_NODES),
+        compensate: false,
     }
     .without_unsolvable_fem(scene)
     .without_fem_unless(gate.fem.unwrap_or(true))

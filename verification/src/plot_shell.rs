@@ -249,7 +249,17 @@ mod tests {
             })
             .collect();
         let computed = plan.reference.richardson(&runs);
-        let study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), Family::Fem, runs)]);
+        let mut study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), Family::Fem, runs)]);
+        study.compensation = Some(fem::shell::compensation::Compensation {
+            drum: drive::scene::SteeringDrum::Driven,
+            swivel: -1.25e-6,
+            runoff_without: 3.0e-8,
+            probe: [5e-4, -1.2e-5],
+            linear_estimate: -1.24e-6,
+            runoff_left: 1.0e-12,
+            tolerance: 1.2e-10,
+            solves: 5,
+        });
         let y = study.reference_estimates.iter().find(|e| e.quantity == "y_upper_mid").expect("y extrapolated");
         assert!((y.value - 1.0).abs() < 1e-12 && (y.order.unwrap() - 2.0).abs() < 1e-9, "{y:?}");
         assert!(study.reference_estimates.iter().all(|e| e.quantity != "tension_upper_mid"), "the oscillating tension is refused");
@@ -266,6 +276,10 @@ mod tests {
             assert!(md.contains(part), "report.md lacks {part:?}:\n{md}");
         }
         assert!(!md.contains("Mutual convergence FE ↔ BVP"), "{md}");
+        assert!(md.contains("### The compensating swivel") && md.contains("β_y* = -1.250000e-6 rad"), "{md}");
+        let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(sdir.join("study.json")).unwrap()).unwrap();
+        assert_eq!(json["compensation"]["swivel"], -1.25e-6);
+        assert_eq!(json["compensation"]["drum"], "driven");
         // the run-off panel: one curve per level over t − t₀ (all start at 0)
         let svg = std::fs::read_to_string(sdir.join("runoff.svg")).unwrap();
         for label in ["32×2", "64×2", "128×2"] {

@@ -169,6 +169,7 @@ pub fn study_json(scene: &Scene, study: &Study) -> Result<String, serde_json::Er
         "registered_formulations": study.registered_formulations,
         "notes": study.notes,
         "wall_seconds": study.wall_seconds,
+        "compensation": study.compensation,
     });
     serde_json::to_string_pretty(&v)
 }
@@ -413,6 +414,12 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
         let _ = writeln!(m, "### The reference's values\n\nRichardson extrapolation of the three finest levels: per scalar the extrapolated value, the observed order and the error estimate |q_R − q_finest| (quantities whose levels oscillate or do not converge are left out; the notes above name them).\n");
         m.push_str(&table::estimate_table(&study.reference_estimates).to_markdown());
         m.push('\n');
+    }
+    if let Some(c) = &study.compensation {
+        let _ = writeln!(m, "### The compensating swivel
+
+The constant swivel of the steering drum that cancels the camber's run-off (spec E-5: the run-off is linear in small imperfections, so two solves estimate the root and Brent's method finds it, each evaluation a whole solve at the coarsest level; docs/fem-shell.md §14): {}.
+", table::compensation_text(c));
     }
     let _ = writeln!(
         m,

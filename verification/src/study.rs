@@ -109,6 +109,10 @@ pub struct StudyPlan {
     pub samples: usize,
     /// Override of the collocation mesh cap (`None` = the scene's `bvp.max_nodes`).
     pub max_nodes: Option<usize>,
+    /// A shell study also finds the compensating swivel of a cambered belt
+    /// ([`Study::compensation`]); `converge` and `report` ask for it, the gate does not.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub compensate: bool,
 }
 
 /// Why a plan cannot run.
@@ -181,6 +185,7 @@ impl StudyPlan {
             meshes: fem.meshes(),
             samples: DEFAULT_SAMPLES,
             max_nodes: Some(STUDY_MAX_NODES),
+            compensate: false,
         }
         .without_unsolvable_fem(scene)
     }
@@ -200,7 +205,14 @@ impl StudyPlan {
             meshes: Vec::new(),
             samples: DEFAULT_SAMPLES,
             max_nodes: None,
+            compensate: false,
         }
+    }
+
+    /// This plan with the compensating swivel asked for ([`StudyPlan::compensate`]).
+    pub fn with_compensation(mut self) -> StudyPlan {
+        self.compensate = true;
+        self
     }
 
     /// The levels of a shell study ([`StudyPlan::shell`]), if this is one.
@@ -458,6 +470,13 @@ pub struct Study {
     pub notes: Vec<String>,
     /// Wall time of the whole study, s.
     pub wall_seconds: f64,
+    /// A shell study of a cambered belt on turning drums whose plan asks for it
+    /// ([`StudyPlan::compensate`]): the steering drum's constant swivel that cancels the
+    /// run-off at the coarsest level (spec E-5, a scalar root over
+    /// whole solves, [`fem::shell::compensation`]); absent otherwise, or when it could not
+    /// be found (a note says why).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub compensation: Option<fem::shell::compensation::Compensation>,
 }
 
 impl Study {
@@ -504,6 +523,17 @@ impl Study {
             }
         }
         let mut study = Study::of_runs(scene, plan, computed, vec![(SHELL_FE.to_string(), Family::Fem, runs)]);
+        if let (Some(&Discretisation::Mesh2d { sigma, zeta, time_step }), Ok(shell)) = (levels.first(), fem::shell::scene::ShellScene::from_scene(scene)) {
+            if plan.compensate && shell.turning && shell.camber != 0.0 {
+                progress(&Progress { done: total, total, label: format!("the compensating swivel at {sigma}×{zeta}") });
+                let found = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| e.to_string()).and_then(|s| fem::shell::compensation::compensating_swivel(&s).map_err(|e| e.to_string()));
+                match found {
+                    Ok(c) => study.compensation = Some(c),
+                    Err(e) => study.notes.push(format!("the compensating swivel (spec E-5) at the coarsest level {sigma}×{zeta} could not be found: {e}")),
+                }
+                progress(&Progress { done: total, total, label: String::new() });
+            }
+        }
         study.wall_seconds = start.elapsed().as_secs_f64();
         study
     }
@@ -624,6 +654,7 @@ impl Study {
             registered_formulations: registered,
             notes,
             wall_seconds: start.elapsed().as_secs_f64(),
+            compensation: None,
         }
     }
 

@@ -290,6 +290,22 @@ fn describe_run(what: &str, run: &Run) -> String {
     }
 }
 
+/// The compensating swivel of a shell study in one sentence (terminal and report).
+pub fn compensation_text(c: &fem::shell::compensation::Compensation) -> String {
+    format!(
+        "the compensating swivel (spec E-5) of the {} drum at the coarsest level: β_y* = {:.6e} rad, leaving a run-off of {:.3e} m/s against {:.3e} m/s without swivel (linear estimate {:.6e} rad from the probe β_y = {:.3e} rad, v = {:.3e} m/s; Brent to {:.1e} rad, {} solves)",
+        c.drum.name(),
+        c.swivel,
+        c.runoff_left,
+        c.runoff_without,
+        c.linear_estimate,
+        c.probe[0],
+        c.probe[1],
+        c.tolerance,
+        c.solves
+    )
+}
+
 /// The whole study as terminal text: reference, notes, a convergence table per series,
 /// the per-quantity table and the mutual convergence of each FE formulation.
 pub fn study_text(study: &Study) -> String {
@@ -307,6 +323,9 @@ pub fn study_text(study: &Study) -> String {
     if !study.reference_estimates.is_empty() {
         out.push_str("\nthe reference's values: Richardson extrapolation of the three finest levels, with its error estimate |q_R − q_finest|\n");
         out.push_str(&estimate_table(&study.reference_estimates).to_text("  "));
+    }
+    if let Some(c) = &study.compensation {
+        out.push_str(&format!("\n{}\n", compensation_text(c)));
     }
     for s in &study.series {
         out.push('\n');
