@@ -344,6 +344,17 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         w * area
     }
 
+    /// [`MEMBRANE`]: the first derivatives of S̃, ν, z and ν itself (the material
+    /// derivatives (37)), 7 of the 15; [`BENDING_GRAVITY`]: all but S̃ and z themselves,
+    /// 13; [`INTERLAYER`]: ∂σS̃ (J), ν and z (the position), S̃ (the foot's offset), 4.
+    fn term_variables(&self, term: usize) -> Vec<usize> {
+        match term {
+            MEMBRANE => vec![0, 1, 2, 3, 4, 8, 9],
+            BENDING_GRAVITY => (0..13).collect(),
+            _ => vec![0, 2, 13, 14],
+        }
+    }
+
     /// ∂σS > 0 and a regular surface (|∂̊_s r × ∂̊_ζ r| > 0).
     fn admissible(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> bool {
         if v[0] + self.gauge <= 0.0 {
@@ -758,6 +769,82 @@ mod tests {
                 let shifted = asm.energy(&moved, &ev).unwrap();
                 assert!((shifted - energy).abs() > 1e-4 * energy, "{field:?} + const does not change V_⊥ + V_γ: {shifted} vs {energy}");
             }
+        }
+    }
+
+    /// The shell with every term differentiated over all 15 point values (the default
+    /// [`SurfaceKernel::term_variables`]): the oracle of the per-term variables.
+    struct AllVariables(Shell);
+
+    impl SurfaceKernel<SHELL_VALUES> for AllVariables {
+        fn layout(&self) -> ElementLayout {
+            self.0.layout()
+        }
+        fn variables(&self) -> [PointVariable; SHELL_VALUES] {
+            self.0.variables()
+        }
+        fn terms(&self) -> Vec<SurfaceTerm> {
+            self.0.terms()
+        }
+        fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
+            self.0.density(term, at, v, state)
+        }
+        fn admissible(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> bool {
+            self.0.admissible(at, v)
+        }
+        fn advance(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], previous: &[f64], next: &mut [f64]) {
+            self.0.advance(term, at, v, previous, next);
+        }
+        fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
+            self.0.quadratic_terms(element, rect, xi, eta, out);
+        }
+        fn belt_speed(&self, time: f64) -> f64 {
+            self.0.belt_speed(time)
+        }
+        fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
+            self.0.bounded_history(term)
+        }
+        fn history_support(&self, term: usize) -> Option<usize> {
+            self.0.history_support(term)
+        }
+    }
+
+    /// [`Shell::term_variables`] lists every value each density reads: energy, gradient
+    /// and Hessian assembled over each term's variables equal those over all 15 to
+    /// round-off (1e-12 of the largest entry; the dual arithmetic per entry is the same,
+    /// only zeros are no longer added) — the full shell with camber, gravity and the
+    /// interlayer in contact with its history (V_⊥ active), the driver drum tilted, at
+    /// transitions, in a step and in the static evaluation.
+    #[test]
+    fn per_term_variables_give_the_derivatives_over_all_values() {
+        let contour = contour();
+        let mesh = contour_mesh(&contour, [2, 2, 2, 1], 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+        let shell = Shell::on_contour(section(), 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(75.0).unwrap().with_interlayer(interlayer(&contour, 3.0e4)).unwrap();
+        let asm = SurfaceAssembler::new(mesh.clone(), shell.clone(), &[]).unwrap();
+        let oracle = SurfaceAssembler::new(mesh, AllVariables(shell), &[]).unwrap();
+        let mut rng = Rng(0x5_0b5e7);
+        let mut r = |scale: f64| scale * (2.0 * rng.next() - 1.0);
+        let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
+        let before: Vec<f64> = reference.iter().map(|v| v + r(0.005)).collect();
+        let z: Vec<f64> = before.iter().map(|v| v + r(0.005)).collect();
+        let (t0, dt) = (0.3, 0.04);
+        let history = SurfaceHistory::new(&asm, t0).unwrap();
+        let recorded = history.advance(&asm, &before, &Evaluation { time: t0, dt: 0.0, history: Some(&history) });
+        let advected = recorded.advected(asm.kernel().belt_speed(t0 + 0.5 * dt) * dt);
+        let step = Evaluation { time: t0 + dt, dt, history: Some(&advected) };
+        assert!(asm.energy(&z, &step).unwrap() - asm.energy(&z, &Evaluation { history: None, ..step }).unwrap() > 0.0, "V_⊥ inactive");
+        for ev in [step, static_ev()] {
+            let (a, b) = (asm.assemble(&z, &ev).unwrap(), oracle.assemble(&z, &ev).unwrap());
+            let close = |x: &[f64], y: &[f64], what: &str| {
+                let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                let worst = x.iter().zip(y).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+                assert!(worst <= 1e-12 * scale, "{what}: {worst:e} of {scale:e}");
+            };
+            assert!((a.energy - b.energy).abs() <= 1e-13 * b.energy.abs());
+            close(&a.gradient, &b.gradient, "gradient");
+            close(&a.values, &b.values, "Hessian");
+            let (ga, gb) = (asm.gradient(&z, &ev).unwrap(), oracle.gradient(&z, &ev).unwrap());
+            close(&ga.1, &gb.1, "gradient (first-order path)");
         }
     }
 
