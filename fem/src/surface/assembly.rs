@@ -5,8 +5,9 @@
 //! elements with each term's Gauss rule per direction and sums energy, gradient and
 //! Hessian over the periodic mesh.
 //!
-//! Derivatives are exact: forward-mode AD (num-dual) of the density over the P point
-//! values, then the chain rule through the BFS weights, which are linear in the element
+//! Derivatives are exact: forward-mode AD (num-dual) of the density over the point
+//! values its term reads ([`SurfaceKernel::term_variables`]: a dual number of as many
+//! directions, zero derivatives by the others), then the chain rule through the BFS weights, which are linear in the element
 //! unknowns q — ∂E/∂q = Σ_points w J Bᵀ ∂W/∂v, ∂²E/∂q² = Σ_points w J Bᵀ ∂²W/∂v² B with
 //! B = ∂v/∂q the weight rows of [`BfsRectangle::derivative_weights`] — the per-point
 //! path of the 1-D formulations (`formulation`, `PointHessian`). A map that is
@@ -186,6 +187,10 @@ pub(crate) struct QuadraturePoint {
 /// Element energy, local gradient and local Hessian (row-major).
 type ElementHessian = (f64, Vec<f64>, Vec<f64>);
 
+/// The products the kernel adds to the point values at one point, as
+/// [`SurfaceAssembler::quadratic`] gives them.
+type Products = Vec<(usize, usize, Option<usize>, f64)>;
+
 /// A field given with its nodal derivatives: (σ, ζ) ↦ [f, ∂σf, ∂ζf, ∂σ∂ζf].
 pub type NodalFunction<'a> = &'a dyn Fn(f64, f64) -> [f64; 4];
 
@@ -200,6 +205,10 @@ pub struct SurfaceAssembler<K, const P: usize> {
     /// Per term: the variables it is differentiated over ([`SurfaceKernel::term_variables`]
     /// padded to a dual dimension, [`padded`]).
     variables: Vec<Vec<usize>>,
+    /// Per element: None for a plain BFS element, else per term and integration point
+    /// (in the order of [`Self::points`]) the kernel's products ([`Self::quadratic`]) —
+    /// they depend on the geometry only, so they are formed once.
+    products: Vec<Option<Vec<Vec<Products>>>>,
     rows: Vec<usize>,
     cols: Vec<usize>,
 }
@@ -246,7 +255,14 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                 cols.extend_from_slice(&active);
             }
         }
-        Ok(SurfaceAssembler { mesh, dofs, kernel, terms, slots, variables, rows, cols })
+        let mut asm = SurfaceAssembler { mesh, dofs, kernel, terms, slots, variables, products: Vec::new(), rows, cols };
+        asm.products = (0..asm.mesh.len())
+            .map(|e| {
+                let per: Vec<Vec<Products>> = (0..asm.terms.len()).map(|t| asm.points(e, t, 0.0, 0.0).map(|point| asm.quadratic(e, point.xi, point.eta)).collect()).collect();
+                per.iter().flatten().any(|p| !p.is_empty()).then_some(per)
+            })
+            .collect();
+        Ok(asm)
     }
 
     /// The mesh.
@@ -377,6 +393,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         match self.variables[t].len() {
             4 => self.sub_gradient::<4>(t, at, v, state, dw),
             8 => self.sub_gradient::<8>(t, at, v, state, dw),
+            13 => self.sub_gradient::<13>(t, at, v, state, dw),
             _ => self.sub_gradient::<P>(t, at, v, state, dw),
         }
     }
@@ -407,6 +424,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         match self.variables[t].len() {
             4 => self.sub_hessian::<4>(t, at, v, state, dw, ddw),
             8 => self.sub_hessian::<8>(t, at, v, state, dw, ddw),
+            13 => self.sub_hessian::<13>(t, at, v, state, dw, ddw),
             _ => self.sub_hessian::<P>(t, at, v, state, dw, ddw),
         }
     }
@@ -437,9 +455,9 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// The closure also gets the point's quadratic products ([`Self::quadratic`]).
     fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
         for (t, term) in self.terms.iter().enumerate() {
-            for point in self.points(e, t, ev.time, ev.dt) {
-                let quadratic = self.quadratic(e, point.xi, point.eta);
-                let v = self.values(&point.weights, &quadratic, q);
+            for (k, point) in self.points(e, t, ev.time, ev.dt).enumerate() {
+                let quadratic: &[_] = self.products[e].as_ref().map_or(&[], |per| &per[t][k]);
+                let v = self.values(&point.weights, quadratic, q);
                 if !self.kernel.admissible(&point.at, &v) {
                     return false;
                 }
@@ -447,7 +465,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                     (0, _) | (_, None) => &[][..],
                     (_, Some(h)) => h.state(t, e, point.a, point.b),
                 };
-                if !visit(t, &point, &v, state, &quadratic) {
+                if !visit(t, &point, &v, state, quadratic) {
                     return false;
                 }
             }
@@ -661,11 +679,16 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     }
 }
 
-/// A term's variables padded to the dual dimension it is differentiated with: to 4 or
-/// 8 by the first variables it does not list (their derivatives come out as exact
-/// zeros), else all P — the dimensions the assembler is compiled for.
+/// The dual dimensions below P the assembler is compiled for (each one monomorphises
+/// every kernel's density twice, first and second order): the shell's interlayer (4),
+/// membrane (7) and bending (13) terms.
+const DUAL_DIMENSIONS: [usize; 3] = [4, 8, 13];
+
+/// A term's variables padded to the dual dimension it is differentiated with: to the
+/// next of [`DUAL_DIMENSIONS`] by the first variables it does not list (their
+/// derivatives come out as exact zeros), else all P.
 fn padded<const P: usize>(listed: &[usize]) -> Vec<usize> {
-    let size = [4, 8].into_iter().find(|&k| listed.len() <= k && k < P).unwrap_or(P);
+    let size = DUAL_DIMENSIONS.into_iter().find(|&k| listed.len() <= k && k < P).unwrap_or(P);
     if size == P {
         return (0..P).collect();
     }
