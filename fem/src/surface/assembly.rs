@@ -112,6 +112,16 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = term;
         (0..P).collect()
     }
+    /// W, ∂W/∂v and ∂²W/∂v² of `term` at a point by the kernel's own means (e.g. a chain
+    /// rule through intermediate quantities), into `dw` and `ddw` at least for the
+    /// term's variables ([`Self::term_variables`]); None: the assembler differentiates
+    /// [`Self::density`] by forward AD, which a kernel's own Hessian must match to
+    /// round-off. Default: None.
+    #[allow(clippy::too_many_arguments)]
+    fn point_hessian(&self, term: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P], ddw: &mut [[f64; P]; P]) -> Option<f64> {
+        let _ = (term, at, v, state, dw, ddw);
+        None
+    }
     /// Whether point values are admissible (e.g. ∂σS > 0). Default: always.
     fn admissible(&self, at: &SurfacePoint, v: &[f64; P]) -> bool {
         let _ = (at, v);
@@ -418,9 +428,12 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
 
     /// W, ∂W/∂v and ∂²W/∂v² (into `dw`, `ddw`; rows and columns of the variables the
     /// term does not read are left as they are — the caller reads the term's variables
-    /// only, or zeroes them) of term t at a point, by forward-mode AD over the term's
-    /// variables.
+    /// only, or zeroes them) of term t at a point: the kernel's own
+    /// ([`SurfaceKernel::point_hessian`]) or forward-mode AD over the term's variables.
     fn point_hessian(&self, t: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P], ddw: &mut [[f64; P]; P]) -> f64 {
+        if let Some(w) = self.kernel.point_hessian(t, at, v, state, dw, ddw) {
+            return w;
+        }
         match self.variables[t].len() {
             4 => self.sub_hessian::<4>(t, at, v, state, dw, ddw),
             8 => self.sub_hessian::<8>(t, at, v, state, dw, ddw),
