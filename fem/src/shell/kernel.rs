@@ -305,6 +305,71 @@ impl Shell {
         w * area
     }
 
+    /// W_m per dσ dζ ([`MEMBRANE`]) from ∂σS (with the gauge), ∂ζS and the products
+    /// P·P, P·Q, Q·Q of P = (να + 1, ∂σν, ∂σz), Q = (0, ∂ζν, ∂ζz): the material
+    /// derivatives (37) are a = P/∂σS, b = Q − βP (β = ∂ζS/∂σS), so a·a = P·P/∂σS²,
+    /// a·b = (P·Q − β P·P)/∂σS, b·b = Q·Q − 2β P·Q + β² P·P — the outer function of
+    /// [`Self::membrane_hessian`]'s chain rule.
+    fn membrane_of<D: Scalar>(&self, at: &SurfacePoint, s_sigma: D, s_zeta: D, [pp, pq, qq]: [D; 3]) -> D {
+        let f = 1.0 / self.fibre_length(at.zeta, at.time);
+        let beta = s_zeta / s_sigma;
+        let aa = pp / (s_sigma * s_sigma);
+        let ab = (pq - beta * pp) / s_sigma;
+        let bb = qq - beta * pq * 2.0 + beta * beta * pp;
+        let strain = [(aa * (f * f) - 1.0) * 0.5, ab * (0.5 * f), (bb - 1.0) * 0.5];
+        quadratic_energy(self.section.a1, self.section.a2, &strain) * (s_sigma * self.fibre_length(at.zeta, at.time))
+    }
+
+    /// W, ∂W/∂v and ∂²W/∂v² of [`MEMBRANE`] over the first 10 point values (its 7 and
+    /// zeros; into the first 10 entries of `dw` and of the rows of `ddw`) by the chain
+    /// rule through y = (∂σS, ∂ζS, P·P, P·Q, Q·Q) ([`Self::membrane_of`], AD over 5
+    /// values): P and Q are linear in v, so ∂²W/∂v² = Jᵀ W_yy J + W_PP 2 ∇Pᵀ∇P +
+    /// W_PQ (∇Pᵀ∇Q + ∇Qᵀ∇P) + W_QQ 2 ∇Qᵀ∇Q, J = ∂y/∂v. The AD of
+    /// [`SurfaceKernel::density`] is the test oracle.
+    fn membrane_hessian(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES], dw: &mut [f64; SHELL_VALUES], ddw: &mut [[f64; SHELL_VALUES]; SHELL_VALUES]) -> f64 {
+        const M: usize = 10;
+        let alpha = self.column(at.element).alpha;
+        let p = [v[2] * alpha + 1.0, v[3], v[8]];
+        let q = [0.0, v[4], v[9]];
+        let mut dp = [[0.0; M]; 3];
+        dp[0][2] = alpha;
+        dp[1][3] = 1.0;
+        dp[2][8] = 1.0;
+        let mut dq = [[0.0; M]; 3];
+        dq[1][4] = 1.0;
+        dq[2][9] = 1.0;
+        let y = SVector::<f64, 5>::from([v[0] + self.gauge, v[1], membrane::dot(&p, &p), membrane::dot(&p, &q), membrane::dot(&q, &q)]);
+        let (w, g, h) = hessian(|y| self.membrane_of(at, y[0], y[1], [y[2], y[3], y[4]]), &y);
+        let mut jac = [[0.0; M]; 5];
+        jac[0][0] = 1.0;
+        jac[1][1] = 1.0;
+        for c in 0..3 {
+            for k in 0..M {
+                jac[2][k] += 2.0 * p[c] * dp[c][k];
+                jac[3][k] += q[c] * dp[c][k] + p[c] * dq[c][k];
+                jac[4][k] += 2.0 * q[c] * dq[c][k];
+            }
+        }
+        let mut gj = [[0.0; M]; 5];
+        for i in 0..5 {
+            for j in 0..5 {
+                let c = h[(i, j)];
+                gj[i].iter_mut().zip(&jac[j]).for_each(|(o, jj)| *o += c * jj);
+            }
+        }
+        for a in 0..M {
+            dw[a] = (0..5).map(|i| g[i] * jac[i][a]).sum();
+            for b in 0..M {
+                let mut e: f64 = (0..5).map(|i| jac[i][a] * gj[i][b]).sum();
+                for c in 0..3 {
+                    e += g[2] * 2.0 * dp[c][a] * dp[c][b] + g[3] * (dp[c][a] * dq[c][b] + dq[c][a] * dp[c][b]) + g[4] * 2.0 * dq[c][a] * dq[c][b];
+                }
+                ddw[a][b] = e;
+            }
+        }
+        w
+    }
+
     /// W, ∂W/∂v and ∂²W/∂v² of [`BENDING_GRAVITY`] over its 13 point values (into the
     /// first 13 entries of `dw` and rows of `ddw`) by the chain rule through
     /// y = (∂σS, ∂ζS, b_ss, b_sζ, b_ζζ, ν) — the density is W(y) ([`Self::bending_of`],
@@ -463,10 +528,15 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         }
     }
 
-    /// [`BENDING_GRAVITY`] by the chain rule of [`Shell::bending_hessian`]; the other
-    /// terms by the assembler's AD.
+    /// [`MEMBRANE`] and [`BENDING_GRAVITY`] by the chain rules of
+    /// [`Shell::membrane_hessian`], [`Shell::bending_hessian`]; the interlayer by the
+    /// assembler's AD.
     fn point_hessian(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], _state: &[f64], dw: &mut [f64; SHELL_VALUES], ddw: &mut [[f64; SHELL_VALUES]; SHELL_VALUES]) -> Option<f64> {
-        (term == BENDING_GRAVITY).then(|| self.bending_hessian(at, v, dw, ddw))
+        match term {
+            MEMBRANE => Some(self.membrane_hessian(at, v, dw, ddw)),
+            BENDING_GRAVITY => Some(self.bending_hessian(at, v, dw, ddw)),
+            _ => None,
+        }
     }
 
     /// ∂σS > 0 and a regular surface (|∂̊_s r × ∂̊_ζ r| > 0).
@@ -932,12 +1002,13 @@ mod tests {
 
     /// Energy, gradient and Hessian against the oracle [`AllVariables`] (forward AD of
     /// every term over all 15 point values), to round-off (1e-12 of the largest entry):
-    /// [`Shell::term_variables`] lists every value each density reads, and
-    /// [`Shell::bending_hessian`]'s chain rule is the AD's Hessian. The full shell with
-    /// camber, gravity and the interlayer in contact with its history (V_⊥ active), the
-    /// driver drum tilted, at transitions, in a step and in the static evaluation; then
-    /// bending and gravity alone (1e-5 of the membrane in the full shell, hidden under
-    /// its tolerance there) at |ν| ~ 0.03.
+    /// [`Shell::term_variables`] lists every value each density reads, and the chain
+    /// rules of [`Shell::membrane_hessian`] and [`Shell::bending_hessian`] give the AD's
+    /// Hessian. The full shell with camber, gravity and the interlayer in contact with
+    /// its history (V_⊥ active), the driver drum tilted, at transitions, in a step and in
+    /// the static evaluation; then bending with gravity alone (1e-5 of the membrane in
+    /// the full shell, hidden under its tolerance there) and the membrane alone at
+    /// |ν| ~ 0.03.
     #[test]
     fn per_term_derivatives_match_the_ad_over_all_values() {
         let close = |x: &[f64], y: &[f64], what: &str| {
@@ -972,12 +1043,14 @@ mod tests {
         for ev in [step, static_ev()] {
             compare(&asm, &oracle, &z, &ev);
         }
-        let bending = Shell::on_contour(ShellSection { a1: 0.0, a2: 0.0, ..section() }, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(75.0).unwrap();
-        let asm = SurfaceAssembler::new(mesh.clone(), bending.clone(), &[]).unwrap();
-        let oracle = SurfaceAssembler::new(mesh, AllVariables(bending), &[]).unwrap();
-        let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
-        let z: Vec<f64> = reference.iter().map(|v| v + r(0.03)).collect();
-        compare(&asm, &oracle, &z, &static_ev());
+        for (section, weight) in [(ShellSection { a1: 0.0, a2: 0.0, ..section() }, 75.0), (ShellSection { d1: 0.0, d2: 0.0, ..section() }, 0.0)] {
+            let alone = Shell::on_contour(section, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(weight).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), alone.clone(), &[]).unwrap();
+            let oracle = SurfaceAssembler::new(mesh.clone(), AllVariables(alone), &[]).unwrap();
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let z: Vec<f64> = reference.iter().map(|v| v + r(0.03)).collect();
+            compare(&asm, &oracle, &z, &static_ev());
+        }
     }
 
     /// Rigid rolling (module `interlayer`): the belt pressed into the drums (ν = −0.01
