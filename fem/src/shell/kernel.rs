@@ -14,7 +14,8 @@
 //! (docs/fem-shell.md §9.2).
 
 use drive::contour::Contour;
-use num_dual::Dual64;
+use nalgebra::SVector;
+use num_dual::{hessian, Dual2SVec64, Dual64};
 
 use crate::element::{BfsRectangle, ElementLayout, Field, SHELL};
 use crate::quadrature::Rule;
@@ -300,10 +301,181 @@ impl Shell {
         let r_ss = [nu[1] * (2.0 * alpha), nu[3] - (nu[0] * alpha + 1.0) * alpha, z[3]];
         let r_sz = [nu[2] * alpha, nu[4], z[4]];
         let r_zz = [D::zero(), nu[5], z[5]];
-        let beta = s[2] / s[1];
-        let (b_ss, b_rs, b_zz) = (membrane::dot(&n, &r_ss), membrane::dot(&n, &r_sz), membrane::dot(&n, &r_zz));
+        let b = [membrane::dot(&n, &r_ss), membrane::dot(&n, &r_sz), membrane::dot(&n, &r_zz)];
+        self.curvature_of(at, s[1], s[2], &b)
+    }
+
+    /// K from ∂σS (with the gauge), ∂ζS and the second fundamental form
+    /// b = [b_ss, b_sζ, b_ζζ] in the material coordinates (the last step of
+    /// [`Self::curvature`]).
+    fn curvature_of<D: Scalar>(&self, at: &SurfacePoint, s_sigma: D, s_zeta: D, b: &[D; 3]) -> [D; 3] {
+        let beta = s_zeta / s_sigma;
+        let [b_ss, b_rs, b_zz] = *b;
         let f = 1.0 / self.fibre_length(at.zeta, at.time);
-        [b_ss / (s[1] * s[1]) * (f * f), (b_rs - beta * b_ss) / s[1] * f, b_zz - beta * b_rs * 2.0 + beta * beta * b_ss]
+        [b_ss / (s_sigma * s_sigma) * (f * f), (b_rs - beta * b_ss) / s_sigma * f, b_zz - beta * b_rs * 2.0 + beta * beta * b_ss]
+    }
+
+    /// W_b + W_g per dσ dζ ([`BENDING_GRAVITY`]) from ∂σS (with the gauge), ∂ζS, b and
+    /// ν: the outer function of [`Self::bending_hessian`]'s chain rule.
+    fn bending_of<D: Scalar>(&self, at: &SurfacePoint, s_sigma: D, s_zeta: D, b: &[D; 3], nu: D) -> D {
+        let area = s_sigma * self.fibre_length(at.zeta, at.time);
+        let mut w = quadratic_energy(self.section.d1, self.section.d2, &self.curvature_of(at, s_sigma, s_zeta, b));
+        if self.weight != 0.0 {
+            w += self.height(at.sigma, nu) * self.weight;
+        }
+        w * area
+    }
+
+    /// W_m per dσ dζ ([`MEMBRANE`]) from ∂σS (with the gauge), ∂ζS and the products
+    /// P·P, P·Q, Q·Q of P = (να + 1, ∂σν, ∂σz), Q = (0, ∂ζν, ∂ζz): the material
+    /// derivatives (37) are a = P/∂σS, b = Q − βP (β = ∂ζS/∂σS), so a·a = P·P/∂σS²,
+    /// a·b = (P·Q − β P·P)/∂σS, b·b = Q·Q − 2β P·Q + β² P·P — the outer function of
+    /// [`Self::membrane_hessian`]'s chain rule.
+    fn membrane_of<D: Scalar>(&self, at: &SurfacePoint, s_sigma: D, s_zeta: D, [pp, pq, qq]: [D; 3]) -> D {
+        let f = 1.0 / self.fibre_length(at.zeta, at.time);
+        let beta = s_zeta / s_sigma;
+        let aa = pp / (s_sigma * s_sigma);
+        let ab = (pq - beta * pp) / s_sigma;
+        let bb = qq - beta * pq * 2.0 + beta * beta * pp;
+        let strain = [(aa * (f * f) - 1.0) * 0.5, ab * (0.5 * f), (bb - 1.0) * 0.5];
+        quadratic_energy(self.section.a1, self.section.a2, &strain) * (s_sigma * self.fibre_length(at.zeta, at.time))
+    }
+
+    /// W, ∂W/∂v and ∂²W/∂v² of [`MEMBRANE`] over the first 10 point values (its 7 and
+    /// zeros; into the first 10 entries of `dw` and of the rows of `ddw`) by the chain
+    /// rule through y = (∂σS, ∂ζS, P·P, P·Q, Q·Q) ([`Self::membrane_of`], AD over 5
+    /// values): P and Q are linear in v, so ∂²W/∂v² = Jᵀ W_yy J + W_PP 2 ∇Pᵀ∇P +
+    /// W_PQ (∇Pᵀ∇Q + ∇Qᵀ∇P) + W_QQ 2 ∇Qᵀ∇Q, J = ∂y/∂v. The AD of
+    /// [`SurfaceKernel::density`] is the test oracle.
+    fn membrane_hessian(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES], dw: &mut [f64; SHELL_VALUES], ddw: &mut [[f64; SHELL_VALUES]; SHELL_VALUES]) -> f64 {
+        const M: usize = 10;
+        let alpha = self.column(at.element).alpha;
+        let p = [v[2] * alpha + 1.0, v[3], v[8]];
+        let q = [0.0, v[4], v[9]];
+        let mut dp = [[0.0; M]; 3];
+        dp[0][2] = alpha;
+        dp[1][3] = 1.0;
+        dp[2][8] = 1.0;
+        let mut dq = [[0.0; M]; 3];
+        dq[1][4] = 1.0;
+        dq[2][9] = 1.0;
+        let y = SVector::<f64, 5>::from([v[0] + self.gauge, v[1], membrane::dot(&p, &p), membrane::dot(&p, &q), membrane::dot(&q, &q)]);
+        let (w, g, h) = hessian(|y| self.membrane_of(at, y[0], y[1], [y[2], y[3], y[4]]), &y);
+        let mut jac = [[0.0; M]; 5];
+        jac[0][0] = 1.0;
+        jac[1][1] = 1.0;
+        for c in 0..3 {
+            for k in 0..M {
+                jac[2][k] += 2.0 * p[c] * dp[c][k];
+                jac[3][k] += q[c] * dp[c][k] + p[c] * dq[c][k];
+                jac[4][k] += 2.0 * q[c] * dq[c][k];
+            }
+        }
+        let mut gj = [[0.0; M]; 5];
+        for i in 0..5 {
+            for j in 0..5 {
+                let c = h[(i, j)];
+                gj[i].iter_mut().zip(&jac[j]).for_each(|(o, jj)| *o += c * jj);
+            }
+        }
+        for a in 0..M {
+            dw[a] = (0..5).map(|i| g[i] * jac[i][a]).sum();
+            for b in 0..M {
+                let mut e: f64 = (0..5).map(|i| jac[i][a] * gj[i][b]).sum();
+                for c in 0..3 {
+                    e += g[2] * 2.0 * dp[c][a] * dp[c][b] + g[3] * (dp[c][a] * dq[c][b] + dq[c][a] * dp[c][b]) + g[4] * 2.0 * dq[c][a] * dq[c][b];
+                }
+                ddw[a][b] = e;
+            }
+        }
+        w
+    }
+
+    /// W, ∂W/∂v and ∂²W/∂v² of [`BENDING_GRAVITY`] over its 13 point values (into the
+    /// first 13 entries of `dw` and rows of `ddw`) by the chain rule through
+    /// y = (∂σS, ∂ζS, b_ss, b_sζ, b_ζζ, ν) — the density is W(y) ([`Self::bending_of`],
+    /// AD over 6 values) and the only nonlinear inner map is the unit normal: the
+    /// material derivatives (37) give a × b = P × Q / ∂σS with P = (να + 1, ∂σν, ∂σz),
+    /// Q = (0, ∂ζν, ∂ζz), so n = P × Q / |P × Q| depends on 5 values (AD over those),
+    /// and r_ij of (S4) are linear in v: b_k = n · r_k,
+    /// ∂²W/∂v² = Jᵀ W_yy J + Σ_c λ_c ∇²n_c + Σ_c (∇n_c ⊗ μ_c + μ_c ⊗ ∇n_c) with
+    /// J = ∂y/∂v, λ_c = Σ_k W_{b_k} r_{k,c}, μ_c = Σ_k W_{b_k} ∇r_{k,c}. The same
+    /// numbers as the AD of [`SurfaceKernel::density`] over 13 values to round-off, a
+    /// fraction of its work (that AD is the test oracle).
+    fn bending_hessian(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES], dw: &mut [f64; SHELL_VALUES], ddw: &mut [[f64; SHELL_VALUES]; SHELL_VALUES]) -> f64 {
+        const M: usize = 13;
+        const NORMAL: [usize; 5] = [2, 3, 4, 8, 9];
+        let alpha = self.column(at.element).alpha;
+        let x = SVector::<f64, 5>::from_fn(|k, _| v[NORMAL[k]]);
+        let normal = hessian(
+            |x| {
+                let n = unit_normal(&[x[0] * alpha + 1.0, x[1], x[3]], &[Dual2SVec64::<5>::from_re(0.0), x[2], x[4]]);
+                (n[0], n[1], n[2])
+            },
+            &x,
+        );
+        let normal = [normal.0, normal.1, normal.2];
+        let n: [f64; 3] = std::array::from_fn(|c| normal[c].0);
+        let mut dn = [[0.0; M]; 3];
+        for (c, (_, g, _)) in normal.iter().enumerate() {
+            for (k, &p) in NORMAL.iter().enumerate() {
+                dn[c][p] = g[k];
+            }
+        }
+        // r_ss, r_sζ, r_ζζ of (S4) and their (constant) derivatives
+        let r = [[v[3] * (2.0 * alpha), v[5] - (v[2] * alpha + 1.0) * alpha, v[10]], [v[4] * alpha, v[6], v[11]], [0.0, v[7], v[12]]];
+        let mut dr = [[[0.0; M]; 3]; 3];
+        dr[0][0][3] = 2.0 * alpha;
+        dr[0][1][5] = 1.0;
+        dr[0][1][2] = -alpha * alpha;
+        dr[0][2][10] = 1.0;
+        dr[1][0][4] = alpha;
+        dr[1][1][6] = 1.0;
+        dr[1][2][11] = 1.0;
+        dr[2][1][7] = 1.0;
+        dr[2][2][12] = 1.0;
+        let b: [f64; 3] = std::array::from_fn(|k| membrane::dot(&n, &r[k]));
+        // J = ∂y/∂v
+        let mut jac = [[0.0; M]; 6];
+        jac[0][0] = 1.0;
+        jac[1][1] = 1.0;
+        jac[5][2] = 1.0;
+        for k in 0..3 {
+            for c in 0..3 {
+                for p in 0..M {
+                    jac[2 + k][p] += dn[c][p] * r[k][c] + n[c] * dr[k][c][p];
+                }
+            }
+        }
+        let y = SVector::<f64, 6>::from([v[0] + self.gauge, v[1], b[0], b[1], b[2], v[2]]);
+        let (w, g, h) = hessian(|y| self.bending_of(at, y[0], y[1], &[y[2], y[3], y[4]], y[5]), &y);
+        let mut gj = [[0.0; M]; 6];
+        for i in 0..6 {
+            for j in 0..6 {
+                let c = h[(i, j)];
+                gj[i].iter_mut().zip(&jac[j]).for_each(|(o, jj)| *o += c * jj);
+            }
+        }
+        let lambda: [f64; 3] = std::array::from_fn(|c| (0..3).map(|k| g[2 + k] * r[k][c]).sum());
+        let mu: [[f64; M]; 3] = std::array::from_fn(|c| std::array::from_fn(|q| (0..3).map(|k| g[2 + k] * dr[k][c][q]).sum()));
+        for p in 0..M {
+            dw[p] = (0..6).map(|i| g[i] * jac[i][p]).sum();
+            for q in 0..M {
+                let mut e: f64 = (0..6).map(|i| jac[i][p] * gj[i][q]).sum();
+                for c in 0..3 {
+                    e += dn[c][p] * mu[c][q] + mu[c][p] * dn[c][q];
+                }
+                ddw[p][q] = e;
+            }
+        }
+        for (c, (_, _, hn)) in normal.iter().enumerate() {
+            for (k, &p) in NORMAL.iter().enumerate() {
+                for (l, &q) in NORMAL.iter().enumerate() {
+                    ddw[p][q] += lambda[c] * hn[(k, l)];
+                }
+            }
+        }
+        w
     }
 
     /// The bending moments M = D₁ tr K I + D₂ K, [M_ss, M_sζ, M_ζζ] (per initial length,
@@ -366,6 +538,28 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         w * area
     }
 
+    /// [`MEMBRANE`]: the first derivatives of S̃, ν, z and ν itself (the material
+    /// derivatives (37)), 7 of the 15; [`BENDING_GRAVITY`]: all but S̃ and z themselves,
+    /// 13; [`INTERLAYER`]: ∂σS̃ (J), ν and z (the position), S̃ (the foot's offset), 4.
+    fn term_variables(&self, term: usize) -> Vec<usize> {
+        match term {
+            MEMBRANE => vec![0, 1, 2, 3, 4, 8, 9],
+            BENDING_GRAVITY => (0..13).collect(),
+            _ => vec![0, 2, 13, 14],
+        }
+    }
+
+    /// [`MEMBRANE`] and [`BENDING_GRAVITY`] by the chain rules of
+    /// [`Shell::membrane_hessian`], [`Shell::bending_hessian`]; the interlayer by the
+    /// assembler's AD.
+    fn point_hessian(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], _state: &[f64], dw: &mut [f64; SHELL_VALUES], ddw: &mut [[f64; SHELL_VALUES]; SHELL_VALUES]) -> Option<f64> {
+        match term {
+            MEMBRANE => Some(self.membrane_hessian(at, v, dw, ddw)),
+            BENDING_GRAVITY => Some(self.bending_hessian(at, v, dw, ddw)),
+            _ => None,
+        }
+    }
+
     /// ∂σS > 0 and a regular surface (|∂̊_s r × ∂̊_ζ r| > 0).
     fn admissible(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> bool {
         if v[0] + self.gauge <= 0.0 {
@@ -420,6 +614,13 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
             element.quadratic_terms(xi, eta, out);
         }
     }
+}
+
+/// p × q / |p × q|.
+fn unit_normal<D: Scalar>(p: &[D; 3], q: &[D; 3]) -> [D; 3] {
+    let c = [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
+    let norm = membrane::dot(&c, &c).sqrt();
+    c.map(|c| c / norm)
 }
 
 #[cfg(test)]
@@ -780,6 +981,96 @@ mod tests {
                 let shifted = asm.energy(&moved, &ev).unwrap();
                 assert!((shifted - energy).abs() > 1e-4 * energy, "{field:?} + const does not change V_⊥ + V_γ: {shifted} vs {energy}");
             }
+        }
+    }
+
+    /// The shell with every term differentiated over all 15 point values (the default
+    /// [`SurfaceKernel::term_variables`]): the oracle of the per-term variables.
+    struct AllVariables(Shell);
+
+    impl SurfaceKernel<SHELL_VALUES> for AllVariables {
+        fn layout(&self) -> ElementLayout {
+            self.0.layout()
+        }
+        fn variables(&self) -> [PointVariable; SHELL_VALUES] {
+            self.0.variables()
+        }
+        fn terms(&self) -> Vec<SurfaceTerm> {
+            self.0.terms()
+        }
+        fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
+            self.0.density(term, at, v, state)
+        }
+        fn admissible(&self, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> bool {
+            self.0.admissible(at, v)
+        }
+        fn advance(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], previous: &[f64], next: &mut [f64]) {
+            self.0.advance(term, at, v, previous, next);
+        }
+        fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
+            self.0.quadratic_terms(element, rect, xi, eta, out);
+        }
+        fn belt_speed(&self, time: f64) -> f64 {
+            self.0.belt_speed(time)
+        }
+        fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
+            self.0.bounded_history(term)
+        }
+        fn history_support(&self, term: usize) -> Option<usize> {
+            self.0.history_support(term)
+        }
+    }
+
+    /// Energy, gradient and Hessian against the oracle [`AllVariables`] (forward AD of
+    /// every term over all 15 point values), to round-off (1e-12 of the largest entry):
+    /// [`Shell::term_variables`] lists every value each density reads, and the chain
+    /// rules of [`Shell::membrane_hessian`] and [`Shell::bending_hessian`] give the AD's
+    /// Hessian. The full shell with camber, gravity and the interlayer in contact with
+    /// its history (V_⊥ active), the driver drum tilted, at transitions, in a step and in
+    /// the static evaluation; then bending with gravity alone (1e-5 of the membrane in
+    /// the full shell, hidden under its tolerance there) and the membrane alone at
+    /// |ν| ~ 0.03.
+    #[test]
+    fn per_term_derivatives_match_the_ad_over_all_values() {
+        let close = |x: &[f64], y: &[f64], what: &str| {
+            let scale = y.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let worst = x.iter().zip(y).fold(0.0_f64, |m, (p, q)| m.max((p - q).abs()));
+            assert!(worst <= 1e-12 * scale, "{what}: {worst:e} of {scale:e}");
+        };
+        let compare = |asm: &SurfaceAssembler<Shell, SHELL_VALUES>, oracle: &SurfaceAssembler<AllVariables, SHELL_VALUES>, z: &[f64], ev: &Evaluation| {
+            let (a, b) = (asm.assemble(z, ev).unwrap(), oracle.assemble(z, ev).unwrap());
+            assert!((a.energy - b.energy).abs() <= 1e-13 * b.energy.abs());
+            close(&a.gradient, &b.gradient, "gradient");
+            close(&a.values, &b.values, "Hessian");
+            let (ga, gb) = (asm.gradient(z, ev).unwrap(), oracle.gradient(z, ev).unwrap());
+            close(&ga.1, &gb.1, "gradient (first-order path)");
+        };
+        let contour = contour();
+        let mesh = contour_mesh(&contour, [2, 2, 2, 1], 0.15, vec![-0.3, 0.05, 0.3]).unwrap();
+        let shell = Shell::on_contour(section(), 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(75.0).unwrap().with_interlayer(interlayer(&contour, 3.0e4)).unwrap();
+        let asm = SurfaceAssembler::new(mesh.clone(), shell.clone(), &[]).unwrap();
+        let oracle = SurfaceAssembler::new(mesh.clone(), AllVariables(shell), &[]).unwrap();
+        let mut rng = Rng(0x5_0b5e7);
+        let mut r = |scale: f64| scale * (2.0 * rng.next() - 1.0);
+        let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0]), (Field::Nu, &|_: f64, _: f64| [-0.01, 0.0, 0.0, 0.0])]);
+        let before: Vec<f64> = reference.iter().map(|v| v + r(0.005)).collect();
+        let z: Vec<f64> = before.iter().map(|v| v + r(0.005)).collect();
+        let (t0, dt) = (0.3, 0.04);
+        let history = SurfaceHistory::new(&asm, t0).unwrap();
+        let recorded = history.advance(&asm, &before, &Evaluation { time: t0, dt: 0.0, history: Some(&history) });
+        let advected = recorded.advected(asm.kernel().belt_speed(t0 + 0.5 * dt) * dt);
+        let step = Evaluation { time: t0 + dt, dt, history: Some(&advected) };
+        assert!(asm.energy(&z, &step).unwrap() - asm.energy(&z, &Evaluation { history: None, ..step }).unwrap() > 0.0, "V_⊥ inactive");
+        for ev in [step, static_ev()] {
+            compare(&asm, &oracle, &z, &ev);
+        }
+        for (section, weight) in [(ShellSection { a1: 0.0, a2: 0.0, ..section() }, 75.0), (ShellSection { d1: 0.0, d2: 0.0, ..section() }, 0.0)] {
+            let alone = Shell::on_contour(section, 1.03, 0.4, &contour, &mesh).unwrap().with_gravity(weight).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), alone.clone(), &[]).unwrap();
+            let oracle = SurfaceAssembler::new(mesh.clone(), AllVariables(alone), &[]).unwrap();
+            let reference = asm.interpolate(&[(Field::Z, &|_: f64, zeta: f64| [zeta, 0.0, 1.0, 0.0])]);
+            let z: Vec<f64> = reference.iter().map(|v| v + r(0.03)).collect();
+            compare(&asm, &oracle, &z, &static_ev());
         }
     }
 

@@ -5,8 +5,9 @@
 //! elements with each term's Gauss rule per direction and sums energy, gradient and
 //! Hessian over the periodic mesh.
 //!
-//! Derivatives are exact: forward-mode AD (num-dual) of the density over the P point
-//! values, then the chain rule through the BFS weights, which are linear in the element
+//! Derivatives are exact: forward-mode AD (num-dual) of the density over the point
+//! values its term reads ([`SurfaceKernel::term_variables`]: a dual number of as many
+//! directions, zero derivatives by the others), then the chain rule through the BFS weights, which are linear in the element
 //! unknowns q — ∂E/∂q = Σ_points w J Bᵀ ∂W/∂v, ∂²E/∂q² = Σ_points w J Bᵀ ∂²W/∂v² B with
 //! B = ∂v/∂q the weight rows of [`BfsRectangle::derivative_weights`] — the per-point
 //! path of the 1-D formulations (`formulation`, `PointHessian`). A map that is
@@ -19,7 +20,7 @@
 //! do not depend on the thread count. The Hessian's triplet pattern is fixed by the
 //! numbering; duplicates are summed by the sparse LU.
 
-use num_dual::{gradient, hessian};
+use num_dual::{gradient, hessian, Dual2SVec64, DualSVec64};
 use nalgebra::SVector;
 use rayon::prelude::*;
 
@@ -102,6 +103,25 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
     /// and the term's history state at the point (the advected state of the last
     /// converged step; empty for a term without history).
     fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; P], state: &[f64]) -> D;
+    /// The point values `term`'s density depends on: indices into its argument,
+    /// ascending, no repeats. The assembler differentiates each term over these only — a
+    /// dual number of that many directions instead of P, the cost of a second-order dual
+    /// growing as its directions squared — and takes the derivatives by the others as
+    /// zero, so a term must not read a value it does not list. Default: all P.
+    fn term_variables(&self, term: usize) -> Vec<usize> {
+        let _ = term;
+        (0..P).collect()
+    }
+    /// W, ∂W/∂v and ∂²W/∂v² of `term` at a point by the kernel's own means (e.g. a chain
+    /// rule through intermediate quantities), into `dw` and `ddw` at least for the
+    /// term's variables ([`Self::term_variables`]); None: the assembler differentiates
+    /// [`Self::density`] by forward AD, which a kernel's own Hessian must match to
+    /// round-off. Default: None.
+    #[allow(clippy::too_many_arguments)]
+    fn point_hessian(&self, term: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P], ddw: &mut [[f64; P]; P]) -> Option<f64> {
+        let _ = (term, at, v, state, dw, ddw);
+        None
+    }
     /// Whether point values are admissible (e.g. ∂σS > 0). Default: always.
     fn admissible(&self, at: &SurfacePoint, v: &[f64; P]) -> bool {
         let _ = (at, v);
@@ -177,6 +197,10 @@ pub(crate) struct QuadraturePoint {
 /// Element energy, local gradient and local Hessian (row-major).
 type ElementHessian = (f64, Vec<f64>, Vec<f64>);
 
+/// The products the kernel adds to the point values at one point, as
+/// [`SurfaceAssembler::quadratic`] gives them.
+type Products = Vec<(usize, usize, Option<usize>, f64)>;
+
 /// A field given with its nodal derivatives: (σ, ζ) ↦ [f, ∂σf, ∂ζf, ∂σ∂ζf].
 pub type NodalFunction<'a> = &'a dyn Fn(f64, f64) -> [f64; 4];
 
@@ -188,6 +212,13 @@ pub struct SurfaceAssembler<K, const P: usize> {
     terms: Vec<SurfaceTerm>,
     /// Per point variable: (field slot, weight row).
     slots: [(usize, usize); P],
+    /// Per term: the variables it is differentiated over ([`SurfaceKernel::term_variables`]
+    /// padded to a dual dimension, [`padded`]).
+    variables: Vec<Vec<usize>>,
+    /// Per element: None for a plain BFS element, else per term and integration point
+    /// (in the order of [`Self::points`]) the kernel's products ([`Self::quadratic`]) —
+    /// they depend on the geometry only, so they are formed once.
+    products: Vec<Option<Vec<Vec<Products>>>>,
     rows: Vec<usize>,
     cols: Vec<usize>,
 }
@@ -217,6 +248,15 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
             return Err(SurfaceError::BadKernel { layout: format!("{:?}", layout.fields), reason: format!("rule {}", rule.name()) });
         }
         let slots = std::array::from_fn(|p| (dofs.slot(variables[p].field).expect("numbered above"), variables[p].derivative as usize));
+        let mut listed = Vec::with_capacity(terms.len());
+        for t in 0..terms.len() {
+            let vars = kernel.term_variables(t);
+            if vars.is_empty() || vars.windows(2).any(|w| w[0] >= w[1]) || vars.iter().any(|&p| p >= P) {
+                return Err(SurfaceError::BadKernel { layout: format!("{:?}", layout.fields), reason: format!("variables of term {t}: {vars:?} (ascending indices below {P})") });
+            }
+            listed.push(padded::<P>(&vars));
+        }
+        let variables = listed;
         let (mut rows, mut cols) = (Vec::new(), Vec::new());
         for e in 0..mesh.len() {
             let active: Vec<usize> = dofs.element(e).iter().flatten().copied().collect();
@@ -225,7 +265,14 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                 cols.extend_from_slice(&active);
             }
         }
-        Ok(SurfaceAssembler { mesh, dofs, kernel, terms, slots, rows, cols })
+        let mut asm = SurfaceAssembler { mesh, dofs, kernel, terms, slots, variables, products: Vec::new(), rows, cols };
+        asm.products = (0..asm.mesh.len())
+            .map(|e| {
+                let per: Vec<Vec<Products>> = (0..asm.terms.len()).map(|t| asm.points(e, t, 0.0, 0.0).map(|point| asm.quadratic(e, point.xi, point.eta)).collect()).collect();
+                per.iter().flatten().any(|p| !p.is_empty()).then_some(per)
+            })
+            .collect();
+        Ok(asm)
     }
 
     /// The mesh.
@@ -350,14 +397,80 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         rows
     }
 
+    /// W and ∂W/∂v (into `dw`; zero for the variables the term does not read) of term
+    /// t at a point, by forward-mode AD over the term's variables.
+    fn point_gradient(&self, t: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P]) -> f64 {
+        match self.variables[t].len() {
+            4 => self.sub_gradient::<4>(t, at, v, state, dw),
+            8 => self.sub_gradient::<8>(t, at, v, state, dw),
+            13 => self.sub_gradient::<13>(t, at, v, state, dw),
+            _ => self.sub_gradient::<P>(t, at, v, state, dw),
+        }
+    }
+
+    /// [`Self::point_gradient`] with a dual number of N directions (N = the term's
+    /// padded variable count).
+    fn sub_gradient<const N: usize>(&self, t: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P]) -> f64 {
+        let vars = &self.variables[t];
+        let x = SVector::<f64, N>::from_fn(|k, _| v[vars[k]]);
+        let (w, g) = gradient(
+            |x| {
+                let mut all: [DualSVec64<N>; P] = std::array::from_fn(|p| DualSVec64::from_re(v[p]));
+                vars.iter().enumerate().for_each(|(k, &p)| all[p] = x[k]);
+                self.kernel.density(t, at, &all, state)
+            },
+            &x,
+        );
+        dw.fill(0.0);
+        vars.iter().enumerate().for_each(|(k, &p)| dw[p] = g[k]);
+        w
+    }
+
+    /// W, ∂W/∂v and ∂²W/∂v² (into `dw`, `ddw`; rows and columns of the variables the
+    /// term does not read are left as they are — the caller reads the term's variables
+    /// only, or zeroes them) of term t at a point: the kernel's own
+    /// ([`SurfaceKernel::point_hessian`]) or forward-mode AD over the term's variables.
+    fn point_hessian(&self, t: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P], ddw: &mut [[f64; P]; P]) -> f64 {
+        if let Some(w) = self.kernel.point_hessian(t, at, v, state, dw, ddw) {
+            return w;
+        }
+        match self.variables[t].len() {
+            4 => self.sub_hessian::<4>(t, at, v, state, dw, ddw),
+            8 => self.sub_hessian::<8>(t, at, v, state, dw, ddw),
+            13 => self.sub_hessian::<13>(t, at, v, state, dw, ddw),
+            _ => self.sub_hessian::<P>(t, at, v, state, dw, ddw),
+        }
+    }
+
+    /// [`Self::point_hessian`] with a second-order dual number of N directions.
+    fn sub_hessian<const N: usize>(&self, t: usize, at: &SurfacePoint, v: &[f64; P], state: &[f64], dw: &mut [f64; P], ddw: &mut [[f64; P]; P]) -> f64 {
+        let vars = &self.variables[t];
+        let x = SVector::<f64, N>::from_fn(|k, _| v[vars[k]]);
+        let (w, g, h) = hessian(
+            |x| {
+                let mut all: [Dual2SVec64<N>; P] = std::array::from_fn(|p| Dual2SVec64::from_re(v[p]));
+                vars.iter().enumerate().for_each(|(k, &p)| all[p] = x[k]);
+                self.kernel.density(t, at, &all, state)
+            },
+            &x,
+        );
+        for (k, &p) in vars.iter().enumerate() {
+            dw[p] = g[k];
+            for (l, &r) in vars.iter().enumerate() {
+                ddw[p][r] = h[(k, l)];
+            }
+        }
+        w
+    }
+
     /// Every (term, point) of element e with its values and state: `visit` returns false
     /// to stop (an inadmissible point); false if stopped.
     /// The closure also gets the point's quadratic products ([`Self::quadratic`]).
     fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
         for (t, term) in self.terms.iter().enumerate() {
-            for point in self.points(e, t, ev.time, ev.dt) {
-                let quadratic = self.quadratic(e, point.xi, point.eta);
-                let v = self.values(&point.weights, &quadratic, q);
+            for (k, point) in self.points(e, t, ev.time, ev.dt).enumerate() {
+                let quadratic: &[_] = self.products[e].as_ref().map_or(&[], |per| &per[t][k]);
+                let v = self.values(&point.weights, quadratic, q);
                 if !self.kernel.admissible(&point.at, &v) {
                     return false;
                 }
@@ -365,7 +478,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                     (0, _) | (_, None) => &[][..],
                     (_, Some(h)) => h.state(t, e, point.a, point.b),
                 };
-                if !visit(t, &point, &v, state, &quadratic) {
+                if !visit(t, &point, &v, state, quadratic) {
                     return false;
                 }
             }
@@ -389,8 +502,9 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         let q = self.dofs.gather(e, z);
         let mut g = vec![0.0; q.len()];
         let mut total = 0.0;
+        let mut dw = [0.0; P];
         self.visit_points(e, &q, ev, |t, point, v, state, quadratic| {
-            let (w, dw) = gradient(|x| self.kernel.density(t, &point.at, &std::array::from_fn(|p| x[p]), state), &SVector::<f64, P>::from_column_slice(v));
+            let w = self.point_gradient(t, &point.at, v, state, &mut dw);
             total += w * point.scale;
             for &(p, i, j, c) in quadratic {
                 let d = dw[p] * point.scale * c;
@@ -399,7 +513,8 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                     g[j] += d * q[i];
                 }
             }
-            for (p, &(slot, row)) in self.slots.iter().enumerate() {
+            for &p in &self.variables[t] {
+                let (slot, row) = self.slots[p];
                 let d = dw[p] * point.scale;
                 for (gk, wk) in g[slot * PER_FIELD..(slot + 1) * PER_FIELD].iter_mut().zip(&point.weights[row]) {
                     *gk += d * wk;
@@ -419,10 +534,22 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         let mut total = 0.0;
         // per variable p and field slot s: Σ_{q of slot s} ∂²W/∂v_p∂v_q B_q (16 entries)
         let mut hb = vec![0.0; P * nf * PER_FIELD];
+        let (mut dw, mut ddw) = ([0.0; P], [[0.0; P]; P]);
         self.visit_points(e, &q, ev, |t, point, v, state, quadratic| {
-            let (w, dw, ddw) = hessian(|x| self.kernel.density(t, &point.at, &std::array::from_fn(|p| x[p]), state), &SVector::<f64, P>::from_column_slice(v));
+            let vars = &self.variables[t];
+            let w = self.point_hessian(t, &point.at, v, state, &mut dw, &mut ddw);
             total += w * point.scale;
             if !quadratic.is_empty() {
+                // the variables the term does not read: zero rows and columns
+                if vars.len() < P {
+                    let mut read = [false; P];
+                    vars.iter().for_each(|&p| read[p] = true);
+                    for p in (0..P).filter(|&p| !read[p]) {
+                        dw[p] = 0.0;
+                        ddw[p] = [0.0; P];
+                        ddw.iter_mut().for_each(|row| row[p] = 0.0);
+                    }
+                }
                 // the augmented map: dense J_m (P × n), H += Jᵀ W'' J + Σ_p W'_p ∇²v_p
                 let jac = self.jacobian(&point.weights, quadratic, &q);
                 let mut wj = vec![0.0; P * n];
@@ -430,7 +557,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                     let row = &jac[p * n..(p + 1) * n];
                     g.iter_mut().zip(row).for_each(|(gk, jk)| *gk += dw[p] * point.scale * jk);
                     for r in 0..P {
-                        let c = ddw[(r, p)] * point.scale;
+                        let c = ddw[r][p] * point.scale;
                         if c != 0.0 {
                             wj[r * n..(r + 1) * n].iter_mut().zip(row).for_each(|(o, jk)| *o += c * jk);
                         }
@@ -450,17 +577,19 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
                 }
                 return true;
             }
-            hb.fill(0.0);
-            for p in 0..P {
-                for (qv, &(slot, row)) in self.slots.iter().enumerate() {
-                    let c = ddw[(p, qv)] * point.scale;
+            for &p in vars {
+                hb[p * nf * PER_FIELD..(p + 1) * nf * PER_FIELD].fill(0.0);
+                for &qv in vars {
+                    let (slot, row) = self.slots[qv];
+                    let c = ddw[p][qv] * point.scale;
                     let out = &mut hb[(p * nf + slot) * PER_FIELD..(p * nf + slot + 1) * PER_FIELD];
                     for (o, wk) in out.iter_mut().zip(&point.weights[row]) {
                         *o += c * wk;
                     }
                 }
             }
-            for (p, &(slot, row)) in self.slots.iter().enumerate() {
+            for &p in vars {
+                let (slot, row) = self.slots[p];
                 let d = dw[p] * point.scale;
                 for (k, wk) in point.weights[row].iter().enumerate() {
                     let i = slot * PER_FIELD + k;
@@ -593,6 +722,25 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         }
         z
     }
+}
+
+/// The dual dimensions below P the assembler is compiled for (each one monomorphises
+/// every kernel's density twice, first and second order): the shell's interlayer (4),
+/// membrane (7) and bending (13) terms.
+const DUAL_DIMENSIONS: [usize; 3] = [4, 8, 13];
+
+/// A term's variables padded to the dual dimension it is differentiated with: to the
+/// next of [`DUAL_DIMENSIONS`] by the first variables it does not list (their
+/// derivatives come out as exact zeros), else all P.
+fn padded<const P: usize>(listed: &[usize]) -> Vec<usize> {
+    let size = DUAL_DIMENSIONS.into_iter().find(|&k| listed.len() <= k && k < P).unwrap_or(P);
+    if size == P {
+        return (0..P).collect();
+    }
+    let mut out = listed.to_vec();
+    out.extend((0..P).filter(|p| !listed.contains(p)).take(size - listed.len()));
+    out.sort_unstable();
+    out
 }
 
 #[cfg(test)]
