@@ -606,6 +606,10 @@ fn max_abs(v: &[f64]) -> f64 {
 /// backtracking search.
 type BestTrial = (f64, f64, Vec<f64>, Option<Vec<f64>>);
 
+/// A step linearised at a trial and taken ([`NewtonProblem::relinearise`]): the new
+/// iterate, its residual if evaluated, its merit and the trial's correction ‖Δz'‖.
+type Relinearised = (Vec<f64>, Option<Vec<f64>>, f64, f64);
+
 /// The state shared by both damping strategies.
 struct Run<'p, P: NewtonProblem> {
     problem: &'p mut P,
@@ -672,13 +676,13 @@ impl<P: NewtonProblem> Run<'_, P> {
     /// against m(z). `Some((point, its residual if evaluated, its merit, ‖Δz'‖))` if
     /// accepted; `None` after restoring the factorisation at `z`.
     #[allow(clippy::too_many_arguments)]
-    fn relinearised(&mut self, z: &[f64], r: &[f64], trial: &[f64], r_trial: &[f64], merit: f64, slope: f64, iteration: usize) -> Result<Option<(Vec<f64>, Option<Vec<f64>>, f64, f64)>, NewtonError<P::Error>> {
+    fn relinearised(&mut self, z: &[f64], r: &[f64], trial: &[f64], r_trial: &[f64], merit: f64, slope: f64, iteration: usize) -> Result<Option<Relinearised>, NewtonError<P::Error>> {
         let n = z.len();
         let merit_only = self.evaluation.merit_only;
         self.stats.relinearisations += 1;
         let residual = self.residual;
         let mut r_lin = r_trial.to_vec();
-        let mut attempt = || -> Result<Option<(Vec<f64>, Option<Vec<f64>>, f64, f64)>, NewtonError<P::Error>> {
+        let mut attempt = || -> Result<Option<Relinearised>, NewtonError<P::Error>> {
             // without the residual from the factorisation and trials judged by merit
             // alone, F(trial) is not known yet
             if merit_only && !self.evaluation.residual_with_factorization {
