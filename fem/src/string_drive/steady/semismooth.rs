@@ -202,7 +202,7 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     /// 256 and 512 elements every such relinearised step was rejected, 5 and 15
     /// Jacobians wasted), nor when a point enters further on the step (the Cosserat
     /// rod's penalty points, kinks at α ≈ 0.2–0.8 next to early ones: on
-    /// `cosserat-pulley` at 64 elements 11 of 11 such relinearised steps rejected).
+    /// `cosserat-pulley` at 64 elements 11–22 such relinearised steps rejected).
     fn relinearise(&mut self, t: &TrialStep<'_>) -> bool {
         let Some(trial) = self.trial_results.as_ref() else { return false };
         if trial.iter().zip(&self.results).any(|(a, b)| a.slip != b.slip) {
