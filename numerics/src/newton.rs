@@ -56,7 +56,10 @@
 //!    [`NewtonProblem::next_damping`], e.g. [`skip_halvings`]); a trial is judged by
 //!    [`NewtonProblem::accept_step`] (by default Armijo's m(z + αΔz) ≤ (1 − c α) m(z),
 //!    c = [`SUFFICIENT_DECREASE`]), which may also abandon the search at once (e.g. Δz
-//!    is not a descent direction of an energy).
+//!    is not a descent direction of an energy). A rejected full step of the plain
+//!    Newton step may first be linearised again at its trial
+//!    ([`NewtonProblem::relinearise`]): the trial's own Newton step, z + Δz + Δz', is
+//!    taken if `accept_step` accepts it against m(z) (α = 1), else the search goes on.
 //! 3. If no α is accepted — or [`NewtonProblem::line_search`] declines the step (e.g.
 //!    not a descent direction), or the step is not finite (a numerically singular
 //!    Jacobian) — [`NewtonProblem::regularise`] is asked for level 1, 2, …
@@ -106,7 +109,9 @@
 //!   the step), α ≥ 2⁻¹⁰ with `next_damping` = [`skip_halvings`] (α/4 where a
 //!   quadratic model of the merit rejects α/2 and α/4), trials judged by their
 //!   residual (no `merit_only`: the active
-//!   set of the trial is needed); `merit` = ½ Σ (F_i/s_i)²; `accept_step` = Armijo with
+//!   set of the trial is needed); `relinearise` at a rejected full step whose trial
+//!   brings penalty points into contact within the first eighth of the step and keeps
+//!   every slip flag; `merit` = ½ Σ (F_i/s_i)²; `accept_step` = Armijo with
 //!   c = 10⁻⁴, or any admissible trial of a correction below the tolerance; `solve`
 //!   retries a singular generalised Jacobian with diagonal shifts 10⁻¹², …, 10⁻⁴ of |D|;
 //!   `converged` = a whole small step that kept the active set (or two in a row), or the
@@ -216,6 +221,11 @@ pub struct NewtonStats {
     pub solves: usize,
     /// Regularised refactorisations ([`NewtonProblem::regularise`] returning `true`).
     pub regularisations: usize,
+    /// Factorisations at a rejected full-step trial ([`NewtonProblem::relinearise`]),
+    /// counted in `iterations` and `factorisations` too.
+    pub relinearisations: usize,
+    /// Of them, those whose step was taken.
+    pub relinearisations_taken: usize,
     /// Last scaled Newton correction ‖Δz‖ (the quantity compared with the tolerance).
     pub last_correction: f64,
     /// Smallest damping factor used.
@@ -484,6 +494,26 @@ pub trait NewtonProblem {
         let _ = previous;
         0.5 * t.damping
     }
+    /// Backtracking: whether to linearise again at the rejected full-step trial `t`
+    /// (α = 1 of the plain step, admissible) before halving — for a piecewise smooth F
+    /// whose active set at the trial differs from the iterate's (e.g. a contact point
+    /// entering its penalty a little ahead on the step, which the Jacobian at the
+    /// iterate does not see). On `true` Newton factorises at the trial (the problem may
+    /// keep its factorisation at the iterate for [`Self::restore_factorization`]) and
+    /// judges the trial's own full Newton step, z + Δz + Δz', by [`Self::accept_step`]
+    /// against m(z) with α = 1 and the correction ‖Δz'‖: taken if accepted, else the
+    /// iterate's factorisation is restored and the line search goes on along Δz as if
+    /// nothing had been tried. Default: `false`.
+    fn relinearise(&mut self, t: &TrialStep<'_>) -> bool {
+        let _ = t;
+        false
+    }
+    /// After a [`Self::relinearise`] whose step was not taken (or whose factorisation
+    /// or solve failed): make the factorisation at the iterate `z` the current one
+    /// again. Default: [`Self::factorize`] at `z`.
+    fn restore_factorization(&mut self, z: &[f64]) -> Result<(), Self::Error> {
+        self.factorize(z)
+    }
     /// Which evaluations share a pass ([`Evaluation`]). Default: none.
     fn evaluation(&self) -> Evaluation {
         Evaluation::default()
@@ -576,6 +606,10 @@ fn max_abs(v: &[f64]) -> f64 {
 /// backtracking search.
 type BestTrial = (f64, f64, Vec<f64>, Option<Vec<f64>>);
 
+/// A step linearised at a trial and taken ([`NewtonProblem::relinearise`]): the new
+/// iterate, its residual if evaluated, its merit and the trial's correction ‖Δz'‖.
+type Relinearised = (Vec<f64>, Option<Vec<f64>>, f64, f64);
+
 /// The state shared by both damping strategies.
 struct Run<'p, P: NewtonProblem> {
     problem: &'p mut P,
@@ -634,6 +668,63 @@ impl<P: NewtonProblem> Run<'_, P> {
         } else {
             Ok(None)
         }
+    }
+
+    /// [`NewtonProblem::relinearise`]'s attempt: factorise at the rejected full-step
+    /// `trial` of the iterate `z` (residual `r`, merit `merit`; `r_trial` the trial's
+    /// residual if evaluated), take the trial's Newton step Δz' and judge z + Δz + Δz'
+    /// against m(z). `Some((point, its residual if evaluated, its merit, ‖Δz'‖))` if
+    /// accepted; `None` after restoring the factorisation at `z`.
+    #[allow(clippy::too_many_arguments)]
+    fn relinearised(&mut self, z: &[f64], r: &[f64], trial: &[f64], r_trial: &[f64], merit: f64, slope: f64, iteration: usize) -> Result<Option<Relinearised>, NewtonError<P::Error>> {
+        let n = z.len();
+        let merit_only = self.evaluation.merit_only;
+        self.stats.relinearisations += 1;
+        let residual = self.residual;
+        let mut r_lin = r_trial.to_vec();
+        let mut attempt = || -> Result<Option<Relinearised>, NewtonError<P::Error>> {
+            // without the residual from the factorisation and trials judged by merit
+            // alone, F(trial) is not known yet
+            if merit_only && !self.evaluation.residual_with_factorization {
+                self.residual(trial, &mut r_lin)?;
+            }
+            self.factorize(trial, &mut r_lin)?;
+            let mut step = vec![0.0; n];
+            self.newton_step(&r_lin, &mut step)?;
+            if !all_finite(&step) {
+                return Ok(None);
+            }
+            let correction = self.problem.norm(&step, trial);
+            let point: Vec<f64> = trial.iter().zip(&step).map(|(a, b)| a + b).collect();
+            let mut r_point = vec![0.0; n];
+            let Some(m) = self.judge(&point, &mut r_point, TrialKind::Search)? else { return Ok(None) };
+            let whole: Vec<f64> = point.iter().zip(z).map(|(a, b)| a - b).collect();
+            let t = TrialStep {
+                iteration,
+                level: 0,
+                damping: 1.0,
+                z,
+                step: &whole,
+                trial: &point,
+                residual: r,
+                trial_residual: (!merit_only).then_some(&r_point[..]),
+                merit,
+                trial_merit: m,
+                slope,
+                correction,
+                tolerance: self.opts.tolerance,
+            };
+            Ok((self.problem.accept_step(&t) == Verdict::Accept).then(|| (point, (!merit_only).then_some(r_point), m, correction)))
+        };
+        // a failure at the trial (its factorisation or step) only ends the attempt
+        if let Ok(Some(taken)) = attempt() {
+            self.stats.relinearisations_taken += 1;
+            return Ok(Some(taken));
+        }
+        let problem = &mut *self.problem;
+        timed(Phase::Assembly, || problem.restore_factorization(z)).map_err(|error| NewtonError::Problem { iteration, stage: Stage::Factorize, error })?;
+        self.residual = residual;
+        Ok(None)
     }
 
     /// `out` = −J⁻¹ `r`.
@@ -845,6 +936,18 @@ impl<P: NewtonProblem> Run<'_, P> {
                                     Verdict::Reject => {}
                                 }
                                 let next = self.problem.next_damping(&t, previous);
+                                if alpha == 1.0 && level == 0 && self.problem.relinearise(&t) {
+                                    let iteration = self.stats.iterations;
+                                    if let Some((point, r_point, m, correction)) = self.relinearised(z, r, &trial, &r_trial, merit, slope, iteration)? {
+                                        trial = point;
+                                        if let Some(rp) = r_point {
+                                            r_trial = rp;
+                                        }
+                                        last_norm = correction;
+                                        self.stats.last_correction = correction;
+                                        break 'levels (1.0, m, !merit_only);
+                                    }
+                                }
                                 if take_best && best.as_ref().is_none_or(|b| trial_merit < b.1) {
                                     best = Some((alpha, trial_merit, trial.clone(), (!merit_only).then(|| r_trial.clone())));
                                 }
@@ -1152,6 +1255,103 @@ mod tests {
         assert_eq!(&skipped.1[..2], &[1.0, 0.5]);
         assert!(skipped.1.iter().all(|a| a.log2().fract() == 0.0), "{:?}", skipped.1);
         assert!(skipped.0.residual_evaluations + 8 <= halving.0.residual_evaluations, "{:?} against {:?}", skipped.0, halving.0);
+    }
+
+    /// F(x) = x − 1 + K⟨x − a⟩ as above, with [`NewtonProblem::relinearise`] asked
+    /// where the rejected full step crosses the kink. Linearised at the trial, the
+    /// trial's Newton step lands on the root: one relinearisation, taken, and the root
+    /// with at most four residuals where halving spends 35. With a wrong Jacobian at the
+    /// trial (slope 1 there: its step overshoots far to the left, rejected) the
+    /// factorisation at the iterate is restored each time and the search goes on along
+    /// the iterate's step exactly as halving's: the same α, the same iterates, one
+    /// residual and one factorisation more per attempt.
+    #[test]
+    fn relinearising_at_a_trial_past_the_kink() {
+        struct Kink {
+            relinearise: bool,
+            wrong_at_trial: bool,
+            at_trial: bool,
+            slope: f64,
+            trials: Vec<f64>,
+            iterates: Vec<f64>,
+            /// The factorisations at a trial.
+            at_trials: Vec<f64>,
+            restored: Vec<f64>,
+        }
+        const K: f64 = 1e4;
+        const A: f64 = 0.003;
+        impl super::NewtonProblem for Kink {
+            type Error = super::LinearError;
+            fn size(&self) -> usize {
+                1
+            }
+            fn residual(&mut self, z: &[f64], r: &mut [f64]) -> Result<(), super::LinearError> {
+                r[0] = z[0] - 1.0 + K * (z[0] - A).max(0.0);
+                Ok(())
+            }
+            fn factorize(&mut self, z: &[f64]) -> Result<(), super::LinearError> {
+                if self.at_trial {
+                    self.at_trials.push(z[0]);
+                } else {
+                    self.iterates.push(z[0]);
+                }
+                self.slope = if z[0] > A && !(self.at_trial && self.wrong_at_trial) { 1.0 + K } else { 1.0 };
+                self.at_trial = false;
+                Ok(())
+            }
+            fn solve(&mut self, b: &mut [f64]) -> Result<(), super::LinearError> {
+                b[0] /= self.slope;
+                Ok(())
+            }
+            fn damping(&self) -> super::Damping {
+                super::Damping::Backtracking { take_best: true }
+            }
+            fn next_damping(&mut self, t: &super::TrialStep<'_>, _previous: Option<(f64, f64)>) -> f64 {
+                self.trials.push(t.damping);
+                0.5 * t.damping
+            }
+            fn relinearise(&mut self, t: &super::TrialStep<'_>) -> bool {
+                self.at_trial = self.relinearise && t.z[0] <= A && t.trial[0] > A;
+                self.at_trial
+            }
+            fn restore_factorization(&mut self, z: &[f64]) -> Result<(), super::LinearError> {
+                self.restored.push(z[0]);
+                self.slope = if z[0] > A { 1.0 + K } else { 1.0 };
+                Ok(())
+            }
+        }
+        let opts = super::NewtonOptions { tolerance: 1e-12, max_iterations: 30, min_damping: 1.0 / 1024.0 };
+        let root = (1.0 + K * A) / (1.0 + K);
+        let run = |relinearise: bool, wrong_at_trial: bool| {
+            let mut p = Kink { relinearise, wrong_at_trial, at_trial: false, slope: 0.0, trials: vec![], iterates: vec![], at_trials: vec![], restored: vec![] };
+            let mut z = [0.0];
+            let stats = super::solve(&mut p, &mut z, &opts).unwrap();
+            assert!((z[0] - root).abs() < 1e-14, "{z:?}");
+            (stats, p)
+        };
+        let (plain, plain_p) = run(false, false);
+        let (taken, taken_p) = run(true, false);
+        assert_eq!((taken.relinearisations, taken.relinearisations_taken), (1, 1));
+        assert_eq!(plain.relinearisations, 0);
+        // the iterate 0, then the trial 1 (factorised there), then the root
+        assert_eq!(taken_p.at_trials, vec![1.0]);
+        assert_eq!(taken_p.iterates[0], 0.0);
+        assert!((taken_p.iterates[1] - root).abs() < 1e-14, "{:?}", taken_p.iterates);
+        assert!(taken_p.restored.is_empty());
+        assert!(taken.residual_evaluations <= 4 && taken.residual_evaluations + 30 <= plain.residual_evaluations, "{taken:?} against {plain:?}");
+        // the relinearised steps are not taken (each full step from the left of the
+        // kink tries one): back to the iterate's search each time, which goes on as
+        // halving's
+        let (rejected, rejected_p) = run(true, true);
+        let k = rejected.relinearisations;
+        assert!(k >= 1 && rejected.relinearisations_taken == 0, "{rejected:?}");
+        assert_eq!(rejected_p.at_trials.len(), k);
+        assert_eq!(rejected_p.restored.len(), k);
+        assert!(rejected_p.restored.iter().all(|z| rejected_p.iterates.contains(z) && *z <= A), "{:?}", rejected_p.restored);
+        assert_eq!(rejected_p.trials, plain_p.trials);
+        assert_eq!(rejected_p.iterates, plain_p.iterates);
+        assert_eq!(rejected.residual_evaluations, plain.residual_evaluations + k);
+        assert_eq!(rejected.iterations, plain.iterations + k);
     }
 
     use super::*;

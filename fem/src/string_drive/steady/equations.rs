@@ -386,6 +386,32 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
         (rows, cols)
     }
 
+    /// The element penalty's normal traction before its clipping, λ − Pγ (P the
+    /// penalty, γ the gap, λ the contact multiplier of an augmented layout, else 0), at X:
+    /// for each element and each point of its contact rule, in that order; the penalty
+    /// presses where it is > 0 (its kink at 0). `None` at a point out of every pulley's
+    /// reach. Empty without a penalty.
+    pub(super) fn penalty_pressures(&self, x: &[f64]) -> Vec<Option<f64>> {
+        let Some(penalty) = self.params.penalty else { return Vec::new() };
+        let kernel = self.asm.kernel();
+        let layout = kernel.layout();
+        let rule = kernel.rules().contact;
+        let z = &x[..self.asm.len()];
+        let mut out = Vec::with_capacity(self.asm.mesh().len() * rule.points().len());
+        for e in 0..self.asm.mesh().len() {
+            let el = self.asm.context(e, &self.params);
+            let q = self.asm.dofs().gather(e, z, self.length);
+            for &(xi, _) in rule.points() {
+                out.push(point_gap(layout, &el, &q, xi, false).map(|(g, _)| {
+                    // ⟨λ − P·0⟩₊ = λ (λ ≥ 0)
+                    let lambda = kernel.contact_traction(penalty, el.sigma(xi), Some(0.0));
+                    lambda - penalty * g
+                }));
+            }
+        }
+        out
+    }
+
     /// F(X) and its generalised Jacobian (the active set of the current X); `None` if
     /// z is inadmissible or a value is not finite.
     pub fn evaluate(&self, x: &[f64], with_jacobian: bool) -> Option<Evaluated> {

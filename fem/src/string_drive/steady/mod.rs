@@ -555,6 +555,41 @@ mod tests {
         with_state::<NC, { point_size(NC) }, { element_size(NC) }, dyn LayoutElement<NC>>(&scene, kernel, Some(1e-3), Ends::Loop, false, true, same);
     }
 
+    /// The element penalty's unclipped pressures −Pγ (no multipliers on the string) at
+    /// [`with_state`]'s state, pressed 10 µm into the drums: one per element and contact
+    /// rule point, equal to −P times the gap of the solution at that σ, `None` out of
+    /// reach; some points pressed, some free.
+    #[test]
+    fn penalty_pressures_are_minus_p_times_the_gap() {
+        let scene = drive::Scene::from_json_str(SCENE).unwrap();
+        let opts = crate::options::FemOptions::from_scene(&scene, crate::default_formulation());
+        let string = crate::formulation::find(&opts.formulation).unwrap();
+        with_state::<NDOF, NPV, NEV, dyn Kernel>(&scene, string, None, Ends::Loop, false, false, |prob, x| {
+            let asm = prob.asm;
+            let rule = asm.kernel().rules().contact;
+            let penalty = prob.params.penalty.unwrap();
+            let p = prob.penalty_pressures(x);
+            assert_eq!(p.len(), asm.mesh().len() * rule.points().len());
+            let sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &x[..asm.len()], prob.params, prob.length, asm.kernel().clone());
+            let (mut pressed, mut free, mut out) = (0, 0, 0);
+            for (k, pk) in p.iter().enumerate() {
+                let (e, xi) = (k / rule.points().len(), rule.points()[k % rule.points().len()].0);
+                let el = asm.context(e, &prob.params);
+                // interior points only: a node's σ belongs to either element (same gap)
+                let sigma = el.sigma(xi.clamp(-1.0 + 1e-12, 1.0 - 1e-12));
+                match (pk, sol.gap(sigma)) {
+                    (Some(v), Some(g)) => {
+                        assert!((v + penalty * g).abs() <= 1e-6 * penalty * 1e-5, "element {e} ξ {xi}: {v} against −P·{g}");
+                        if *v > 0.0 { pressed += 1 } else { free += 1 }
+                    }
+                    (None, None) => out += 1,
+                    (a, b) => panic!("element {e} ξ {xi}: pressure {a:?}, gap {b:?}"),
+                }
+            }
+            assert!(pressed > 0 && free > 0 && out > 0, "{pressed} pressed, {free} free, {out} out of reach");
+        });
+    }
+
     /// The Cosserat element (b₂ = 10⁴ N, a = 10⁻³ N·m², augmented transitions) on the same
     /// drive: the terms it adds to the steady equations — transport inertia and gravity
     /// on its centreline through the map (C3), the friction load's ∂²S/∂q² at the flagged

@@ -38,6 +38,26 @@ pub(super) fn merit(r: &[f64], s: &[f64]) -> f64 {
 /// The smallest damping factor α of the backtracking.
 const MIN_DAMPING: f64 = 1.0 / 1024.0;
 
+/// The largest α of a penalty kink on the full step for which the step is linearised
+/// again at its trial ([`Semismooth`]'s `relinearise`): every point that enters contact
+/// along the step does so within its first eighth, so the trial's contact set is the
+/// step's from there on, and halving would spend three trials or more to reach the
+/// first kink (against one Jacobian pass, one factorisation and one residual for the
+/// trial's Newton step).
+const RELINEARISE_KINK: f64 = 1.0 / 8.0;
+
+/// Whether the step from pressures `before` (the unclipped penalty pressures λ − Pγ of
+/// [`SteadyProblem::penalty_pressures`] at the iterate) to `after` (at the full-step
+/// trial) brings at least one point into contact and every such point early: its kink,
+/// where the pressure interpolated linearly in α crosses 0, at α ≤ `limit`.
+fn enters_early(before: &[Option<f64>], after: &[Option<f64>], limit: f64) -> bool {
+    let mut kinks = before.iter().zip(after).filter_map(|(b, a)| match (*b, *a) {
+        (Some(b), Some(a)) if b <= 0.0 && a > 0.0 => Some(-b / (a - b)),
+        _ => None,
+    });
+    kinks.next().is_some_and(|first| first <= limit && kinks.all(|k| k <= limit))
+}
+
 /// A problem with its pattern.
 pub(super) struct Patterned<'p, 'a, const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Sized> {
     problem: &'p SteadyProblem<'a, N, P, E, K>,
@@ -90,6 +110,9 @@ struct Semismooth<'s, 'p, 'a, const N: usize, const P: usize, const E: usize, K:
     floor_count: usize,
     /// The active set (slip per point) of the iterate before, for the round-off floor.
     previous_set: Option<Vec<bool>>,
+    /// The Jacobian pass at the iterate (values, F, point results) while the problem is
+    /// linearised at a full-step trial ([`NewtonProblem::relinearise`]).
+    saved: Option<(Vec<f64>, Vec<f64>, Vec<PointResult>)>,
 }
 
 /// Why a call of [`Semismooth`] failed.
@@ -162,6 +185,41 @@ impl<const N: usize, const P: usize, const E: usize, K: LayoutElement<N> + ?Size
     fn next_damping(&mut self, t: &TrialStep<'_>, previous: Option<(f64, f64)>) -> f64 {
         numerics::newton::skip_halvings(t.merit, -2.0 * t.merit, 1e-4 * t.merit, t.damping, t.trial_merit, previous, MIN_DAMPING)
     }
+    /// A rejected full step whose trial brings points of the element penalty into
+    /// contact, each early on the step — its kink, found by interpolating the point's
+    /// unclipped pressure λ − Pγ linearly between the iterate and the trial, at α ≤
+    /// [`RELINEARISE_KINK`] — while every friction point keeps its slip flag, is
+    /// linearised at the trial, with the trial's contact set: the Jacobian at the
+    /// iterate does not see the penalty stiffness that the step runs into, and the merit
+    /// beyond the kink grows with the squared overshoot. Traced on the Exudyn drive's
+    /// first solves on a mesh: the nodes at one pulley's tangent points 10⁻⁷ m off the
+    /// drum at the iterate and 2·10⁻⁴ m into it at α = 1 (the kink at α ≈ 1/400), the
+    /// merit 330–350× its start; halving spent 6–10 trials per iteration for two or three
+    /// iterations to creep up to the kink, while the trial's own Newton step brings the
+    /// merit to 10⁻⁶–10⁻⁷ of the iterate's (docs/performance.md, eighth round). Not when
+    /// a slip flag changes too: the trial's slip set is then a guess that halving
+    /// corrects (the fronts move an element or so per iteration; on `cosserat-drive` at
+    /// 256 and 512 elements every such relinearised step was rejected, 5 and 15
+    /// Jacobians wasted), nor when a point enters further on the step (the Cosserat
+    /// rod's penalty points, kinks at α ≈ 0.2–0.8 next to early ones: on
+    /// `cosserat-pulley` at 64 elements 11–22 such relinearised steps rejected).
+    fn relinearise(&mut self, t: &TrialStep<'_>) -> bool {
+        let Some(trial) = self.trial_results.as_ref() else { return false };
+        if trial.iter().zip(&self.results).any(|(a, b)| a.slip != b.slip) {
+            return false;
+        }
+        let early = enters_early(&self.problem.penalty_pressures(t.z), &self.problem.penalty_pressures(t.trial), RELINEARISE_KINK);
+        if early {
+            self.saved = Some((std::mem::take(&mut self.values), std::mem::take(&mut self.residual), std::mem::take(&mut self.results)));
+        }
+        early
+    }
+    fn restore_factorization(&mut self, _x: &[f64]) -> Result<(), SemismoothError> {
+        if let Some((values, residual, results)) = self.saved.take() {
+            (self.values, self.residual, self.results) = (values, residual, results);
+        }
+        Ok(())
+    }
     fn norm(&self, v: &[f64], _x: &[f64]) -> f64 {
         super::super::system::scaled_norm(v, self.w)
     }
@@ -228,6 +286,7 @@ pub fn newton<const N: usize, const P: usize, const E: usize, K: LayoutElement<N
         small_before: false,
         floor_count: 0,
         previous_set: None,
+        saved: None,
     };
     let opts = NewtonOptions { tolerance, max_iterations, min_damping: MIN_DAMPING };
     let solved = numerics::newton::solve(&mut semismooth, x, &opts);
@@ -312,4 +371,29 @@ pub fn penalty_ladder<const N: usize, const P: usize, const E: usize, K: LayoutE
         last = SteadyNewton { iterations, ..n };
     }
     Ok(last)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::enters_early;
+
+    /// Kinks by linear interpolation of the pressure: −1 → 399 crosses at α = 1/400,
+    /// −1 → 1 at ½; a point that stays out, stays in, leaves or is out of reach is no
+    /// kink; one late kink next to an early one spoils the set.
+    #[test]
+    fn early_entries_by_the_interpolated_kink() {
+        let limit = 1.0 / 8.0;
+        assert!(enters_early(&[Some(-1.0), Some(-5.0), Some(3.0)], &[Some(399.0), Some(-1.0), Some(4.0)], limit));
+        assert!(!enters_early(&[Some(-1.0)], &[Some(1.0)], limit));
+        // exactly at the limit: −1 → 7 crosses at ⅛
+        assert!(enters_early(&[Some(-1.0)], &[Some(7.0)], limit));
+        assert!(!enters_early(&[Some(-1.0)], &[Some(6.9)], limit));
+        // no point enters: staying out, staying in, leaving, out of reach
+        assert!(!enters_early(&[Some(-1.0), Some(2.0), Some(2.0), None, Some(-1.0)], &[Some(-0.5), Some(3.0), Some(-2.0), Some(5.0), None], limit));
+        assert!(!enters_early(&[], &[], limit));
+        // an early and a late one (the Cosserat rod's kinks at 0.5 next to 0.03)
+        assert!(!enters_early(&[Some(-0.03), Some(-1.0)], &[Some(0.97), Some(1.0)], limit));
+        // a point touching at the iterate (pressure 0) and pressed at the trial: α = 0
+        assert!(enters_early(&[Some(0.0)], &[Some(1.0)], limit));
+    }
 }
