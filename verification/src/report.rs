@@ -418,7 +418,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     if let Some(c) = &study.compensation {
         let _ = writeln!(m, "### The compensating swivel
 
-The constant swivel of the steering drum that cancels the camber's run-off (spec E-5: the run-off is linear in small imperfections, so two solves estimate the root and Brent's method finds it, each evaluation a whole solve at the coarsest level; docs/fem-shell.md §14): {}.
+The constant swivel of the steering drum that cancels the camber's run-off (spec E-5: two solves give a linear estimate, secant steps bracket the root and Brent's method finds it, each evaluation a whole solve at the coarsest level; docs/fem-shell.md §14): {}.
 ", table::compensation_text(c));
     }
     let _ = writeln!(
