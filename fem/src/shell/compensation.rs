@@ -86,13 +86,11 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
     let history = scene.drive.steering.as_ref().map(|s| s.tilt_y.as_slice()).unwrap_or(&[]);
     let largest = history.iter().fold(0.0_f64, |m, p| m.max(p[1].abs()));
     let probe = if largest > 0.0 { largest } else { DEFAULT_PROBE };
-    let solves = std::cell::Cell::new(0);
     let mut seen: Vec<(f64, f64)> = Vec::new();
     let mut velocity = |beta: f64| -> Result<f64, ShellError> {
         if let Some(&(_, v)) = seen.iter().find(|(b, _)| *b == beta) {
             return Ok(v);
         }
-        solves.set(solves.get() + 1);
         let solved = solve(&with_swivel(scene, drum, beta))?;
         let v = solved.summary.runoff_velocity.ok_or_else(|| ShellError::Check(format!("no run-off velocity at the swivel {beta:e} rad")))?;
         seen.push((beta, v));
@@ -143,7 +141,7 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
             &near[..near.len().min(2)]
         )));
     }
-    Ok(Compensation { drum, swivel, runoff_without: v0, probe: [probe, v1], linear_estimate: estimate, runoff_left, tolerance, solves: solves.get() })
+    Ok(Compensation { drum, swivel, runoff_without: v0, probe: [probe, v1], linear_estimate: estimate, runoff_left, tolerance, solves: seen.len() })
 }
 
 #[cfg(test)]

@@ -466,8 +466,13 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
     /// Every (term, point) of element e with its values and state: `visit` returns false
     /// to stop (an inadmissible point); false if stopped.
     /// The closure also gets the point's quadratic products ([`Self::quadratic`]).
-    fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
-        for (t, term) in self.terms.iter().enumerate() {
+    fn visit_points(&self, e: usize, q: &[f64], ev: &Evaluation, visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
+        self.visit_term_points(e, q, ev, 0..self.terms.len(), visit)
+    }
+
+    /// [`Self::visit_points`] over the terms `terms` only.
+    fn visit_term_points(&self, e: usize, q: &[f64], ev: &Evaluation, terms: std::ops::Range<usize>, mut visit: impl FnMut(usize, &QuadraturePoint, &[f64; P], &[f64], &[(usize, usize, Option<usize>, f64)]) -> bool) -> bool {
+        for (t, term) in self.terms.iter().enumerate().take(terms.end).skip(terms.start) {
             for (k, point) in self.points(e, t, ev.time, ev.dt).enumerate() {
                 let quadratic: &[_] = self.products[e].as_ref().map_or(&[], |per| &per[t][k]);
                 let v = self.values(&point.weights, quadratic, q);
@@ -620,19 +625,11 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
             .map(|e| {
                 let q = self.dofs.gather(e, z);
                 let mut sum = [0.0; N];
-                for point in self.points(e, term, ev.time, ev.dt) {
-                    let quadratic = self.quadratic(e, point.xi, point.eta);
-                    let v = self.values(&point.weights, &quadratic, &q);
-                    if !self.kernel.admissible(&point.at, &v) {
-                        return None;
-                    }
-                    let state = match (self.terms[term].history, ev.history) {
-                        (0, _) | (_, None) => &[][..],
-                        (_, Some(h)) => h.state(term, e, point.a, point.b),
-                    };
-                    sum.iter_mut().zip(f(&point.at, &v, state)).for_each(|(s, x)| *s += x * point.scale);
-                }
-                Some(sum)
+                self.visit_term_points(e, &q, ev, term..term + 1, |_, point, v, state, _| {
+                    sum.iter_mut().zip(f(&point.at, v, state)).for_each(|(s, x)| *s += x * point.scale);
+                    true
+                })
+                .then_some(sum)
             })
             .collect();
         let total = per?.iter().fold([0.0; N], |mut t, s| {
