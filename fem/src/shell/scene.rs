@@ -104,8 +104,11 @@ pub struct ShellScene {
     pub shear: f64,
     /// κ_c, 1/m.
     pub camber: f64,
-    /// ω of both drums, rad/s (0 for a static scene).
+    /// ω₁ of the driver, rad/s (0 for a static scene); the gauge and the history are
+    /// transported at ω₁R.
     pub speed: f64,
+    /// ω₂ of the driven drum, rad/s (0 for a static scene).
+    pub driven_speed: f64,
     /// The steered drum and its histories β_x(t), β_y(t) (t from the start of the
     /// rotation).
     pub steering: Option<Steering>,
@@ -122,7 +125,7 @@ impl ShellScene {
     /// # Errors
     /// [`ShellError::NotModelled`] naming what the shell's FE has no model for: another
     /// theory or layout, a steady analysis, contact other than the elastic interlayer,
-    /// drums turning counter-clockwise or at different speeds.
+    /// drums turning counter-clockwise or at rest in a transient.
     pub fn from_scene(scene: &Scene) -> Result<ShellScene, ShellError> {
         let refuse = |why: String| Err(ShellError::NotModelled(why));
         if scene.belt.theory != Theory::Shell || scene.drive.layout != drive::Layout::TwoPulley {
@@ -138,15 +141,9 @@ impl ShellScene {
         };
         let plate = scene.belt.plate().ok_or(ShellError::NotModelled("the plate parameters are missing".into()))?;
         let (w1, w2) = (scene.drive.driver_speed, scene.drive.driven_speed.unwrap_or(scene.drive.driver_speed));
-        if turning {
-            if w1.is_nan() || w1 <= 0.0 {
-                return refuse(format!("drums turning counter-clockwise or at rest in a transient (ω₁ = {w1} rad/s): the shell's run is built for ω > 0 (the belt moves along +σ); mirror the scene"));
-            }
-            if (w2 - w1).abs() > 1e-12 * w1 {
-                return refuse(format!(
-                    "drums at different speeds (ω₁ = {w1}, ω₂ = {w2} rad/s): the shell's gauge transports the belt at one speed ωR (docs/fem-shell.md §9.3); unequal speeds (creep through the interlayer) are not modelled yet"
-                ));
-            }
+        // ω₂ has ω₁'s sense (the scene's validation), so ω₁ > 0 is the whole condition
+        if turning && (w1.is_nan() || w1 <= 0.0) {
+            return refuse(format!("drums turning counter-clockwise or at rest in a transient (ω₁ = {w1} rad/s): the shell's run is built for ω > 0 (the belt moves along +σ); mirror the scene"));
         }
         let belt = HangingBelt {
             contour: scene.contour(),
@@ -160,7 +157,7 @@ impl ShellScene {
             normal_stiffness: layer.normal_stiffness,
         };
         let camber = scene.belt.camber.map_or(0.0, |c| c.curvature_for(plate.width, scene.belt.length));
-        Ok(ShellScene { belt, shear: layer.tangential_stiffness, camber, speed: if turning { w1 } else { 0.0 }, steering: scene.drive.steering.clone(), run: scene.shell_run(), turning })
+        Ok(ShellScene { belt, shear: layer.tangential_stiffness, camber, speed: if turning { w1 } else { 0.0 }, driven_speed: if turning { w2 } else { 0.0 }, steering: scene.drive.steering.clone(), run: scene.shell_run(), turning })
     }
 
     /// True for a perfect belt on aligned drums (no camber, no tilt at any time).
@@ -177,15 +174,14 @@ impl ShellScene {
     /// The kernel of stages (1)–(2) from stage (0)'s: P_⊥, the camber ramped from 0 at
     /// `t0` to κ_c at `start` (the end of the ramp), the steering drum's angles ramped
     /// from 0 to their values at t = 0 of the histories and then following them shifted
-    /// by `start`, both drums turning at ω from `start` on (transport ωR).
+    /// by `start`, the drums turning at ω₁ and ω₂ from `start` on (transport ω₁R).
     fn kernel(&self, stage0: &Shell, t0: f64, start: f64) -> Result<Shell, ShellError> {
         let layer = stage0.interlayer().ok_or(ShellError::BadParameter { what: "stage (0) without an interlayer", value: 0.0 })?;
         let ramp = |value: f64| Schedule::new(vec![(t0, 0.0), (start, value)]);
         let history = |h: &[[f64; 2]]| tilt_schedule(h, t0, start);
         let mut drums = layer.drums.clone();
-        for drum in &mut drums {
-            drum.speed = self.speed;
-        }
+        drums[0].speed = self.speed;
+        drums[1].speed = self.driven_speed;
         if let Some(s) = &self.steering {
             let steered = &mut drums[usize::from(s.drum == SteeringDrum::Driven)];
             steered.tilt_x = history(&s.tilt_x)?;
@@ -604,7 +600,7 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
     summary.moment_upper_mid = Some(up.moment);
     summary.moment_lower_mid = Some(low.moment);
     if data.turning {
-        summary.driven_speed = Some(data.speed);
+        summary.driven_speed = Some(data.driven_speed);
         let (time, lateral) = (&series.time, series.channel("lateral_offset").unwrap_or(&[]));
         // the samples of the rotation, from its start (the end of the ramp) on
         let first = time.partition_point(|&t| t < start - 1e-9 * dt);
@@ -716,16 +712,18 @@ mod tests {
         assert!((d.camber - dl / (b * l)).abs() < 1e-15 * d.camber.abs());
         assert_eq!(d.shear, v["effects"]["contact"]["elastic_layer"]["tangential_stiffness"].as_f64().unwrap());
         assert_eq!(d.belt.normal_stiffness, v["effects"]["contact"]["elastic_layer"]["normal_stiffness"].as_f64().unwrap());
-        assert_eq!(d.speed, 2.0);
+        assert_eq!((d.speed, d.driven_speed), (2.0, 2.0));
         assert!(d.turning && !d.is_perfect());
         let not_modelled = |v: Value, what: &str| match ShellScene::from_scene(&read(&v)) {
             Err(ShellError::NotModelled(m)) => assert!(m.contains(what), "{m}"),
             Err(e) => panic!("{what}: wrong error {e}"),
             Ok(_) => panic!("{what}: accepted"),
         };
+        // unequal speeds are read (the interlayer creeps; the scene's own validation
+        // refuses drums turning opposite ways or one at rest)
         let mut w = v.clone();
         w["drive"]["driven_speed"] = json!(2.5);
-        not_modelled(w, "different speeds");
+        assert_eq!(ShellScene::from_scene(&read(&w)).unwrap().driven_speed, 2.5);
         let mut w = v.clone();
         w["drive"]["driver_speed"] = json!(-2.0);
         w["drive"]["driven_speed"] = json!(-2.0);
@@ -927,8 +925,9 @@ mod tests {
     }
 
     /// A perfect belt through the whole pipeline (32 × 2 elements, 6 steps): the
-    /// symmetry self-check (E-3) passes and the run-off velocity is round-off; a static
-    /// scene runs stages (0)–(1) only and has no run-off. ~5 s.
+    /// symmetry self-check (E-3) passes and the run-off velocity is round-off, also
+    /// with the drums at different speeds (64 × 2); a static scene runs stages (0)–(1)
+    /// only and has no run-off. ~12 s.
     #[test]
     fn perfect_belt_and_static_scene_through_the_pipeline() {
         let mut v = shipped();
@@ -941,6 +940,25 @@ mod tests {
         assert!(solved.checks.iter().any(|c| c.contains("mirror symmetry")), "{:?}", solved.checks);
         assert_eq!(solved.history.len(), 1 + 1 + 6);
         assert_eq!(solved.history.frames.len(), 3);
+        // the driven drum faster by δ = 1e-6 (64 × 2: at 32 × 2 this steel belt's span
+        // tensions ratchet even at equal speeds, docs/fem-shell.md §9.4): the layer creeps
+        // and the upper span (the driven drum's entry) tightens against the same run at
+        // equal speeds, by less than the stick limit δEA (§9.4: the steady split is
+        // δEA/(1 + 2/(cosh(L_c/ℓ) − 1)); after 6 steps it has only begun, measured
+        // +0.035 N of δEA = 8.4 N); still no run-off
+        let (w1, delta) = (v["drive"]["driver_speed"].as_f64().unwrap(), 1e-6);
+        let mut equal = v.clone();
+        equal["fem"] = json!({"elements_sigma": 64, "elements_zeta": 2, "steps": 6});
+        let mut faster = equal.clone();
+        faster["drive"]["driven_speed"] = json!(w1 * (1.0 + delta));
+        let split = |s: &Summary| s.tension_upper_mid.unwrap() - s.tension_lower_mid.unwrap();
+        let (creeping, equal) = (solve(&read(&faster)).unwrap().summary, solve(&read(&equal)).unwrap().summary);
+        let belt = |k: &str| v["belt"][k].as_f64().unwrap();
+        let ea = belt("youngs_modulus") * belt("thickness") * belt("width");
+        let gain = split(&creeping) - split(&equal);
+        assert_eq!(creeping.driven_speed, Some(w1 * (1.0 + delta)));
+        assert!(gain > 0.0 && gain < delta * ea, "the upper span tightens by {gain} N against δEA = {} N", delta * ea);
+        assert!(creeping.runoff_velocity.unwrap().abs() < 1e-12, "unequal speeds run off at {:e} m/s", creeping.runoff_velocity.unwrap());
         // static: at rest the drums do not turn, no run-off quantities
         v["analysis"] = json!("static");
         v["drive"]["driver_speed"] = json!(0.0);
