@@ -1,0 +1,109 @@
+//! The shell's hard cases (spec §4.13; issue 15: "each converges to a checked answer or
+//! stops early with a named error"), each the shipped `scenes/shell-runoff.json` with one
+//! thing pushed, at 64 × 2 elements over 4 steps of rotation (32 × 2 is below this steel
+//! belt's asymptotic range, docs/fem-shell.md §9.4), through the scene pipeline
+//! (`fem::shell::scene::solve`). A run that finishes must have passed its self-checks
+//! (the lateral force balance is among them), a finite summary, and state the warnings
+//! its physics calls for; a run that stops must stop with a named error — the stage, the
+//! step and the time — never a panic or a NaN. The outcomes, measured 5 Dec 2026
+//! (docs/fem-shell.md §14 "Hard cases"):
+//!
+//! | case | outcome |
+//! |---|---|
+//! | slack belt, L + 2 cm (sag 3 cm instead of 0.6) | finishes clean; mid-span tension 8.0 / 6.8 N |
+//! | stiff interlayer, P = 1e11, P_⊥ = 1e10 N/m³ (100×) | finishes clean |
+//! | large camber ΔL = 2 mm (200×) | finishes, warns: compressive edge (−1.07e7 Pa) and penetration > h |
+//! | large swivel β_y = 0.02 rad (40×) | stops at rotation step 4: Newton finds no acceptable step |
+//! | large tilt β_x = 0.02 rad | finishes, warns: compressive edge |
+
+use drive::Scene;
+use fem::shell::scene::{solve, ShellSolution};
+use fem::shell::ShellError;
+use serde_json::{json, Value};
+
+/// The shipped scene at 64 × 2 over 4 steps of rotation.
+fn base() -> Value {
+    let mut v: Value = serde_json::from_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
+    v["fem"] = json!({"elements_sigma": 64, "elements_zeta": 2, "steps": 4});
+    v
+}
+
+fn run(v: &Value) -> Result<ShellSolution, ShellError> {
+    solve(&Scene::from_json_str(&v.to_string()).unwrap())
+}
+
+/// A finished run is a checked answer: a finite summary, the lateral force balance
+/// among its passed checks, a run-off velocity.
+fn checked(case: &str, s: &ShellSolution) {
+    s.summary.check_finite().unwrap_or_else(|e| panic!("{case}: {e}"));
+    assert!(s.checks.iter().any(|c| c.starts_with("lateral force balance")), "{case}: {:?}", s.checks);
+    assert!(s.summary.runoff_velocity.is_some_and(f64::is_finite), "{case}: no run-off velocity");
+}
+
+#[test]
+fn slack_belt_with_a_large_sag_finishes_clean() {
+    let shipped = base();
+    let mut v = shipped.clone();
+    v["belt"]["length"] = json!(shipped["belt"]["length"].as_f64().unwrap() + 0.02);
+    let s = run(&v).unwrap();
+    checked("sag", &s);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // the drum tops are at y = R = 0.15 m: the slack span hangs > 2 cm below them
+    let y = s.summary.y_upper_mid.unwrap();
+    assert!(y < 0.13, "upper mid-span at y = {y} m: the longer belt does not sag");
+    assert!(s.summary.tension_upper_mid.unwrap() > 0.0 && s.summary.tension_lower_mid.unwrap() > 0.0);
+}
+
+#[test]
+fn stiff_interlayer_finishes_clean() {
+    let mut v = base();
+    v["effects"]["contact"]["elastic_layer"] = json!({"normal_stiffness": 1e11, "tangential_stiffness": 1e10});
+    let s = run(&v).unwrap();
+    checked("stiff layer", &s);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+}
+
+/// Compressive membrane stress at the short edge of a strongly cambered belt: the run
+/// is kept, and says that a thin belt would wrinkle there (spec §4.13: "Newton must not
+/// stall silently: report").
+#[test]
+fn large_camber_reports_the_compressed_edge() {
+    let mut v = base();
+    v["belt"]["camber"] = json!({"edge_length_difference": 2e-3});
+    let s = run(&v).unwrap();
+    checked("camber", &s);
+    assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force at a belt edge")), "{:?}", s.warnings);
+}
+
+/// A swivel of 0.02 rad (40× the shipped one) on this tight steel belt: either a checked
+/// answer or a stop that names the stage, the step and the time (measured: the rotation's
+/// step 4, no acceptable Newton step).
+#[test]
+fn large_swivel_converges_or_stops_with_a_named_error() {
+    let mut v = base();
+    v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 0.0], [0.2, 0.02]]});
+    match run(&v) {
+        Ok(s) => checked("swivel", &s),
+        Err(e @ ShellError::Step { .. }) => {
+            let m = e.to_string();
+            assert!(m.contains("stage (2)") && m.contains("step") && m.contains("t = "), "{m}");
+        }
+        Err(e) => panic!("swivel: an unnamed failure {e:?}"),
+    }
+}
+
+/// A tilt about the span direction of 0.02 rad: the contact's ζ-integration sees the
+/// drum's surface at a slope across the width (spec §4.13, "large tilt").
+#[test]
+fn large_tilt_across_the_width_is_checked() {
+    let mut v = base();
+    v["drive"]["steering"] = json!({"drum": "driven", "tilt_x": [[0.0, 0.0], [0.2, 0.02]]});
+    match run(&v) {
+        Ok(s) => {
+            checked("tilt", &s);
+            assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force")), "a 0.02 rad tilt of a tight steel belt compresses an edge: {:?}", s.warnings);
+        }
+        Err(e @ ShellError::Step { .. }) => assert!(e.to_string().contains("stage (2)"), "{e}"),
+        Err(e) => panic!("tilt: an unnamed failure {e:?}"),
+    }
+}
