@@ -376,66 +376,43 @@ fn plain(el: &ElementContext) -> bool {
 fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2_64) -> Dual2_64) -> ElementDerivatives {
     let qe = el.effective(q);
     let terms = StandardTerms::new(&el.params, rules, w);
-    let jac = el.jacobian();
+    let active = [Some(terms.strain.rule), terms.gravity.map(|t| t.rule), terms.contact.map(|t| t.rule), terms.bending.map(|t| t.rule)];
     // the distinct points of the active terms' rules (ξ compared exactly: Simpson's and
-    // Gauss's midpoints coincide), each with its fields and the terms' summed jet
-    let mut jets = PointJets::default();
-    let mut add = |rule: Rule, jet_of: &dyn Fn(&PointFields<f64>, f64, &mut PointJet)| {
-        for &(xi, wt) in rule.points() {
-            let (p, jet) = jets.at(el, &qe, xi);
-            jet_of(&p, wt * jac, jet);
+    // Gauss's midpoints coincide; at most 4 terms × 5 points, Gauss(5) the largest rule)
+    let mut xis = [0.0; 20];
+    let mut len = 0;
+    for &(xi, _) in active.iter().flatten().flat_map(|r| r.points()) {
+        if !xis[..len].contains(&xi) {
+            xis[len] = xi;
+            len += 1;
         }
-    };
-    add(terms.strain.rule, &|p, s, jet| terms.strain.effect.add_jet(el, p, s, jet));
-    if let Some(t) = &terms.gravity {
-        add(t.rule, &|p, s, jet| t.effect.add_jet(el, p, s, jet));
     }
-    if let Some(t) = &terms.contact {
-        add(t.rule, &|p, s, jet| t.effect.add_jet(el, p, s, jet));
-    }
-    if let Some(t) = &terms.bending {
-        add(t.rule, &|p, s, jet| t.effect.add_jet(el, p, s, jet));
-    }
+    let jac = el.jacobian();
+    // the weight × dσ/dξ of `rule` at ξ, if ξ is one of its points
+    let scale = |rule: Rule, xi: f64| rule.points().iter().find(|p| p.0 == xi).map(|p| p.1 * jac);
     let mut out = ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
-    for (xi, _, jet) in &jets.points[..jets.len] {
+    for &xi in &xis[..len] {
+        let p = el.fields(&qe, xi);
+        let mut jet = PointJet::default();
+        if let Some(s) = scale(terms.strain.rule, xi) {
+            terms.strain.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.gravity.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.contact.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.bending.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
         out.energy += jet.value;
-        add_jet(*xi, el.geometry.h, jet, &mut out.gradient, &mut out.hessian);
+        add_jet(xi, el.geometry.h, &jet, &mut out.gradient, &mut out.hessian);
     }
     if el.augmented.iter().any(|&a| a) {
         out = through_map(el, q, out);
     }
     out
-}
-
-/// The distinct integration points of an element's terms, ξ with the fields there and the
-/// terms' summed [`PointJet`] (at most 4 terms × 5 points: [`Rule::Gauss`] has ≤ 5).
-struct PointJets {
-    points: [(f64, PointFields<f64>, PointJet); 20],
-    len: usize,
-}
-
-impl Default for PointJets {
-    fn default() -> Self {
-        let none = PointFields { sigma: 0.0, s: 0.0, ds: 0.0, nu: 0.0, dnu: 0.0, d2nu: 0.0 };
-        PointJets { points: [(0.0, none, PointJet::default()); 20], len: 0 }
-    }
-}
-
-impl PointJets {
-    /// The fields and the jet at ξ, the point added (fields from `q`) if new.
-    #[inline]
-    fn at(&mut self, el: &ElementContext, q: &[f64; NDOF], xi: f64) -> (PointFields<f64>, &mut PointJet) {
-        let k = match self.points[..self.len].iter().position(|p| p.0 == xi) {
-            Some(k) => k,
-            None => {
-                self.points[self.len] = (xi, el.fields(q, xi), PointJet::default());
-                self.len += 1;
-                self.len - 1
-            }
-        };
-        let (_, p, jet) = &mut self.points[k];
-        (*p, jet)
-    }
 }
 
 /// One point's jet ([`PointJet`], weights included) into an element's gradient and
