@@ -152,8 +152,11 @@ pub trait Formulation: Send + Sync + 'static {
     /// ([`standard_terms`]): the kernel then differentiates each point density with
     /// respect to the three point values (∂σS, ν, ∂σν) and applies the linear Hermite
     /// map exactly (about 10× cheaper than AD over all 8 unknowns, and the same
-    /// numbers). A formulation that overrides `element_energy` must return false; its
-    /// derivatives then come from AD over the whole element energy.
+    /// numbers); a Kirchhoff rod's element (bending and the augmented map) takes each
+    /// term's derivatives at a point by its own chain rule ([`PointJet`]), with AD only
+    /// in λ for [`Self::strain_energy_density`]. A formulation that overrides
+    /// `element_energy` must return false; its derivatives then come from AD over the
+    /// whole element energy.
     fn pointwise(&self) -> bool {
         true
     }
@@ -612,8 +615,9 @@ pub trait Kernel: Send + Sync {
     fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64;
     /// Energy and gradient (forward-mode AD, `DualSVec64<8>`).
     fn gradient(&self, el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]);
-    /// Energy, gradient and Hessian (forward-mode AD: per point for a pointwise
-    /// formulation, else over the whole element).
+    /// Energy, gradient and Hessian (per point for a pointwise formulation — by AD in
+    /// the point values for a string, by the terms' chain rules for a rod —, else by AD
+    /// over the whole element).
     fn derivatives(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives;
     /// Energy, gradient and Hessian by AD over the whole element energy
     /// (`Dual2SVec64<8>`): the reference the fast path is tested against.
