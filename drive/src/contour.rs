@@ -262,14 +262,28 @@ impl Contour {
 
     /// g(σ), m: the point of the contour at σ (eq. 27 with ν = 0).
     pub fn g(&self, sigma: f64) -> [f64; 2] {
-        let (h, r) = (self.centre_distance, self.radius);
         let (region, u) = self.locate(sigma);
+        self.point_in(region, u)
+    }
+
+    /// g(σ) and n_g(σ) from one location of σ: the values of [`Self::g`] and
+    /// [`Self::n_g`] (the same arithmetic), for a caller that needs both at a point — an
+    /// element's height and position (each location wraps σ by a remainder and an arc
+    /// takes a sine and a cosine).
+    pub fn point_and_normal(&self, sigma: f64) -> ([f64; 2], [f64; 2]) {
+        let (region, u) = self.locate(sigma);
+        (self.point_in(region, u), self.normal_in(region, u))
+    }
+
+    /// g at the arc length `u` into `region` ([`Self::g`]).
+    fn point_in(&self, region: Region, u: f64) -> [f64; 2] {
+        let (h, r) = (self.centre_distance, self.radius);
         match region {
             Region::UpperSpan => [-0.5 * h + u, r],
             Region::LowerSpan => [0.5 * h - u, -r],
             Region::DrivenArc | Region::DriverArc => {
                 let c = self.pulley_centre(region.pulley().unwrap_or(Pulley::Driver));
-                let n = self.n_g(sigma);
+                let n = self.normal_in(region, u);
                 [c[0] + r * n[0], c[1] + r * n[1]]
             }
         }
@@ -287,6 +301,11 @@ impl Contour {
     /// (−sin φ, −cos φ).
     pub fn n_g(&self, sigma: f64) -> [f64; 2] {
         let (region, u) = self.locate(sigma);
+        self.normal_in(region, u)
+    }
+
+    /// n_g at the arc length `u` into `region` ([`Self::n_g`]).
+    fn normal_in(&self, region: Region, u: f64) -> [f64; 2] {
         match region {
             Region::UpperSpan => [0.0, 1.0],
             Region::LowerSpan => [0.0, -1.0],
@@ -663,6 +682,21 @@ mod tests {
 
     const R: f64 = 0.08;
     const H: f64 = 0.45;
+
+    /// `point_and_normal` is `g` and `n_g` from one location: the same bits, on every
+    /// region, at the transitions and beyond one period (σ wrapped).
+    #[test]
+    fn point_and_normal_equals_g_and_n_g() {
+        let c = Contour::new(R, H).unwrap();
+        let l = c.length();
+        let mut sigmas: Vec<f64> = (0..=400).map(|k| -0.3 * l + 1.6 * l * k as f64 / 400.0).collect();
+        sigmas.extend(c.transitions());
+        for sigma in sigmas {
+            let (g, n) = c.point_and_normal(sigma);
+            assert_eq!(g.map(f64::to_bits), c.g(sigma).map(f64::to_bits), "g at {sigma}");
+            assert_eq!(n.map(f64::to_bits), c.n_g(sigma).map(f64::to_bits), "n_g at {sigma}");
+        }
+    }
 
     fn contour() -> Contour {
         Contour::new(R, H).unwrap()

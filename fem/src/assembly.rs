@@ -240,6 +240,14 @@ impl<const N: usize, K: ElementKernel<N> + ?Sized> Assembler<N, K> {
         for (e, d) in per.iter().enumerate() {
             energy += d.energy;
             let idx = self.dofs.element(e);
+            if idx.iter().all(Option::is_some) {
+                // every unknown free: the element's block is its whole Hessian, row-major
+                for (gi, gv) in idx.iter().flatten().zip(&d.gradient) {
+                    g[*gi] += gv;
+                }
+                values.extend_from_slice(d.hessian.as_flattened());
+                continue;
+            }
             for (i, gi) in idx.iter().enumerate() {
                 let Some(gi) = gi else { continue };
                 g[*gi] += d.gradient[i];

@@ -231,16 +231,14 @@ impl ElementContext {
     /// Position r = g + ν n_g (eq. 27), m.
     #[inline]
     pub fn position<D: Scalar>(&self, p: &PointFields<D>) -> [D; 2] {
-        let g = self.contour.g(p.sigma);
-        let n = self.contour.n_g(p.sigma);
+        let (g, n) = self.contour.point_and_normal(p.sigma);
         [p.nu * n[0] + g[0], p.nu * n[1] + g[1]]
     }
 
     /// Height y = g_y + ν n_{g,y}, m.
     #[inline]
     pub fn height<D: Scalar>(&self, p: &PointFields<D>) -> D {
-        let g = self.contour.g(p.sigma);
-        let n = self.contour.n_g(p.sigma);
+        let (g, n) = self.contour.point_and_normal(p.sigma);
         p.nu * n[1] + g[1]
     }
 

@@ -60,8 +60,9 @@ pub const STRING_GAUSS: BuiltIn = BuiltIn {
 /// `rod-simpson`: Kirchhoff rod (extensible, unshearable): membrane energy ½EA(λ − 1)²
 /// sampled at ξ = −1, 0, 1 (§7.3, Fig. 7: the remedy of membrane locking), bending
 /// energy ½EI κ², gravity and penalty contact by 3-point Gauss (docs/fem-rod.md §4 on why
-/// not Simpson for the contact); C¹ augmented transitions (K9), derivatives by the
-/// per-point AD path with the chain rule through the map.
+/// not Simpson for the contact); C¹ augmented transitions (K9), derivatives per
+/// integration point by each term's chain rule (`PointJet`) and the chain rule through
+/// the map (docs/fem-rod.md §4).
 pub const ROD_SIMPSON: BuiltIn = BuiltIn {
     name: "rod-simpson",
     description: "Kirchhoff rod, Biot strain, Hermite cubics (eq. 43) with C¹ augmented transitions (§7.2), Simpson rule for the membrane energy (§7.3), Gauss 3 for bending, gravity and penalty contact",

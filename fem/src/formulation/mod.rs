@@ -71,7 +71,7 @@
 use std::sync::{Arc, LazyLock, PoisonError, RwLock, RwLockReadGuard};
 
 use nalgebra::{Const, SVector, U1};
-use num_dual::{gradient, hessian, Dual2SVec64, Dual64, DualSVec64};
+use num_dual::{gradient, hessian, Dual2SVec64, Dual2_64, Dual64, DualSVec64};
 
 use crate::kinematics::{NU_DOFS, S_DOFS};
 
@@ -92,7 +92,7 @@ pub mod terms;
 pub use built_in::{BuiltIn, ROD_GAUSS, ROD_SIMPSON, STRING_GAUSS, STRING_SIMPSON};
 pub use layout::{RegisteredElement, NDOF_COSSERAT};
 pub use drive::scene::Theory;
-pub use terms::{augmented_traction, AugmentedPenalty, ContactMultipliers, Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
+pub use terms::{augmented_traction, AugmentedPenalty, ContactMultipliers, Bending, EnergyTerm, Gravity, HistoryTerm, Integrated, PenaltyContact, PointDensity, PointJet, StandardTerms, Strain, TermHistory, TermVisitor, TransportInertia};
 use terms::EnergySum;
 
 /// The integration rule of each energy term (§7.3; docs/fem-string.md §6).
@@ -152,8 +152,11 @@ pub trait Formulation: Send + Sync + 'static {
     /// ([`standard_terms`]): the kernel then differentiates each point density with
     /// respect to the three point values (∂σS, ν, ∂σν) and applies the linear Hermite
     /// map exactly (about 10× cheaper than AD over all 8 unknowns, and the same
-    /// numbers). A formulation that overrides `element_energy` must return false; its
-    /// derivatives then come from AD over the whole element energy.
+    /// numbers); a Kirchhoff rod's element (bending and the augmented map) takes each
+    /// term's derivatives at a point by its own chain rule ([`PointJet`]), with AD only
+    /// in λ for [`Self::strain_energy_density`]. A formulation that overrides
+    /// `element_energy` must return false; its derivatives then come from AD over the
+    /// whole element energy.
     fn pointwise(&self) -> bool {
         true
     }
@@ -337,6 +340,7 @@ macro_rules! point_hessian {
 }
 
 point_hessian!(3, curvature: false);
+#[cfg(test)]
 point_hessian!(4, curvature: true);
 
 /// Energy, gradient and Hessian of a standard element (docs/fem-string.md §7): at each
@@ -359,6 +363,136 @@ fn plain(el: &ElementContext) -> bool {
 
 /// Energy, gradient and Hessian of a standard element with the bending term and/or the
 /// augmented map (docs/fem-rod.md §3, §4): the effective unknowns q̃ = m(q) (K9); at each
+/// distinct integration point of the active terms' rules the terms' densities, value,
+/// gradient and Hessian over u = (∂σS, ν, ∂σν, ∂²σν) = B q̃ (B: 4 × 8 Hermite weights),
+/// each unit by its own chain rule ([`PointJet`]: AD only in λ for W(λ) and in ν for
+/// the contour's functions), are summed with their rule weights into one jet; each jet
+/// is projected once, g̃ += Bᵀ g and K̃ += Bᵀ H B by the blocks of B (∂σS reads the s
+/// unknowns, ν, ∂σν, ∂²σν the ν unknowns: [`add_jet`]); then the chain rule through the
+/// map, exactly: g = J_mᵀ g̃, K = J_mᵀ K̃ J_m + Σᵢ g̃ᵢ ∇²mᵢ ([`through_map`], only
+/// where a node is flagged). The map changes only the slopes of a flagged
+/// node (offset o = 0 or 4): m_{o+1} = q_{o+1} f, m_{o+3} = q_{o+3} f with
+/// f = 1 + α q_{o+2}, so J_m differs from the identity in the rows o+1, o+3 and each
+/// ∇²mᵢ has the two entries α at (o+1|o+3, o+2). Equal to AD over the whole element and
+/// to the per-point `Dual2SVec64<4>` AD it replaces (tested), at about a fifth of the
+/// latter's instructions (docs/performance.md, "The static rod's assembly").
+fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2_64) -> Dual2_64) -> ElementDerivatives {
+    let qe = el.effective(q);
+    let terms = StandardTerms::new(&el.params, rules, w);
+    let active = [Some(terms.strain.rule), terms.gravity.map(|t| t.rule), terms.contact.map(|t| t.rule), terms.bending.map(|t| t.rule)];
+    // the distinct points of the active terms' rules (ξ compared exactly: Simpson's and
+    // Gauss's midpoints coincide; at most 4 terms × 5 points, Gauss(5) the largest rule)
+    let mut xis = [0.0; 20];
+    let mut len = 0;
+    for &(xi, _) in active.iter().flatten().flat_map(|r| r.points()) {
+        if !xis[..len].contains(&xi) {
+            xis[len] = xi;
+            len += 1;
+        }
+    }
+    let jac = el.jacobian();
+    // the weight × dσ/dξ of `rule` at ξ, if ξ is one of its points
+    let scale = |rule: Rule, xi: f64| rule.points().iter().find(|p| p.0 == xi).map(|p| p.1 * jac);
+    let mut out = ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] };
+    for &xi in &xis[..len] {
+        let p = el.fields(&qe, xi);
+        let mut jet = PointJet::default();
+        if let Some(s) = scale(terms.strain.rule, xi) {
+            terms.strain.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.gravity.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.contact.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
+        if let Some((t, s)) = terms.bending.and_then(|t| Some((t, scale(t.rule, xi)?))) {
+            t.effect.add_jet(el, &p, s, &mut jet);
+        }
+        out.energy += jet.value;
+        add_jet(xi, el.geometry.h, &jet, &mut out.gradient, &mut out.hessian);
+    }
+    if el.augmented.iter().any(|&a| a) {
+        out = through_map(el, q, out);
+    }
+    out
+}
+
+/// One point's jet ([`PointJet`], weights included) into an element's gradient and
+/// Hessian in the effective unknowns (docs/fem-string.md §7): with u = B q̃ — ∂σS = w_dᵀ
+/// q̃_s, (ν, ∂σν, ∂²σν) = (w_v, w_d, w₂)ᵀ q̃_ν — g̃ += Bᵀ g and K̃ += Bᵀ H B by blocks:
+/// K̃_ss += H₀₀ w_d w_dᵀ, K̃_sν += w_d mᵀ with m = Σ_b H₀b c_b, K̃_νν += Cᵀ H_νν C
+/// (C: the 3 × 4 weights c of ν, ∂σν, ∂²σν).
+#[inline]
+#[allow(clippy::needless_range_loop)] // the 4 × 4 blocks read clearer with indices
+fn add_jet(xi: f64, h: f64, jet: &PointJet, grad: &mut [f64; NDOF], hess: &mut [[f64; NDOF]; NDOF]) {
+    let (wv, wd) = crate::hermite::weights(xi, h);
+    let w2 = crate::hermite::second_weights(xi, h);
+    let (g, hh) = (&jet.gradient, &jet.hessian);
+    // per ν unknown l: its weights c_l = (w_v, w_d, w₂) and H_νν c_l, H_0ν · c_l
+    let c: [[f64; 3]; 4] = std::array::from_fn(|l| [wv[l], wd[l], w2[l]]);
+    let mut hc = [[0.0; 3]; 4];
+    let mut m = [0.0; 4];
+    for l in 0..4 {
+        for a in 0..3 {
+            hc[l][a] = hh[a + 1][1] * c[l][0] + hh[a + 1][2] * c[l][1] + hh[a + 1][3] * c[l][2];
+        }
+        m[l] = hh[0][1] * c[l][0] + hh[0][2] * c[l][1] + hh[0][3] * c[l][2];
+    }
+    for k in 0..4 {
+        let (si, ni) = (S_DOFS[k], NU_DOFS[k]);
+        grad[si] += g[0] * wd[k];
+        grad[ni] += g[1] * c[k][0] + g[2] * c[k][1] + g[3] * c[k][2];
+        let h00 = hh[0][0] * wd[k];
+        for l in 0..4 {
+            let (sj, nj) = (S_DOFS[l], NU_DOFS[l]);
+            hess[si][sj] += h00 * wd[l];
+            let sn = wd[k] * m[l];
+            hess[si][nj] += sn;
+            hess[nj][si] += sn;
+            hess[ni][nj] += c[k][0] * hc[l][0] + c[k][1] * hc[l][1] + c[k][2] * hc[l][2];
+        }
+    }
+}
+
+/// The chain rule through the augmented map (K9) of an element with a flagged node
+/// ([`pointwise_derivatives_rod`]): from the derivatives `d` in the effective unknowns
+/// to those in q, g = J_mᵀ g̃, K = J_mᵀ K̃ J_m + Σᵢ g̃ᵢ ∇²mᵢ.
+#[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
+fn through_map(el: &ElementContext, q: &[f64; NDOF], d: ElementDerivatives) -> ElementDerivatives {
+    let ElementDerivatives { energy, gradient: ge, hessian: he } = d;
+    let alpha = el.alpha();
+    let jm = map_jacobian(el, q);
+    let mut out = ElementDerivatives { energy, gradient: map_transpose_times(&jm, &ge), hessian: [[0.0; NDOF]; NDOF] };
+    // Jᵀ K̃ J
+    let mut kj = [[0.0; NDOF]; NDOF];
+    for a in 0..NDOF {
+        for j in 0..NDOF {
+            kj[a][j] = (0..NDOF).map(|b| he[a][b] * jm[b][j]).sum();
+        }
+    }
+    for i in 0..NDOF {
+        for j in 0..NDOF {
+            out.hessian[i][j] = (0..NDOF).map(|a| jm[a][i] * kj[a][j]).sum();
+        }
+    }
+    // Σᵢ g̃ᵢ ∇²mᵢ: α g̃ₖ at (k, ν of the node) for the node's slopes k, symmetric
+    for (flag, end) in el.augmented.iter().zip([0usize, 2]) {
+        if *flag {
+            for k in [S_DOFS[end + 1], NU_DOFS[end + 1]] {
+                let v = ge[k] * alpha;
+                out.hessian[k][NU_DOFS[end]] += v;
+                out.hessian[NU_DOFS[end]][k] += v;
+            }
+        }
+    }
+    out
+}
+
+/// [`pointwise_derivatives_rod`] with each point's density differentiated by
+/// `Dual2SVec64<4>` AD over all four point values instead of the units' chain rules —
+/// the path the rod's derivatives took before (kept as the tests' oracle): the effective
+/// unknowns q̃ = m(q) (K9); at each
 /// integration point the density is differentiated by `Dual2SVec64<4>` with respect to
 /// u = (∂σS, ν, ∂σν, ∂²σν) = B q̃ (B: 4 × 8 Hermite weights), summed to g̃ = ∂E/∂q̃ and
 /// K̃ = ∂²E/∂q̃²; then the chain rule through the map, exactly:
@@ -367,8 +501,9 @@ fn plain(el: &ElementContext) -> bool {
 /// f = 1 + α q_{o+2}, so J_m differs from the identity in the rows o+1, o+3 and each
 /// ∇²mᵢ has the two entries α at (o+1|o+3, o+2). Equal to AD over the whole element
 /// (tested), about an order of magnitude cheaper.
+#[cfg(test)]
 #[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
-fn pointwise_derivatives_rod(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
+fn pointwise_derivatives_rod_ad(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
     let qe = el.effective(q);
     let mut v = PointHessian::<4> { el, q: &qe, out: ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] } };
     StandardTerms::new(&el.params, rules, w).visit(&mut v);
@@ -480,8 +615,9 @@ pub trait Kernel: Send + Sync {
     fn energy(&self, el: &ElementContext, q: &[f64; NDOF]) -> f64;
     /// Energy and gradient (forward-mode AD, `DualSVec64<8>`).
     fn gradient(&self, el: &ElementContext, q: &[f64; NDOF]) -> (f64, [f64; NDOF]);
-    /// Energy, gradient and Hessian (forward-mode AD: per point for a pointwise
-    /// formulation, else over the whole element).
+    /// Energy, gradient and Hessian (per point for a pointwise formulation — by AD in
+    /// the point values for a string, by the terms' chain rules for a rod —, else by AD
+    /// over the whole element).
     fn derivatives(&self, el: &ElementContext, q: &[f64; NDOF]) -> ElementDerivatives;
     /// Energy, gradient and Hessian by AD over the whole element energy
     /// (`Dual2SVec64<8>`): the reference the fast path is tested against.
@@ -872,6 +1008,48 @@ mod tests {
                         assert!((a.gradient[i] - b.gradient[i]).abs() <= 1e-12 * gs, "{}", kernel.name());
                         for j in 0..NDOF {
                             assert!((a.hessian[i][j] - b.hessian[i][j]).abs() <= 1e-11 * hs, "{} H[{i}][{j}]", kernel.name());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The Kirchhoff rod's chain-rule path (the units' [`PointJet`]s projected once per
+    /// distinct point, the map's chain rule only at flagged nodes) against the per-point
+    /// `Dual2SVec64<4>` AD it replaced, at 40 random states of each element of
+    /// [`elements_for`] (every region, contact partly penetrated, the augmented map at
+    /// either and both nodes), for both rod rules and a strain law with W‴ ≠ 0 besides
+    /// Biot's: energy, gradient and Hessian to 1e-12 of the largest entry (both are exact
+    /// derivatives; they differ only in the order of a few dozen roundings). The
+    /// derivatives against central differences are
+    /// [`ad_matches_finite_differences_for_every_formulation`], which runs the rods
+    /// through this path.
+    #[test]
+    fn rod_chain_rule_equals_point_ad() {
+        let mut rng = Rng(0x0dd_ba11);
+        let cubic = |l: f64, ea: f64| -> f64 { let e = l - 1.0; ea * e * e * (0.5 + 0.3 * e) };
+        for kernel in [ROD_SIMPSON, ROD_GAUSS] {
+            let rules = kernel.rules;
+            for el in elements_for(&kernel) {
+                let ea = el.params.axial_stiffness;
+                for trial in 0..40 {
+                    let q = random_q(&el, &mut rng);
+                    let (fast, oracle) = if trial % 2 == 0 {
+                        (pointwise_derivatives_rod(&el, &q, &rules, |l| biot_density(l, ea)), pointwise_derivatives_rod_ad(&el, &q, &rules, |l| biot_density(l, ea)))
+                    } else {
+                        let w2 = |l: Dual2_64| { let e = l - 1.0; e * e * (e * 0.3 + 0.5) * ea };
+                        let w4 = |l: Dual2SVec64<4>| { let e = l - 1.0; e * e * (e * 0.3 + 0.5) * ea };
+                        assert!((w2(Dual2_64::from_re(1.1)).re - cubic(1.1, ea)).abs() < 1e-9);
+                        (pointwise_derivatives_rod(&el, &q, &rules, w2), pointwise_derivatives_rod_ad(&el, &q, &rules, w4))
+                    };
+                    assert!((fast.energy - oracle.energy).abs() <= 1e-12 * oracle.energy.abs().max(1e-12), "{} energy {} vs {}", kernel.name, fast.energy, oracle.energy);
+                    let gs = oracle.gradient.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
+                    let hs = oracle.hessian.iter().flatten().fold(1e-300f64, |m, v| m.max(v.abs()));
+                    for i in 0..NDOF {
+                        assert!((fast.gradient[i] - oracle.gradient[i]).abs() <= 1e-12 * gs, "{} {:?} g[{i}]: {} vs {}", kernel.name, el.augmented, fast.gradient[i], oracle.gradient[i]);
+                        for j in 0..NDOF {
+                            assert!((fast.hessian[i][j] - oracle.hessian[i][j]).abs() <= 1e-12 * hs, "{} {:?} H[{i}][{j}]: {} vs {}", kernel.name, el.augmented, fast.hessian[i][j], oracle.hessian[i][j]);
                         }
                     }
                 }

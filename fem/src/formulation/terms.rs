@@ -31,6 +31,8 @@
 
 use std::fmt::Debug;
 
+use num_dual::{Dual2_64, Dual64};
+
 use super::{ElementContext, PointFields, Rule, Scalar, TermParams, TermRules, NDOF};
 
 /// One energy term of an element — one effect — over point values.
@@ -247,6 +249,156 @@ impl<D: Scalar> PointDensity<D> for Bending {
     fn density(&self, el: &ElementContext, p: &PointFields<D>) -> D {
         let k = el.angle_rate(p);
         k * k / p.ds * (0.5 * self.0)
+    }
+}
+
+/// A point density's value, gradient and Hessian over the point values
+/// u = (∂σS, ν, ∂σν, ∂²σν) (in this order), summed over the terms at one point with each
+/// term's weight: what the Kirchhoff rod's element derivatives are projected from
+/// (docs/fem-rod.md §4). Each unit fills in its own share ([`Strain::add_jet`],
+/// [`Gravity::add_jet`], [`PenaltyContact::add_jet`], [`Bending::add_jet`]) by the chain
+/// rule through the one or two intermediate values its density is a function of, with
+/// AD only where a function is the formulation's (W(λ)) or the contour's (the gap, the
+/// height) — one variable at a time. Equal to `Dual2SVec64<4>` AD of the density to
+/// round-off (tested in `formulation`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PointJet {
+    /// Energy, J (the weights included).
+    pub value: f64,
+    /// ∂/∂u.
+    pub gradient: [f64; 4],
+    /// ∂²/∂u², symmetric.
+    pub hessian: [[f64; 4]; 4],
+}
+
+impl PointJet {
+    /// Adds `s` × (f, ∂f/∂uᵢ, ∂²f/∂uᵢ∂uⱼ) of a density f of (∂σS, x, y) where x, y are
+    /// the point values number `ix`, `iy` (the Hessian's off-diagonal entries
+    /// mirrored): the shared last step of the units' chain rules.
+    #[inline]
+    #[allow(clippy::too_many_arguments)] // the 6 derivatives of f(∂σS, x, y), named as in the formulas
+    fn add_ds_xy(&mut self, s: f64, f: f64, [f_s, f_x, f_y]: [f64; 3], [f_ss, f_sx, f_sy]: [f64; 3], [f_xx, f_xy, f_yy]: [f64; 3], (ix, iy): (usize, usize)) {
+        self.value += s * f;
+        self.gradient[0] += s * f_s;
+        self.gradient[ix] += s * f_x;
+        self.gradient[iy] += s * f_y;
+        let h = &mut self.hessian;
+        h[0][0] += s * f_ss;
+        h[0][ix] += s * f_sx;
+        h[ix][0] += s * f_sx;
+        h[0][iy] += s * f_sy;
+        h[iy][0] += s * f_sy;
+        h[ix][ix] += s * f_xx;
+        h[ix][iy] += s * f_xy;
+        h[iy][ix] += s * f_xy;
+        h[iy][iy] += s * f_yy;
+    }
+}
+
+/// The point fields with ν as the one dual variable of `D` (the others constants): for
+/// the units whose contour functions (the gap, the height) are differentiated in ν alone.
+#[inline]
+fn nu_variable<D: Scalar>(p: &PointFields<f64>, nu: D) -> PointFields<D> {
+    PointFields { sigma: p.sigma, s: D::from(p.s), ds: D::from(p.ds), nu, dnu: D::from(p.dnu), d2nu: D::from(p.d2nu) }
+}
+
+impl<W: Fn(Dual2_64) -> Dual2_64> Strain<W> {
+    /// Adds `s` × the jet of W(λ) ∂σS ([`PointJet`]): with t = |∂σr| = √(a² + b²),
+    /// a = 1 + αν, b = ∂σν, λ = t/∂σS and W, W′, W″ at λ (AD in λ alone),
+    /// f_S = W − λW′, f_t = W′, f_SS = λ²W″/∂σS, f_St = −λW″/∂σS, f_tt = W″/∂σS; then
+    /// through t: t_ν = αa/t, t_b = b/t, t_νν = α²b²/t³, t_νb = −αab/t³, t_bb = a²/t³.
+    #[inline]
+    pub fn add_jet(&self, el: &ElementContext, p: &PointFields<f64>, s: f64, jet: &mut PointJet) {
+        let alpha = el.alpha();
+        let (a, b, ds) = (1.0 + alpha * p.nu, p.dnu, p.ds);
+        let t = (a * a + b * b).sqrt();
+        let lambda = t / ds;
+        let w = (self.0)(Dual2_64::from_re(lambda).derivative());
+        let (w0, w1, w2) = (w.re, w.v1, w.v2);
+        let (f_t, f_tt) = (w1, w2 / ds);
+        let (t_n, t_b) = (alpha * a / t, b / t);
+        let t3 = t * t * t;
+        let (t_nn, t_nb, t_bb) = (alpha * alpha * b * b / t3, -alpha * a * b / t3, a * a / t3);
+        let f_st = -lambda * f_tt;
+        jet.add_ds_xy(
+            s,
+            w0 * ds,
+            [w0 - lambda * w1, f_t * t_n, f_t * t_b],
+            [lambda * lambda * f_tt, f_st * t_n, f_st * t_b],
+            [f_tt * t_n * t_n + f_t * t_nn, f_tt * t_n * t_b + f_t * t_nb, f_tt * t_b * t_b + f_t * t_bb],
+            (1, 2),
+        );
+    }
+}
+
+impl Gravity {
+    /// Adds `s` × the jet of ρg y ∂σS ([`PointJet`]): y = g_y + ν n_{g,y} is linear in ν
+    /// (y and n_{g,y} by one `Dual64` in ν through [`ElementContext::height`]).
+    #[inline]
+    pub fn add_jet(&self, el: &ElementContext, p: &PointFields<f64>, s: f64, jet: &mut PointJet) {
+        let y = el.height(&nu_variable(p, Dual64::from_re(p.nu).derivative()));
+        let (y, n_y) = (y.re * self.0, y.eps * self.0);
+        jet.value += s * y * p.ds;
+        jet.gradient[0] += s * y;
+        jet.gradient[1] += s * n_y * p.ds;
+        jet.hessian[0][1] += s * n_y;
+        jet.hessian[1][0] += s * n_y;
+    }
+}
+
+impl PenaltyContact {
+    /// Adds `s` × the jet of ½P⟨−γ⟩² ([`PointJet`]): a function of ν alone, differentiated
+    /// by one `Dual2_64` in ν through the unit's own density (and so the gap of
+    /// [`ElementContext::gap`]).
+    #[inline]
+    pub fn add_jet(&self, el: &ElementContext, p: &PointFields<f64>, s: f64, jet: &mut PointJet) {
+        let f: Dual2_64 = self.density(el, &nu_variable(p, Dual2_64::from_re(p.nu).derivative()));
+        jet.value += s * f.re;
+        jet.gradient[1] += s * f.v1;
+        jet.hessian[1][1] += s * f.v2;
+    }
+}
+
+impl Bending {
+    /// Adds `s` × the jet of ½EI θ_σ²/∂σS ([`PointJet`]) by the chain rule through
+    /// θ_σ = N/D (K3) with N = a e − αa² − 2αb², D = a² + b², a = 1 + αν, b = ∂σν,
+    /// e = ∂²σν: θ_x = (N_x − θD_x)/D, θ_xy = (N_xy − θ_x D_y − θ_y D_x − θD_xy)/D over
+    /// (a, b, e), ∂/∂ν = α ∂/∂a; then with c = EI, f_θ = cθ/∂σS, f_θθ = c/∂σS,
+    /// f_S = −cθ²/(2∂σS²), f_Sθ = −cθ/∂σS², f_SS = cθ²/∂σS³.
+    #[inline]
+    pub fn add_jet(&self, el: &ElementContext, p: &PointFields<f64>, s: f64, jet: &mut PointJet) {
+        let alpha = el.alpha();
+        let (a, b, e, ds) = (1.0 + alpha * p.nu, p.dnu, p.d2nu, p.ds);
+        let d = a * a + b * b;
+        let k = (a * e - alpha * a * a - 2.0 * alpha * b * b) / d;
+        // first derivatives over (a, b, e); N_aa = −2α, N_bb = −4α, N_ae = 1, D_aa = D_bb = 2
+        let (n_a, n_b, n_e) = (e - 2.0 * alpha * a, -4.0 * alpha * b, a);
+        let (d_a, d_b) = (2.0 * a, 2.0 * b);
+        let k_a = (n_a - k * d_a) / d;
+        let k_b = (n_b - k * d_b) / d;
+        let k_e = n_e / d;
+        let k_aa = (-2.0 * alpha - 2.0 * k_a * d_a - 2.0 * k) / d;
+        let k_ab = (-k_a * d_b - k_b * d_a) / d;
+        let k_ae = (1.0 - k_e * d_a) / d;
+        let k_bb = (-4.0 * alpha - 2.0 * k_b * d_b - 2.0 * k) / d;
+        let k_be = (-k_e * d_b) / d;
+        // over u = (∂σS, ν, ∂σν, ∂²σν): a = 1 + αν
+        let g = [alpha * k_a, k_b, k_e];
+        let hk = [[alpha * alpha * k_aa, alpha * k_ab, alpha * k_ae], [alpha * k_ab, k_bb, k_be], [alpha * k_ae, k_be, 0.0]];
+        let c = self.0;
+        let (f_k, f_kk) = (c * k / ds, c / ds);
+        let f_sk = -f_k / ds;
+        jet.value += s * 0.5 * c * k * k / ds;
+        jet.gradient[0] += s * (-0.5 * f_k * k / ds);
+        jet.hessian[0][0] += s * (f_k * k / (ds * ds));
+        for x in 0..3 {
+            jet.gradient[x + 1] += s * f_k * g[x];
+            jet.hessian[0][x + 1] += s * f_sk * g[x];
+            jet.hessian[x + 1][0] += s * f_sk * g[x];
+            for y in 0..3 {
+                jet.hessian[x + 1][y + 1] += s * (f_kk * g[x] * g[y] + f_k * hk[x][y]);
+            }
+        }
     }
 }
 
