@@ -933,8 +933,10 @@ impl BorderedBand {
         if self.symmetric {
             if self.values_symmetric(&b, &c, &d, &scale) {
                 let ratio = if m > 0 { BORDER_PIVOT_RATIO } else { PIVOT_TOLERANCE };
-                if self.cholesky.factorize(&self.band, &scale, ratio).is_ok() {
-                    return self.cholesky_border(b, c, d);
+                // a Schur complement judged singular here goes to the LU path too (its
+                // terms' size is measured more coarsely than there), not to faer's LU
+                if self.cholesky.factorize(&self.band, &scale, ratio).is_ok() && self.cholesky_border(&b, &c, &d).is_ok() {
+                    return Ok(());
                 }
             }
             self.cholesky_refusals += 1;
@@ -1013,7 +1015,7 @@ impl BorderedBand {
     /// at once), S = D − Wᵀ W (the upper triangle of WᵀW summed over the rows in two
     /// halves at once, mirrored) and its LU; the size of S's terms |D_kl| + ‖W_k‖ ‖W_l‖
     /// (≥ Σ_i |W_ik| |W_il|, the size of the LU path) judges its pivots.
-    fn cholesky_border(&mut self, b: Vec<f64>, c: Vec<f64>, d: Vec<f64>) -> Result<(), BandFailure> {
+    fn cholesky_border(&mut self, b: &[f64], c: &[f64], d: &[f64]) -> Result<(), BandFailure> {
         let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
         let mut w = vec![0.0; ni * m];
         for (k, col) in b.chunks_exact(ni.max(1)).take(m).enumerate() {
@@ -1044,7 +1046,7 @@ impl BorderedBand {
         let half = (ni / 2) * m;
         let (upper, lower) = rayon::join(|| gram(&w[..half]), || gram(&w[half..]));
         let norm: Vec<f64> = (0..m).map(|k| (upper[k * m + k] + lower[k * m + k]).sqrt()).collect();
-        let mut s = d;
+        let mut s = d.to_vec();
         let mut size = vec![0.0; m * m];
         for k in 0..m {
             for l in 0..m {
@@ -1057,7 +1059,7 @@ impl BorderedBand {
         let col_scale: Vec<f64> = (0..m).map(|l| (0..m).fold(0.0_f64, |a, k| a.max(size[k * m + l]))).collect();
         self.schur.factorize(m, s, &col_scale).map_err(|det| BandFailure::Schur { det })?;
         self.v = w;
-        self.c = c;
+        self.c = c.to_vec();
         self.by_cholesky = true;
         self.cholesky_factorisations += 1;
         Ok(())
