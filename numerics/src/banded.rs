@@ -17,7 +17,23 @@
 //!
 //! The cost is linear in n: (kl + ku + kl)·kl per column for the LU, m band solves for
 //! V, m²n for S; a general sparse LU (faer's, with its fill-reducing ordering) of such a
-//! matrix costs 5–10× more at the sizes of the steady drive (docs/performance.md).
+//! matrix costs 5–10× more at the sizes of the steady drive (docs/performance.md). The m
+//! solves for V run as two halves of the columns at once (rayon; the same numbers to the
+//! bit), and their back substitution starts at the fill the interchanges actually made,
+//! not at the top of the fill room.
+//!
+//! For symmetric matrices ([`BorderedBand::symmetric`], an energy's Hessian) A is
+//! factorised by Cholesky, A = L Lᵀ, where it is positive definite, and
+//!
+//! ```text
+//!   W = L⁻¹ B,  S = D − Wᵀ W,
+//!   solve:  u = A⁻¹ r_A,  y = S⁻¹ (r_D − C u),  x_A = u − L⁻ᵀ (W y),  x_D = y:
+//! ```
+//!
+//! kl²/2 per column for the factor, m forward solves over a band of kl, m²n/2 for S —
+//! against the LU's kl(kl + ku), m solves forward and back over kl + (kl + ku). An A that
+//! is not positive definite (a pivot l_jj² at or below the LU's threshold), or values
+//! that are not symmetric, go to the LU as without it.
 //!
 //! **Singular**: a pivot |u_jj| ≤ τ max_i |a_ij| (τ = 64 ε, the largest entry of the
 //! original column j of the whole matrix, border rows included) — invariant under a
@@ -59,13 +75,17 @@ pub struct BandLu {
     ld: usize,
     ab: Vec<f64>,
     pivots: Vec<usize>,
+    /// The largest distance j − i of an entry u_ij of U that the last factorisation can
+    /// have made nonzero (ku, plus the fill of its row interchanges; ≤ kl + ku): the
+    /// solves' back substitution starts there instead of at the fill room's top.
+    fill: usize,
 }
 
 impl BandLu {
     /// An n × n band matrix of zeros with half-widths `kl`, `ku`.
     pub fn zeros(n: usize, kl: usize, ku: usize) -> Self {
         let ld = 2 * kl + ku + 1;
-        BandLu { n, kl, ku, ld, ab: vec![0.0; ld * n], pivots: vec![0; n] }
+        BandLu { n, kl, ku, ld, ab: vec![0.0; ld * n], pivots: vec![0; n], fill: kl + ku }
     }
 
     /// Order n.
@@ -124,6 +144,7 @@ impl BandLu {
         let (n, kl, ld) = (self.n, self.kl, self.ld);
         let kv = self.kl + self.ku;
         let mut ju = 0;
+        self.fill = self.ku;
         for (j, &column_scale) in scale.iter().enumerate().take(n) {
             let km = kl.min(n - 1 - j);
             let base = j * ld + kv;
@@ -139,6 +160,8 @@ impl BandLu {
                 return Err((j, best, column_scale));
             }
             ju = ju.max((j + self.ku + p).min(n - 1));
+            // row j of U reaches column ju at most (the elimination below writes no farther)
+            self.fill = self.fill.max(ju - j);
             if p != 0 {
                 for c in j..=ju {
                     let top = c * ld + kv - (c - j);
@@ -198,7 +221,8 @@ impl BandLu {
             b[j] /= col[kv];
             let t = b[j];
             if t != 0.0 {
-                let top = j.saturating_sub(kv);
+                // rows above j − fill hold exact zeros of U (the fill room no interchange used)
+                let top = j.saturating_sub(self.fill);
                 // rows top … j−1 of column j sit at storage rows kv − (j − i)
                 for (i, x) in b[top..j].iter_mut().enumerate() {
                     *x -= t * col[kv - (j - top - i)];
@@ -238,7 +262,7 @@ impl BandLu {
         }
         for j in (0..n).rev() {
             let col = &self.ab[j * ld..(j + 1) * ld];
-            let top = j.saturating_sub(kv);
+            let top = j.saturating_sub(self.fill);
             let (head, tail) = b.split_at_mut(j * m);
             let t = &mut tail[..m];
             for x in t.iter_mut() {
@@ -251,6 +275,121 @@ impl BandLu {
                 }
             }
         }
+    }
+}
+
+/// Largest |a_ij − a_ji| relative to the larger of columns i's and j's largest entries
+/// for which a [`BorderedBand`] made [`BorderedBand::symmetric`] takes a matrix as
+/// symmetric (τ of the pivots): the lower triangle it factorises then differs from the
+/// matrix by round-off of its columns' size.
+pub const SYMMETRY_TOLERANCE: f64 = PIVOT_TOLERANCE;
+
+/// Cholesky factor L (A = L Lᵀ) of a symmetric positive definite n × n band matrix of
+/// half-width k, in lower band storage: column j holds rows j … j + k (leading dimension
+/// k + 1). No pivoting: it exists and is backward stable exactly when A is positive
+/// definite, which the pivots l_jj² > 0 decide as they are computed.
+#[derive(Debug, Clone, Default)]
+struct BandCholesky {
+    n: usize,
+    k: usize,
+    l: Vec<f64>,
+}
+
+impl BandCholesky {
+    /// The lower triangle of `band`'s matrix (read before its LU) factorised. A pivot
+    /// l_jj² ≤ `ratio` · scale[j] (or not finite) is an error (j, pivot, scale[j]): A is
+    /// not positive definite, or too ill-conditioned to be factorised without pivoting.
+    fn factorize(&mut self, band: &BandLu, scale: &[f64], ratio: f64) -> Result<(), (usize, f64, f64)> {
+        let (n, k) = (band.n, band.kl);
+        let (ld, kv) = (k + 1, band.kl + band.ku);
+        self.n = n;
+        self.k = k;
+        self.l.resize(ld * n, 0.0);
+        for j in 0..n {
+            let from = j * band.ld + kv;
+            self.l[j * ld..(j + 1) * ld].copy_from_slice(&band.ab[from..from + ld]);
+        }
+        let l = &mut self.l;
+        for j in 0..n {
+            let pivot = l[j * ld];
+            if pivot.partial_cmp(&(ratio * scale[j])) != Some(std::cmp::Ordering::Greater) || !pivot.is_finite() {
+                return Err((j, pivot, scale[j]));
+            }
+            let root = pivot.sqrt();
+            let km = k.min(n - 1 - j);
+            l[j * ld] = root;
+            let inv = 1.0 / root;
+            for x in &mut l[j * ld + 1..=j * ld + km] {
+                *x *= inv;
+            }
+            // the trailing update of the columns j + 1 … j + km, rows down to j + km
+            let (left, right) = l.split_at_mut((j + 1) * ld);
+            let column = &left[j * ld + 1..=j * ld + km];
+            for c in 1..=km {
+                let a = column[c - 1];
+                if a != 0.0 {
+                    let target = &mut right[(c - 1) * ld..(c - 1) * ld + km - c + 1];
+                    for (x, &m) in target.iter_mut().zip(&column[c - 1..]) {
+                        *x -= a * m;
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Overwrite the n × m row-major `b` with L⁻¹ b (forward substitution).
+    fn forward_many(&self, b: &mut [f64], m: usize) {
+        let (n, k, ld) = (self.n, self.k, self.k + 1);
+        for j in 0..n {
+            let km = k.min(n - 1 - j);
+            let col = &self.l[j * ld..=j * ld + km];
+            let (head, tail) = b.split_at_mut((j + 1) * m);
+            let t = &mut head[j * m..];
+            let inv = 1.0 / col[0];
+            for x in t.iter_mut() {
+                *x *= inv;
+            }
+            for (row, &lr) in tail.chunks_exact_mut(m).zip(&col[1..]) {
+                for (x, &tk) in row.iter_mut().zip(t.iter()) {
+                    *x -= tk * lr;
+                }
+            }
+        }
+    }
+
+    /// Overwrite `b` (length n) with L⁻ᵀ b (back substitution).
+    fn backward(&self, b: &mut [f64]) {
+        let (n, k, ld) = (self.n, self.k, self.k + 1);
+        for j in (0..n).rev() {
+            let km = k.min(n - 1 - j);
+            let col = &self.l[j * ld..=j * ld + km];
+            let s: f64 = col[1..].iter().zip(&b[j + 1..=j + km]).map(|(a, x)| a * x).sum();
+            b[j] = (b[j] - s) / col[0];
+        }
+    }
+}
+
+/// Solve `b` (n × m row-major) in place by `solve(part, columns)` on two halves of its
+/// columns at once (rayon): per column the same operations as one call on all m, so the
+/// same numbers to the bit.
+fn solve_columns_in_two(b: &mut [f64], n: usize, m: usize, solve: impl Fn(&mut [f64], usize) + Sync) {
+    if m < 2 || n == 0 {
+        solve(b, m);
+        return;
+    }
+    let m1 = m / 2;
+    let m2 = m - m1;
+    let mut first = vec![0.0; n * m1];
+    let mut second = vec![0.0; n * m2];
+    for ((row, a), z) in b.chunks_exact(m).zip(first.chunks_exact_mut(m1)).zip(second.chunks_exact_mut(m2)) {
+        a.copy_from_slice(&row[..m1]);
+        z.copy_from_slice(&row[m1..]);
+    }
+    rayon::join(|| solve(&mut first, m1), || solve(&mut second, m2));
+    for ((row, a), z) in b.chunks_exact_mut(m).zip(first.chunks_exact(m1)).zip(second.chunks_exact(m2)) {
+        row[..m1].copy_from_slice(a);
+        row[m1..].copy_from_slice(z);
     }
 }
 
@@ -682,10 +821,20 @@ pub struct BorderedBand {
     /// Band position of each inner unknown's diagonal.
     diagonal: Vec<usize>,
     band: BandLu,
-    /// V = A⁻¹ B, row-major (inner × border); C row-major (border × inner).
+    /// V = A⁻¹ B, row-major (inner × border) — or, after a Cholesky factorisation,
+    /// W = L⁻¹ B; C row-major (border × inner).
     v: Vec<f64>,
     c: Vec<f64>,
     schur: DenseLu,
+    /// Try the Cholesky factorisation of A first ([`Self::symmetric`]).
+    symmetric: bool,
+    cholesky: BandCholesky,
+    /// The last factorisation's A was factorised by Cholesky (else by the LU).
+    by_cholesky: bool,
+    /// Factorisations done by Cholesky, and matrices it refused (not symmetric, or A
+    /// not positive definite: the LU took them).
+    pub cholesky_factorisations: usize,
+    pub cholesky_refusals: usize,
 }
 
 impl BorderedBand {
@@ -711,7 +860,33 @@ impl BorderedBand {
             })
             .collect();
         let diagonal = (0..structure.inner.len()).map(|i| band.position(i, i).unwrap_or(0)).collect();
-        BorderedBand { structure, slots, diagonal, band, v: Vec::new(), c: Vec::new(), schur: DenseLu::default() }
+        BorderedBand {
+            structure,
+            slots,
+            diagonal,
+            band,
+            v: Vec::new(),
+            c: Vec::new(),
+            schur: DenseLu::default(),
+            symmetric: false,
+            cholesky: BandCholesky::default(),
+            by_cholesky: false,
+            cholesky_factorisations: 0,
+            cholesky_refusals: 0,
+        }
+    }
+
+    /// The same, for symmetric matrices (an energy's Hessian): each factorisation first
+    /// checks the values' symmetry (to [`SYMMETRY_TOLERANCE`]) and factorises A by
+    /// Cholesky, A = L Lᵀ — half the band LU's work, and the border's Schur complement
+    /// S = D − Wᵀ W from the m forward solves W = L⁻¹ B alone (the LU needs forward and
+    /// back solves over a band widened by its interchanges' fill room). A matrix that is
+    /// not symmetric, or whose A has a pivot l_jj² at or below the LU's threshold (A not
+    /// positive definite — an indefinite Hessian away from a minimum — or as ill
+    /// conditioned as the LU would refuse), is factorised by the LU as without this; the
+    /// solution agrees with the LU's to round-off.
+    pub fn symmetric(structure: BandStructure, rows: &[usize], cols: &[usize]) -> Self {
+        BorderedBand { symmetric: true, ..Self::new(structure, rows, cols) }
     }
 
     /// The split in use.
@@ -754,6 +929,18 @@ impl BorderedBand {
                 *s = s.max(x.abs());
             }
         }
+        self.by_cholesky = false;
+        if self.symmetric {
+            if self.values_symmetric(&b, &c, &d, &scale) {
+                let ratio = if m > 0 { BORDER_PIVOT_RATIO } else { PIVOT_TOLERANCE };
+                // a Schur complement judged singular here goes to the LU path too (its
+                // terms' size is measured more coarsely than there), not to faer's LU
+                if self.cholesky.factorize(&self.band, &scale, ratio).is_ok() && self.cholesky_border(&b, &c, &d).is_ok() {
+                    return Ok(());
+                }
+            }
+            self.cholesky_refusals += 1;
+        }
         self.band.factorize(Some(&scale)).map_err(|(column, pivot, scale)| BandFailure::Band { column, pivot, scale })?;
         if m > 0 {
             if let Some((column, pivot, scale)) = self.band.smallest_pivot(&scale).filter(|&(_, p, s)| p.partial_cmp(&(BORDER_PIVOT_RATIO * s)) != Some(std::cmp::Ordering::Greater)) {
@@ -770,7 +957,8 @@ impl BorderedBand {
                 v[i * m + k] = x;
             }
         }
-        self.band.solve_many_in_place(&mut v, m);
+        let band = &self.band;
+        solve_columns_in_two(&mut v, ni, m, |part, columns| band.solve_many_in_place(part, columns));
         // S = D − C V and the size of its terms: per (k, l) the sum over i in order (a zero
         // C_ki adds an exact zero and is skipped; C is nonzero only next to the border)
         let mut s = d;
@@ -800,18 +988,107 @@ impl BorderedBand {
         Ok(())
     }
 
+    /// Whether the assembled A (band storage, before its factorisation), B (column k:
+    /// `b[k ni..]`), C (row k: `c[k ni..]`) and D are symmetric: |a_ij − a_ji| ≤
+    /// [`SYMMETRY_TOLERANCE`] × the larger of the two columns' largest entries (`scale`
+    /// for A's columns, the border columns' own). An entry-by-entry relative test would
+    /// refuse an assembled Hessian: entries that are sums cancelling to a small value
+    /// differ from their mirror by 1e-7 … 1 of themselves (the shell's, at ≤ 6.5e-16 of
+    /// their columns, docs/performance.md).
+    fn values_symmetric(&self, b: &[f64], c: &[f64], d: &[f64], scale: &[f64]) -> bool {
+        let band = &self.band;
+        if band.kl != band.ku {
+            return false;
+        }
+        let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
+        let border_scale: Vec<f64> = (0..m).map(|k| b[k * ni..(k + 1) * ni].iter().chain((0..m).map(|l| &d[l * m + k])).fold(0.0_f64, |a, x| a.max(x.abs()))).collect();
+        let close = |x: f64, y: f64, size: f64| (x - y).abs() <= SYMMETRY_TOLERANCE * size;
+        let (n, k, ld, kv) = (band.n, band.kl, band.ld, band.kl + band.ku);
+        // a_(j+r, j) in column j's storage row kv + r, a_(j, j+r) in column j + r's row kv − r
+        let band_symmetric = (0..n).all(|j| (1..=k.min(n - 1 - j)).all(|r| close(band.ab[j * ld + kv + r], band.ab[(j + r) * ld + kv - r], scale[j].max(scale[j + r]))));
+        band_symmetric
+            && (0..m).all(|k| (0..ni).all(|i| close(b[k * ni + i], c[k * ni + i], scale[i].max(border_scale[k]))))
+            && (0..m).all(|k| (0..k).all(|l| close(d[k * m + l], d[l * m + k], border_scale[k].max(border_scale[l]))))
+    }
+
+    /// The border after A = L Lᵀ: W = L⁻¹ B (m forward solves, two halves of the columns
+    /// at once), S = D − Wᵀ W (the upper triangle of WᵀW summed over the rows in two
+    /// halves at once, mirrored) and its LU; the size of S's terms |D_kl| + ‖W_k‖ ‖W_l‖
+    /// (≥ Σ_i |W_ik| |W_il|, the size of the LU path) judges its pivots.
+    fn cholesky_border(&mut self, b: &[f64], c: &[f64], d: &[f64]) -> Result<(), BandFailure> {
+        let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
+        let mut w = vec![0.0; ni * m];
+        for (k, col) in b.chunks_exact(ni.max(1)).take(m).enumerate() {
+            for (i, &x) in col.iter().enumerate() {
+                w[i * m + k] = x;
+            }
+        }
+        let cholesky = &self.cholesky;
+        if m > 0 {
+            solve_columns_in_two(&mut w, ni, m, |part, columns| cholesky.forward_many(part, columns));
+        }
+        let gram = |rows: &[f64]| {
+            let mut acc = vec![0.0; m * m];
+            if m == 0 {
+                return acc;
+            }
+            for row in rows.chunks_exact(m) {
+                for (k, &x) in row.iter().enumerate() {
+                    if x != 0.0 {
+                        for (a, &y) in acc[k * m + k..(k + 1) * m].iter_mut().zip(&row[k..]) {
+                            *a += x * y;
+                        }
+                    }
+                }
+            }
+            acc
+        };
+        let half = (ni / 2) * m;
+        let (upper, lower) = rayon::join(|| gram(&w[..half]), || gram(&w[half..]));
+        let norm: Vec<f64> = (0..m).map(|k| (upper[k * m + k] + lower[k * m + k]).sqrt()).collect();
+        let mut s = d.to_vec();
+        let mut size = vec![0.0; m * m];
+        for k in 0..m {
+            for l in 0..m {
+                let (p, q) = (k.min(l), k.max(l));
+                let x = s[k * m + l];
+                s[k * m + l] = x - (upper[p * m + q] + lower[p * m + q]);
+                size[k * m + l] = x.abs() + norm[k] * norm[l];
+            }
+        }
+        let col_scale: Vec<f64> = (0..m).map(|l| (0..m).fold(0.0_f64, |a, k| a.max(size[k * m + l]))).collect();
+        self.schur.factorize(m, s, &col_scale).map_err(|det| BandFailure::Schur { det })?;
+        self.v = w;
+        self.c = c.to_vec();
+        self.by_cholesky = true;
+        self.cholesky_factorisations += 1;
+        Ok(())
+    }
+
     /// Overwrite `x` (length n, global order) with the solution (after a successful
     /// [`Self::factorize`]).
     pub fn solve_in_place(&self, x: &mut [f64]) {
         let (ni, m) = (self.structure.inner.len(), self.structure.border.len());
         let mut u: Vec<f64> = self.structure.inner.iter().map(|&g| x[g]).collect();
-        self.band.solve_in_place(&mut u);
+        if self.by_cholesky {
+            self.cholesky.forward_many(&mut u, 1);
+            self.cholesky.backward(&mut u);
+        } else {
+            self.band.solve_in_place(&mut u);
+        }
         let mut y: Vec<f64> = self.structure.border.iter().map(|&g| x[g]).collect();
         for (k, yk) in y.iter_mut().enumerate() {
             *yk -= self.c[k * ni..(k + 1) * ni].iter().zip(&u).map(|(a, b)| a * b).sum::<f64>();
         }
         self.schur.solve_in_place(&mut y);
-        if m > 0 {
+        if self.by_cholesky {
+            // x_A = u − A⁻¹ B y = u − L⁻ᵀ (W y)
+            if m > 0 {
+                let mut t: Vec<f64> = self.v.chunks_exact(m).map(|wi| wi.iter().zip(&y).map(|(a, b)| a * b).sum()).collect();
+                self.cholesky.backward(&mut t);
+                u.iter_mut().zip(&t).for_each(|(a, b)| *a -= b);
+            }
+        } else if m > 0 {
             for (ui, vi) in u.iter_mut().zip(self.v.chunks_exact(m)) {
                 for (&v, &yl) in vi.iter().zip(&y) {
                     *ui -= if yl != 0.0 { v * yl } else { 0.0 };
@@ -926,6 +1203,50 @@ mod tests {
                     assert_eq!(many[i * m + k].to_bits(), x[i].to_bits(), "{n} {kl} {ku} {m}: ({i}, {k})");
                 }
             }
+        }
+    }
+
+    /// The back substitution starts at the fill the factorisation recorded (ku without
+    /// interchanges) instead of the fill room's top kl + ku: the rows skipped hold exact
+    /// zeros, so the single and the many-column solves give the same bits as from the
+    /// top; the split of the columns into two halves solved at once gives the same bits
+    /// as one sweep.
+    #[test]
+    fn the_solves_skip_the_unused_fill_room_and_split_columns_to_the_bit() {
+        let mut rng = Lcg(23);
+        for (n, kl, ku, m, dominant) in [(40, 3, 5, 5, true), (40, 3, 5, 5, false), (60, 7, 7, 6, true), (25, 4, 1, 3, false)] {
+            let (r, c, mut v) = random_band(n, kl, ku, &mut rng);
+            if dominant {
+                for k in 0..r.len() {
+                    if r[k] == c[k] {
+                        v[k] += 10.0 * (kl + ku + 1) as f64;
+                    }
+                }
+            }
+            let mut band = BandLu::zeros(n, kl, ku);
+            for k in 0..r.len() {
+                band.add(r[k], c[k], v[k]);
+            }
+            band.factorize(None).unwrap();
+            if dominant {
+                assert_eq!(band.fill, ku, "{n} {kl} {ku}: no interchange, no fill");
+            } else {
+                assert!(band.fill > ku && band.fill <= kl + ku, "{n} {kl} {ku}: fill {}", band.fill);
+            }
+            let mut from_top = band.clone();
+            from_top.fill = kl + ku;
+            let rhs: Vec<f64> = (0..n * m).map(|_| rng.next()).collect();
+            let (mut a, mut b) = (rhs.clone(), rhs.clone());
+            band.solve_many_in_place(&mut a, m);
+            from_top.solve_many_in_place(&mut b, m);
+            assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()), "{n} {kl} {ku}: many");
+            let (mut x, mut y) = (rhs[..n].to_vec(), rhs[..n].to_vec());
+            band.solve_in_place(&mut x);
+            from_top.solve_in_place(&mut y);
+            assert!(x.iter().zip(&y).all(|(p, q)| p.to_bits() == q.to_bits()), "{n} {kl} {ku}: single");
+            let mut split = rhs.clone();
+            solve_columns_in_two(&mut split, n, m, |part, columns| band.solve_many_in_place(part, columns));
+            assert!(split.iter().zip(&a).all(|(p, q)| p.to_bits() == q.to_bits()), "{n} {kl} {ku}: split");
         }
     }
 
@@ -1140,6 +1461,88 @@ mod tests {
         assert_eq!((s.kl, s.ku), (27, 27));
     }
 
+    /// A symmetric matrix on the closed surface's pattern: per element Eᵀ E of a random
+    /// square E over its four nodes' unknowns (positive semidefinite, exactly symmetric:
+    /// (i, j) and (j, i) sum the same products in the same order), plus `shift` on the
+    /// diagonal — positive definite for a positive shift, indefinite for a negative one
+    /// below the smallest eigenvalues.
+    fn symmetric_surface(ns: usize, nz: usize, d: usize, shift: f64, rng: &mut Lcg) -> (usize, Triplets) {
+        let per = d * (nz + 1);
+        let n = ns * per;
+        let mut t = (vec![], vec![], vec![]);
+        for i in 0..ns {
+            for j in 0..nz {
+                let corners = [(i, j), ((i + 1) % ns, j), (i, j + 1), ((i + 1) % ns, j + 1)];
+                let unknowns: Vec<usize> = corners.iter().flat_map(|&(a, b)| (0..d).map(move |k| a * per + b * d + k)).collect();
+                let q = unknowns.len();
+                let e: Vec<f64> = (0..q * q).map(|_| rng.next()).collect();
+                for (a, &r) in unknowns.iter().enumerate() {
+                    for (b, &c) in unknowns.iter().enumerate() {
+                        push(&mut t, r, c, (0..q).map(|k| e[k * q + a] * e[k * q + b]).sum());
+                    }
+                }
+            }
+        }
+        for g in 0..n {
+            push(&mut t, g, g, shift);
+        }
+        (n, t)
+    }
+
+    /// The band Cholesky of a symmetric matrix cut at σ-node 0 ([`SparseLu::symmetric`]):
+    /// a positive definite matrix is factorised by it and solved as the LU and a dense
+    /// solve do, to round-off; an indefinite one (A not positive definite), one whose
+    /// values are not symmetric, and one whose pattern has kl ≠ ku go to the LU (a
+    /// refusal each) and are solved as well; without a border (m = 0) too.
+    #[test]
+    fn the_band_cholesky_solves_symmetric_positive_definite_matrices_and_refuses_the_others() {
+        let mut rng = Lcg(31);
+        for (ns, nz, d) in [(12, 2, 4), (9, 4, 3), (3, 1, 2), (30, 2, 6)] {
+            for (shift, definite) in [(0.5, true), (-3.0, false)] {
+                let (n, (r, c, v)) = symmetric_surface(ns, nz, d, shift, &mut rng);
+                let per = d * (nz + 1);
+                for border in [(0..per).collect::<Vec<_>>(), vec![]] {
+                    let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+                    let mut lu: SparseLu = SparseLu::new();
+                    lu.set_pattern_with_border(n, &r, &c, &border).unwrap();
+                    lu.factorize(&v).unwrap();
+                    let mut expected = b.clone();
+                    lu.solve_in_place(&mut expected).unwrap();
+                    let mut cholesky: SparseLu = SparseLu::symmetric();
+                    cholesky.set_pattern_with_border(n, &r, &c, &border).unwrap();
+                    cholesky.factorize(&v).unwrap();
+                    assert_eq!(cholesky.cholesky_counts(), if definite { (1, 0) } else { (0, 1) }, "{ns} × {nz} × {d}, shift {shift}, border {}", border.len());
+                    let mut x = b.clone();
+                    cholesky.solve_in_place(&mut x).unwrap();
+                    let dlu = relative_difference(&x, &expected);
+                    assert!(dlu < AGREE, "{ns} × {nz} × {d}, shift {shift}: against the LU {dlu}");
+                    if n <= 500 {
+                        let dense = dense_solve(dense_of(n, &r, &c, &v), b.clone());
+                        assert!(relative_difference(&x, &dense) < AGREE, "{ns} × {nz} × {d}, shift {shift}: against dense");
+                    }
+                    if definite && !border.is_empty() {
+                        // one off-diagonal entry of the band changed on one side only
+                        let k = (0..r.len()).find(|&k| r[k] == per + 1 && c[k] == per + 2).unwrap();
+                        let mut skew = v.clone();
+                        skew[k] += 1e-3;
+                        cholesky.factorize(&skew).unwrap();
+                        assert_eq!(cholesky.cholesky_counts(), (1, 1));
+                        let mut x = b.clone();
+                        cholesky.solve_in_place(&mut x).unwrap();
+                        let dense = if n <= 500 { dense_solve(dense_of(n, &r, &c, &skew), b.clone()) } else { x.clone() };
+                        assert!(relative_difference(&x, &dense) < AGREE, "{ns} × {nz} × {d}: skew");
+                    }
+                }
+            }
+        }
+        // a band with kl ≠ ku: never symmetric
+        let (r, c, v) = random_band(30, 2, 4, &mut rng);
+        let s = BandStructure::with_border(30, &r, &c, &[]).unwrap();
+        let mut band = BorderedBand::symmetric(s, &r, &c);
+        band.factorize(&v, &[]).unwrap();
+        assert_eq!((band.cholesky_factorisations, band.cholesky_refusals), (0, 1));
+    }
+
     /// The time of one numeric factorisation of the shell's study-scene pattern
     /// (128 × 4 elements, 12 unknowns per node: 7 680 unknowns) by the band cut at
     /// σ-node 0 and by faer's general sparse LU (`cargo test --release -p numerics
@@ -1166,6 +1569,25 @@ mod tests {
             general.set_pattern(n, &r, &c).unwrap();
             let (tb, tg) = (time(&mut band), time(&mut general));
             println!("{ns} × {nz}: {n} unknowns, band {:?}: {tb:.4} s, faer {tg:.4} s", band.band_structure().map(|s| (s.kl, s.border.len())));
+        }
+        // a symmetric positive definite matrix of the pattern: the band LU against the
+        // band Cholesky (`SparseLu::symmetric`), both cut at σ-node 0
+        for (ns, nz) in [(64, 4), (128, 4), (256, 8)] {
+            let (n, (r, c, v)) = symmetric_surface(ns, nz, 12, 1.0, &mut rng);
+            let border: Vec<usize> = (0..12 * (nz + 1)).collect();
+            let time = |lu: &mut SparseLu| {
+                lu.set_pattern_with_border(n, &r, &c, &border).unwrap();
+                (0..3)
+                    .map(|_| {
+                        let start = std::time::Instant::now();
+                        lu.factorize(&v).unwrap();
+                        start.elapsed().as_secs_f64()
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            };
+            let (mut lu, mut cholesky): (SparseLu, SparseLu) = (SparseLu::new(), SparseLu::symmetric());
+            let (tl, tc) = (time(&mut lu), time(&mut cholesky));
+            println!("{ns} × {nz} symmetric: {n} unknowns, band LU {tl:.4} s, band Cholesky {tc:.4} s ({:?} by Cholesky, refused)", cholesky.cholesky_counts());
         }
     }
 

@@ -90,6 +90,8 @@ pub struct SparseLu<E = LinearError> {
     entries: usize,
     /// Look for a band in each new pattern.
     try_band: bool,
+    /// The matrices are symmetric: the banded LU tries Cholesky first ([`BorderedBand::symmetric`]).
+    symmetric: bool,
     /// The pattern, kept while the band is used (for a fallback to faer).
     indices: Option<(Vec<usize>, Vec<usize>)>,
     band: Option<BorderedBand>,
@@ -118,6 +120,7 @@ impl<E> Default for SparseLu<E> {
             n: 0,
             entries: 0,
             try_band: false,
+            symmetric: false,
             indices: None,
             band: None,
             pattern: None,
@@ -152,6 +155,22 @@ impl<E: From<LinearError>> SparseLu<E> {
     /// small border (see the type's docs).
     pub fn banded() -> Self {
         Self { try_band: true, ..Self::default() }
+    }
+
+    /// An empty factorisation for symmetric matrices (an energy's Hessian): where the
+    /// banded LU is used ([`Self::set_pattern_with_border`], or a band found by
+    /// [`Self::banded`]'s detection — not made by this), the band block is factorised by
+    /// Cholesky when the values are symmetric and it is positive definite, else by the
+    /// LU as always ([`BorderedBand::symmetric`]); the solution agrees with the LU's to
+    /// round-off.
+    pub fn symmetric() -> Self {
+        Self { symmetric: true, ..Self::default() }
+    }
+
+    /// Factorisations by the band Cholesky, and matrices it refused to the LU (0 when
+    /// the banded LU is not in use, or not made by [`Self::symmetric`]).
+    pub fn cholesky_counts(&self) -> (usize, usize) {
+        self.band.as_ref().map_or((0, 0), |b| (b.cholesky_factorisations, b.cholesky_refusals))
     }
 
     /// Order n of the matrix of the current pattern (0 before the first).
@@ -202,7 +221,7 @@ impl<E: From<LinearError>> SparseLu<E> {
     fn install(&mut self, n: usize, rows: &[usize], cols: &[usize], band: Option<BandStructure>) -> Result<(), E> {
         self.factors = Factors::None;
         if let Some(structure) = band {
-            self.band = Some(BorderedBand::new(structure, rows, cols));
+            self.band = Some(if self.symmetric { BorderedBand::symmetric(structure, rows, cols) } else { BorderedBand::new(structure, rows, cols) });
             self.indices = Some((rows.to_vec(), cols.to_vec()));
             self.pattern = None;
         } else {

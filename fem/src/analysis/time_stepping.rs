@@ -292,8 +292,10 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
         // the closed mesh's Hessian is a band but for the wrap-around: σ-node 0's
         // unknowns are the border, the band LU's cost is linear in the σ-elements (faer's
         // general LU filled this pattern superlinearly: 1.6 s per factorisation at 128 × 4
-        // elements, docs/fem-shell.md §14)
-        let mut lu = SparseLu::new();
+        // elements, docs/fem-shell.md §14); the step's matrix is the Hessian of an energy
+        // (with inertia plus κM), so the band block is factorised by Cholesky where it is
+        // positive definite, by the LU where not (numerics::banded::BorderedBand::symmetric)
+        let mut lu = SparseLu::symmetric();
         let (rows, cols) = asm.pattern();
         lu.set_pattern_with_border(asm.unknowns(), rows, cols, &asm.sigma_node_unknowns(0))?;
         Ok(TimeStepping { asm, history, lu, z, time, step: 0, motion: None, newton, evaluated: None })
@@ -423,6 +425,12 @@ impl<K: SurfaceKernel<P>, const P: usize> TimeStepping<K, P> {
     /// Matrices the banded LU refused (see [`Self::band_structure`]).
     pub fn band_refusals(&self) -> usize {
         self.lu.band_refusals
+    }
+
+    /// Factorisations of the band block by Cholesky, and matrices it left to the LU (not
+    /// symmetric, or not positive definite) — while the banded LU is in use.
+    pub fn cholesky_counts(&self) -> (usize, usize) {
+        self.lu.cholesky_counts()
     }
 
     /// The assembler (mesh, numbering, kernel).
@@ -563,6 +571,9 @@ mod tests {
         // i + 1's ζ-node 2 (offset 12 + 2 + 4 + 4 − 1 = 21)
         assert_eq!((s.kl, s.ku), (19, 19));
         assert_eq!(stepper.band_refusals(), 0);
+        // the plate's Hessian is symmetric positive definite: every factorisation by Cholesky
+        let (cholesky, refused) = stepper.cholesky_counts();
+        assert!(cholesky >= 1 && refused == 0, "{cholesky} by Cholesky, {refused} refused");
         let scale = expected.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let d = stepper.unknowns().iter().zip(&expected).fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()));
         assert!(d < 1e-10 * scale, "{d} against {scale}");
