@@ -1,7 +1,7 @@
 //! Criterion benchmarks of the Kirchhoff–Love shell's transient (docs/fem-shell.md §12
 //! "Cost", issue 15's "criterion benches of the element and of one step"). The shipped
-//! `scenes/shell-runoff.json` (steel belt, camber, the driven drum swivelled — here to its
-//! final 5e-4 rad in the ramp) on
+//! `scenes/shell-runoff.json` (steel belt, camber, the driven drum swivelled — here the
+//! steered drum's histories at their final values, reached in the ramp) on
 //! n_σ × n_ζ = 32 × 2, 64 × 2, 128 × 2 and 64 × 4 elements, brought through stage (0),
 //! the ramp and two steps of rotation, then:
 //!
@@ -20,6 +20,7 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use drive::contour::Pulley;
+use drive::scene::SteeringDrum;
 use fem::shell::runoff::{Runoff, RunoffRun};
 use fem::shell::scene::{static_newton, stepping_newton, ShellScene};
 
@@ -30,13 +31,17 @@ fn run(n_sigma: usize, n_zeta: usize) -> RunoffRun {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/shell-runoff.json");
     let scene = drive::Scene::from_path(&path).unwrap();
     let data = ShellScene::from_scene(&scene).unwrap();
-    let tilt_y = data.steering.as_ref().map_or(0.0, |s| s.tilt_y.iter().fold(0.0_f64, |m, p| if p[1].abs() > m.abs() { p[1] } else { m }));
+    // the steered drum and the final values of its histories (reached here in the ramp)
+    let last = |h: &[[f64; 2]]| h.last().map_or(0.0, |p| p[1]);
+    let (steering, tilt) = data.steering.as_ref().map_or((Pulley::Driven, [0.0; 2]), |s| {
+        (if s.drum == SteeringDrum::Driver { Pulley::Driver } else { Pulley::Driven }, [last(&s.tilt_x), last(&s.tilt_y)])
+    });
     let solved = data.belt.solve(n_sigma, n_zeta, static_newton()).unwrap();
     let runoff = Runoff {
         shear: data.shear,
         camber: data.camber,
-        steering: Pulley::Driven,
-        tilt: [0.0, tilt_y],
+        steering,
+        tilt,
         speed: data.speed,
         driven_speed: data.driven_speed,
         ramp_steps: 1,

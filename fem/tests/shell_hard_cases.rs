@@ -11,9 +11,9 @@
 //! | case | outcome |
 //! |---|---|
 //! | slack belt, L + 2 cm (sag 3 cm instead of 0.6) | finishes clean; mid-span tension 8.0 / 6.8 N |
-//! | stiff interlayer, P = 1e11, P_⊥ = 1e10 N/m³ (100×) | finishes clean |
-//! | large camber ΔL = 2 mm (200×) | finishes, warns: compressive edge (−1.07e7 Pa) and penetration > h |
-//! | large swivel β_y = 0.02 rad (40×) | stops at rotation step 4: Newton finds no acceptable step |
+//! | stiff interlayer, P = 1e11, P_⊥ = 1e10 N/m³ (100×) | finishes with its checks; its span tensions (52.0 / 38.0 N) carry the contact edges' drift of docs/fem-shell.md §9.4, a known defect no check catches |
+//! | large camber ΔL = 2 mm (200×), ramped in 4 steps | finishes, warns: compressive edge (−1.06e7 Pa) |
+//! | large swivel β_y = 0.02 rad (40×) | stops at rotation step 4 (`ShellError::Step`): Newton finds no acceptable step |
 //! | large tilt β_x = 0.02 rad | finishes, warns: compressive edge |
 
 use drive::Scene;
@@ -54,8 +54,11 @@ fn slack_belt_with_a_large_sag_finishes_clean() {
     assert!(s.summary.tension_upper_mid.unwrap() > 0.0 && s.summary.tension_lower_mid.unwrap() > 0.0);
 }
 
+/// The run passes its self-checks and warns of nothing, but its span tensions carry the
+/// unresolved contact edges' drift (docs/fem-shell.md §9.4: 52.0 / 38.0 N against a static
+/// 52.5 / 51.6 N) — not asserted as right, only as what the run does.
 #[test]
-fn stiff_interlayer_finishes_clean() {
+fn stiff_interlayer_finishes_with_its_checks() {
     let mut v = base();
     v["effects"]["contact"]["elastic_layer"] = json!({"normal_stiffness": 1e11, "tangential_stiffness": 1e10});
     let s = run(&v).unwrap();
@@ -63,47 +66,47 @@ fn stiff_interlayer_finishes_clean() {
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
 }
 
-/// Compressive membrane stress at the short edge of a strongly cambered belt: the run
-/// is kept, and says that a thin belt would wrinkle there (spec §4.13: "Newton must not
-/// stall silently: report").
+/// Compressive membrane stress at the short edge of a strongly cambered belt, ramped in
+/// 4 steps: the run is kept, and says that a thin belt would wrinkle there (spec §4.13:
+/// "Newton must not stall silently: report"). Ramped in one or two steps the ramp's
+/// first step finds no acceptable Newton step (at ΔL = 1 and 2 mm: a named stop) — at
+/// the edge of Newton's reach, where round-off decides (before the band Cholesky the
+/// one-step ramp at 2 mm converged), so that outcome is not pinned.
 #[test]
 fn large_camber_reports_the_compressed_edge() {
     let mut v = base();
     v["belt"]["camber"] = json!({"edge_length_difference": 2e-3});
+    v["fem"]["ramp_steps"] = json!(4);
     let s = run(&v).unwrap();
     checked("camber", &s);
     assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force at a belt edge")), "{:?}", s.warnings);
 }
 
-/// A swivel of 0.02 rad (40× the shipped one) on this tight steel belt: either a checked
-/// answer or a stop that names the stage, the step and the time (measured: the rotation's
-/// step 4, no acceptable Newton step).
+/// A swivel of 0.02 rad (40× the shipped one) on this tight steel belt stops with a named
+/// error: the rotation's step 4 finds no acceptable Newton step (measured). The outcome
+/// is pinned: a change that makes it converge must show its answer checked here.
 #[test]
-fn large_swivel_converges_or_stops_with_a_named_error() {
+fn large_swivel_stops_with_a_named_error() {
     let mut v = base();
     v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 0.0], [0.2, 0.02]]});
     match run(&v) {
-        Ok(s) => checked("swivel", &s),
         Err(e @ ShellError::Step { .. }) => {
             let m = e.to_string();
-            assert!(m.contains("stage (2)") && m.contains("step") && m.contains("t = "), "{m}");
+            assert!(m.contains("stage (2)") && m.contains("step 4") && m.contains("t = "), "{m}");
         }
+        Ok(s) => panic!("swivel: the run now finishes (run-off {:?} m/s) — check its answer and pin it", s.summary.runoff_velocity),
         Err(e) => panic!("swivel: an unnamed failure {e:?}"),
     }
 }
 
 /// A tilt about the span direction of 0.02 rad: the contact's ζ-integration sees the
-/// drum's surface at a slope across the width (spec §4.13, "large tilt").
+/// drum's surface at a slope across the width (spec §4.13, "large tilt"); the run
+/// finishes and warns of the compressed edge (measured −3.6e7 Pa).
 #[test]
 fn large_tilt_across_the_width_is_checked() {
     let mut v = base();
     v["drive"]["steering"] = json!({"drum": "driven", "tilt_x": [[0.0, 0.0], [0.2, 0.02]]});
-    match run(&v) {
-        Ok(s) => {
-            checked("tilt", &s);
-            assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force")), "a 0.02 rad tilt of a tight steel belt compresses an edge: {:?}", s.warnings);
-        }
-        Err(e @ ShellError::Step { .. }) => assert!(e.to_string().contains("stage (2)"), "{e}"),
-        Err(e) => panic!("tilt: an unnamed failure {e:?}"),
-    }
+    let s = run(&v).unwrap();
+    checked("tilt", &s);
+    assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force")), "a 0.02 rad tilt of a tight steel belt compresses an edge: {:?}", s.warnings);
 }

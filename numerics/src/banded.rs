@@ -831,8 +831,9 @@ pub struct BorderedBand {
     cholesky: BandCholesky,
     /// The last factorisation's A was factorised by Cholesky (else by the LU).
     by_cholesky: bool,
-    /// Factorisations done by Cholesky, and matrices it refused (not symmetric, or A
-    /// not positive definite: the LU took them).
+    /// Factorisations done by Cholesky, and matrices it refused (not symmetric, A not
+    /// positive definite, or the border's Schur complement judged singular on the
+    /// Cholesky path: the LU took them).
     pub cholesky_factorisations: usize,
     pub cholesky_refusals: usize,
 }
@@ -1529,8 +1530,23 @@ mod tests {
                         assert_eq!(cholesky.cholesky_counts(), (1, 1));
                         let mut x = b.clone();
                         cholesky.solve_in_place(&mut x).unwrap();
-                        let dense = if n <= 500 { dense_solve(dense_of(n, &r, &c, &skew), b.clone()) } else { x.clone() };
-                        assert!(relative_difference(&x, &dense) < AGREE, "{ns} × {nz} × {d}: skew");
+                        // the plain LU of the same skewed values (any n)
+                        lu.factorize(&skew).unwrap();
+                        let mut expected = b.clone();
+                        lu.solve_in_place(&mut expected).unwrap();
+                        assert!(relative_difference(&x, &expected) < AGREE, "{ns} × {nz} × {d}: skew");
+                        // symmetric to within round-off (one entry off by 1e-15 of itself):
+                        // still the Cholesky's, and the LU's answer
+                        let mut near = v.clone();
+                        near[k] *= 1.0 + 1e-15;
+                        cholesky.factorize(&near).unwrap();
+                        assert_eq!(cholesky.cholesky_counts(), (2, 1), "{ns} × {nz} × {d}: symmetric to round-off refused");
+                        let mut x = b.clone();
+                        cholesky.solve_in_place(&mut x).unwrap();
+                        lu.factorize(&near).unwrap();
+                        let mut expected = b.clone();
+                        lu.solve_in_place(&mut expected).unwrap();
+                        assert!(relative_difference(&x, &expected) < AGREE, "{ns} × {nz} × {d}: near-symmetric");
                     }
                 }
             }

@@ -167,7 +167,8 @@ impl<E: From<LinearError>> SparseLu<E> {
         Self { symmetric: true, ..Self::default() }
     }
 
-    /// Factorisations by the band Cholesky, and matrices it refused to the LU (0 when
+    /// Factorisations by the band Cholesky, and matrices it refused to the LU (not
+    /// symmetric, not positive definite, or a Schur complement judged singular; 0 when
     /// the banded LU is not in use, or not made by [`Self::symmetric`]).
     pub fn cholesky_counts(&self) -> (usize, usize) {
         self.band.as_ref().map_or((0, 0), |b| (b.cholesky_factorisations, b.cholesky_refusals))
