@@ -1494,7 +1494,9 @@ mod tests {
     /// a positive definite matrix is factorised by it and solved as the LU and a dense
     /// solve do, to round-off; an indefinite one (A not positive definite), one whose
     /// values are not symmetric, and one whose pattern has kl ≠ ku go to the LU (a
-    /// refusal each) and are solved as well; without a border (m = 0) too.
+    /// refusal each) and are solved as well; without a border (m = 0) too; a positive
+    /// definite A whose bordered whole is indefinite keeps the Cholesky (the Schur
+    /// complement's LU pivots).
     #[test]
     fn the_band_cholesky_solves_symmetric_positive_definite_matrices_and_refuses_the_others() {
         let mut rng = Lcg(31);
@@ -1551,6 +1553,26 @@ mod tests {
                 }
             }
         }
+        // A positive definite, the whole matrix indefinite through its border (the
+        // border's diagonal lowered by 50, so S = D − WᵀW is negative definite): the
+        // Cholesky of A is kept and S goes to its dense LU — as a dense solve
+        let (n, (r, c, mut v)) = symmetric_surface(12, 2, 4, 0.5, &mut rng);
+        let per = 4 * 3;
+        for k in 0..r.len() {
+            if r[k] == c[k] && r[k] < per {
+                v[k] -= 50.0;
+            }
+        }
+        let border: Vec<usize> = (0..per).collect();
+        let b: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+        let mut cholesky: SparseLu = SparseLu::symmetric();
+        cholesky.set_pattern_with_border(n, &r, &c, &border).unwrap();
+        cholesky.factorize(&v).unwrap();
+        assert_eq!(cholesky.cholesky_counts(), (1, 0), "a positive definite A refused for its border");
+        let mut x = b.clone();
+        cholesky.solve_in_place(&mut x).unwrap();
+        let dense = dense_solve(dense_of(n, &r, &c, &v), b.clone());
+        assert!(relative_difference(&x, &dense) < AGREE, "indefinite whole: against dense {}", relative_difference(&x, &dense));
         // a band with kl ≠ ku: never symmetric
         let (r, c, v) = random_band(30, 2, 4, &mut rng);
         let s = BandStructure::with_border(30, &r, &c, &[]).unwrap();
