@@ -1388,6 +1388,20 @@ mod tests {
         }
     }
 
+    /// The unknowns of each element of a closed surface mesh of `ns` × `nz` elements
+    /// with `d` unknowns per node, numbered node by node (σ-node i, ζ-node j: unknowns
+    /// d((nz + 1) i + j) …), element (i, j) in order i, then j, over its four nodes —
+    /// the last σ-element's with the first σ-node (the belt's wrap-around).
+    fn surface_elements(ns: usize, nz: usize, d: usize) -> impl Iterator<Item = Vec<usize>> {
+        let per = d * (nz + 1);
+        (0..ns).flat_map(move |i| {
+            (0..nz).map(move |j| {
+                let corners = [(i, j), ((i + 1) % ns, j), (i, j + 1), ((i + 1) % ns, j + 1)];
+                corners.iter().flat_map(|&(a, b)| (0..d).map(move |k| a * per + b * d + k)).collect()
+            })
+        })
+    }
+
     /// A closed surface mesh of `ns` × `nz` elements with `d` unknowns per node,
     /// numbered node by node (σ-node i, ζ-node j: unknowns d((nz + 1) i + j) …), each
     /// element coupling all unknowns of its four nodes, the last σ-element the last
@@ -1396,14 +1410,10 @@ mod tests {
         let per = d * (nz + 1);
         let n = ns * per;
         let mut t = (vec![], vec![], vec![]);
-        for i in 0..ns {
-            for j in 0..nz {
-                let corners = [(i, j), ((i + 1) % ns, j), (i, j + 1), ((i + 1) % ns, j + 1)];
-                let unknowns: Vec<usize> = corners.iter().flat_map(|&(a, b)| (0..d).map(move |k| a * per + b * d + k)).collect();
-                for &r in &unknowns {
-                    for &c in &unknowns {
-                        push(&mut t, r, c, if r == c { 0.01 * rng.next() } else { rng.next() });
-                    }
+        for unknowns in surface_elements(ns, nz, d) {
+            for &r in &unknowns {
+                for &c in &unknowns {
+                    push(&mut t, r, c, if r == c { 0.01 * rng.next() } else { rng.next() });
                 }
             }
         }
@@ -1471,16 +1481,12 @@ mod tests {
         let per = d * (nz + 1);
         let n = ns * per;
         let mut t = (vec![], vec![], vec![]);
-        for i in 0..ns {
-            for j in 0..nz {
-                let corners = [(i, j), ((i + 1) % ns, j), (i, j + 1), ((i + 1) % ns, j + 1)];
-                let unknowns: Vec<usize> = corners.iter().flat_map(|&(a, b)| (0..d).map(move |k| a * per + b * d + k)).collect();
-                let q = unknowns.len();
-                let e: Vec<f64> = (0..q * q).map(|_| rng.next()).collect();
-                for (a, &r) in unknowns.iter().enumerate() {
-                    for (b, &c) in unknowns.iter().enumerate() {
-                        push(&mut t, r, c, (0..q).map(|k| e[k * q + a] * e[k * q + b]).sum());
-                    }
+        for unknowns in surface_elements(ns, nz, d) {
+            let q = unknowns.len();
+            let e: Vec<f64> = (0..q * q).map(|_| rng.next()).collect();
+            for (a, &r) in unknowns.iter().enumerate() {
+                for (b, &c) in unknowns.iter().enumerate() {
+                    push(&mut t, r, c, (0..q).map(|k| e[k * q + a] * e[k * q + b]).sum());
                 }
             }
         }

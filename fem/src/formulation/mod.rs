@@ -502,41 +502,13 @@ fn through_map(el: &ElementContext, q: &[f64; NDOF], d: ElementDerivatives) -> E
 /// ∇²mᵢ has the two entries α at (o+1|o+3, o+2). Equal to AD over the whole element
 /// (tested), about an order of magnitude cheaper.
 #[cfg(test)]
-#[allow(clippy::needless_range_loop)] // dense 8 × 8 matrix products read clearer with indices
 fn pointwise_derivatives_rod_ad(el: &ElementContext, q: &[f64; NDOF], rules: &TermRules, w: impl Fn(Dual2SVec64<4>) -> Dual2SVec64<4>) -> ElementDerivatives {
     let qe = el.effective(q);
     let mut v = PointHessian::<4> { el, q: &qe, out: ElementDerivatives { energy: 0.0, gradient: [0.0; NDOF], hessian: [[0.0; NDOF]; NDOF] } };
     StandardTerms::new(&el.params, rules, w).visit(&mut v);
-    let ElementDerivatives { energy, gradient: ge, hessian: he } = v.out;
-    // chain rule through the augmented map (K9)
-    let alpha = el.alpha();
-    let jm = map_jacobian(el, q);
-    let mut second: Vec<(usize, usize, f64)> = Vec::new(); // (i, j, g̃ₖ α) symmetric pairs
-    for (flag, end) in el.augmented.iter().zip([0usize, 2]) {
-        if *flag {
-            for k in [S_DOFS[end + 1], NU_DOFS[end + 1]] {
-                second.push((k, NU_DOFS[end], ge[k] * alpha));
-            }
-        }
-    }
-    let mut out = ElementDerivatives { energy, gradient: map_transpose_times(&jm, &ge), hessian: [[0.0; NDOF]; NDOF] };
-    // Jᵀ K̃ J
-    let mut kj = [[0.0; NDOF]; NDOF];
-    for a in 0..NDOF {
-        for j in 0..NDOF {
-            kj[a][j] = (0..NDOF).map(|b| he[a][b] * jm[b][j]).sum();
-        }
-    }
-    for i in 0..NDOF {
-        for j in 0..NDOF {
-            out.hessian[i][j] = (0..NDOF).map(|a| jm[a][i] * kj[a][j]).sum();
-        }
-    }
-    for (i, j, v) in second {
-        out.hessian[i][j] += v;
-        out.hessian[j][i] += v;
-    }
-    out
+    // the chain rule through the augmented map (K9), shared with the fast path (the
+    // identity without a flagged node); both are held to AD over the whole element
+    through_map(el, q, v.out)
 }
 
 /// J_m = ∂m/∂q of the augmented map (K9) ([`pointwise_derivatives_rod`]): the identity
