@@ -969,6 +969,25 @@ pub struct FemSettings {
     /// 0 = those two only. Default absent = 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub frame_every: Option<usize>,
+    /// Shell only: the σ-rule of the elastic interlayer's energy (× Gauss 2 across the
+    /// width): `simpson` (element ends and middle) or `trapezoidal` (element ends only,
+    /// the reference's rule [T l.420]), docs/fem-shell.md §6. Default absent = `simpson`:
+    /// the trapezoidal rule leaves the belt unsupported between nodes, and a stiff belt's
+    /// span tension shows it (a steel belt's static tension 60 % low at 32 elements, and
+    /// drifting by 20 % in 24 steps at 64).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_rule: Option<ShellContactRule>,
+}
+
+/// The σ-rule of the shell's elastic interlayer (`fem.contact_rule`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShellContactRule {
+    /// ξ = −1, 0, 1 with weights ⅓, ⁴⁄₃, ⅓: the belt held at the element's middle too.
+    #[default]
+    Simpson,
+    /// ξ = ±1 with weights 1: the contact at the nodes only (the reference's rule).
+    Trapezoidal,
 }
 
 /// The shell's discretisation and run, resolved from the `fem` block with its defaults
@@ -987,6 +1006,8 @@ pub struct ShellRun {
     pub ramp_steps: usize,
     /// Frame interval (0: start and end only).
     pub frame_every: usize,
+    /// The interlayer's σ-rule.
+    pub contact_rule: ShellContactRule,
 }
 
 /// Default shell drum rotation per step ωΔt, rad (π/16): about one arc element of a
@@ -1066,6 +1087,7 @@ impl Default for FemSettings {
             duration: None,
             ramp_steps: None,
             frame_every: None,
+            contact_rule: None,
         }
     }
 }
@@ -1358,7 +1380,8 @@ impl Scene {
     /// The shell's run from the `fem` block with its defaults (docs on
     /// [`FemSettings`]): n_σ = 64, n_ζ = 2, ωΔt = [`SHELL_STEP_ANGLE`] (Δt = π/(16ω₁);
     /// 1 s at rest), the rotation over `steps`, ⌈`duration`/Δt⌉ or one revolution of the
-    /// belt L/(ω₁R), one ramp step, frames at the start and the end. Assumes a validated
+    /// belt L/(ω₁R), one ramp step, frames at the start and the end, the Simpson rule for
+    /// the interlayer. Assumes a validated
     /// shell scene; `steps` is at least 1.
     pub fn shell_run(&self) -> ShellRun {
         let f = self.fem_settings();
@@ -1377,11 +1400,13 @@ impl Scene {
             steps,
             ramp_steps: f.ramp_steps.unwrap_or(1),
             frame_every: f.frame_every.unwrap_or(0),
+            contact_rule: f.contact_rule.unwrap_or_default(),
         }
     }
 
     /// The `fem` block of a shell: only the shell's settings (`elements_sigma`,
-    /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`);
+    /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`,
+    /// `contact_rule`);
     /// the rod and string settings are refused by name rather than ignored; the rotation
     /// at most [`MAX_SHELL_STEPS`] steps.
     fn validate_shell_fem(&self, f: &FemSettings) -> Result<(), SceneError> {
@@ -1393,6 +1418,7 @@ impl Scene {
             ("fem.duration", f.duration.is_some()),
             ("fem.ramp_steps", f.ramp_steps.is_some()),
             ("fem.frame_every", f.frame_every.is_some()),
+            ("fem.contact_rule", f.contact_rule.is_some()),
         ];
         if !shell {
             if let Some((path, _)) = shell_fields.iter().find(|(_, given)| *given) {
@@ -1413,7 +1439,7 @@ impl Scene {
         if let Some((path, _)) = rod_fields.iter().find(|(_, given)| *given) {
             return Err(SceneError::NotAllowed {
                 path: (*path).into(),
-                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every` (its contact is the scene's elastic interlayer)".into(),
+                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule` (its contact is the scene's elastic interlayer)".into(),
             });
         }
         let steps = self.shell_run().steps;

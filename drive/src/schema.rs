@@ -290,6 +290,7 @@ pub(crate) const FEM: &[Field] = &[
     opt_in(Cond::Shell, "duration", Kind::Number, "simulated time of the rotation, s"),
     opt_in(Cond::Shell, "ramp_steps", Kind::Count, "steps of the ramp of camber and tilt at rest"),
     opt_in(Cond::Shell, "frame_every", Kind::Count, "steps between frames of surface fields"),
+    opt_in(Cond::Shell, "contact_rule", Kind::Choice { what: "interlayer σ-rule", variants: &["simpson", "trapezoidal"] }, "σ-rule of the elastic interlayer"),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -765,6 +766,7 @@ mod tests {
             duration: Some(1.0),
             ramp_steps: Some(2),
             frame_every: Some(4),
+            contact_rule: Some(crate::scene::ShellContactRule::Trapezoidal),
             ..Default::default()
         })
         .unwrap();

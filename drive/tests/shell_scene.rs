@@ -177,7 +177,12 @@ fn shell_fem_settings_are_checked_and_rod_settings_refused() {
     let mut rod: Value = serde_json::from_str(include_str!("../../scenes/rod-hanging.json")).unwrap();
     rod["fem"] = json!({"elements_zeta": 2});
     refused(&rod, "fem.elements_zeta", &["theory `shell`"]);
+    rod["fem"] = json!({"contact_rule": "simpson"});
+    refused(&rod, "fem.contact_rule", &["theory `shell`"]);
     refused(&with("elements_zita", json!(2)), "fem.elements_zita", &["elements_zeta"]);
+    // the interlayer's σ-rule: simpson (default) or trapezoidal, nothing else
+    assert_eq!(read(&with("contact_rule", json!("trapezoidal"))).unwrap().shell_run().contact_rule, drive::scene::ShellContactRule::Trapezoidal);
+    assert!(read(&with("contact_rule", json!("gauss"))).is_err());
 }
 
 #[test]
@@ -188,6 +193,7 @@ fn defaults_of_the_shell_run() {
     let run = s.shell_run();
     let omega = s.drive.driver_speed;
     assert_eq!((run.elements_sigma, run.elements_zeta, run.ramp_steps, run.frame_every), (64, 2, 1, 0));
+    assert_eq!(run.contact_rule, drive::scene::ShellContactRule::Simpson);
     assert!((run.time_step * omega - std::f64::consts::PI / 16.0).abs() < 1e-15);
     // one revolution of the belt L/(ωR)
     let revolution = s.belt.length / (omega * s.drive.pulley_radius);

@@ -339,7 +339,7 @@ impl Mesh {
 /// elements next to a point are about 1 + `ratio` times shorter than far from it. The
 /// density is fixed (it does not depend on the element count): a sequence of graded
 /// meshes refines one smooth map, and shows the discretisation's order.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Grading {
     /// Decay length of the refinement, m (> 0).
     pub width: f64,

@@ -112,6 +112,12 @@ pub struct SolverSettings {
     /// direct steady solve, of the nearest node ([`crate::fitting::Measure`]). Default
     /// 1e-9 (1.4e-9 m in `string-hanging`); (0, 1e-3].
     pub fit_tolerance: f64,
+    /// The grading of the static fit's meshes towards the contact edges
+    /// ([`crate::mesh::Grading`]); `None` (default): the model's own — a Cosserat rod's
+    /// shear layer ([`crate::static_homotopy::shear_layer_grading`]), none for a string or a
+    /// Kirchhoff rod. The shell's planar start sets it to its contact edges' bending
+    /// layer (docs/fem-shell.md §9.5).
+    pub grading: Option<crate::mesh::Grading>,
 }
 
 impl Default for SolverSettings {
@@ -129,6 +135,7 @@ impl Default for SolverSettings {
             contact_fitting: true,
             max_fits: 10,
             fit_tolerance: 1e-9,
+            grading: None,
         }
     }
 }
@@ -162,6 +169,11 @@ impl SolverSettings {
         }
         if !(self.arc_weight.is_finite() && self.arc_weight >= 1.0) {
             return bad("arc_weight", self.arc_weight.to_string(), "must be finite and ≥ 1");
+        }
+        if let Some(g) = self.grading {
+            if !(g.width.is_finite() && g.width > 0.0 && g.ratio.is_finite() && g.ratio >= 0.0) {
+                return bad("grading", format!("width {:e} m, ratio {:e}", g.width, g.ratio), "needs a positive finite width and a finite ratio ≥ 0");
+            }
         }
         if !(self.penalty_factor.is_finite() && self.penalty_factor > 0.0) {
             return bad("penalty_factor", self.penalty_factor.to_string(), "must be positive and finite");

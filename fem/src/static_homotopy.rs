@@ -280,7 +280,7 @@ impl StringHanging {
 
         // contact fitting with the soft penalty (docs/fem-string.md §5)
         if fitting {
-            sol = fit(sol, &soft_params, length, &kernel, &mut lu, &scales, &fit_newton, settings, self.grading(), tie, &mut report);
+            sol = fit(sol, &soft_params, length, &kernel, &mut lu, &scales, &fit_newton, settings, settings.grading.or(self.grading()), tie, &mut report);
         }
         // penalty continuation to the final P on the (fitted) mesh, then refit
         if let (Some(target), Some(mut current)) = (self.penalty, soft.penalty) {
@@ -298,7 +298,7 @@ impl StringHanging {
                 }
                 sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, params, length, kernel.clone());
                 if fitting {
-                    sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &fit_newton, settings, self.grading(), tie, &mut report);
+                    sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &fit_newton, settings, settings.grading.or(self.grading()), tie, &mut report);
                 }
             }
         }
@@ -377,7 +377,7 @@ impl StringHanging {
             }
             sol = FemSolution::new(asm.mesh().clone(), asm.dofs(), &z, params, length, kernel.clone());
             if settings.contact_fitting {
-                sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &newton_settings, settings, self.grading(), STATIC_FIT_TIE, report);
+                sol = fit(sol, &params, length, &kernel, &mut lu, &scales, &newton_settings, settings, settings.grading.or(self.grading()), STATIC_FIT_TIE, report);
                 asm = Assembler::with_kernel(sol.mesh().clone(), kernel);
             }
         }

@@ -546,6 +546,10 @@ impl Method for ShellFe {
             return Err(RunError::NotApplicable(format!("{SHELL_FE} discretises theory `shell`, the scene's belt is theory `{}`", scene.belt.theory)));
         }
         let scene = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
+        let rule = match scene.shell_run().contact_rule {
+            drive::scene::ShellContactRule::Simpson => "Simpson",
+            drive::scene::ShellContactRule::Trapezoidal => "trapezoidal",
+        };
         let run = fem::shell::scene::solve(&scene).map_err(|e| match e {
             fem::shell::ShellError::NotModelled(m) => RunError::NotApplicable(m),
             other => RunError::Shell(other),
@@ -560,7 +564,7 @@ impl Method for ShellFe {
             terms: vec![
                 "membrane (Simpson × Gauss 3, camber as intrinsic strain)".into(),
                 "bending and gravity (Gauss 3 × 3)".into(),
-                "elastic interlayer V_γ, V_⊥ with advected history (trapezoidal × Gauss 2)".into(),
+                format!("elastic interlayer V_γ, V_⊥ with advected history ({rule} × Gauss 2)"),
             ],
             notes: [vec![format!("stages: static start {stage0:.2} s, ramp {ramp:.2} s, rotation {rotation:.2} s")], run.checks.iter().map(|c| format!("check: {c}")).collect()].concat(),
             warnings: run.warnings,

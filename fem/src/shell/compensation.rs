@@ -152,9 +152,11 @@ mod tests {
     /// E-5 on the shipped belt (camber ΔL = 1e-5 m, swivel history up to 5e-4 rad) at
     /// 32 × 2 over 4 steps: the run-off left at the root is below 1e-3 of the camber's
     /// own (Brent's tolerance, 1e-4 of β*, times the slope bounds it at ~1e-4 of v(0));
-    /// the root lies between 0 and the linear estimate from the probe, which at the
-    /// scene's 5e-4 rad (an edge slackens) overshoots it by 10 % (measured −1.823e-6
-    /// against −1.656e-6 rad); the probe is the scene's largest swivel; a scene without
+    /// the root has the linear estimate's sign and lies within 50 % of it: the probe at the
+    /// scene's 5e-4 rad (an edge slackens) is not in the linear range (measured −5.54e-5
+    /// against the estimate −4.84e-5 rad; with the reference's trapezoidal contact rule,
+    /// before the Simpson default, −1.656e-6 against −1.823e-6); the probe is the scene's
+    /// largest swivel; a scene without
     /// camber is refused by name.
     #[test]
     fn compensating_swivel_cancels_the_camber_run_off() {
@@ -167,7 +169,7 @@ mod tests {
         assert_eq!(c.probe[0], 5e-4);
         assert!(c.runoff_without.abs() > 1e-8, "{c:?}");
         assert!(c.runoff_left.abs() <= 1e-3 * c.runoff_without.abs(), "{c:?}");
-        assert!(c.swivel / c.linear_estimate > 0.5 && c.swivel / c.linear_estimate < 1.0, "{c:?}");
+        assert!(c.swivel / c.linear_estimate > 0.5 && c.swivel / c.linear_estimate < 1.5, "{c:?}");
         let mut w = v.clone();
         w["belt"].as_object_mut().unwrap().remove("camber");
         match compensating_swivel(&Scene::from_json_str(&w.to_string()).unwrap()) {

@@ -33,6 +33,7 @@
 //! with the exact contour at σ_r: interpolating the global position across a
 //! line/arc transition makes an O(h³/R²) position error that would enter u directly.
 
+use crate::quadrature::Rule;
 use crate::Scalar;
 
 use super::membrane::dot;
@@ -212,6 +213,11 @@ pub struct Interlayer {
     /// Before it the drums rest (their tilt may change): quasistatic, only ωΔt counts,
     /// so the rotation starts at full speed.
     pub start: f64,
+    /// The σ-rule of V_γ, V_⊥ (× Gauss 2 in ζ): [`Rule::Simpson`] or
+    /// [`Rule::Trapezoidal`] (the reference's [T l.420]), closed rules whose points include
+    /// the element edges (docs/fem-shell.md §6: the trapezoidal rule leaves the belt
+    /// unsupported between nodes, and a stiff belt's tension shows it).
+    pub rule: Rule,
 }
 
 impl Interlayer {
@@ -236,6 +242,9 @@ impl Interlayer {
         }
         if self.start.is_nan() || self.start == f64::INFINITY {
             return bad("start of the rotation", self.start);
+        }
+        if !matches!(self.rule, Rule::Simpson | Rule::Trapezoidal) {
+            return Err(ShellError::BadParameter { what: "interlayer σ-rule (Simpson or trapezoidal)", value: f64::NAN });
         }
         if let Some(d) = self.drums.iter().find(|d| !(d.speed.is_finite() && d.centre.iter().all(|c| c.is_finite()))) {
             return bad("drum speed", d.speed);

@@ -470,6 +470,8 @@ mod tests {
             density: 1000.0,
             gravity: 0.0,
             normal_stiffness: 1.0e6,
+            contact_rule: crate::quadrature::Rule::Trapezoidal,
+            edge_grading: false,
         }
     }
 
