@@ -115,8 +115,10 @@ pub struct SolverSettings {
     /// The grading of the static fit's meshes towards the contact edges
     /// ([`crate::mesh::Grading`]); `None` (default): the model's own — a Cosserat rod's
     /// shear layer ([`crate::static_homotopy::shear_layer_grading`]), none for a string or a
-    /// Kirchhoff rod. The shell's planar start sets it to its contact edges' bending
-    /// layer (docs/fem-shell.md §9.5).
+    /// Kirchhoff rod. Read only by the static hanging problem's contact fitting
+    /// (`StringHanging`, with `contact_fitting`); the drives' fits keep their own
+    /// gradings. The shell's planar start sets it to its contact layer
+    /// (`HangingBelt::edge_grading`, docs/fem-shell.md §9.1).
     pub grading: Option<crate::mesh::Grading>,
 }
 

@@ -218,12 +218,14 @@ impl HangingBelt {
     }
 
     /// [`Self::planar`] with the rod's `settings` (its mesh distribution `arc_weight`,
-    /// whether the mesh is fitted to the contact edges, `contact_fitting`).
+    /// whether the mesh is fitted to the contact edges, `contact_fitting`, and its
+    /// `grading` — when `None`, the belt's [`Self::edge_grading`]).
     ///
     /// # Errors
     /// [`ShellError::PlanarStart`] if the rod fails.
     pub fn planar_with(&self, rod_elements: usize, settings: &SolverSettings) -> Result<(FemSolution, usize), ShellError> {
-        let settings = settings.clone();
+        // the belt's edge grading unless the settings name one
+        let settings = SolverSettings { grading: settings.grading.or(self.edge_grading()), ..settings.clone() };
         let kernel = crate::formulation::find("rod-simpson").expect("a shipped formulation");
         let solved = crate::mesh::Mesh::new(self.contour, rod_elements, settings.arc_weight).and_then(|mesh| self.rod().solve(mesh, kernel, &settings));
         let (solution, report, _) = solved.map_err(|e| ShellError::PlanarStart(Box::new(e)))?;
@@ -285,7 +287,7 @@ impl HangingBelt {
     /// # Errors
     /// Those of the parts; [`ShellError::Static`] if Newton fails.
     pub fn solve(&self, rod_elements: usize, across: usize, newton: NewtonOptions) -> Result<StaticShell, ShellError> {
-        self.solve_with(rod_elements, across, &SolverSettings { grading: self.edge_grading(), ..SolverSettings::default() }, newton)
+        self.solve_with(rod_elements, across, &SolverSettings::default(), newton)
     }
 
     /// [`Self::solve`] with the rod of [`Self::planar_with`] (its mesh is the shell's
@@ -586,7 +588,8 @@ pub(crate) mod tests {
             contact_rule: crate::quadrature::Rule::Simpson,
             edge_grading: true,
         };
-        let (rod, _) = steel.planar(512).unwrap();
+        // the rod on its own (ungraded) fitted mesh, as `beltcheck solve --method fem` runs it
+        let (rod, _) = HangingBelt { edge_grading: false, ..steel }.planar(512).unwrap();
         let r = rod.summary();
         let reference = [(r.y_upper_mid.unwrap(), r.tension_upper_mid.unwrap()), (r.y_lower_mid.unwrap(), r.tension_lower_mid.unwrap())];
         let shell = steel.solve(128, 2, newton()).unwrap().mid_spans().unwrap();

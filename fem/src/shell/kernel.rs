@@ -168,7 +168,7 @@ impl Shell {
     }
 
     /// The shell with the elastic interlayer `interlayer` against its drums (§7, §8):
-    /// a third term ([`INTERLAYER`], trapezoidal × Gauss 2, [`STATE`] history values per
+    /// a third term ([`INTERLAYER`], the interlayer's σ-rule × Gauss 2, [`STATE`] history values per
     /// point); the core advects its history by `interlayer.transport`.
     ///
     /// # Errors

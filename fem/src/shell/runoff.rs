@@ -484,6 +484,8 @@ mod tests {
         let states = r.stepping.history().term(super::super::kernel::INTERLAYER).unwrap();
         let (rows, columns) = states.shape();
         let sigma = asm.mesh().sigma_nodes();
+        // column 2k is σ-node k under the trapezoidal rule the tight belt uses
+        assert_eq!(asm.kernel().interlayer().map(|l| l.rule), Some(crate::quadrature::Rule::Trapezoidal));
         let [_, driven_start, _, driver_start] = contour.transitions();
         let start = if drum == Pulley::Driven { driven_start } else { driver_start };
         let arc = std::f64::consts::PI * contour.radius();

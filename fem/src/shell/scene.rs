@@ -261,20 +261,19 @@ fn sample(stepping: &TimeStepping<Shell, SHELL_VALUES>, contour: &Contour, width
 }
 
 /// The largest interlayer shear stress P_⊥|u| (N/m²) over the history points next to
-/// each drum, `[driver, driven]`: the points are the σ-nodes (trapezoidal rule, element
-/// i's columns at σ-nodes i and i + 1) × the ζ-Gauss points, each given to the drum whose
+/// each drum, `[driver, driven]`: the points are the interlayer rule's σ-points (each
+/// column's own σ, `column_sigma`: the σ-nodes for the trapezoidal rule, the nodes and
+/// the element middles for Simpson) × the ζ-Gauss points, each given to the drum whose
 /// centre is nearer to its σ's contour point (out of contact u = 0, so the spans add
 /// nothing). Zeros without an interlayer.
 fn peak_shear(stepping: &TimeStepping<Shell, SHELL_VALUES>, contour: &Contour) -> [f64; 2] {
     let (Some(layer), Some(states)) = (stepping.assembler().kernel().interlayer(), stepping.history().term(super::kernel::INTERLAYER)) else {
         return [0.0; 2];
     };
-    let sigma = stepping.assembler().mesh().sigma_nodes();
     let centres = [contour.pulley_centre(drive::contour::Pulley::Driver), contour.pulley_centre(drive::contour::Pulley::Driven)];
-    let (rows, columns) = states.shape();
+    let rows = states.shape().0;
     let mut peak = [0.0f64; 2];
-    for c in 0..columns {
-        let Some(&s) = sigma.get(c / 2 + c % 2) else { continue };
+    for (c, &s) in states.column_sigma().iter().enumerate() {
         let g = contour.g(s);
         let distance = |p: [f64; 2]| (g[0] - p[0]).hypot(g[1] - p[1]);
         let drum = usize::from(distance(centres[1]) < distance(centres[0]));
@@ -309,17 +308,21 @@ fn pressure(layer: &Interlayer, r: &[f64; 3], time: f64) -> f64 {
 }
 
 /// |u| (m) of the interlayer at σ-node `i`, ζ-node `j`: the committed state of the
-/// nearest history point — the interlayer's points are the σ-nodes (trapezoidal rule)
-/// × the 2 Gauss points of each ζ-element, so a ζ-node takes the mean of the nearest
+/// nearest history point — the interlayer's σ-rule (trapezoidal or Simpson) has a point
+/// on every σ-node (element i's first column, ξ = −1; columns are numbered element by
+/// element, the rule's points per element each), × the 2 Gauss points of each
+/// ζ-element, so a ζ-node takes the mean of the nearest
 /// Gauss point of its one or two neighbouring ζ-elements (within (1 − 1/√3)/2 of an
 /// element's width). 0 without an interlayer history.
 fn interlayer_shear(stepping: &TimeStepping<Shell, SHELL_VALUES>, i: usize, j: usize) -> f64 {
     let Some(states) = stepping.history().term(super::kernel::INTERLAYER) else { return 0.0 };
-    let n_zeta = stepping.assembler().mesh().zeta_nodes().len() - 1;
-    // element i's first column (ξ = −1) sits at σ-node i
-    let column = 2 * i;
-    let rows: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
+    let mesh = stepping.assembler().mesh();
+    let n_zeta = mesh.zeta_nodes().len() - 1;
     let (rows_total, columns) = states.shape();
+    // element i's first column (ξ = −1) sits at σ-node i
+    let column = i * (columns / mesh.sigma_elements().max(1));
+    debug_assert!(states.column_sigma().get(column).is_none_or(|&s| (s - mesh.sigma_nodes()[i]).abs() <= 1e-12 * (1.0 + s.abs())), "column {column} is not at σ-node {i}");
+    let rows: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
     let magnitude = |row: usize| {
         if row >= rows_total || column >= columns {
             return 0.0;
@@ -799,6 +802,67 @@ mod tests {
         assert!(kp.abs() > 1e-8 && sp.abs() > 1e-8, "camber {kp:e}, swivel {sp:e} m/s");
         assert!((kp + km).abs() <= 1e-6 * kp.abs(), "camber ±: {kp:e} {km:e}");
         assert!((sp + sm).abs() <= 1e-6 * sp.abs(), "swivel ±: {sp:e} {sm:e}");
+    }
+
+    /// The interlayer's outputs read the history by each column's own σ under either
+    /// σ-rule (a review found them reading Simpson's columns as if they were the
+    /// trapezoidal rule's, two per element: the driver arc's columns were skipped and the
+    /// rest given to the wrong σ). 32 × 2, a swivel of 2e-3 rad, 3 steps: (a) the largest
+    /// P_⊥|u| over all columns is the larger of the two drums' peaks (every column is
+    /// looked at), and each drum's peak is the largest over the columns on its side of
+    /// x = 0 (the drums' centres are at x = ∓H/2); (b) the frame's `interlayer_shear` at
+    /// each σ-node is the mean |u| of the nearest ζ-Gauss rows at the column whose σ is
+    /// that node's, found by searching `column_sigma`, not by index arithmetic.
+    #[test]
+    fn interlayer_outputs_read_each_column_at_its_own_sigma() {
+        for rule in ["simpson", "trapezoidal"] {
+            let mut v = shipped();
+            v["belt"].as_object_mut().unwrap().remove("camber");
+            v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
+            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule});
+            let data = ShellScene::from_scene(&read(&v)).unwrap();
+            let run = data.run;
+            let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
+            let t0 = solved.stepping.time();
+            let start = t0 + run.ramp_steps as f64 * run.time_step;
+            let kernel = data.kernel(solved.stepping.assembler().kernel(), t0, start).unwrap();
+            let mut stepping = solved.released(kernel, stepping_newton()).unwrap();
+            for _ in 0..run.ramp_steps + run.steps {
+                stepping.step(run.time_step).unwrap();
+            }
+            let contour = data.belt.contour;
+            let states = stepping.history().term(super::super::kernel::INTERLAYER).unwrap().clone();
+            let shear = stepping.assembler().kernel().interlayer().unwrap().shear;
+            let (rows, columns) = states.shape();
+            let magnitude = |r: usize, c: usize| {
+                let u = Interlayer::deformation(states.get(r, c));
+                (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+            };
+            let mut side = [0.0f64; 2];
+            for c in 0..columns {
+                let x = contour.g(states.column_sigma()[c])[0];
+                let k = usize::from(x > 0.0);
+                for r in 0..rows {
+                    side[k] = side[k].max(shear * magnitude(r, c));
+                }
+            }
+            let peaks = peak_shear(&stepping, &contour);
+            assert!(side[0] > 0.0 && side[1] > 0.0, "{rule}: no shear on a drum: {side:?}");
+            for k in 0..2 {
+                assert!((peaks[k] - side[k]).abs() <= 1e-12 * side[k], "{rule}: drum {k}: peak {} against {}", peaks[k], side[k]);
+            }
+            let fields = frame(&stepping).unwrap();
+            let field = &fields.values["interlayer_shear"];
+            let n_zeta = fields.zeta.len() - 1;
+            for (i, &s) in fields.sigma.iter().enumerate() {
+                let c = states.column_sigma().iter().position(|&q| (q - s).abs() <= 1e-12 * (1.0 + s.abs())).unwrap_or_else(|| panic!("{rule}: no column at σ-node {s}"));
+                for j in 0..=n_zeta {
+                    let near: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
+                    let expected = near.iter().map(|&r| magnitude(r, c)).sum::<f64>() / near.len() as f64;
+                    assert_eq!(field[i][j], expected, "{rule}: σ-node {i}, ζ-node {j}");
+                }
+            }
+        }
     }
 
     /// The per-drum lateral force (spec §4.11) on the shipped belt at 32 × 2 after the
