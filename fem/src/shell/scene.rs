@@ -804,6 +804,28 @@ mod tests {
         assert!((sp + sm).abs() <= 1e-6 * sp.abs(), "swivel ±: {sp:e} {sm:e}");
     }
 
+    /// The shipped belt without camber, the driven drum swivelled to 2e-3 rad, 32 × 2,
+    /// stages (0)–(2) over 1 ramp step and 3 steps of rotation, the interlayer by `rule`:
+    /// the scene, the contour and the stepping at the end (the scene pipeline's stages,
+    /// unrecorded).
+    fn swivelled_run(rule: &str) -> (serde_json::Value, Contour, TimeStepping<Shell, SHELL_VALUES>) {
+        let mut v = shipped();
+        v["belt"].as_object_mut().unwrap().remove("camber");
+        v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule});
+        let data = ShellScene::from_scene(&read(&v)).unwrap();
+        let run = data.run;
+        let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
+        let t0 = solved.stepping.time();
+        let start = t0 + run.ramp_steps as f64 * run.time_step;
+        let kernel = data.kernel(solved.stepping.assembler().kernel(), t0, start).unwrap();
+        let mut stepping = solved.released(kernel, stepping_newton()).unwrap();
+        for _ in 0..run.ramp_steps + run.steps {
+            stepping.step(run.time_step).unwrap();
+        }
+        (v, data.belt.contour, stepping)
+    }
+
     /// The interlayer's outputs read the history by each column's own σ under either
     /// σ-rule (a review found them reading Simpson's columns as if they were the
     /// trapezoidal rule's, two per element: the driver arc's columns were skipped and the
@@ -816,21 +838,7 @@ mod tests {
     #[test]
     fn interlayer_outputs_read_each_column_at_its_own_sigma() {
         for rule in ["simpson", "trapezoidal"] {
-            let mut v = shipped();
-            v["belt"].as_object_mut().unwrap().remove("camber");
-            v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
-            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule});
-            let data = ShellScene::from_scene(&read(&v)).unwrap();
-            let run = data.run;
-            let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
-            let t0 = solved.stepping.time();
-            let start = t0 + run.ramp_steps as f64 * run.time_step;
-            let kernel = data.kernel(solved.stepping.assembler().kernel(), t0, start).unwrap();
-            let mut stepping = solved.released(kernel, stepping_newton()).unwrap();
-            for _ in 0..run.ramp_steps + run.steps {
-                stepping.step(run.time_step).unwrap();
-            }
-            let contour = data.belt.contour;
+            let (_, contour, stepping) = swivelled_run(rule);
             let states = stepping.history().term(super::super::kernel::INTERLAYER).unwrap().clone();
             let shear = stepping.assembler().kernel().interlayer().unwrap().shear;
             let (rows, columns) = states.shape();
@@ -878,20 +886,7 @@ mod tests {
     /// carries them.
     #[test]
     fn drums_lateral_forces_are_the_energy_derivative_and_balance() {
-        let mut v = shipped();
-        v["belt"].as_object_mut().unwrap().remove("camber");
-        v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
-        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1});
-        let data = ShellScene::from_scene(&read(&v)).unwrap();
-        let run = data.run;
-        let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
-        let t0 = solved.stepping.time();
-        let start = t0 + run.ramp_steps as f64 * run.time_step;
-        let kernel = data.kernel(solved.stepping.assembler().kernel(), t0, start).unwrap();
-        let mut stepping = solved.released(kernel, stepping_newton()).unwrap();
-        for _ in 0..run.ramp_steps + run.steps {
-            stepping.step(run.time_step).unwrap();
-        }
+        let (v, _, stepping) = swivelled_run("simpson");
         let asm = stepping.assembler();
         let shell = asm.kernel();
         let ev = stepping.step_evaluation();
