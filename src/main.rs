@@ -761,7 +761,10 @@ fn print_run(scene: &Scene, label: &str, run: &Solved) {
         println!("  transport rate c   [m/s]  {:>13.8}", c);
     }
     if let Some(v) = s.runoff_velocity {
-        println!("  run-off velocity   [m/s]  {:>13.6e}   (+z along the drum axes)", v);
+        println!("  run-off velocity   [m/s]  {:>13.6e}   (+z along the drum axes; the last revolution's slope)", v);
+    }
+    if let Some(v) = s.settled_runoff_velocity {
+        println!("  settled run-off    [m/s]  {:>13.6e}   (after the lateral transient)", v);
     }
     if let Some(d) = s.drift_per_revolution {
         println!("  drift per revolution [m]  {:>13.6e}", d);

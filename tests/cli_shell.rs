@@ -133,7 +133,11 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
 
     let r = RunResult::from_json_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     r.check().unwrap();
-    assert!(r.converged && r.method == "fem" && r.warnings.is_empty(), "{:?}", r.warnings);
+    // the CI scene's 48 steps are 0.24 of a revolution, far shorter than the lateral
+    // transient (period ≈ 24 s): no settled run-off, and the one warning says so
+    assert!(r.converged && r.method == "fem", "{:?}", r.warnings);
+    assert!(r.summary.settled_runoff_velocity.is_none(), "{:?}", r.summary);
+    assert!(matches!(&r.warnings[..], [w] if w.starts_with("run-off velocity not settled") && w.contains("the whole rotation")), "{:?}", r.warnings);
     assert_eq!(r.discretisation, Some(drive::Discretisation::Mesh2d { sigma: 64, zeta: 2, time_step: run.time_step }));
     // 64 × 2 elements: 12 unknowns per node × 64 × 3 nodes (closed loop)
     assert_eq!(r.cost.unknowns, 12 * 64 * 3);

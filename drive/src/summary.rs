@@ -67,6 +67,8 @@ pub enum Global {
     YOut,
     /// Lateral run-off velocity of the shell belt, m/s (+z: along the drum axes).
     RunoffVelocity,
+    /// The shell's run-off velocity after its lateral transient (a damped-oscillation fit).
+    SettledRunoffVelocity,
     /// Lateral drift of the shell belt per belt revolution, m.
     DriftPerRevolution,
     /// Largest membrane stress at the belt edges, Pa.
@@ -135,7 +137,7 @@ pub enum Quantity {
 
 impl Global {
     /// Every global quantity, in the order of the result format.
-    pub const ALL: [Global; 18] = [
+    pub const ALL: [Global; 19] = [
         Global::YUpperMid,
         Global::YLowerMid,
         Global::TensionUpperMid,
@@ -152,6 +154,7 @@ impl Global {
         Global::YIn,
         Global::YOut,
         Global::RunoffVelocity,
+        Global::SettledRunoffVelocity,
         Global::DriftPerRevolution,
         Global::EdgeStressMax,
     ];
@@ -175,6 +178,7 @@ impl Global {
             Global::YIn => "y_in",
             Global::YOut => "y_out",
             Global::RunoffVelocity => "runoff_velocity",
+            Global::SettledRunoffVelocity => "settled_runoff_velocity",
             Global::DriftPerRevolution => "drift_per_revolution",
             Global::EdgeStressMax => "edge_stress_max",
         }
@@ -191,7 +195,7 @@ impl Global {
             | Global::TensionOut => "N",
             Global::MomentUpperMid | Global::MomentLowerMid => "N·m",
             Global::DrivenSpeed | Global::PulleySpeed => "rad/s",
-            Global::TransportRate | Global::RunoffVelocity => "m/s",
+            Global::TransportRate | Global::RunoffVelocity | Global::SettledRunoffVelocity => "m/s",
             Global::DriftPerRevolution => "m",
             Global::EdgeStressMax => "Pa",
         }
@@ -222,6 +226,9 @@ impl Global {
             Global::YOut => "y of the centreline at the outflow end section of a one-pulley scene",
             Global::RunoffVelocity => {
                 "lateral run-off velocity of a shell belt (+z along the drum axes): least-squares slope of its mean lateral offset over the last whole belt revolution of the rotation (over the whole rotation if shorter)"
+            }
+            Global::SettledRunoffVelocity => {
+                "lateral run-off velocity of a shell belt after its lateral transient: the drift of a fit of a line under a damped oscillation to its mean lateral offset over the last third of the rotation after the steering's last change, confirmed by the fit over the last half (absent, with a warning, when the transient has not settled)"
             }
             Global::DriftPerRevolution => "lateral drift of a shell belt per belt revolution L/(ω₁R): runoff_velocity × L/(ω₁R)",
             Global::EdgeStressMax => "largest |membrane stress along the belt| n_σσ/h at the two belt edges ζ = ±b/2 at the end of a shell run",
@@ -359,7 +366,7 @@ const TABLE: [&str; N_QUANTITIES] = [
     "y_upper_mid", "y_lower_mid", "tension_upper_mid", "tension_lower_mid", "moment_upper_mid",
     "moment_lower_mid", "tension_tight", "tension_slack", "driven_speed", "transport_rate",
     "pulley_speed", "tension_in", "tension_out", "y_in", "y_out",
-    "runoff_velocity", "drift_per_revolution", "edge_stress_max",
+    "runoff_velocity", "settled_runoff_velocity", "drift_per_revolution", "edge_stress_max",
     "driver.contact_arc", "driver.contact_start", "driver.contact_end", "driver.stick_arc",
     "driver.slip_arc", "driver.torque", "driver.edge_force_start", "driver.edge_force_end",
     "driver.edge_pressure_start", "driver.edge_pressure_end",
@@ -603,6 +610,9 @@ pub struct Summary {
     /// Lateral run-off velocity of a shell belt, m/s (+z along the drum axes).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub runoff_velocity: Option<f64>,
+    /// Lateral run-off velocity of a shell belt after its lateral transient, m/s.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub settled_runoff_velocity: Option<f64>,
     /// Lateral drift of a shell belt per belt revolution, m.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub drift_per_revolution: Option<f64>,
@@ -627,7 +637,7 @@ impl Summary {
         MomentLowerMid => moment_lower_mid, TensionTight => tension_tight, TensionSlack => tension_slack,
         DrivenSpeed => driven_speed, TransportRate => transport_rate, PulleySpeed => pulley_speed,
         TensionIn => tension_in, TensionOut => tension_out, YIn => y_in, YOut => y_out,
-        RunoffVelocity => runoff_velocity, DriftPerRevolution => drift_per_revolution, EdgeStressMax => edge_stress_max);
+        RunoffVelocity => runoff_velocity, SettledRunoffVelocity => settled_runoff_velocity, DriftPerRevolution => drift_per_revolution, EdgeStressMax => edge_stress_max);
 
     fn pulley_block(&mut self, p: PulleyId) -> &mut Option<PulleySummary> {
         match p {

@@ -30,6 +30,9 @@
 //!   [`continuation::Branch`] with fold detection, and fold location by Brent's method.
 //!   The caller keeps its predictor, corrector and mesh transfer; what moves here is the
 //!   part every continuation repeats.
+//! - [`drift`]: the drift of a signal that settles by a damped oscillation (a line under
+//!   e^{−λt}(B cos Ωt + C sin Ωt), by variable projection with argmin's Nelder–Mead) —
+//!   the shell's run-off after its lateral transient.
 //! - [`phases`]: where a solve's time goes — seconds per phase (assembly, symbolic and
 //!   numeric LU, solves, residuals, integration, mesh adaptation, fitting) and work
 //!   counts, marked by every solver and collected by the caller around a whole solve.
@@ -39,6 +42,7 @@
 
 pub mod banded;
 pub mod continuation;
+pub mod drift;
 pub mod fmt;
 pub mod linear;
 pub mod newton;

@@ -10,8 +10,8 @@
 //! stage (0) and one per step — the channels of [`CHANNELS`] — and frames of surface
 //! fields (x, y, z, membrane force n_σσ, bending moment m_σσ, contact pressure Pγ) on the
 //! mesh's nodes at the start of the rotation, every `fem.frame_every` steps and at the
-//! end; the summary (`runoff_velocity`, `drift_per_revolution`, `edge_stress_max`, the
-//! planar names at the mid-spans); a planar view of the width-integrated belt for the
+//! end; the summary (`runoff_velocity`, `settled_runoff_velocity`,
+//! `drift_per_revolution`, `edge_stress_max`, the planar names at the mid-spans); a planar view of the width-integrated belt for the
 //! common solution view.
 //!
 //! **Self-checks** [P] (every answer is a promise): the zero-mode constraints of stage (0)
@@ -20,9 +20,11 @@
 //! [`SYMMETRY_TOLERANCE`] × b, spec E-3); the drums' lateral forces on the belt cancel
 //! ([`LATERAL_BALANCE_TOLERANCE`]); every step's Newton converged; every output is
 //! finite. Stated warnings (the numbers are kept): a compressive membrane force at a belt
-//! edge (a thin belt would wrinkle there; the model has no buckling), and a penetration
+//! edge (a thin belt would wrinkle there; the model has no buckling), a penetration
 //! into the interlayer larger than the belt's thickness (the layer too soft for its thin
-//! layer model).
+//! layer model), and a run-off that has not settled after its lateral transient (no
+//! `settled_runoff_velocity`: the run is too short, or the fits disagree —
+//! [`super::runoff::settled_runoff`]).
 
 use std::time::Instant;
 
@@ -39,7 +41,7 @@ use crate::element::Field;
 use super::hanging::{point_values_at, station_of, HangingBelt, StaticShell};
 use super::interlayer::{Interlayer, Schedule};
 use super::kernel::{Shell, SHELL_VALUES};
-use super::runoff::{drift_velocity, lateral_offset};
+use super::runoff::{drift_velocity, lateral_offset, settled_runoff, SETTLED_AGREEMENT};
 use super::ShellError;
 
 /// The channels of the history, besides `peak_shear_driver`, `peak_shear_driven` (the
@@ -617,6 +619,31 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
         if let Some(v) = drift_velocity(&time[first..], &lateral[first..], window) {
             summary.runoff_velocity = Some(v);
             summary.drift_per_revolution = Some(v * revolution);
+        }
+        // the run-off after the lateral transient (docs/fem-shell.md §14): a perfect belt
+        // has none (E-3, checked below); otherwise fitted from the steering's last change on
+        if data.is_perfect() {
+            summary.settled_runoff_velocity = summary.runoff_velocity;
+        } else {
+            let settled_from = start + data.steering.as_ref().map_or(0.0, |s| s.tilt_x.iter().chain(&s.tilt_y).fold(0.0_f64, |m, p| m.max(p[0])));
+            match settled_runoff(&time[first..], &lateral[first..], settled_from, SYMMETRY_TOLERANCE * width / revolution) {
+                Ok(s) => {
+                    summary.settled_runoff_velocity = Some(s.velocity);
+                    checks.push(format!(
+                        "run-off after the transient {:.4e} m/s: the fit over the last third (from t = {:.4} s) and over the last half agree to {:.2e} m/s ≤ {SETTLED_AGREEMENT:e} of it; lateral transient period {:.4} s, decay rate {:.4e} 1/s",
+                        s.velocity,
+                        s.window_start,
+                        (s.velocity - s.half).abs(),
+                        s.period,
+                        s.decay
+                    ));
+                }
+                Err(why) => {
+                    let slope = summary.runoff_velocity.map_or(String::new(), |v| format!(" ({v:.4e} m/s)"));
+                    let over = if time[time.len() - 1] - start < revolution * (1.0 - 1e-9) { "the whole rotation" } else { "the last revolution" };
+                    warnings.push(format!("run-off velocity not settled: {why}; `runoff_velocity`{slope} is the slope over {over}, a value of the transient"));
+                }
+            }
         }
     }
     let frame_end = frame(&stepping)?;
