@@ -990,6 +990,16 @@ pub enum ShellContactRule {
     Trapezoidal,
 }
 
+impl ShellContactRule {
+    /// The rule's name in prose ("Simpson", "trapezoidal").
+    pub const fn label(self) -> &'static str {
+        match self {
+            ShellContactRule::Simpson => "Simpson",
+            ShellContactRule::Trapezoidal => "trapezoidal",
+        }
+    }
+}
+
 /// The shell's discretisation and run, resolved from the `fem` block with its defaults
 /// ([`Scene::shell_run`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

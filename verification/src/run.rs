@@ -546,10 +546,7 @@ impl Method for ShellFe {
             return Err(RunError::NotApplicable(format!("{SHELL_FE} discretises theory `shell`, the scene's belt is theory `{}`", scene.belt.theory)));
         }
         let scene = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
-        let rule = match scene.shell_run().contact_rule {
-            drive::scene::ShellContactRule::Simpson => "Simpson",
-            drive::scene::ShellContactRule::Trapezoidal => "trapezoidal",
-        };
+        let rule = scene.shell_run().contact_rule.label();
         let run = fem::shell::scene::solve(&scene).map_err(|e| match e {
             fem::shell::ShellError::NotModelled(m) => RunError::NotApplicable(m),
             other => RunError::Shell(other),

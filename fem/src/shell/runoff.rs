@@ -213,7 +213,13 @@ pub fn drift_per_revolution(time: &[f64], channel: &[f64], start: f64, period: f
 /// §14 "The run-off after the transient") cut short at 60, 70, 80 and 98 s of rotation
 /// the two windows disagreed by 11 %, 6.8 %, 0.7 % and 0.15 %, and their values were off
 /// the full run's by up to 24 %, 6 %, 0.9 % and 0.15 %: a disagreement of 2 % leaves
-/// each value within a few per cent.
+/// each value within a few per cent. The windows are nested (the third inside the
+/// half), which is what makes a residual transient show; a drift that changes at a
+/// steady rate moves the two by only a quarter of its change over the third, so such a
+/// drift passes with up to ~8 % change over the third, and the third's mean is what is
+/// reported. (Disjoint thirds were tried on the same runs: the middle third carries more
+/// of the faster early modes and disagreed with the last by 9 % on the 128 × 4 run whose
+/// last third is stable to 0.3 % from 80 s on.)
 pub const SETTLED_AGREEMENT: f64 = 2e-2;
 
 /// Largest rms residual of a settling fit relative to the range of z̄ over its window
@@ -236,6 +242,11 @@ pub struct Settled {
     pub decay: f64,
     /// The start of the last third, s.
     pub window_start: f64,
+    /// Whether the third's fit carries an oscillation (its rate at the end above 1e-3 of
+    /// the drift); without one, `period` and `decay` mean nothing.
+    pub oscillating: bool,
+    /// The agreement the two drifts were held to, m/s.
+    pub bound: f64,
 }
 
 /// Why the run-off after the transient is not known ([`settled_runoff`]).
@@ -246,8 +257,9 @@ pub enum Unsettled {
     /// decay times of the fitted oscillation (s).
     TooShort { settled_for: f64, period: Option<f64> },
     /// The history is not one decaying oscillation about a drift: the fit's residual
-    /// (rms, m) exceeds [`SETTLED_RESIDUAL`] of the window's range of z̄ (m).
-    Unexplained { rms: f64, range: f64 },
+    /// (rms, m) over the window (`"last third"`, `"last half"`) exceeds
+    /// [`SETTLED_RESIDUAL`] of the window's range of z̄ (m).
+    Unexplained { window: &'static str, rms: f64, range: f64 },
     /// The fitted lateral oscillation grows (rate λ < 0, 1/s; period s).
     Growing { decay: f64, period: f64 },
     /// The two windows' drifts disagree (m/s).
@@ -260,18 +272,18 @@ impl std::fmt::Display for Unsettled {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match *self {
             Unsettled::TooShort { settled_for, period: None } if settled_for <= 0.0 => {
-                write!(f, "the steering's history runs to the end of the rotation: there is no time after its last change to fit")
+                write!(f, "the steering history's last point is at or after the end of the rotation: there is no time after it to fit")
             }
             Unsettled::TooShort { settled_for, period: None } => {
-                write!(f, "the rotation after the steering's last change ({settled_for:.4} s) is too short to fit the lateral transient")
+                write!(f, "the rotation after the forcing's last change (the end of the ramp or the steering history's last point; {settled_for:.4} s) is too short to fit the lateral transient")
             }
             Unsettled::TooShort { settled_for, period: Some(p) } => write!(
                 f,
-                "the lateral transient oscillates with a period of {p:.4} s, longer than the last third of the {settled_for:.4} s after the steering's last change: run longer"
+                "the lateral transient oscillates with a period of {p:.4} s, longer than the last third of the {settled_for:.4} s after the forcing's last change: run longer"
             ),
-            Unsettled::Unexplained { rms, range } => write!(
+            Unsettled::Unexplained { window, rms, range } => write!(
                 f,
-                "the lateral offset's history is not one decaying oscillation about a drift (the fit leaves {rms:.3e} m rms against a range of {range:.3e} m): run longer"
+                "the lateral offset's history over the {window} is not one decaying oscillation about a drift (the fit leaves {rms:.3e} m rms against a range of {range:.3e} m): likely a second mode; a longer run lets a faster one die out"
             ),
             Unsettled::Growing { decay, period } => {
                 write!(f, "the fitted lateral oscillation grows (e-folding time {:.4} s, period {period:.4} s): no steady run-off is in sight (a drift that still changes is fitted so too); run longer", -1.0 / decay)
@@ -293,8 +305,8 @@ impl std::fmt::Display for Unsettled {
 /// half; the run-off is settled when both fits leave an rms residual within
 /// [`SETTLED_RESIDUAL`] of their window's range of z̄, the third's oscillation decays, the third spans a
 /// period of it or three of its decay times (e⁻³: an overdamped approach), or its rate at
-/// the end, amplitude × (Ω + |λ|), is below 1e-3 of the drift (no oscillation), and the
-/// two drifts agree to [`SETTLED_AGREEMENT`] of the third's or
+/// the end, amplitude × (Ω + |λ|), is below 1e-3 of the drift or below `floor` (no
+/// oscillation), and the two drifts agree to [`SETTLED_AGREEMENT`] of the third's or
 /// to `floor` (m/s: a drift below it is none).
 ///
 /// # Errors
@@ -314,24 +326,27 @@ pub fn settled_runoff(time: &[f64], lateral: &[f64], settled_from: f64, floor: f
     }
     let a = numerics::drift::fit_damped_drift(third.0, third.1).ok_or(Unsettled::NotFitted)?;
     let b = numerics::drift::fit_damped_drift(half.0, half.1).ok_or(Unsettled::NotFitted)?;
-    for (fit, samples) in [(&a, third.1), (&b, half.1)] {
-        let range = samples.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v)) - samples.iter().fold(f64::INFINITY, |m, &v| m.min(v));
-        if fit.rms > SETTLED_RESIDUAL * range {
-            return Err(Unsettled::Unexplained { rms: fit.rms, range });
+    for (window, fit, (t, z)) in [("last third", &a, third), ("last half", &b, half)] {
+        // a misfit below the smallest drift that counts over the window is not one: a belt
+        // that has stopped drifting leaves only round-off, which no model explains
+        let range = z.iter().fold(f64::NEG_INFINITY, |m, &v| m.max(v)) - z.iter().fold(f64::INFINITY, |m, &v| m.min(v));
+        if fit.rms > (SETTLED_RESIDUAL * range).max(floor * (t[t.len() - 1] - t[0])) {
+            return Err(Unsettled::Unexplained { window, rms: fit.rms, range });
         }
     }
     let (period, span) = (a.period(), third.0[third.0.len() - 1] - third.0[0]);
-    let oscillating = a.amplitude * (a.angular_frequency + a.decay.abs()) > 1e-3 * a.velocity.abs().max(floor);
+    let oscillating = a.amplitude * (a.angular_frequency + a.decay.abs()) > (1e-3 * a.velocity.abs()).max(floor);
     if oscillating && a.decay < 0.0 {
         return Err(Unsettled::Growing { decay: a.decay, period });
     }
     if oscillating && period > span && a.decay * span < 3.0 {
         return Err(Unsettled::TooShort { settled_for, period: Some(period) });
     }
-    if (a.velocity - b.velocity).abs() > SETTLED_AGREEMENT * a.velocity.abs() + floor {
+    let bound = SETTLED_AGREEMENT * a.velocity.abs() + floor;
+    if (a.velocity - b.velocity).abs() > bound {
         return Err(Unsettled::Disagree { third: a.velocity, half: b.velocity, period, decay: a.decay });
     }
-    Ok(Settled { velocity: a.velocity, half: b.velocity, period, decay: a.decay, window_start: third.0[0] })
+    Ok(Settled { velocity: a.velocity, half: b.velocity, period, decay: a.decay, window_start: third.0[0], oscillating, bound })
 }
 
 #[cfg(test)]
@@ -480,7 +495,7 @@ mod tests {
         // (the model's cosine of a long period stands in for the pure exponential: 1e-4)
         let s = settled_runoff(&t, &bent(8.0), 1.0, 1e-12).unwrap();
         assert!((s.velocity / 1.25e-6 - 1.0).abs() < 1e-3, "{s:?}");
-        assert!(settled_runoff(&t, &bent(30.0), 1.0, 1e-12).is_err());
+        assert!(matches!(settled_runoff(&t, &bent(30.0), 1.0, 1e-12), Err(Unsettled::TooShort { period: Some(_), .. })));
         // a second mode of the same size, period 9 s: one mode cannot follow both
         let two: Vec<f64> = t.iter().zip(&z).map(|(&t, z)| z + 5e-5 * (-0.02 * (t - 1.0)).exp() * (std::f64::consts::TAU * t / 9.0).cos()).collect();
         let e = settled_runoff(&t, &two, 1.0, 1e-12);
@@ -494,6 +509,11 @@ mod tests {
         let faster: Vec<f64> = t.iter().zip(&z).map(|(&t, z)| z + 2.5e-9 * t * t).collect();
         let e = settled_runoff(&t, &faster, 1.0, 1e-12).unwrap_err();
         assert!(matches!(e, Unsettled::Disagree { .. }) && e.to_string().contains("has not settled"), "{e:?}");
+        // a belt that has stopped drifting: the oscillation died out, round-off of 1e-12 m
+        // left, a misfit below the floor's drift over the window (1e-12 m/s × 33 s)
+        let still: Vec<f64> = t.iter().enumerate().map(|(k, _)| 3e-5 + 1e-12 * ((k * 7919 % 101) as f64 / 50.0 - 1.0)).collect();
+        let s = settled_runoff(&t, &still, 1.0, 1e-12).unwrap();
+        assert!(s.velocity.abs() <= 1e-12, "{s:?}");
         let rest = vec![0.0; t.len()];
         assert_eq!(settled_runoff(&t, &rest, 1.0, 1e-12).unwrap().velocity, 0.0);
     }
@@ -520,7 +540,7 @@ mod tests {
         let (start, floor) = (t[0], 1e-9 * 0.2 / 9.81);
         let s = settled_runoff(&t, &z, start + 1.0, floor).unwrap();
         assert!((s.velocity / 1.2444e-6 - 1.0).abs() < 5e-3 && (s.half / 1.2462e-6 - 1.0).abs() < 5e-3, "{s:?}");
-        assert!((s.period - 24.4).abs() < 0.5 && (s.decay - 0.043).abs() < 5e-3, "{s:?}");
+        assert!((s.period - 24.39).abs() < 0.1 && (s.decay - 0.0434).abs() < 1e-3 && s.oscillating, "{s:?}");
         let cut = |until: f64| {
             let k = t.partition_point(|&x| x <= start + until);
             settled_runoff(&t[..k], &z[..k], start + 1.0, floor)

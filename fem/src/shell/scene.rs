@@ -23,7 +23,8 @@
 //! edge (a thin belt would wrinkle there; the model has no buckling), a penetration
 //! into the interlayer larger than the belt's thickness (the layer too soft for its thin
 //! layer model), and a run-off that has not settled after its lateral transient (no
-//! `settled_runoff_velocity`: the run is too short, or the fits disagree —
+//! `settled_runoff_velocity`: the run is too short or the steering still changes, the
+//! history is not one damped mode, the fitted oscillation grows, or the fits disagree —
 //! [`super::runoff::settled_runoff`]).
 
 use std::time::Instant;
@@ -620,8 +621,10 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
             summary.runoff_velocity = Some(v);
             summary.drift_per_revolution = Some(v * revolution);
         }
-        // the run-off after the lateral transient (docs/fem-shell.md §14): a perfect belt
-        // has none (E-3, checked below); otherwise fitted from the steering's last change on
+        // the run-off after the lateral transient (docs/fem-shell.md §14): a perfect belt's
+        // is its run-off (the mirror symmetry keeps z̄ at round-off, checked below as E-3);
+        // otherwise fitted from the forcing's last change on (the ramp's end or the
+        // steering history's last point, whichever is later)
         if data.is_perfect() {
             summary.settled_runoff_velocity = summary.runoff_velocity;
         } else {
@@ -629,19 +632,19 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
             match settled_runoff(&time[first..], &lateral[first..], settled_from, SYMMETRY_TOLERANCE * width / revolution) {
                 Ok(s) => {
                     summary.settled_runoff_velocity = Some(s.velocity);
+                    let transient = if s.oscillating { format!("; lateral transient period {:.4} s, decay rate {:.4e} 1/s", s.period, s.decay) } else { "; no oscillation left".to_string() };
                     checks.push(format!(
-                        "run-off after the transient {:.4e} m/s: the fit over the last third (from t = {:.4} s) and over the last half agree to {:.2e} m/s ≤ {SETTLED_AGREEMENT:e} of it; lateral transient period {:.4} s, decay rate {:.4e} 1/s",
+                        "run-off after the transient {:.4e} m/s: the fits over the last third (from t = {:.4} s) and over the last half agree to {:.2e} ≤ {:.2e} m/s ({SETTLED_AGREEMENT:e} of it + the floor){transient}",
                         s.velocity,
                         s.window_start,
                         (s.velocity - s.half).abs(),
-                        s.period,
-                        s.decay
+                        s.bound
                     ));
                 }
                 Err(why) => {
-                    let slope = summary.runoff_velocity.map_or(String::new(), |v| format!(" ({v:.4e} m/s)"));
                     let over = if time[time.len() - 1] - start < revolution * (1.0 - 1e-9) { "the whole rotation" } else { "the last revolution" };
-                    warnings.push(format!("run-off velocity not settled: {why}; `runoff_velocity`{slope} is the slope over {over}, a value of the transient"));
+                    let slope = summary.runoff_velocity.map_or(String::new(), |v| format!("; `runoff_velocity` ({v:.4e} m/s) is the slope over {over}, a value of the transient"));
+                    warnings.push(format!("run-off velocity not settled: {why}{slope}"));
                 }
             }
         }
