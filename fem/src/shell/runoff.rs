@@ -279,7 +279,7 @@ impl std::fmt::Display for Unsettled {
             }
             Unsettled::TooShort { settled_for, period: Some(p) } => write!(
                 f,
-                "the lateral transient oscillates with a period of {p:.4} s, longer than the last third of the {settled_for:.4} s after the forcing's last change: run longer"
+                "the last third of the {settled_for:.4} s after the forcing's last change is shorter than the fitted period of the lateral transient, {p:.4} s (a fit over so short a window finds no period beyond four windows: the true one may be longer); run longer"
             ),
             Unsettled::Unexplained { window, rms, range } => write!(
                 f,
