@@ -134,13 +134,16 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     let r = RunResult::from_json_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     r.check().unwrap();
     // the CI scene's 48 steps are 0.24 of a revolution, far shorter than the lateral
-    // transient (period ≈ 24 s): no settled run-off, and the one warning says so
+    // transient (period ≈ 24 s): no settled run-off, and the one warning says so (its
+    // 8 elements across the width on the graded ζ-mesh resolve the edge layer,
+    // docs/fem-shell.md §9.5)
     assert!(r.converged && r.method == "fem", "{:?}", r.warnings);
     assert!(r.summary.settled_runoff_velocity.is_none(), "{:?}", r.summary);
     assert!(matches!(&r.warnings[..], [w] if w.starts_with("run-off velocity not settled") && w.contains("the whole rotation")), "{:?}", r.warnings);
-    assert_eq!(r.discretisation, Some(drive::Discretisation::Mesh2d { sigma: 64, zeta: 2, time_step: run.time_step }));
-    // 64 × 2 elements: 12 unknowns per node × 64 × 3 nodes (closed loop)
-    assert_eq!(r.cost.unknowns, 12 * 64 * 3);
+    assert_eq!(r.discretisation, Some(drive::Discretisation::Mesh2d { sigma: 64, zeta: 8, time_step: run.time_step }));
+    // 64 × 8 elements: 12 unknowns per node × 64 × 9 nodes (closed loop); the graded
+    // ζ-mesh resolves the edge layer, so no warning says it does not
+    assert_eq!(r.cost.unknowns, 12 * 64 * 9);
     assert!(r.cost.newton_iterations >= run.steps + run.ramp_steps, "at least one Newton iteration per step");
 
     // the summary: the definitions hold to round-off
@@ -158,9 +161,12 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     let (tm, zm) = (t.iter().sum::<f64>() / t.len() as f64, z.iter().sum::<f64>() / z.len() as f64);
     let slope = t.iter().zip(z).map(|(a, b)| (a - tm) * (b - zm)).sum::<f64>() / t.iter().map(|a| (a - tm) * (a - tm)).sum::<f64>();
     assert!((slope - v).abs() <= 1e-9 * v.abs(), "least-squares slope {slope} vs runoff_velocity {v}");
-    // camber and swivel make the belt run off: the offset at the end is well above the
-    // ramp's (measured 3.8e-7 → 1.9e-6 m; the E-3 round-off of a perfect belt is 1e-16 m)
-    assert!(z[z.len() - 1].abs() > 3.0 * z[0].abs() && z[z.len() - 1].abs() > 1e-7, "z̄ {} → {}", z[0], z[z.len() - 1]);
+    // camber and swivel make the belt run off: the offset during the rotation goes well
+    // above the ramp's (measured 3.9e-7 → 1.25e-5 m at mid-rotation, back to 9.7e-7 at
+    // the end: the lateral transient's swing; the E-3 round-off of a perfect belt is
+    // 1e-16 m)
+    let swing = z.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    assert!(swing > 10.0 * z[0].abs() && swing > 1e-6, "z̄ {} → largest {swing}", z[0]);
     // the planar names: the belt sags below the contour on both spans, in tension
     let radius = s.drive.pulley_radius;
     let (yu, yl) = (sum.y_upper_mid.unwrap(), sum.y_lower_mid.unwrap());

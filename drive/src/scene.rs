@@ -977,6 +977,24 @@ pub struct FemSettings {
     /// drifting by 20 % in 24 steps at 64).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_rule: Option<ShellContactRule>,
+    /// Shell only: the ζ-nodes across the width: `graded` towards the belt's free edges,
+    /// where the belt wrapped on a drum has an anticlastic edge layer of the length
+    /// ℓ_c = (D/P)^{1/4} (3.5 mm for the shipped steel belt), or `uniform`;
+    /// docs/fem-shell.md §9.5. Default absent = `graded` (for n_ζ = 2 both give the
+    /// edges and the centre line).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub zeta_mesh: Option<ShellZetaMesh>,
+}
+
+/// The shell's ζ-nodes across the width (`fem.zeta_mesh`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShellZetaMesh {
+    /// Graded towards both free edges over a few edge-layer lengths (peak refinement 9×).
+    #[default]
+    Graded,
+    /// Equal elements across the width.
+    Uniform,
 }
 
 /// The σ-rule of the shell's elastic interlayer (`fem.contact_rule`).
@@ -1018,6 +1036,8 @@ pub struct ShellRun {
     pub frame_every: usize,
     /// The interlayer's σ-rule.
     pub contact_rule: ShellContactRule,
+    /// The ζ-nodes across the width.
+    pub zeta_mesh: ShellZetaMesh,
 }
 
 /// Default shell drum rotation per step ωΔt, rad (π/16): about one arc element of a
@@ -1098,6 +1118,7 @@ impl Default for FemSettings {
             ramp_steps: None,
             frame_every: None,
             contact_rule: None,
+            zeta_mesh: None,
         }
     }
 }
@@ -1411,12 +1432,13 @@ impl Scene {
             ramp_steps: f.ramp_steps.unwrap_or(1),
             frame_every: f.frame_every.unwrap_or(0),
             contact_rule: f.contact_rule.unwrap_or_default(),
+            zeta_mesh: f.zeta_mesh.unwrap_or_default(),
         }
     }
 
     /// The `fem` block of a shell: only the shell's settings (`elements_sigma`,
     /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`,
-    /// `contact_rule`);
+    /// `contact_rule`, `zeta_mesh`);
     /// the rod and string settings are refused by name rather than ignored; the rotation
     /// at most [`MAX_SHELL_STEPS`] steps.
     fn validate_shell_fem(&self, f: &FemSettings) -> Result<(), SceneError> {
@@ -1429,6 +1451,7 @@ impl Scene {
             ("fem.ramp_steps", f.ramp_steps.is_some()),
             ("fem.frame_every", f.frame_every.is_some()),
             ("fem.contact_rule", f.contact_rule.is_some()),
+            ("fem.zeta_mesh", f.zeta_mesh.is_some()),
         ];
         if !shell {
             if let Some((path, _)) = shell_fields.iter().find(|(_, given)| *given) {
@@ -1449,7 +1472,7 @@ impl Scene {
         if let Some((path, _)) = rod_fields.iter().find(|(_, given)| *given) {
             return Err(SceneError::NotAllowed {
                 path: (*path).into(),
-                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule` (its contact is the scene's elastic interlayer)".into(),
+                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule`, `zeta_mesh` (its contact is the scene's elastic interlayer)".into(),
             });
         }
         let steps = self.shell_run().steps;

@@ -291,6 +291,7 @@ pub(crate) const FEM: &[Field] = &[
     opt_in(Cond::Shell, "ramp_steps", Kind::Count, "steps of the ramp of camber and tilt at rest"),
     opt_in(Cond::Shell, "frame_every", Kind::Count, "steps between frames of surface fields"),
     opt_in(Cond::Shell, "contact_rule", Kind::Choice { what: "interlayer σ-rule", variants: &["simpson", "trapezoidal"] }, "σ-rule of the elastic interlayer"),
+    opt_in(Cond::Shell, "zeta_mesh", Kind::Choice { what: "ζ-mesh across the width", variants: &["graded", "uniform"] }, "ζ-nodes graded towards the belt's edges or uniform"),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -767,6 +768,7 @@ mod tests {
             ramp_steps: Some(2),
             frame_every: Some(4),
             contact_rule: Some(crate::scene::ShellContactRule::Trapezoidal),
+            zeta_mesh: Some(crate::scene::ShellZetaMesh::Uniform),
             ..Default::default()
         })
         .unwrap();

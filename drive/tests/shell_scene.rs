@@ -206,7 +206,7 @@ fn defaults_of_the_shell_run() {
 fn the_gate_block_of_a_shell_names_its_levels_and_steps() {
     let s = read(&ci()).unwrap();
     let g = s.gate_settings();
-    assert_eq!(g.levels, Some(vec![[32, 2], [64, 2], [128, 2]]));
+    assert_eq!(g.levels, Some(vec![[32, 8], [64, 8], [128, 8]]));
     assert_eq!(g.steps, Some(2));
     roundtrip(&s);
     let with = |key: &str, value: Value| {

@@ -348,6 +348,30 @@ pub struct Grading {
 }
 
 impl Grading {
+    /// `elements` elements on [a, b] graded towards both ends (the free edges of a shell
+    /// across its width, docs/fem-shell.md §9.5): ρ(x) = 1 + `ratio`(exp(−(x − a)/`width`) +
+    /// exp(−(b − x)/`width`)), node j where ∫ₐ^x ρ reaches j/n of ∫ₐ^b ρ. The nodes are
+    /// mirror-symmetric about (a + b)/2 (the middle one exactly there for even n), the ends
+    /// exactly a and b; `elements` + 1 nodes, increasing.
+    pub fn interval(&self, a: f64, b: f64, elements: usize) -> Vec<f64> {
+        let w = self.width;
+        let n = elements.max(1);
+        // ∫ₐ^x ρ: x − a + r w [(1 − e^{−(x−a)/w}) + (e^{−(b−x)/w} − e^{−(b−a)/w})]
+        let measure = |x: f64| x - a + self.ratio * w * (-(-(x - a) / w).exp_m1() + (-(b - x) / w).exp() - (-(b - a) / w).exp());
+        let total = measure(b);
+        let mut nodes: Vec<f64> = (0..=n).map(|j| if j == 0 { a } else if j == n { b } else { invert(&measure, total * j as f64 / n as f64, a, b) }).collect();
+        let mid = 0.5 * (a + b);
+        for j in 0..n.div_ceil(2) {
+            let half = 0.5 * ((nodes[n - j] - mid) - (nodes[j] - mid));
+            nodes[j] = mid - half;
+            nodes[n - j] = mid + half;
+        }
+        if n % 2 == 0 {
+            nodes[n / 2] = mid;
+        }
+        nodes
+    }
+
     /// C(σ) = ∫₀^σ ρ dσ′ up to a constant (σ unwrapped, in the region's range), with the
     /// points wrapped and taken with their neighbours one contour length either side.
     fn cumulative(&self, sigma: f64, points: &[f64], contour: &Contour) -> f64 {
@@ -616,6 +640,36 @@ mod tests {
     /// elements next to a breakpoint are shorter than the uniform ones by about
     /// 1 + ratio (corrected for the density's mean over the piece); no grading is the
     /// uniform fitted mesh exactly.
+    #[test]
+    fn an_interval_graded_towards_both_ends() {
+        let g = Grading { width: 0.007, ratio: 8.0 };
+        for n in [2, 4, 7, 16] {
+            let x = g.interval(-0.1, 0.1, n);
+            assert_eq!((x.len(), x[0], x[n]), (n + 1, -0.1, 0.1));
+            assert!(x.windows(2).all(|p| p[1] > p[0]), "{x:?}");
+            for j in 0..=n {
+                assert_eq!(x[j], -x[n - j], "mirror symmetry at {j}: {x:?}");
+            }
+            if n % 2 == 0 {
+                assert_eq!(x[n / 2], 0.0);
+            }
+        }
+        // equal measure per element: the edge element is about 1 + ratio(1 + e^{−b/w})
+        // times shorter than the spacing of the measure, the middle one about as long
+        let x = g.interval(-0.1, 0.1, 64);
+        let total = 0.2 + 8.0 * 0.007 * 2.0 * (1.0 - (-0.2_f64 / 0.007).exp());
+        let spacing = total / 64.0;
+        let edge = x[1] - x[0];
+        let rho_edge = 1.0 + 8.0 * (1.0 + (-0.2_f64 / 0.007).exp());
+        assert!((edge * rho_edge / spacing - 1.0).abs() < 0.2, "edge {edge} against {}", spacing / rho_edge);
+        assert!(((x[33] - x[32]) / spacing - 1.0).abs() < 1e-3, "middle {}", x[33] - x[32]);
+        // no grading: uniform
+        let u = Grading { width: 0.007, ratio: 0.0 }.interval(0.0, 1.0, 4);
+        for (j, v) in u.iter().enumerate() {
+            assert!((v - j as f64 / 4.0).abs() < 1e-14, "{u:?}");
+        }
+    }
+
     #[test]
     fn graded_towards_the_breakpoints() {
         let c = contour();

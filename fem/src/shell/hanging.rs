@@ -70,6 +70,9 @@ pub struct HangingBelt {
     /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]); false:
     /// uniform pieces between the fitted edges and the transitions.
     pub edge_grading: bool,
+    /// Grade the ζ-mesh towards the belt's free edges ([`Self::width_grading`]); false:
+    /// uniform across the width.
+    pub width_grading: bool,
 }
 
 /// The equilibrium of stage (0) and how it was reached.
@@ -207,6 +210,48 @@ impl HangingBelt {
         self.edge_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.contact_layer(), ratio: GRADING_RATIO })
     }
 
+    /// The grading of the ζ-mesh towards the belt's free edges when
+    /// [`Self::width_grading`] is set: density 1 + [`GRADING_RATIO`](exp(−d₋/w) +
+    /// exp(−d₊/w)), w = [`GRADING_WIDTH`]·ℓ_c at the distances d± from the edges — the
+    /// anticlastic edge layer on the drums has the length of the contact layer ℓ_c
+    /// ([`Self::contact_layer`], docs/fem-shell.md §9.5); `None` otherwise.
+    pub fn width_grading(&self) -> Option<crate::mesh::Grading> {
+        self.width_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.contact_layer(), ratio: GRADING_RATIO })
+    }
+
+    /// The ζ-nodes of `across` elements over [−b/2, b/2]: graded towards the edges by
+    /// [`Self::width_grading`], else uniform; mirror-symmetric, with ζ = 0 a node for even
+    /// `across`.
+    pub fn zeta_nodes(&self, across: usize) -> Vec<f64> {
+        match self.width_grading() {
+            Some(g) => g.interval(-0.5 * self.width, 0.5 * self.width, across),
+            None => (0..=across).map(|j| self.width * (j as f64 / across as f64 - 0.5)).collect(),
+        }
+    }
+
+    /// The width of the outermost ζ-elements of `across` ([`Self::zeta_nodes`]) against the
+    /// anticlastic edge layer's length ℓ_c: `Some((element, ℓ_c))` when the layer is
+    /// there (ν_P ≠ 0) and the element is wider than [`GRADING_WIDTH`]·ℓ_c (the decay
+    /// length of the grading) — the edge pressures, the edge stresses and the run-off
+    /// are then not resolved across the width (measured on the steel belt: the largest
+    /// edge stress 2 % and the pressure peak 7 % from the converged ones at 1.8 ℓ_c, the
+    /// edge stress 14 % off at 7 ℓ_c and 6× low at 29 ℓ_c; docs/fem-shell.md §9.5);
+    /// `None` when resolved or absent.
+    pub fn unresolved_edge_layer(&self, across: usize) -> Option<(f64, f64)> {
+        let nodes = self.zeta_nodes(across);
+        let element = nodes[1] - nodes[0];
+        let layer = self.contact_layer();
+        (self.poisson_ratio != 0.0 && element > GRADING_WIDTH * layer).then_some((element, layer))
+    }
+
+    /// The fewest (even) elements across the width whose graded ζ-mesh resolves the edge
+    /// layer ([`Self::unresolved_edge_layer`] `None`; 2 when there is no layer), at most
+    /// 4096.
+    pub fn elements_resolving_edge_layer(&self) -> usize {
+        let graded = HangingBelt { width_grading: true, ..*self };
+        (1..=2048).map(|k| 2 * k).find(|&n| graded.unresolved_edge_layer(n).is_none()).unwrap_or(4096)
+    }
+
     /// The equivalent rod of [`Self::rod`] solved on `rod_elements` elements by its
     /// static homotopy with contact fitting (the rod's nodes on its contact edges);
     /// with its Newton iterations.
@@ -233,8 +278,8 @@ impl HangingBelt {
     }
 
     /// The shell mesh of the planar start: the σ-nodes of the rod's (fitted) mesh — the
-    /// transitions and the rod's contact edges among them — and `across` uniform
-    /// elements over [−b/2, b/2].
+    /// transitions and the rod's contact edges among them — and `across` elements over
+    /// [−b/2, b/2] ([`Self::zeta_nodes`]).
     ///
     /// # Errors
     /// [`ShellError::BadParameter`] for `across` = 0; the mesh's own.
@@ -243,7 +288,7 @@ impl HangingBelt {
             return Err(ShellError::BadParameter { what: "elements across the width", value: 0.0 });
         }
         let nodes = rod.mesh().node_sigmas();
-        let zeta = (0..=across).map(|j| self.width * (j as f64 / across as f64 - 0.5)).collect();
+        let zeta = self.zeta_nodes(across);
         Ok(SurfaceMesh::new(self.contour.length(), nodes[..nodes.len() - 1].to_vec(), zeta)?)
     }
 
@@ -473,6 +518,7 @@ pub(crate) mod tests {
             normal_stiffness: 3.0e7 / b,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
             edge_grading: false,
+            width_grading: false,
         }
     }
 
@@ -587,6 +633,7 @@ pub(crate) mod tests {
             normal_stiffness: 1.0e9,
             contact_rule: crate::quadrature::Rule::Simpson,
             edge_grading: true,
+            width_grading: true,
         };
         // the rod on its own (ungraded) fitted mesh, as `beltcheck solve --method fem` runs it
         let (rod, _) = HangingBelt { edge_grading: false, ..steel }.planar(512).unwrap();

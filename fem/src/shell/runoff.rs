@@ -707,6 +707,7 @@ mod tests {
             normal_stiffness: 1.0e6,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
             edge_grading: false,
+            width_grading: false,
         }
     }
 
