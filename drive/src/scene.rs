@@ -979,7 +979,8 @@ pub struct FemSettings {
     pub contact_rule: Option<ShellContactRule>,
     /// Shell only: the ζ-nodes across the width: `graded` towards the belt's free edges,
     /// where the belt wrapped on a drum has an anticlastic edge layer of the length
-    /// ℓ_c = (D/P)^{1/4} (3.5 mm for the shipped steel belt), or `uniform`;
+    /// ℓ_e = min((D/P)^{1/4}, (4DR²/(Eh))^{1/4}) (3.5 mm for the shipped steel belt), or
+    /// `uniform`;
     /// docs/fem-shell.md §9.5. Default absent = `graded` (for n_ζ = 2 both give the
     /// edges and the centre line).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -183,6 +183,12 @@ fn shell_fem_settings_are_checked_and_rod_settings_refused() {
     // the interlayer's σ-rule: simpson (default) or trapezoidal, nothing else
     assert_eq!(read(&with("contact_rule", json!("trapezoidal"))).unwrap().shell_run().contact_rule, drive::scene::ShellContactRule::Trapezoidal);
     assert!(read(&with("contact_rule", json!("gauss"))).is_err());
+    // the ζ-mesh: graded (default) or uniform, nothing else, and only on a shell
+    assert_eq!(read(&with("zeta_mesh", json!("uniform"))).unwrap().shell_run().zeta_mesh, drive::scene::ShellZetaMesh::Uniform);
+    assert_eq!(read(&with("zeta_mesh", json!("graded"))).unwrap().shell_run().zeta_mesh, drive::scene::ShellZetaMesh::Graded);
+    assert!(read(&with("zeta_mesh", json!("chebyshev"))).is_err());
+    rod["fem"] = json!({"zeta_mesh": "uniform"});
+    refused(&rod, "fem.zeta_mesh", &["theory `shell`"]);
 }
 
 #[test]
@@ -194,6 +200,7 @@ fn defaults_of_the_shell_run() {
     let omega = s.drive.driver_speed;
     assert_eq!((run.elements_sigma, run.elements_zeta, run.ramp_steps, run.frame_every), (64, 2, 1, 0));
     assert_eq!(run.contact_rule, drive::scene::ShellContactRule::Simpson);
+    assert_eq!(run.zeta_mesh, drive::scene::ShellZetaMesh::Graded);
     assert!((run.time_step * omega - std::f64::consts::PI / 16.0).abs() < 1e-15);
     // one revolution of the belt L/(ωR)
     let revolution = s.belt.length / (omega * s.drive.pulley_radius);

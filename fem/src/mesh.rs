@@ -352,7 +352,7 @@ impl Grading {
     /// across its width, docs/fem-shell.md §9.5): ρ(x) = 1 + `ratio`(exp(−(x − a)/`width`) +
     /// exp(−(b − x)/`width`)), node j where ∫ₐ^x ρ reaches j/n of ∫ₐ^b ρ. The nodes are
     /// mirror-symmetric about (a + b)/2 (the middle one exactly there for even n), the ends
-    /// exactly a and b; `elements` + 1 nodes, increasing.
+    /// exactly a and b; `elements` + 1 nodes (0 elements is taken as 1), increasing.
     pub fn interval(&self, a: f64, b: f64, elements: usize) -> Vec<f64> {
         let w = self.width;
         let n = elements.max(1);
@@ -361,7 +361,7 @@ impl Grading {
         let total = measure(b);
         let mut nodes: Vec<f64> = (0..=n).map(|j| if j == 0 { a } else if j == n { b } else { invert(&measure, total * j as f64 / n as f64, a, b) }).collect();
         let mid = 0.5 * (a + b);
-        for j in 0..n.div_ceil(2) {
+        for j in 1..n.div_ceil(2) {
             let half = 0.5 * ((nodes[n - j] - mid) - (nodes[j] - mid));
             nodes[j] = mid - half;
             nodes[n - j] = mid + half;
@@ -636,10 +636,9 @@ mod tests {
         assert!(m.locate(f64::NAN).1.is_nan());
     }
 
-    /// A graded fitted mesh keeps the topology and the breakpoints as nodes, and its
-    /// elements next to a breakpoint are shorter than the uniform ones by about
-    /// 1 + ratio (corrected for the density's mean over the piece); no grading is the
-    /// uniform fitted mesh exactly.
+    /// `Grading::interval`: increasing, mirror-symmetric nodes with exact ends; every
+    /// element carries the same measure ∫ρ (the density integrated in closed form, to
+    /// round-off); a zero ratio is uniform.
     #[test]
     fn an_interval_graded_towards_both_ends() {
         let g = Grading { width: 0.007, ratio: 8.0 };
@@ -654,14 +653,27 @@ mod tests {
                 assert_eq!(x[n / 2], 0.0);
             }
         }
-        // equal measure per element: the edge element is about 1 + ratio(1 + e^{−b/w})
-        // times shorter than the spacing of the measure, the middle one about as long
+        // equal measure per element, ∫ρ in closed form, on a symmetric and a shifted interval
+        for (a, b) in [(-0.1, 0.1), (0.1, 0.3), (-0.37, 0.05)] {
+            let w = g.width;
+            let measure = |x: f64| x - a + g.ratio * w * ((1.0 - (-(x - a) / w).exp()) + (-(b - x) / w).exp() - (-(b - a) / w).exp());
+            for n in [3, 8, 17] {
+                let x = g.interval(a, b, n);
+                assert_eq!((x[0], x[n]), (a, b), "the ends exactly");
+                let each = measure(b) / n as f64;
+                for k in 0..n {
+                    assert!((measure(x[k + 1]) - measure(x[k]) - each).abs() < 1e-12 * measure(b), "[{a}, {b}] / {n}, element {k}: {x:?}");
+                }
+            }
+        }
+        // the edge element is about 1 + ratio(1 + e^{−b/w}) times shorter than the spacing
+        // of the measure (measured 1.034 of it), the middle one about as long
         let x = g.interval(-0.1, 0.1, 64);
         let total = 0.2 + 8.0 * 0.007 * 2.0 * (1.0 - (-0.2_f64 / 0.007).exp());
         let spacing = total / 64.0;
         let edge = x[1] - x[0];
         let rho_edge = 1.0 + 8.0 * (1.0 + (-0.2_f64 / 0.007).exp());
-        assert!((edge * rho_edge / spacing - 1.0).abs() < 0.2, "edge {edge} against {}", spacing / rho_edge);
+        assert!((edge * rho_edge / spacing - 1.0).abs() < 0.05, "edge {edge} against {}", spacing / rho_edge);
         assert!(((x[33] - x[32]) / spacing - 1.0).abs() < 1e-3, "middle {}", x[33] - x[32]);
         // no grading: uniform
         let u = Grading { width: 0.007, ratio: 0.0 }.interval(0.0, 1.0, 4);
@@ -670,6 +682,10 @@ mod tests {
         }
     }
 
+    /// A graded fitted mesh keeps the topology and the breakpoints as nodes, and its
+    /// elements next to a breakpoint are shorter than the uniform ones by about
+    /// 1 + ratio (corrected for the density's mean over the piece); no grading is the
+    /// uniform fitted mesh exactly.
     #[test]
     fn graded_towards_the_breakpoints() {
         let c = contour();

@@ -75,6 +75,10 @@ pub struct HangingBelt {
     pub width_grading: bool,
 }
 
+/// The most elements across the width a scene may ask for (`fem.elements_zeta`,
+/// docs/scene-and-result.md).
+pub const MAX_ELEMENTS_ZETA: usize = 64;
+
 /// The equilibrium of stage (0) and how it was reached.
 pub struct StaticShell {
     /// The analysis at the equilibrium (constrained numbering; its unknowns are the
@@ -210,19 +214,33 @@ impl HangingBelt {
         self.edge_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.contact_layer(), ratio: GRADING_RATIO })
     }
 
-    /// The grading of the ζ-mesh towards the belt's free edges when
-    /// [`Self::width_grading`] is set: density 1 + [`GRADING_RATIO`](exp(−d₋/w) +
-    /// exp(−d₊/w)), w = [`GRADING_WIDTH`]·ℓ_c at the distances d± from the edges — the
-    /// anticlastic edge layer on the drums has the length of the contact layer ℓ_c
-    /// ([`Self::contact_layer`], docs/fem-shell.md §9.5); `None` otherwise.
-    pub fn width_grading(&self) -> Option<crate::mesh::Grading> {
-        self.width_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.contact_layer(), ratio: GRADING_RATIO })
+    /// ℓ_e = min(ℓ_c, (4DR²/(Eh))^{1/4}), m: the length of the anticlastic layer at the
+    /// belt's free edges on a drum (docs/fem-shell.md §9.5). Its decay length is
+    /// ((P + Eh/R²)/(4D))^{−1/4} in contact and (4DR²/(Eh))^{1/4} ≈ 0.76√(Rh) where the
+    /// edge has lifted off; the smaller of ℓ_c = (D/P)^{1/4} ([`Self::contact_layer`]) and
+    /// the lifted one is below both up to a factor ≤ √2 (3.5 mm for the steel belt, where
+    /// the lifted length is 4.3 mm; a soft layer's ℓ_c alone would overstate it, 11 mm at
+    /// P = 1e7 N/m³).
+    pub fn edge_layer(&self) -> f64 {
+        let d = self.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - self.poisson_ratio * self.poisson_ratio));
+        let r = self.contour.radius();
+        let lifted = (4.0 * d * r * r / (self.youngs_modulus * self.thickness)).powf(0.25);
+        self.contact_layer().min(lifted)
     }
 
-    /// The ζ-nodes of `across` elements over [−b/2, b/2]: graded towards the edges by
-    /// [`Self::width_grading`], else uniform; mirror-symmetric, with ζ = 0 a node for even
-    /// `across`.
+    /// The grading of the ζ-mesh towards the belt's free edges when
+    /// [`Self::width_grading`] is set: density 1 + [`GRADING_RATIO`](exp(−d₋/w) +
+    /// exp(−d₊/w)), w = [`GRADING_WIDTH`]·ℓ_e at the distances d± from the edges
+    /// ([`Self::edge_layer`], docs/fem-shell.md §9.5); `None` otherwise.
+    pub fn width_grading(&self) -> Option<crate::mesh::Grading> {
+        self.width_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.edge_layer(), ratio: GRADING_RATIO })
+    }
+
+    /// The ζ-nodes of `across` (≥ 1; 0 is taken as 1) elements over [−b/2, b/2]: graded
+    /// towards the edges by [`Self::width_grading`], else uniform; mirror-symmetric, with
+    /// ζ = 0 a node for even `across`.
     pub fn zeta_nodes(&self, across: usize) -> Vec<f64> {
+        let across = across.max(1);
         match self.width_grading() {
             Some(g) => g.interval(-0.5 * self.width, 0.5 * self.width, across),
             None => (0..=across).map(|j| self.width * (j as f64 / across as f64 - 0.5)).collect(),
@@ -230,26 +248,26 @@ impl HangingBelt {
     }
 
     /// The width of the outermost ζ-elements of `across` ([`Self::zeta_nodes`]) against the
-    /// anticlastic edge layer's length ℓ_c: `Some((element, ℓ_c))` when the layer is
-    /// there (ν_P ≠ 0) and the element is wider than [`GRADING_WIDTH`]·ℓ_c (the decay
-    /// length of the grading) — the edge pressures, the edge stresses and the run-off
-    /// are then not resolved across the width (measured on the steel belt: the largest
-    /// edge stress 2 % and the pressure peak 7 % from the converged ones at 1.8 ℓ_c, the
-    /// edge stress 14 % off at 7 ℓ_c and 6× low at 29 ℓ_c; docs/fem-shell.md §9.5);
-    /// `None` when resolved or absent.
+    /// edge layer's length ℓ_e: `Some((element, ℓ_e))` when the layer is there (ν_P ≠ 0;
+    /// its lift is ∝ ν_P, and any ν_P ≠ 0 is taken to have it) and the element is wider
+    /// than [`GRADING_WIDTH`]·ℓ_e (the decay length of the grading) — the edge pressures
+    /// and stresses, and the run-off, may then not be resolved across the width (measured
+    /// on the steel belt: the largest edge stress 2 % from the converged one at 1.8 ℓ_e,
+    /// 14 % off at 7 ℓ_e and 6× low at 29 ℓ_e; docs/fem-shell.md §9.5); `None` when
+    /// resolved or absent.
     pub fn unresolved_edge_layer(&self, across: usize) -> Option<(f64, f64)> {
         let nodes = self.zeta_nodes(across);
         let element = nodes[1] - nodes[0];
-        let layer = self.contact_layer();
+        let layer = self.edge_layer();
         (self.poisson_ratio != 0.0 && element > GRADING_WIDTH * layer).then_some((element, layer))
     }
 
-    /// The fewest (even) elements across the width whose graded ζ-mesh resolves the edge
-    /// layer ([`Self::unresolved_edge_layer`] `None`; 2 when there is no layer), at most
-    /// 4096.
-    pub fn elements_resolving_edge_layer(&self) -> usize {
+    /// The fewest (even) elements across the width, at most [`MAX_ELEMENTS_ZETA`], whose
+    /// graded ζ-mesh resolves the edge layer ([`Self::unresolved_edge_layer`] `None`;
+    /// 2 when there is no layer); `None` when more would be needed.
+    pub fn elements_resolving_edge_layer(&self) -> Option<usize> {
         let graded = HangingBelt { width_grading: true, ..*self };
-        (1..=2048).map(|k| 2 * k).find(|&n| graded.unresolved_edge_layer(n).is_none()).unwrap_or(4096)
+        (1..=MAX_ELEMENTS_ZETA / 2).map(|k| 2 * k).find(|&n| graded.unresolved_edge_layer(n).is_none())
     }
 
     /// The equivalent rod of [`Self::rod`] solved on `rod_elements` elements by its
