@@ -25,7 +25,9 @@
 //! layer model), and a run-off that has not settled after its lateral transient (no
 //! `settled_runoff_velocity`: the run is too short or the steering still changes, the
 //! history is not one damped mode, the fitted oscillation grows, or the fits disagree —
-//! [`super::runoff::settled_runoff`]).
+//! [`super::runoff::settled_runoff`]), and an edge layer across the width that the
+//! ζ-mesh does not resolve (the outermost ζ-element wider than 2ℓ_e on a belt with
+//! ν_P ≠ 0, [`HangingBelt::unresolved_edge_layer`], docs/fem-shell.md §9.5).
 
 use std::time::Instant;
 
