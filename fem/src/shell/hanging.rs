@@ -198,11 +198,16 @@ impl HangingBelt {
             .with_interlayer(interlayer)
     }
 
+    /// D = E h³/(12(1 − ν_P²)), N m: the plate's bending stiffness.
+    fn bending_stiffness(&self) -> f64 {
+        self.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - self.poisson_ratio * self.poisson_ratio))
+    }
+
     /// ℓ_c = (D/P)^{1/4}, D = E h³/(12(1 − ν_P²)): the length over which the interlayer
     /// spreads a contact edge's concentrated force (the plate on an elastic foundation;
     /// docs/fem-shell.md §9.1), m.
     pub fn contact_layer(&self) -> f64 {
-        let d = self.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - self.poisson_ratio * self.poisson_ratio));
+        let d = self.bending_stiffness();
         (d / self.normal_stiffness).powf(0.25)
     }
 
@@ -222,7 +227,7 @@ impl HangingBelt {
     /// the lifted length is 4.3 mm; a soft layer's ℓ_c alone would overstate it, 11 mm at
     /// P = 1e7 N/m³).
     pub fn edge_layer(&self) -> f64 {
-        let d = self.youngs_modulus * self.thickness.powi(3) / (12.0 * (1.0 - self.poisson_ratio * self.poisson_ratio));
+        let d = self.bending_stiffness();
         let r = self.contour.radius();
         let lifted = (4.0 * d * r * r / (self.youngs_modulus * self.thickness)).powf(0.25);
         self.contact_layer().min(lifted)
