@@ -252,6 +252,7 @@ mod tests {
         let mut study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), Family::Fem, runs)]);
         study.compensation = Some(fem::shell::compensation::Compensation {
             drum: drive::scene::SteeringDrum::Driven,
+            measure: fem::shell::compensation::RunoffMeasure::LastRevolution,
             swivel: -1.25e-6,
             runoff_without: 3.0e-8,
             probe: [5e-4, -1.2e-5],
@@ -280,6 +281,8 @@ mod tests {
         let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(sdir.join("study.json")).unwrap()).unwrap();
         assert_eq!(json["compensation"]["swivel"], -1.25e-6);
         assert_eq!(json["compensation"]["drum"], "driven");
+        assert_eq!(json["compensation"]["measure"], "last_revolution");
+        assert!(md.contains("the slope over the last revolution"), "{md}");
         // the run-off panel: one curve per level over t − t₀ (all start at 0)
         let svg = std::fs::read_to_string(sdir.join("runoff.svg")).unwrap();
         for label in ["32×2", "64×2", "128×2"] {

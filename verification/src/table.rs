@@ -293,8 +293,13 @@ fn describe_run(what: &str, run: &Run) -> String {
 /// The compensating swivel of a shell study in one sentence (terminal and report).
 pub fn compensation_text(c: &fem::shell::compensation::Compensation) -> String {
     format!(
-        "the compensating swivel (spec E-5) of the {} drum at the coarsest level: β_y* = {:.6e} rad, leaving a run-off of {:.3e} m/s against {:.3e} m/s without swivel (linear estimate {:.6e} rad from the probe β_y = {:.3e} rad, v = {:.3e} m/s; Brent to {:.1e} rad, {} solves)",
+        "the compensating swivel (spec E-5) of the {} drum at the coarsest level, cancelling {}: β_y* = {:.6e} rad, leaving a run-off of {:.3e} m/s against {:.3e} m/s without swivel (linear estimate {:.6e} rad from the probe β_y = {:.3e} rad, v = {:.3e} m/s; Brent to {:.1e} rad, {} solves)",
         c.drum.name(),
+        match c.measure {
+            fem::shell::compensation::RunoffMeasure::Settled => "the run-off after the lateral transient (settled_runoff_velocity)",
+            fem::shell::compensation::RunoffMeasure::LastRevolution =>
+                "the slope over the last revolution (runoff_velocity: the run is too short for the lateral transient to settle, so this is a phase of the transient, not the drift a controller holds)",
+        },
         c.swivel,
         c.runoff_left,
         c.runoff_without,

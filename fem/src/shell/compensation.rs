@@ -2,9 +2,13 @@
 //! steering drum that cancels the run-off of a cambered belt — how a controller holds a
 //! belt whose camber it cannot change (docs/fem-shell.md §14 "The compensating swivel").
 //!
-//! v(β) is the scene's run-off velocity ([`super::scene::solve`], summary
-//! `runoff_velocity`) with the steering drum's swivel history replaced by the constant β
-//! (ramped at rest like any tilt; the scene's `tilt_x` history and camber kept). For small
+//! v(β) is the scene's run-off velocity ([`super::scene::solve`]) with the steering drum's
+//! swivel history replaced by the constant β (ramped at rest like any tilt; the scene's
+//! `tilt_x` history and camber kept), measured as [`RunoffMeasure`] says: the run-off after
+//! the lateral transient (summary `settled_runoff_velocity`) when the run without swivel
+//! is long enough for it to settle — the drift a steering controller holds —, else the
+//! slope over the last revolution (`runoff_velocity`), which in a run shorter than the
+//! transient is a phase of it (docs/fem-shell.md §14), and the result says which. For small
 //! imperfections v is linear in β (E-5; on the CI belt v(2β)/v(β) = 1.9996 at β = 1e-6
 //! rad), but not in a probe large enough to slacken a belt edge (1.88 at 2.5e-4 rad), and
 //! the summary's slope over a short run of the CI scene is far from linear: so v(0) and
@@ -36,11 +40,68 @@ pub const MAX_SECANT_STEPS: usize = 6;
 /// (small enough for the linear range of a steel belt: docs/fem-shell.md §9.3).
 pub const DEFAULT_PROBE: f64 = 5e-4;
 
+/// Which run-off the compensating swivel cancels: chosen by the run without swivel and
+/// kept for every solve of the search, so that v(β) is one function of β.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunoffMeasure {
+    /// The run-off after the lateral transient (`settled_runoff_velocity`): the run
+    /// without swivel settled. A solve of the search that does not settle is an error.
+    Settled,
+    /// The least-squares slope over the last revolution (`runoff_velocity`): the run
+    /// without swivel is too short for the transient to settle (it warns so), and the
+    /// root cancels this slope, not the drift after the transient.
+    LastRevolution,
+}
+
+impl RunoffMeasure {
+    /// The summary's name of the velocity this measure reads.
+    pub fn summary_name(self) -> &'static str {
+        match self {
+            RunoffMeasure::Settled => "settled_runoff_velocity",
+            RunoffMeasure::LastRevolution => "runoff_velocity",
+        }
+    }
+
+    /// The measure a run without swivel calls for: [`Self::Settled`] when its
+    /// `settled` run-off exists, else [`Self::LastRevolution`].
+    pub fn for_run(settled: Option<f64>) -> RunoffMeasure {
+        if settled.is_some() {
+            RunoffMeasure::Settled
+        } else {
+            RunoffMeasure::LastRevolution
+        }
+    }
+
+    /// This measure's velocity of a run with `settled` and `slope`
+    /// (`settled_runoff_velocity`, `runoff_velocity`) at the swivel `beta`.
+    ///
+    /// # Errors
+    /// [`ShellError::Check`] naming the swivel and the summary name when the run has no
+    /// such velocity (under [`Self::Settled`]: its transient did not settle at that swivel).
+    pub fn read(self, settled: Option<f64>, slope: Option<f64>, beta: f64) -> Result<f64, ShellError> {
+        let v = match self {
+            RunoffMeasure::Settled => settled,
+            RunoffMeasure::LastRevolution => slope,
+        };
+        v.ok_or_else(|| {
+            ShellError::Check(format!(
+                "no {} at the swivel {beta:e} rad{}",
+                self.summary_name(),
+                if self == RunoffMeasure::Settled { " (the run without swivel settled, this one did not: see its warning; a longer run is needed)" } else { "" }
+            ))
+        })
+    }
+}
+
 /// A compensating swivel and how it was found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Compensation {
     /// The steered drum.
     pub drum: SteeringDrum,
+    /// The run-off cancelled: `settled` (after the lateral transient) or
+    /// `last_revolution` (the slope of a run too short to settle).
+    pub measure: RunoffMeasure,
     /// β_y*, rad: the constant swivel that cancels the run-off.
     pub swivel: f64,
     /// v(0), m/s: the run-off without swivel.
@@ -87,12 +148,15 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
     let largest = history.iter().fold(0.0_f64, |m, p| m.max(p[1].abs()));
     let probe = if largest > 0.0 { largest } else { DEFAULT_PROBE };
     let mut seen: Vec<(f64, f64)> = Vec::new();
+    // the measure is the run without swivel's (the first solve), then kept
+    let mut measure: Option<RunoffMeasure> = None;
     let mut velocity = |beta: f64| -> Result<f64, ShellError> {
         if let Some(&(_, v)) = seen.iter().find(|(b, _)| *b == beta) {
             return Ok(v);
         }
         let solved = solve(&with_swivel(scene, drum, beta))?;
-        let v = solved.summary.runoff_velocity.ok_or_else(|| ShellError::Check(format!("no run-off velocity at the swivel {beta:e} rad")))?;
+        let (settled, slope) = (solved.summary.settled_runoff_velocity, solved.summary.runoff_velocity);
+        let v = measure.get_or_insert(RunoffMeasure::for_run(settled)).read(settled, slope, beta)?;
         seen.push((beta, v));
         Ok(v)
     };
@@ -141,7 +205,8 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
             &near[..near.len().min(2)]
         )));
     }
-    Ok(Compensation { drum, swivel, runoff_without: v0, probe: [probe, v1], linear_estimate: estimate, runoff_left, tolerance, solves: seen.len() })
+    let measure = measure.expect("set by the run without swivel");
+    Ok(Compensation { drum, measure, swivel, runoff_without: v0, probe: [probe, v1], linear_estimate: estimate, runoff_left, tolerance, solves: seen.len() })
 }
 
 #[cfg(test)]
@@ -166,6 +231,8 @@ mod tests {
         let c = compensating_swivel(&scene).unwrap();
         eprintln!("{c:?}");
         assert_eq!(c.drum, SteeringDrum::Driven);
+        // 4 steps are far shorter than the lateral transient: the slope is cancelled
+        assert_eq!(c.measure, RunoffMeasure::LastRevolution);
         assert_eq!(c.probe[0], 5e-4);
         assert!(c.runoff_without.abs() > 1e-8, "{c:?}");
         assert!(c.runoff_left.abs() <= 1e-3 * c.runoff_without.abs(), "{c:?}");
@@ -176,5 +243,28 @@ mod tests {
             Err(ShellError::NotModelled(m)) => assert!(m.contains("camber"), "{m}"),
             other => panic!("no camber: {other:?}"),
         }
+    }
+
+    /// The measure is chosen by the run without swivel and then held: a settled run reads
+    /// the settled run-off (not the slope, which differs), a short run the slope; a solve
+    /// of the search that does not settle under the settled measure is an error naming the
+    /// swivel, never a silent switch to the slope.
+    #[test]
+    fn the_run_off_measure_is_the_run_without_swivels_and_is_held() {
+        assert_eq!(RunoffMeasure::for_run(Some(1.2e-6)), RunoffMeasure::Settled);
+        assert_eq!(RunoffMeasure::for_run(None), RunoffMeasure::LastRevolution);
+        assert_eq!(RunoffMeasure::Settled.read(Some(1.2e-6), Some(1.4e-6), 0.0).unwrap(), 1.2e-6);
+        assert_eq!(RunoffMeasure::LastRevolution.read(Some(1.2e-6), Some(1.4e-6), 0.0).unwrap(), 1.4e-6);
+        assert_eq!(RunoffMeasure::LastRevolution.read(None, Some(1.4e-6), 0.0).unwrap(), 1.4e-6);
+        match RunoffMeasure::Settled.read(None, Some(1.4e-6), 3e-4) {
+            Err(ShellError::Check(m)) => assert!(m.contains("settled_runoff_velocity") && m.contains("3e-4") && m.contains("did not"), "{m}"),
+            other => panic!("an unsettled solve under the settled measure: {other:?}"),
+        }
+        match RunoffMeasure::LastRevolution.read(None, None, 0.0) {
+            Err(ShellError::Check(m)) => assert!(m.contains("runoff_velocity"), "{m}"),
+            other => panic!("no slope: {other:?}"),
+        }
+        assert_eq!(serde_json::to_value(RunoffMeasure::LastRevolution).unwrap(), json!("last_revolution"));
+        assert_eq!(serde_json::to_value(RunoffMeasure::Settled).unwrap(), json!("settled"));
     }
 }
