@@ -949,7 +949,8 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
     unused(!args.tolerances.is_empty(), "tolerances", SHELL, HINT)?;
     unused(!args.formulations.is_empty(), "formulation", SHELL, "the shell has one element (Bogner–Fox–Schmit, docs/fem-shell.md)")?;
     unused(matches!(args.reference, ReferenceArg::ClosedForm), "reference closed-form", SHELL, "the shell has no closed form; its reference is the Richardson extrapolation of its three finest levels")?;
-    let own = scene.shell_run();
+    // the run a solve makes (n_ζ defaulted by the edge layer)
+    let own = verification::run::ShellFe::run_of(scene);
     let sizes: Vec<(usize, usize)> = if args.levels.is_empty() {
         (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect()
     } else {

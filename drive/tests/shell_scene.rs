@@ -201,7 +201,7 @@ fn defaults_of_the_shell_run() {
     assert_eq!((run.elements_sigma, run.elements_zeta, run.ramp_steps, run.frame_every), (64, 2, 1, 0));
     assert_eq!(run.contact_rule, drive::scene::ShellContactRule::Simpson);
     assert_eq!(run.zeta_mesh, drive::scene::ShellZetaMesh::Graded);
-    assert!((run.time_step * omega - std::f64::consts::PI / 16.0).abs() < 1e-15);
+    assert!((run.time_step * omega - std::f64::consts::PI / 32.0).abs() < 1e-15);
     // one revolution of the belt L/(ωR)
     let revolution = s.belt.length / (omega * s.drive.pulley_radius);
     assert_eq!(run.steps, (revolution / run.time_step).ceil() as usize);

@@ -97,7 +97,8 @@ pub fn gate_scene(scene: &Scene) -> Scene {
 /// scene's mesh and 2× and 4× its n_σ at its n_ζ, each with Δt scaled like the σ
 /// spacing. Run it on [`gate_scene`].
 pub fn shell_gate_plan(scene: &Scene) -> StudyPlan {
-    let own = scene.shell_run();
+    // the run a solve makes (n_ζ defaulted by the edge layer)
+    let own = crate::run::ShellFe::run_of(scene);
     let sizes: Vec<[usize; 2]> = scene.gate_settings().levels.unwrap_or_else(|| (0..3).map(|k| [own.elements_sigma << k, own.elements_zeta]).collect());
     StudyPlan::shell(sizes.into_iter().map(|[ns, nz]| crate::run::ShellFe::level(scene, ns, nz)).collect())
 }

@@ -519,9 +519,17 @@ impl ShellFe {
 }
 
 impl ShellFe {
-    /// The scene's own discretisation (its `fem` block with the defaults).
+    /// The run a solve of `scene` makes: its `fem` block with the defaults, n_ζ when not
+    /// given the fewest elements that resolve the belt's edge layer
+    /// (`fem::shell::scene::run_of`); for a scene the shell does not model (which fails in
+    /// the solve with its own error) the scene's settings.
+    pub fn run_of(scene: &Scene) -> drive::ShellRun {
+        fem::shell::scene::run_of(scene).unwrap_or_else(|_| scene.shell_run())
+    }
+
+    /// The scene's own discretisation ([`Self::run_of`]).
     pub fn discretisation(scene: &Scene) -> Discretisation {
-        let run = scene.shell_run();
+        let run = ShellFe::run_of(scene);
         Discretisation::Mesh2d { sigma: run.elements_sigma, zeta: run.elements_zeta, time_step: run.time_step }
     }
 }

@@ -271,8 +271,22 @@ impl HangingBelt {
     /// graded ζ-mesh resolves the edge layer ([`Self::unresolved_edge_layer`] `None`;
     /// 2 when there is no layer); `None` when more would be needed.
     pub fn elements_resolving_edge_layer(&self) -> Option<usize> {
-        let graded = HangingBelt { width_grading: true, ..*self };
-        (1..=MAX_ELEMENTS_ZETA / 2).map(|k| 2 * k).find(|&n| graded.unresolved_edge_layer(n).is_none())
+        HangingBelt { width_grading: true, ..*self }.fewest_resolving()
+    }
+
+    /// The default n_ζ of a scene that does not give `fem.elements_zeta`: the fewest
+    /// (even) elements whose ζ-mesh — the belt's own, graded or uniform — resolves the
+    /// edge layer (2 when there is none: ν_P = 0), else [`MAX_ELEMENTS_ZETA`] (and the run
+    /// warns that the layer is not resolved). 8 for the shipped steel belt on the graded
+    /// mesh (30 on the uniform one).
+    pub fn default_elements_zeta(&self) -> usize {
+        self.fewest_resolving().unwrap_or(MAX_ELEMENTS_ZETA)
+    }
+
+    /// The fewest even n_ζ ≤ [`MAX_ELEMENTS_ZETA`] on this belt's ζ-mesh without
+    /// [`Self::unresolved_edge_layer`].
+    fn fewest_resolving(&self) -> Option<usize> {
+        (1..=MAX_ELEMENTS_ZETA / 2).map(|k| 2 * k).find(|&n| self.unresolved_edge_layer(n).is_none())
     }
 
     /// The equivalent rod of [`Self::rod`] solved on `rod_elements` elements by its

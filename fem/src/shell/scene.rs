@@ -169,7 +169,12 @@ impl ShellScene {
             width_grading: scene.shell_run().zeta_mesh == ShellZetaMesh::Graded,
         };
         let camber = scene.belt.camber.map_or(0.0, |c| c.curvature_for(plate.width, scene.belt.length));
-        Ok(ShellScene { belt, shear: layer.tangential_stiffness, camber, speed: if turning { w1 } else { 0.0 }, driven_speed: if turning { w2 } else { 0.0 }, steering: scene.drive.steering.clone(), run: scene.shell_run(), turning })
+        // n_ζ: the scene's, else the fewest that resolve the belt's edge layer (§9.5)
+        let mut run = scene.shell_run();
+        if scene.fem_settings().elements_zeta.is_none() {
+            run.elements_zeta = belt.default_elements_zeta();
+        }
+        Ok(ShellScene { belt, shear: layer.tangential_stiffness, camber, speed: if turning { w1 } else { 0.0 }, driven_speed: if turning { w2 } else { 0.0 }, steering: scene.drive.steering.clone(), run, turning })
     }
 
     /// True for a perfect belt on aligned drums (no camber, no tilt at any time).
@@ -531,6 +536,17 @@ impl Balance {
     }
 }
 
+/// The shell's run of `scene`: [`Scene::shell_run`] with n_ζ, when the scene does not
+/// give `fem.elements_zeta`, the fewest elements that resolve the belt's edge layer
+/// ([`HangingBelt::default_elements_zeta`]; docs/fem-shell.md §9.5) — what a solve uses
+/// and what studies refine from.
+///
+/// # Errors
+/// [`ShellScene::from_scene`]'s: a scene the shell does not model.
+pub fn run_of(scene: &Scene) -> Result<drive::ShellRun, ShellError> {
+    Ok(ShellScene::from_scene(scene)?.run)
+}
+
 /// Solves a shell scene by stages (0)–(2) (module documentation).
 ///
 /// # Errors
@@ -749,12 +765,42 @@ mod tests {
     use super::*;
     use serde_json::{json, Value};
 
+    /// Δt for ωΔt = π/16 at the shipped scene's ω = 2 rad/s: the step these tests' measured
+    /// numbers were made at (the default until 5 Dec 2026; now π/32, docs/fem-shell.md §9.4).
+    const PI16: f64 = std::f64::consts::PI / 32.0;
+
     fn shipped() -> Value {
         serde_json::from_str(include_str!("../../../scenes/shell-runoff.json")).unwrap()
     }
 
     fn read(v: &Value) -> Scene {
         Scene::from_json_str(&v.to_string()).unwrap()
+    }
+
+    /// A scene without `fem.elements_zeta` is run at the fewest elements that resolve its
+    /// edge layer (docs/fem-shell.md §9.5: the outermost element ≤ 2ℓ_e, ℓ_e = 3.52 mm on
+    /// the steel belt): 8 on the graded ζ-mesh, 30 on the uniform one (b/n ≤ 7.04 mm), 2
+    /// without the layer (ν_P = 0); a given n_ζ is kept; the studies refine from the same.
+    #[test]
+    fn an_absent_elements_zeta_resolves_the_edge_layer() {
+        let mut v = shipped();
+        v["fem"].as_object_mut().unwrap().remove("elements_zeta");
+        let run = run_of(&read(&v)).unwrap();
+        assert_eq!(run.elements_zeta, 8);
+        let data = ShellScene::from_scene(&read(&v)).unwrap();
+        assert!(data.belt.unresolved_edge_layer(8).is_none());
+        assert!(data.belt.unresolved_edge_layer(6).is_some(), "6 graded elements do not resolve it, so 8 is the fewest");
+        let mut uniform = v.clone();
+        uniform["fem"]["zeta_mesh"] = json!("uniform");
+        assert_eq!(run_of(&read(&uniform)).unwrap().elements_zeta, 30);
+        let mut plain = v.clone();
+        plain["belt"]["poisson_ratio"] = json!(0.0);
+        assert_eq!(run_of(&read(&plain)).unwrap().elements_zeta, 2);
+        let mut given = v.clone();
+        given["fem"]["elements_zeta"] = json!(4);
+        assert_eq!(run_of(&read(&given)).unwrap().elements_zeta, 4);
+        // the drive crate's own default (no model at hand) stays the planar minimum
+        assert_eq!(read(&v).shell_run().elements_zeta, 2);
     }
 
     /// The shipped scene's data: κ_c = ΔL/(bL) (spec §4.3), the interlayer's P and
@@ -890,7 +936,7 @@ mod tests {
             let mut v = shipped();
             v["drive"].as_object_mut().unwrap().remove("steering");
             v["belt"].as_object_mut().unwrap().remove("camber");
-            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 4});
+            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 4, "time_step": PI16});
             v
         };
         let velocity = |v: &Value| solve(&read(v)).unwrap().summary.runoff_velocity.unwrap();
@@ -921,7 +967,7 @@ mod tests {
         let mut v = shipped();
         v["belt"].as_object_mut().unwrap().remove("camber");
         v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
-        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule});
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule, "time_step": PI16});
         let data = ShellScene::from_scene(&read(&v)).unwrap();
         let run = data.run;
         let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
@@ -1089,7 +1135,7 @@ mod tests {
                 v["belt"].as_object_mut().unwrap().remove("camber");
             }
             v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, swivel]]});
-            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 4, "ramp_steps": 1});
+            v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 4, "ramp_steps": 1, "time_step": PI16});
             solve(&read(&v)).unwrap().summary.runoff_velocity.unwrap()
         };
         let (camber, swivel, both, half) = (velocity(1e-6, 0.0), velocity(0.0, 2e-6), velocity(1e-6, 2e-6), velocity(0.0, 1e-6));
@@ -1109,7 +1155,7 @@ mod tests {
         let mut v = shipped();
         v["drive"].as_object_mut().unwrap().remove("steering");
         v["belt"].as_object_mut().unwrap().remove("camber");
-        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 6, "frame_every": 3});
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 6, "frame_every": 3, "time_step": PI16});
         let solved = solve(&read(&v)).unwrap();
         let vel = solved.summary.runoff_velocity.unwrap();
         assert!(vel.abs() < 1e-12, "a perfect belt runs off at {vel:e} m/s");
@@ -1125,7 +1171,7 @@ mod tests {
         // after 6 steps measured +0.035 N); still no run-off
         let (w1, delta) = (v["drive"]["driver_speed"].as_f64().unwrap(), 1e-6);
         let mut equal = v.clone();
-        equal["fem"] = json!({"elements_sigma": 64, "elements_zeta": 2, "steps": 6});
+        equal["fem"] = json!({"elements_sigma": 64, "elements_zeta": 2, "steps": 6, "time_step": PI16});
         let mut faster = equal.clone();
         faster["drive"]["driven_speed"] = json!(w1 * (1.0 + delta));
         let split = |s: &Summary| s.tension_upper_mid.unwrap() - s.tension_lower_mid.unwrap();
