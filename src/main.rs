@@ -134,7 +134,7 @@ struct StudyArgs {
     /// meshes (three or more, one refinement ratio; for models with no BVP).
     #[arg(long, value_enum, default_value_t = ReferenceArg::Bvp)]
     reference: ReferenceArg,
-    /// Shell scenes only: the levels n_σ×n_ζ, coarsest first (e.g. 64x2,128x2,256x2 or
+    /// Shell scenes only: the levels n_σ×n_ζ, coarsest first (e.g. 64x8,128x8,256x8 or
     /// 64x2,128x4,256x8), each with Δt scaled like the σ spacing; the reference is the
     /// Richardson extrapolation of the three finest. Default: the scene's mesh, then
     /// twice and four times its n_σ at its n_ζ.
@@ -944,7 +944,7 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
 /// compensating swivel too (`StudyPlan::with_compensation`; the gate does not).
 fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
     const SHELL: &str = "fem shell-bfs (the shell's study)";
-    const HINT: &str = "a shell study refines n_σ × n_ζ with Δt: give them with --levels (e.g. 64x2,128x2,256x2); its reference is always the Richardson extrapolation of the three finest levels";
+    const HINT: &str = "a shell study refines n_σ × n_ζ with Δt: give them with --levels (e.g. 64x8,128x8,256x8); its reference is always the Richardson extrapolation of the three finest levels";
     unused(!args.elements.is_empty(), "elements", SHELL, HINT)?;
     unused(!args.tolerances.is_empty(), "tolerances", SHELL, HINT)?;
     unused(!args.formulations.is_empty(), "formulation", SHELL, "the shell has one element (Bogner–Fox–Schmit, docs/fem-shell.md)")?;

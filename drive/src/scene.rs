@@ -949,7 +949,9 @@ pub struct FemSettings {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elements_sigma: Option<usize>,
     /// Shell only: elements n_ζ across the width, even (a node on the centre line), 2 …
-    /// 64. Default absent = 2.
+    /// 64. Default absent: the fewest that resolve the belt's edge layer, chosen by the
+    /// shell's solve (`fem::shell::scene::run_of`; [`Scene::shell_run`] alone, without the
+    /// model, says 2).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub elements_zeta: Option<usize>,
     /// Shell only: time steps of the rotation (stage 2), ≥ 1; not with `duration`.

@@ -298,7 +298,7 @@ pub fn compensation_text(c: &fem::shell::compensation::Compensation) -> String {
         match c.measure {
             fem::shell::compensation::RunoffMeasure::Settled => "the run-off after the lateral transient (settled_runoff_velocity)",
             fem::shell::compensation::RunoffMeasure::LastRevolution =>
-                "the slope over the last revolution (runoff_velocity: the run is too short for the lateral transient to settle, so this is a phase of the transient, not the drift a controller holds)",
+                "the slope over the last revolution (runoff_velocity: the run without swivel did not settle — too short for the lateral transient, or its fits refused —, so this may be a phase of the transient, not the drift a controller holds)",
         },
         c.swivel,
         c.runoff_left,

@@ -49,8 +49,8 @@ pub enum RunoffMeasure {
     /// without swivel settled. A solve of the search that does not settle is an error.
     Settled,
     /// The least-squares slope over the last revolution (`runoff_velocity`): the run
-    /// without swivel is too short for the transient to settle (it warns so), and the
-    /// root cancels this slope, not the drift after the transient.
+    /// without swivel did not settle (too short for the transient, or its fits refused;
+    /// it warns why), and the root cancels this slope, not the drift after the transient.
     LastRevolution,
 }
 
@@ -88,7 +88,7 @@ impl RunoffMeasure {
             ShellError::Check(format!(
                 "no {} at the swivel {beta:e} rad{}",
                 self.summary_name(),
-                if self == RunoffMeasure::Settled { " (the run without swivel settled, this one did not: see its warning; a longer run is needed)" } else { "" }
+                if self == RunoffMeasure::Settled { " (the run without swivel settled, this one did not)" } else { "" }
             ))
         })
     }
@@ -148,15 +148,36 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
     let largest = history.iter().fold(0.0_f64, |m, p| m.max(p[1].abs()));
     let probe = if largest > 0.0 { largest } else { DEFAULT_PROBE };
     let mut seen: Vec<(f64, f64)> = Vec::new();
-    // the measure is the run without swivel's (the first solve), then kept
-    let mut measure: Option<RunoffMeasure> = None;
+    // the measure is the run without swivel's (the first solve), then kept; under the
+    // settled measure the later runs' fits are held to 2 % of v(0), not of their own
+    // run-off: near the root that is ~0, and a 2 % of it no fit can meet
+    let mut measure: Option<(RunoffMeasure, f64)> = None;
     let mut velocity = |beta: f64| -> Result<f64, ShellError> {
         if let Some(&(_, v)) = seen.iter().find(|(b, _)| *b == beta) {
             return Ok(v);
         }
-        let solved = solve(&with_swivel(scene, drum, beta))?;
+        let swivelled = with_swivel(scene, drum, beta);
+        let solved = solve(&swivelled)?;
         let (settled, slope) = (solved.summary.settled_runoff_velocity, solved.summary.runoff_velocity);
-        let v = measure.get_or_insert(RunoffMeasure::for_run(settled)).read(settled, slope, beta)?;
+        let v = match measure {
+            None => {
+                let m = RunoffMeasure::for_run(settled);
+                let v = m.read(settled, slope, beta)?;
+                measure = Some((m, v));
+                v
+            }
+            Some((RunoffMeasure::LastRevolution, _)) => RunoffMeasure::LastRevolution.read(settled, slope, beta)?,
+            Some((RunoffMeasure::Settled, v0)) => {
+                let data = ShellScene::from_scene(&swivelled)?;
+                super::scene::settled_of(&data, &solved.history, crate::shell::runoff::SETTLED_AGREEMENT * v0.abs())
+                    .map_err(|why| {
+                        ShellError::Check(format!(
+                            "the run-off at the swivel {beta:e} rad did not settle (the run without swivel did, at {v0:e} m/s, so the search cancels the settled run-off): {why}"
+                        ))
+                    })?
+                    .velocity
+            }
+        };
         seen.push((beta, v));
         Ok(v)
     };
@@ -205,7 +226,7 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
             &near[..near.len().min(2)]
         )));
     }
-    let measure = measure.expect("set by the run without swivel");
+    let measure = measure.map_or(RunoffMeasure::LastRevolution, |(m, _)| m);
     Ok(Compensation { drum, measure, swivel, runoff_without: v0, probe: [probe, v1], linear_estimate: estimate, runoff_left, tolerance, solves: seen.len() })
 }
 

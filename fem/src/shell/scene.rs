@@ -45,7 +45,7 @@ use super::hanging::{point_values_at, station_of, HangingBelt, StaticShell};
 use crate::static_homotopy::GRADING_WIDTH;
 use super::interlayer::{Interlayer, Schedule};
 use super::kernel::{Shell, SHELL_VALUES};
-use super::runoff::{drift_velocity, lateral_offset, settled_runoff, SETTLED_AGREEMENT};
+use super::runoff::{drift_velocity, lateral_offset, settled_runoff, Settled, Unsettled, SETTLED_AGREEMENT};
 use super::ShellError;
 
 /// The channels of the history, besides `peak_shear_driver`, `peak_shear_driven` (the
@@ -547,6 +547,31 @@ pub fn run_of(scene: &Scene) -> Result<drive::ShellRun, ShellError> {
     Ok(ShellScene::from_scene(scene)?.run)
 }
 
+/// The run-off after the lateral transient of a run of `data` with the history `history`
+/// (docs/fem-shell.md §14, [`settled_runoff`]): fitted from the forcing's last change on
+/// (the end of the ramp — the last sample before the rotation's — or the steering
+/// history's last point, whichever is later), the two windows' drifts held to
+/// [`SETTLED_AGREEMENT`] of the third's or to the floor, the larger of `floor` (m/s) and a
+/// drift of [`SYMMETRY_TOLERANCE`]·b per revolution (a drift below it is none). `solve`
+/// gives `floor` 0; the compensating swivel gives 2 % of the run-off it cancels, so that
+/// runs near its root, whose own run-off is ~0, are held to the accuracy the root needs
+/// (`super::compensation`).
+///
+/// # Errors
+/// [`Unsettled`] naming why; [`Unsettled::NotFitted`] for a history without the
+/// rotation's samples.
+pub fn settled_of(data: &ShellScene, history: &TimeSeries, floor: f64) -> Result<Settled, Unsettled> {
+    let (stage, lateral) = (history.channel("stage").unwrap_or(&[]), history.channel("lateral_offset").unwrap_or(&[]));
+    let first = match stage.iter().rposition(|&s| s < 2.0) {
+        Some(k) if k + 1 < stage.len() && lateral.len() == stage.len() && history.time.len() == stage.len() => k,
+        _ => return Err(Unsettled::NotFitted),
+    };
+    let start = history.time[first];
+    let settled_from = start + data.steering.as_ref().map_or(0.0, |s| s.tilt_x.iter().chain(&s.tilt_y).fold(0.0_f64, |m, p| m.max(p[0])));
+    let own = SYMMETRY_TOLERANCE * data.belt.width / data.revolution();
+    settled_runoff(&history.time[first..], &lateral[first..], settled_from, floor.max(own))
+}
+
 /// Solves a shell scene by stages (0)–(2) (module documentation).
 ///
 /// # Errors
@@ -662,8 +687,7 @@ pub fn solve(scene: &Scene) -> Result<ShellSolution, ShellError> {
         if data.is_perfect() {
             summary.settled_runoff_velocity = summary.runoff_velocity;
         } else {
-            let settled_from = start + data.steering.as_ref().map_or(0.0, |s| s.tilt_x.iter().chain(&s.tilt_y).fold(0.0_f64, |m, p| m.max(p[0])));
-            match settled_runoff(&time[first..], &lateral[first..], settled_from, SYMMETRY_TOLERANCE * width / revolution) {
+            match settled_of(&data, &series, 0.0) {
                 Ok(s) => {
                     summary.settled_runoff_velocity = Some(s.velocity);
                     let transient = if s.oscillating { format!("; lateral transient period {:.4} s, decay rate {:.4e} 1/s", s.period, s.decay) } else { "; no oscillation left".to_string() };
@@ -775,6 +799,39 @@ mod tests {
 
     fn read(v: &Value) -> Scene {
         Scene::from_json_str(&v.to_string()).unwrap()
+    }
+
+    /// `settled_of` reads the rotation from the history's stage channel and holds the two
+    /// windows to 2 % of the drift plus the larger of the given floor and the belt's own
+    /// (1e-9 b per revolution): on a synthetic history — a ramp sample, then a damped
+    /// oscillation of period 24 s about a drift of 1e-6 m/s sampled like the ten-revolution
+    /// run — it finds the drift, reports that bound, and a history without rotation
+    /// samples is not fitted.
+    #[test]
+    fn the_settled_run_off_of_a_history_holds_the_floor_it_is_given() {
+        let data = ShellScene::from_scene(&read(&shipped())).unwrap();
+        let dt = 0.05;
+        let mut h = TimeSeries::default();
+        let (mut stage, mut lateral) = (vec![0.0, 1.0], vec![0.0, 0.0]);
+        h.time = vec![-2.0 * dt, 0.0];
+        for k in 1..=2000 {
+            let t = k as f64 * dt;
+            h.time.push(t);
+            stage.push(2.0);
+            lateral.push(1e-6 * t + 3e-5 * (-0.04 * t).exp() * (2.0 * std::f64::consts::PI * t / 24.0).sin());
+        }
+        h.series.insert("stage".into(), stage.clone());
+        h.series.insert("lateral_offset".into(), lateral.clone());
+        let own = SYMMETRY_TOLERANCE * data.belt.width / data.revolution();
+        let s = settled_of(&data, &h, 0.0).unwrap();
+        assert!((s.velocity - 1e-6).abs() < 1e-4 * 1e-6, "{s:?}");
+        assert!((s.bound - (SETTLED_AGREEMENT * s.velocity.abs() + own)).abs() < 1e-12 * s.bound, "{s:?}");
+        let floor = 8e-8;
+        let held = settled_of(&data, &h, floor).unwrap();
+        assert!((held.bound - (SETTLED_AGREEMENT * held.velocity.abs() + floor)).abs() < 1e-12 * held.bound, "{held:?}");
+        let mut still = h.clone();
+        still.series.insert("stage".into(), vec![0.0; stage.len()]);
+        assert_eq!(settled_of(&data, &still, 0.0).unwrap_err(), Unsettled::NotFitted);
     }
 
     /// A scene without `fem.elements_zeta` is run at the fewest elements that resolve its
