@@ -19,6 +19,7 @@
 //! of its larger end, each evaluation one whole solve. The result states v(0), the probe,
 //! the estimate, the root and the run-off left there.
 
+use drive::result::TimeSeries;
 use drive::scene::{Scene, Steering, SteeringDrum};
 use serde::Serialize;
 
@@ -63,34 +64,42 @@ impl RunoffMeasure {
         }
     }
 
-    /// The measure a run without swivel calls for: [`Self::Settled`] when its
-    /// `settled` run-off exists, else [`Self::LastRevolution`].
-    pub fn for_run(settled: Option<f64>) -> RunoffMeasure {
-        if settled.is_some() {
-            RunoffMeasure::Settled
-        } else {
-            RunoffMeasure::LastRevolution
-        }
-    }
-
-    /// This measure's velocity of a run with `settled` and `slope`
-    /// (`settled_runoff_velocity`, `runoff_velocity`) at the swivel `beta`.
+    /// The measure the run without swivel calls for and its run-off v(0):
+    /// [`Self::Settled`] with `settled` (`settled_runoff_velocity`) when it exists, else
+    /// [`Self::LastRevolution`] with `slope` (`runoff_velocity`).
     ///
     /// # Errors
-    /// [`ShellError::Check`] naming the swivel and the summary name when the run has no
-    /// such velocity (under [`Self::Settled`]: its transient did not settle at that swivel).
-    pub fn read(self, settled: Option<f64>, slope: Option<f64>, beta: f64) -> Result<f64, ShellError> {
-        let v = match self {
-            RunoffMeasure::Settled => settled,
-            RunoffMeasure::LastRevolution => slope,
-        };
-        v.ok_or_else(|| {
-            ShellError::Check(format!(
-                "no {} at the swivel {beta:e} rad{}",
-                self.summary_name(),
-                if self == RunoffMeasure::Settled { " (the run without swivel settled, this one did not)" } else { "" }
-            ))
-        })
+    /// [`ShellError::Check`] naming both summary names when the run has neither.
+    pub fn of_first_run(settled: Option<f64>, slope: Option<f64>) -> Result<(RunoffMeasure, f64), ShellError> {
+        match (settled, slope) {
+            (Some(v), _) => Ok((RunoffMeasure::Settled, v)),
+            (None, Some(v)) => Ok((RunoffMeasure::LastRevolution, v)),
+            (None, None) => Err(ShellError::Check(
+                "the run without swivel has no settled_runoff_velocity and no runoff_velocity: no run-off to cancel".into(),
+            )),
+        }
+    }
+}
+
+/// The run-off of a later solve of the search, at the swivel `beta`, under the `measure`
+/// of the run without swivel whose run-off was `v0`: the last revolution's `slope`, or the
+/// settled run-off of `history` with its two fit windows held to
+/// [`crate::shell::runoff::SETTLED_AGREEMENT`] of |v0| (near the root a solve's own run-off
+/// is ~0, and 2 % of that no fit can meet; [`super::scene::settled_of`]).
+///
+/// # Errors
+/// [`ShellError::Check`] naming the swivel: a run without the slope, or under the settled
+/// measure a run whose run-off did not settle (never a silent switch to the slope).
+fn later_runoff(measure: RunoffMeasure, v0: f64, data: &ShellScene, history: &TimeSeries, slope: Option<f64>, beta: f64) -> Result<f64, ShellError> {
+    match measure {
+        RunoffMeasure::LastRevolution => slope.ok_or_else(|| ShellError::Check(format!("no runoff_velocity at the swivel {beta:e} rad"))),
+        RunoffMeasure::Settled => super::scene::settled_of(data, history, crate::shell::runoff::SETTLED_AGREEMENT * v0.abs())
+            .map(|s| s.velocity)
+            .map_err(|why| {
+                ShellError::Check(format!(
+                    "the run-off at the swivel {beta:e} rad did not settle (the run without swivel did, at {v0:e} m/s, so the search cancels the settled run-off): {why}"
+                ))
+            }),
     }
 }
 
@@ -161,22 +170,11 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
         let (settled, slope) = (solved.summary.settled_runoff_velocity, solved.summary.runoff_velocity);
         let v = match measure {
             None => {
-                let m = RunoffMeasure::for_run(settled);
-                let v = m.read(settled, slope, beta)?;
+                let (m, v) = RunoffMeasure::of_first_run(settled, slope)?;
                 measure = Some((m, v));
                 v
             }
-            Some((RunoffMeasure::LastRevolution, _)) => RunoffMeasure::LastRevolution.read(settled, slope, beta)?,
-            Some((RunoffMeasure::Settled, v0)) => {
-                let data = ShellScene::from_scene(&swivelled)?;
-                super::scene::settled_of(&data, &solved.history, crate::shell::runoff::SETTLED_AGREEMENT * v0.abs())
-                    .map_err(|why| {
-                        ShellError::Check(format!(
-                            "the run-off at the swivel {beta:e} rad did not settle (the run without swivel did, at {v0:e} m/s, so the search cancels the settled run-off): {why}"
-                        ))
-                    })?
-                    .velocity
-            }
+            Some((m, v0)) => later_runoff(m, v0, &ShellScene::from_scene(&swivelled)?, &solved.history, slope, beta)?,
         };
         seen.push((beta, v));
         Ok(v)
@@ -276,16 +274,28 @@ mod tests {
     /// swivel, never a silent switch to the slope.
     #[test]
     fn the_run_off_measure_is_the_run_without_swivels_and_is_held() {
-        assert_eq!(RunoffMeasure::for_run(Some(1.2e-6)), RunoffMeasure::Settled);
-        assert_eq!(RunoffMeasure::for_run(None), RunoffMeasure::LastRevolution);
-        assert_eq!(RunoffMeasure::Settled.read(Some(1.2e-6), Some(1.4e-6), 0.0).unwrap(), 1.2e-6);
-        assert_eq!(RunoffMeasure::LastRevolution.read(Some(1.2e-6), Some(1.4e-6), 0.0).unwrap(), 1.4e-6);
-        assert_eq!(RunoffMeasure::LastRevolution.read(None, Some(1.4e-6), 0.0).unwrap(), 1.4e-6);
-        match RunoffMeasure::Settled.read(None, Some(1.4e-6), 3e-4) {
-            Err(ShellError::Check(m)) => assert!(m.contains("settled_runoff_velocity") && m.contains("3e-4") && m.contains("did not"), "{m}"),
+        assert_eq!(RunoffMeasure::of_first_run(Some(1.2e-6), Some(1.4e-6)).unwrap(), (RunoffMeasure::Settled, 1.2e-6));
+        assert_eq!(RunoffMeasure::of_first_run(None, Some(1.4e-6)).unwrap(), (RunoffMeasure::LastRevolution, 1.4e-6));
+        match RunoffMeasure::of_first_run(None, None) {
+            Err(ShellError::Check(m)) => assert!(m.contains("settled_runoff_velocity") && m.contains("runoff_velocity"), "{m}"),
+            other => panic!("no run-off at all: {other:?}"),
+        }
+        // later solves on a synthetic history (a drift of 3e-8 m/s, 3 % of v0 = 1e-6:
+        // near the root) under each measure
+        let data = ShellScene::from_scene(&Scene::from_json_str(include_str!("../../../scenes/shell-runoff.json")).unwrap()).unwrap();
+        let settling = super::super::scene::lateral_history(3e-8, 0.04);
+        let v = later_runoff(RunoffMeasure::Settled, 1e-6, &data, &settling, Some(1.4e-6), 3e-4).unwrap();
+        // the fit's model is the history's form: the drift to 1 %, not the slope 1.4e-6
+        assert!((v - 3e-8).abs() < 1e-2 * 3e-8, "the settled drift, not the slope: {v:e}");
+        assert_eq!(later_runoff(RunoffMeasure::LastRevolution, 1e-6, &data, &settling, Some(1.4e-6), 3e-4).unwrap(), 1.4e-6);
+        // a growing oscillation never settles: under the settled measure an error that
+        // names the swivel, though the slope exists
+        let ringing = super::super::scene::lateral_history(3e-8, -0.02);
+        match later_runoff(RunoffMeasure::Settled, 1e-6, &data, &ringing, Some(1.4e-6), 3e-4) {
+            Err(ShellError::Check(m)) => assert!(m.contains("3e-4") && m.contains("did not settle"), "{m}"),
             other => panic!("an unsettled solve under the settled measure: {other:?}"),
         }
-        match RunoffMeasure::LastRevolution.read(None, None, 0.0) {
+        match later_runoff(RunoffMeasure::LastRevolution, 1e-6, &data, &settling, None, 0.0) {
             Err(ShellError::Check(m)) => assert!(m.contains("runoff_velocity"), "{m}"),
             other => panic!("no slope: {other:?}"),
         }

@@ -784,6 +784,27 @@ fn data_normal(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> f64 {
 }
 
 
+/// A synthetic run's history for tests of the settled fit: a stage-1 sample at rest, then
+/// 2000 rotation samples 0.05 s apart (like the ten-revolution run) of a lateral offset
+/// `drift`·t plus an oscillation of amplitude 3e-5 m and period 24 s decaying at
+/// `decay` 1/s (the measured transient's is 0.04–0.046 1/s; a negative one grows).
+#[cfg(test)]
+pub(crate) fn lateral_history(drift: f64, decay: f64) -> TimeSeries {
+    let dt = 0.05;
+    let mut h = TimeSeries::default();
+    let (mut stage, mut lateral) = (vec![0.0, 1.0], vec![0.0, 0.0]);
+    h.time = vec![-2.0 * dt, 0.0];
+    for k in 1..=2000 {
+        let t = k as f64 * dt;
+        h.time.push(t);
+        stage.push(2.0);
+        lateral.push(drift * t + 3e-5 * (-decay * t).exp() * (2.0 * std::f64::consts::PI * t / 24.0).sin());
+    }
+    h.series.insert("stage".into(), stage);
+    h.series.insert("lateral_offset".into(), lateral);
+    h
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -810,18 +831,8 @@ mod tests {
     #[test]
     fn the_settled_run_off_of_a_history_holds_the_floor_it_is_given() {
         let data = ShellScene::from_scene(&read(&shipped())).unwrap();
-        let dt = 0.05;
-        let mut h = TimeSeries::default();
-        let (mut stage, mut lateral) = (vec![0.0, 1.0], vec![0.0, 0.0]);
-        h.time = vec![-2.0 * dt, 0.0];
-        for k in 1..=2000 {
-            let t = k as f64 * dt;
-            h.time.push(t);
-            stage.push(2.0);
-            lateral.push(1e-6 * t + 3e-5 * (-0.04 * t).exp() * (2.0 * std::f64::consts::PI * t / 24.0).sin());
-        }
-        h.series.insert("stage".into(), stage.clone());
-        h.series.insert("lateral_offset".into(), lateral.clone());
+        let h = lateral_history(1e-6, 0.04);
+        let stage = h.channel("stage").unwrap().to_vec();
         let own = SYMMETRY_TOLERANCE * data.belt.width / data.revolution();
         let s = settled_of(&data, &h, 0.0).unwrap();
         assert!((s.velocity - 1e-6).abs() < 1e-4 * 1e-6, "{s:?}");
