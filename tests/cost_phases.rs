@@ -62,8 +62,13 @@ fn fe_steady_reports_its_fitting() {
     let fe = FemFormulation { name: default_formulation(&scene()).unwrap(), penalty: None };
     let p = checked(&fe, Discretisation::Elements(64));
     assert!(p.fitting_passes > 0 && p.fitting > 0.0, "{p:?}");
-    // inclusive: the fitting's own work and the Newton solves of its passes
-    assert!(p.fitting_total > p.fitting && p.fitting_total > p.numeric_factorisation.min(p.assembly), "{p:?}");
+    // inclusive: the fitting's own work and the Newton solves of its passes, within the
+    // whole solve (the exclusive phases' sum). Structural bounds only: how the fitting's
+    // Newton solves compare with the continuation's in time depends on the machine's
+    // load (a comparison with numeric_factorisation failed at load 10: 0.031 s against
+    // 0.042 s), and timed tests assert nothing about speed
+    let whole = p.assembly + p.symbolic_factorisation + p.numeric_factorisation + p.linear_solves + p.residuals + p.integration + p.mesh_adaptation + p.fitting + p.other;
+    assert!(p.fitting_total > p.fitting && p.fitting_total <= whole, "{p:?}");
     assert_eq!((p.integration, p.mesh_refinements), (0.0, 0), "{p:?}");
 }
 
