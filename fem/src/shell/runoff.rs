@@ -40,16 +40,17 @@ pub struct Runoff {
     /// (β_x, β_y) of the steering drum reached at the end of stage (1), rad
     /// (docs/fem-shell.md §8).
     pub tilt: [f64; 2],
-    /// ω₁ of the driver in stage (2), rad/s (> 0: clockwise, the belt moves in +σ); the
-    /// gauge and the history are transported at c = ω₁R.
+    /// ω₁ of the driver in stage (2), rad/s (≠ 0; > 0: clockwise, the belt moves in +σ;
+    /// < 0: counter-clockwise, along −σ); the gauge and the history are transported at
+    /// c = ω₁R, with its sign.
     pub speed: f64,
-    /// ω₂ of the driven drum in stage (2), rad/s (> 0). ω₂ ≠ ω₁ makes the interlayer
+    /// ω₂ of the driven drum in stage (2), rad/s (ω₁'s sense). ω₂ ≠ ω₁ makes the interlayer
     /// creep: the spans' tensions part until the shear lag of each wrap (E-7) carries the
     /// difference (docs/fem-shell.md §9.4).
     pub driven_speed: f64,
     /// Quasistatic steps of stage (1) (≥ 1).
     pub ramp_steps: usize,
-    /// The drum rotation per step ωΔt of stage (2), rad (> 0); stage (1) uses the same
+    /// The drum rotation per step |ω|Δt of stage (2), rad (> 0); stage (1) uses the same
     /// Δt (at rest only the ramp's fraction per step counts).
     pub step_angle: f64,
 }
@@ -72,10 +73,17 @@ impl Runoff {
     /// [`ShellError::BadParameter`] naming the first value out of range.
     pub fn validate(&self) -> Result<(), ShellError> {
         let bad = |what: &'static str, value: f64| Err(ShellError::BadParameter { what, value });
-        for (what, value) in [("interlayer shear stiffness P_⊥", self.shear), ("drum speed ω", self.speed), ("driven drum speed ω₂", self.driven_speed), ("drum rotation per step ωΔt", self.step_angle)] {
+        for (what, value) in [("interlayer shear stiffness P_⊥", self.shear), ("drum rotation per step |ω|Δt", self.step_angle)] {
             if !(value.is_finite() && value > 0.0) {
                 return bad(what, value);
             }
+        }
+        // either sense (counter-clockwise: ω < 0), both drums in the same one
+        if !(self.speed.is_finite() && self.speed != 0.0) {
+            return bad("drum speed ω", self.speed);
+        }
+        if !(self.driven_speed.is_finite() && self.driven_speed * self.speed > 0.0) {
+            return bad("driven drum speed ω₂ (the sense of ω)", self.driven_speed);
         }
         if !self.camber.is_finite() {
             return bad("camber curvature", self.camber);
@@ -104,7 +112,7 @@ impl StaticShell {
         run.validate()?;
         let kernel = self.stepping.assembler().kernel();
         let layer = kernel.interlayer().ok_or(ShellError::BadParameter { what: "stage (0) without an interlayer", value: 0.0 })?;
-        let (t0, dt) = (self.stepping.time(), run.step_angle / run.speed);
+        let (t0, dt) = (self.stepping.time(), run.step_angle / run.speed.abs());
         let end = t0 + run.ramp_steps as f64 * dt;
         let ramp = |value: f64| Schedule::new(vec![(t0, 0.0), (end, value)]);
         let mut drums = layer.drums.clone();
@@ -396,8 +404,9 @@ mod tests {
         let good = run(0.0, 0.0, 2, ANGLE);
         for (bad, what) in [
             (Runoff { ramp_steps: 0, ..good }, "steps of the ramp"),
-            (Runoff { speed: -1.0, ..good }, "drum speed ω"),
-            (Runoff { driven_speed: 0.0, ..good }, "driven drum speed ω₂"),
+            (Runoff { speed: 0.0, ..good }, "drum speed ω"),
+            (Runoff { driven_speed: 0.0, ..good }, "driven drum speed ω₂ (the sense of ω)"),
+            (Runoff { speed: -2.0, ..good }, "driven drum speed ω₂ (the sense of ω)"),
             (Runoff { tilt: [0.0, 0.9], ..good }, "steering drum tilt (|β| < π/4)"),
             (Runoff { camber: 2.0 / b.width, ..good }, "initial fibre length 1 − κ_c ζ at an edge"),
         ] {
