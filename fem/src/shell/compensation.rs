@@ -10,7 +10,8 @@
 //! slope over the last revolution (`runoff_velocity`), which in a run shorter than the
 //! transient is a phase of it (docs/fem-shell.md §14), and the result says which. For small
 //! imperfections v is linear in β (E-5; on the CI belt v(2β)/v(β) = 1.9996 at β = 1e-6
-//! rad), but not in a probe large enough to slacken a belt edge (1.88 at 2.5e-4 rad), and
+//! rad), but not in a probe large enough to change the span's stress from edge to edge by
+//! 40 % of its mean (1.88 at 2.5e-4 rad; docs/fem-shell.md §14), and
 //! the summary's slope over a short run of the CI scene is far from linear: so v(0) and
 //! v(β₁) at the probe β₁ give the linear estimate β_lin = −β₁ v(0)/(v(β₁) − v(0)), secant
 //! steps through the last two points go on until two points bracket a sign change (at
@@ -186,7 +187,7 @@ pub fn compensating_swivel(scene: &Scene) -> Result<Compensation, ShellError> {
     }
     let estimate = -probe * v0 / (v1 - v0);
     // secant steps through the last two points until two points bracket the root (the
-    // run-off is linear in small swivels but not in a probe that slackens an edge, and
+    // run-off is linear in small swivels but not in a full-size probe, and
     // the summary's slope over a short run may be far from linear: the first estimate
     // can be 10× off), then Brent's method on the bracket
     let mut points = vec![(0.0, v0), (probe, v1)];
@@ -241,7 +242,7 @@ mod tests {
     /// 32 × 2 over 4 steps: the run-off left at the root is below 1e-3 of the camber's
     /// own (Brent's tolerance, 1e-4 of β*, times the slope bounds it at ~1e-4 of v(0));
     /// the root has the linear estimate's sign and lies within 50 % of it: the probe at the
-    /// scene's 5e-4 rad (an edge slackens) is not in the linear range (measured −5.54e-5
+    /// scene's 5e-4 rad is not in the linear range (measured −5.54e-5
     /// against the estimate −4.84e-5 rad; with the reference's trapezoidal contact rule,
     /// before the Simpson default, −1.656e-6 against −1.823e-6); the probe is the scene's
     /// largest swivel; a scene without
