@@ -96,7 +96,7 @@ pub enum RichardsonError {
         levels: Vec<Discretisation>,
     },
     /// A level's run failed.
-    #[error("level {level} failed")]
+    #[error("level {level} failed: {source}")]
     LevelFailed {
         /// The level.
         level: Discretisation,

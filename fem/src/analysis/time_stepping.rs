@@ -850,6 +850,73 @@ mod tests {
         assert!(o.iter().all(|o| (2.7..=3.3).contains(o)), "orders {o:?} ({errors:?})");
     }
 
+    /// [`Carried`] with a second history value that starts equal to the first but is kept
+    /// by each point ([`SurfaceKernel::fixed_history`]: the interlayer's own contact flag,
+    /// docs/fem-shell.md §7 (b)).
+    struct Kept(Carried);
+
+    impl SurfaceKernel<1> for Kept {
+        fn layout(&self) -> ElementLayout {
+            SHELL
+        }
+        fn variables(&self) -> [PointVariable; 1] {
+            [nu(PointDerivative::Value)]
+        }
+        fn terms(&self) -> Vec<SurfaceTerm> {
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [self.0.history_rule, Rule::Gauss(2)], history: 2 }]
+        }
+        fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; 1], state: &[f64]) -> D {
+            self.0.density(term, at, v, state)
+        }
+        fn initial(&self, _term: usize, at: &SurfacePoint, state: &mut [f64]) {
+            state.fill(self.0.initial_state(at.sigma, at.zeta));
+        }
+        fn belt_speed(&self, time: f64) -> f64 {
+            self.0.belt_speed(time)
+        }
+        fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
+            if term == 1 {
+                1..2
+            } else {
+                0..0
+            }
+        }
+    }
+
+    /// A kept history value is not advected: after 3 steps of a 13-step loop on 16
+    /// elements (the foot off the points) every point's kept value is its own initial
+    /// one bit for bit, while the carried one has moved with the belt — it is s₀(σ − ct)
+    /// within the cubic's interpolation error (3 × (9/16)h⁴M₄/24 as in the loop test
+    /// above, a few 1e-4 at this spacing; asserted 1e-3, measured 2.7e-4) and differs from s₀(σ) by
+    /// more than 0.5 somewhere (s₀ = e^{sin 2πσ}(1 + ζ) moves by up to ~2 here).
+    #[test]
+    fn a_kept_history_value_stays_with_its_point_while_the_rest_is_advected() {
+        let kernel = Carried { stiffness: 1.0, speed: 0.8, length: 1.0, history_rule: Rule::Gauss(3) };
+        let mesh = SurfaceMesh::mapped(1.0, 16, |u| u, [0.0, 0.1], 1).unwrap();
+        let (steps, dt) = (3, kernel.length / (kernel.speed * 13.0));
+        let asm = SurfaceAssembler::new(mesh, Kept(Carried { ..kernel }), &[]).unwrap();
+        let n = asm.unknowns();
+        let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
+        for _ in 0..steps {
+            stepper.step(dt).unwrap();
+        }
+        let shift = kernel.speed * stepper.time();
+        let asm = stepper.assembler();
+        let (mut carried_error, mut moved) = (0.0f64, 0.0f64);
+        for e in 0..asm.mesh().len() {
+            for point in asm.points(e, 1, 0.0, 0.0) {
+                let state = stepper.history().state(1, e, point.a, point.b);
+                let (sigma, zeta) = (point.at.sigma, point.at.zeta);
+                assert_eq!(state[1], kernel.initial_state(sigma, zeta), "the kept value moved at σ = {sigma}, ζ = {zeta}");
+                carried_error = carried_error.max((state[0] - kernel.initial_state(sigma - shift, zeta)).abs());
+                moved = moved.max((state[0] - kernel.initial_state(sigma, zeta)).abs());
+            }
+        }
+        println!("kept history: carried value's error {carried_error:.3e} against the exact transport, moved by up to {moved:.3}");
+        assert!(carried_error < 1e-3, "the carried value is not s₀(σ − ct): {carried_error:e}");
+        assert!(moved > 0.5, "the carried value did not move: {moved}");
+    }
+
     /// ½k w² with the mass ½ρw² ([`Carried`] at rest; both by Gauss 4 × 4, so K = ω²M exactly and every mode
     /// has ω = √(k/ρ)), released from a random z₀ at rest, ωΔt = 0.5. Newmark: the
     /// trapezoidal rule rotates (z, v/ω) by θ = 2 atan(ωΔt/2) per step, so

@@ -12,7 +12,10 @@
 //! (ν_n, z_n) off the contour (and a spare 0), its material derivative ∂̊_s r_n by its
 //! components on the contour frame (t_g, n_g, k) (3), the periodic part S̃_n of the
 //! material coordinate, and a contact flag (1: the point was in contact in the converged
-//! configuration). A point whose foot was not in contact starts with u = 0 (the brush
+//! configuration), advected like the rest, and the same flag again, kept by each point
+//! ([`CONTACT_HERE`]). V_⊥ acts where both were set: with the foot's flag alone a point
+//! kept its spring for up to cΔt past the exit (the release lag, first order in Δt;
+//! docs/fem-shell.md §7 (b)). A point whose foot was not in contact starts with u = 0 (the brush
 //! model: u = 0 where contact is established [T l.329]); the initial zeros of the core
 //! are such states (the configuration is recorded by
 //! [`crate::analysis::time_stepping::TimeStepping::prime_history`]).
@@ -40,13 +43,19 @@ use super::membrane::dot;
 use super::ShellError;
 
 /// Number of history values per interlayer point.
-pub const STATE: usize = 11;
-/// Offsets in the state: u, r_n, ∂̊_s r_n (three each), S̃_n, the contact flag.
+pub const STATE: usize = 12;
+/// Offsets in the state: u, r_n, ∂̊_s r_n (three each), S̃_n, the contact flag (advected:
+/// the foot's), the point's own contact flag (kept).
 const U: usize = 0;
 const POSITION: usize = 3;
 const SLOPE: usize = 6;
 const MATERIAL: usize = 9;
 const CONTACT: usize = 10;
+const HERE: usize = 11;
+/// Whether the point itself (not its foot) was in contact at the last commit: kept,
+/// not advected ([`crate::surface::assembly::SurfaceKernel::fixed_history`]), so V_⊥ ends
+/// at the committed exit instead of one transport step cΔt past it (the release lag).
+pub const CONTACT_HERE: usize = HERE;
 /// The contact flag in the state: where it is < ½ u was released (set to 0 out of
 /// contact), so the advection does not interpolate u across it with the cubic
 /// ([`crate::surface::assembly::SurfaceKernel::history_support`]).
@@ -289,8 +298,9 @@ impl Interlayer {
     }
 
     /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS. V_γ where γ > 0 (C¹ in the
-    /// unknowns); V_⊥ where the foot of the point was in contact at the last commit (the
-    /// contact flag of the advected state), against the drum nearest to r, and only with
+    /// unknowns); V_⊥ where both the foot of the point (the contact flag of the advected
+    /// state) and the point itself ([`CONTACT_HERE`]) were in contact at the last commit,
+    /// against the drum nearest to r, and only with
     /// a state (the static evaluation has none) and P_⊥ > 0. Taking the V_⊥ region from
     /// the committed contact keeps each step's energy continuous: with the current
     /// γ > 0 a point at the contact's edge (the tangent point of a tight belt) switches
@@ -315,7 +325,7 @@ impl Interlayer {
                 nearest = Some((gamma.re(), i, e));
             }
         }
-        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty(), self.shear > 0.0) {
+        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty() || state[HERE] < 0.5, self.shear > 0.0) {
             let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
             w[i] += dot(&u, &u) * (0.5 * self.shear);
         }
@@ -342,6 +352,7 @@ impl Interlayer {
         next[SLOPE..SLOPE + 3].copy_from_slice(&record[2..5]);
         next[MATERIAL] = record[5];
         next[CONTACT] = contact;
+        next[HERE] = contact;
     }
 
     /// r_n(foot) = r_n(σ_r) + ∂̊_s r_n(σ_r) δs (global) from an (advected) state, the
@@ -398,5 +409,42 @@ mod tests {
         assert!((0..3).all(|i| (0..3).all(|j| (resting[i][j] - f64::from(u8::from(i == j))).abs() < 1e-15)));
         let (gamma, e): (f64, _) = aligned.gap(0.3, &[0.5f64, 0.29, 0.7], 0.0);
         assert!((gamma - 0.01).abs() < 1e-15 && (e[1] - 1.0).abs() < 1e-15);
+    }
+
+    /// V_⊥ acts only where the point itself was in contact at the last commit
+    /// ([`CONTACT_HERE`], docs/fem-shell.md §7 (b)): at the top of the driven drum
+    /// (γ = 1 mm) with the foot's flag set and ũ = 1 mm along the belt, the drum turned by
+    /// ωΔt = 0.1, the density is ½Pγ² + ½P_⊥|u|² with the point's own flag set and ½Pγ²
+    /// alone without it (a point just past the exit, whose foot was still in contact);
+    /// `advance` sets the point's own flag from its gap.
+    #[test]
+    fn the_shear_spring_ends_where_the_point_itself_left_the_drum() {
+        let drums = [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)];
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let r = [0.5, 0.299, 0.0];
+        let mut state = vec![0.0; STATE];
+        state[U] = 1e-3;
+        state[CONTACT] = 1.0;
+        let step = (1.0, 0.1);
+        let (gamma, e): (f64, _) = layer.drums[1].gap(layer.radius, &r, step.0);
+        let u = layer.slip(&layer.drums[1], &r, &e, (&r, r), step, &state);
+        let spring = 0.5 * layer.shear * dot(&u, &u);
+        assert!(spring > 1e-3, "the test's point carries no shear: {u:?}");
+        let here = |flag: f64| {
+            let mut s = state.clone();
+            s[CONTACT_HERE] = flag;
+            layer.shares(&r, (&r, r), step, &s)
+        };
+        let (held, left) = (here(1.0), here(0.0));
+        let normal = 0.5 * layer.normal * gamma * gamma;
+        assert_eq!(held[0], 0.0);
+        assert_eq!(left, [0.0, normal]);
+        assert!((held[1] - normal - spring).abs() <= 1e-12 * held[1], "{held:?} against ½Pγ² {normal} + ½P⊥u² {spring}");
+        let record = [0.0; 6];
+        let mut next = vec![0.0; STATE];
+        layer.advance(&r, (&r, r), &record, step, &state, &mut next);
+        assert_eq!(next[CONTACT_HERE], 1.0);
+        layer.advance(&[0.5, 0.31, 0.0], (&r, r), &record, step, &state, &mut next);
+        assert_eq!((next[CONTACT_HERE], next[CONTACT]), (0.0, 0.0));
     }
 }

@@ -23,7 +23,7 @@ use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, Su
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, DEFORMATION, STATE};
+use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, CONTACT_HERE, DEFORMATION, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -607,6 +607,14 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         }
     }
 
+    /// Whether the point itself was in contact (not advected).
+    fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
+        match (&self.interlayer, term) {
+            (Some(_), INTERLAYER) => CONTACT_HERE..CONTACT_HERE + 1,
+            _ => 0..0,
+        }
+    }
+
     /// The augmented map (S12) on the columns with transition edges.
     fn quadratic_terms(&self, element: usize, rect: &BfsRectangle, xi: f64, eta: f64, out: &mut Vec<QuadraticTerm>) {
         let column = self.column(element);
@@ -1019,6 +1027,9 @@ mod tests {
         }
         fn history_support(&self, term: usize) -> Option<usize> {
             self.0.history_support(term)
+        }
+        fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
+            self.0.fixed_history(term)
         }
     }
 

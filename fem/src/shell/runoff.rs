@@ -824,18 +824,18 @@ mod tests {
     ///   by < 2e-3 of itself (measured 6e-4 at π/32: the limit is then within ~1e-4,
     ///   far inside the tolerances below).
     /// - **Shape**: u is A sinh(x/ℓ) — the largest residual of the least-squares fit is
-    ///   < 5 % of its peak on both drums at both steps (measured 2.6–4.0 %).
+    ///   < 5 % of its peak on both drums at both steps (measured 2.6–3.9 %).
     /// - **Amplitude**: the fitted A against the closed form's from the run's own
-    ///   tensions converges to 1 at first order in Δt: V_⊥ holds where the foot was in
-    ///   contact at the last commit, so a point that has just left the drum keeps its
-    ///   spring for one step, and the span of cΔt after the exit carries about
-    ///   P_⊥b u(L_c) cΔt of the tension change that the closed form puts in the contact
-    ///   (18 % at ωΔt = π/16, cΔt = 5.9 cm; 9 % at π/32). Measured A_fit/A: 0.815 and
-    ///   0.801 (driven, driver) at π/16, 0.959 and 0.920 at π/32 — the driven drum's
-    ///   4 % at π/32 is partly the mesh error cancelling the lag (128 rod elements at
-    ///   π/32: 0.907 on both drums), so no order is claimed. Asserted: the deficit
-    ///   |1 − A_fit/A| decreases from π/16 to π/32 on the driven drum and is below 12 %
-    ///   at π/32 on both.
+    ///   tensions. V_⊥ ends at the committed exit (docs/fem-shell.md §7 (b)); before,
+    ///   it held where the foot alone had been in contact, a point that had just left
+    ///   the drum kept its spring for one step, and the span of cΔt after the exit
+    ///   carried about P_⊥b u(L_c) cΔt of the tension change that the closed form puts
+    ///   in the contact: A_fit/A was 0.815 and 0.801 (driven, driver) at π/16. Measured
+    ///   now: 0.948 and 0.921 at π/16, 0.959 and 0.920 at π/32 (unchanged there: on this
+    ///   mesh the lag held no layer point at π/32). What is left is the mesh's (the
+    ///   driver's: a node-sized jump of u at the entry), so no order in Δt is claimed.
+    ///   Asserted: the deficit |1 − A_fit/A| decreases from π/16 to π/32 on the driven
+    ///   drum and is below 12 % at π/32 on both.
     /// - **Tension split from the speeds** (the closed form's belt strain relative to
     ///   the drum at entry is T_A/EA − A/ℓ on each drum, and the drum speeds' ratio is
     ///   the ratio of those strains' 1 + ε): δ = (ΔT/EA)(1 + 2/(cosh(L_c/ℓ) − 1)); the

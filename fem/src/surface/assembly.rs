@@ -168,6 +168,12 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = term;
         None
     }
+    /// Components of `term`'s state that are not advected: each point keeps its own
+    /// value of the last commit (e.g. whether the point itself was in contact).
+    fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
+        let _ = term;
+        0..0
+    }
 }
 
 /// The evaluation state: time, step and the (advected) history the densities read.

@@ -69,6 +69,8 @@ pub struct TermStates {
     bounded: std::ops::Range<usize>,
     /// The component marking where the bounded ones are a field (≥ ½).
     support: Option<usize>,
+    /// Components each point keeps (not advected).
+    fixed: std::ops::Range<usize>,
 }
 
 impl TermStates {
@@ -138,6 +140,9 @@ impl TermStates {
                         let (a, b) = (mean(row, ks[1], c), mean(row, ks[2], c));
                         v = if supported { v.clamp(a.min(b), a.max(b)) } else { a + (b - a) * linear };
                     }
+                    if self.fixed.contains(&c) {
+                        v = self.get(row, column)[c];
+                    }
                     out.values[(row * self.columns + column) * self.width + c] = v;
                 }
             }
@@ -170,7 +175,7 @@ impl SurfaceHistory {
             let [rs, rz] = term.rule;
             let (per_sigma, per_zeta) = (rs.points().len(), rz.points().len());
             let (columns, rows) = (mesh.sigma_elements() * per_sigma, mesh.zeta_elements() * per_zeta);
-            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t), support: asm.kernel().history_support(t) };
+            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t), support: asm.kernel().history_support(t), fixed: asm.kernel().fixed_history(t) };
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 for point in asm.points(e, t, time, 0.0) {
