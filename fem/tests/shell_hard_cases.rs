@@ -14,7 +14,7 @@
 //! |---|---|
 //! | slack belt, L + 2 cm (sag 3 cm instead of 0.6) | finishes clean; mid-span tension 7.9 / 6.9 N |
 //! | stiff interlayer, P = 1e11, P_⊥ = 1e10 N/m³ (100×) | finishes with its checks; its span tensions (49.1 / 42.5 N from 51.1 static) carry the time-step error of docs/fem-shell.md §9.4, larger with the stiffer layer, which no check catches |
-//! | large camber ΔL = 2 mm (200×), ramped in 4 steps | finishes, warns: compressive edge (−6.9e7 Pa), penetration 0.28 mm > h |
+//! | large camber ΔL = 2 mm (200×) | ramped in 6 steps finishes, warns: compressive edge, penetration > h; in 4 steps stops (stage (1), step 3, no acceptable Newton step); at the edge of Newton's reach (the outcomes of 4 and 6 swapped with the interlayer's cut cells, 6 Dec 2026) |
 //! | large swivel β_y = 0.015 rad (30×) | finishes, warns: compressive edge (−1.24e8 Pa), penetration 1.2 mm > h (tension ~1370 N, edge stress 0.65 GPa) |
 //! | larger swivel β_y = 0.02 rad (40×) | stops: stage (2), step 2, no acceptable Newton step (finished until 5 Dec 2026, docs/fem-shell.md §7 (b)) |
 //! | large tilt β_x = 0.02 rad | finishes, warns: compressive edge (−7.9e7 Pa), penetration 0.34 mm > h |
@@ -90,20 +90,36 @@ fn stiff_interlayer_finishes_with_its_checks() {
     assert!(physics_warnings(&s).is_empty(), "{:?}", s.warnings);
 }
 
-/// Compressive membrane stress at the short edge of a strongly cambered belt, ramped in
-/// 4 steps: the run is kept, and says that a thin belt would wrinkle there (spec §4.13:
-/// "Newton must not stall silently: report"). Ramped in one or two steps the ramp's
-/// first step finds no acceptable Newton step (at ΔL = 1 and 2 mm: a named stop) — at
-/// the edge of Newton's reach, where round-off decides (before the band Cholesky the
-/// one-step ramp at 2 mm converged), so that outcome is not pinned.
+/// Compressive membrane stress at the short edge of a strongly cambered belt (spec
+/// §4.13: "Newton must not stall silently: report"). The case sits at the edge of
+/// Newton's reach: ramped in 2, 3 or 8 steps the ramp's first step finds no acceptable
+/// Newton step, in 4 steps its third (75 % of the camber), in 6 steps it finishes — and
+/// which ramp finishes is decided by small differences (capping the interlayer's cut
+/// shares at 1, docs/fem-shell.md §7 (b), swaps the outcomes of 4 and 6; before the cut,
+/// 4 finished). So the test asks what the spec asks of each of 4 and 6 steps: a checked
+/// answer that says a thin belt would wrinkle at the edge, or a named stop in the ramp
+/// (stage, step, no acceptable Newton step) — never a panic or a silent answer — and
+/// that at least one finishes.
 #[test]
 fn large_camber_reports_the_compressed_edge() {
-    let mut v = base();
-    v["belt"]["camber"] = json!({"edge_length_difference": 2e-3});
-    v["fem"]["ramp_steps"] = json!(4);
-    let s = run(&v).unwrap();
-    checked("camber", &s);
-    assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force at a belt edge")), "{:?}", s.warnings);
+    let mut finished = 0;
+    for ramp in [4, 6] {
+        let mut v = base();
+        v["belt"]["camber"] = json!({"edge_length_difference": 2e-3});
+        v["fem"]["ramp_steps"] = json!(ramp);
+        match run(&v) {
+            Ok(s) => {
+                checked("camber", &s);
+                assert!(s.warnings.iter().any(|w| w.contains("compressive membrane force at a belt edge")), "ramp {ramp}: {:?}", s.warnings);
+                finished += 1;
+            }
+            Err(e) => {
+                let m = e.to_string();
+                assert!(m.contains("stage (1)") && m.contains("no acceptable Newton step"), "ramp {ramp}: {m}");
+            }
+        }
+    }
+    assert!(finished > 0, "the large camber finished neither in 4 nor in 6 ramp steps");
 }
 
 /// A swivel of 0.015 rad (30× the shipped one) on this tight steel belt: the drum's axis

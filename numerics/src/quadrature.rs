@@ -86,6 +86,25 @@ impl Rule {
         }
     }
 
+    /// The part of [−1, 1] that point `a`'s weight stands for: the weights laid end to
+    /// end in point order, [−1 + Σ_{b<a} w_b, −1 + Σ_{b≤a} w_b]. The cells tile [−1, 1];
+    /// each holds its point, at its middle for a symmetric rule's inner points and at an
+    /// end for the end points of a closed rule (Simpson: [−1, −⅔], [−⅔, ⅔], [⅔, 1]).
+    /// Integrating an integrand that is cut inside an element (a contact zone's edge) by
+    /// the fraction of each cell on the kept side, times the point's value, makes the
+    /// cut's position count continuously instead of by whole points
+    /// (docs/fem-shell.md §7 (b)).
+    ///
+    /// # Panics
+    /// If `a` is not a point of the rule.
+    pub fn cell(&self, a: usize) -> [f64; 2] {
+        let points = self.points();
+        assert!(a < points.len(), "point {a} of {self}");
+        let start = -1.0 + points[..a].iter().map(|p| p.1).sum::<f64>();
+        // the last cell ends at 1 exactly, whatever the weights' rounding
+        [start, if a + 1 == points.len() { 1.0 } else { start + points[a].1 }]
+    }
+
     /// Check that the rule has points.
     ///
     /// # Errors
@@ -112,6 +131,26 @@ mod tests {
     /// 0 for odd), and not for degree + 1 (every rule here has odd degree 2n − 1 or 3 or
     /// 1, so degree + 1 is even and the error is the rule's nonzero error constant: at
     /// least 1e-3, far above round-off).
+    /// The cells tile [−1, 1] in order, each as long as its weight and holding its point;
+    /// Simpson's are [−1, −⅔], [−⅔, ⅔], [⅔, 1].
+    #[test]
+    fn cells_tile_the_interval_by_the_weights() {
+        for rule in [Rule::Gauss(1), Rule::Gauss(2), Rule::Gauss(3), Rule::Gauss(4), Rule::Gauss(5), Rule::Simpson, Rule::Trapezoidal] {
+            let points = rule.points();
+            let mut end = -1.0;
+            for (a, &(x, w)) in points.iter().enumerate() {
+                let [lo, hi] = rule.cell(a);
+                assert!((lo - end).abs() < 1e-15 && (hi - lo - w).abs() < 1e-15, "{rule} cell {a}: [{lo}, {hi}] after {end}, weight {w}");
+                assert!(lo <= x && x <= hi, "{rule} point {x} outside its cell [{lo}, {hi}]");
+                end = hi;
+            }
+            assert_eq!(end, 1.0, "{rule}");
+        }
+        let third = 2.0 / 3.0;
+        let simpson = [0, 1, 2].map(|a| Rule::Simpson.cell(a));
+        assert!(simpson.iter().flatten().zip([-1.0, -third, -third, third, third, 1.0]).all(|(c, e)| (c - e).abs() < 1e-15), "{simpson:?}");
+    }
+
     #[test]
     fn exactness() {
         let rules = [

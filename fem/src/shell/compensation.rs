@@ -242,9 +242,10 @@ mod tests {
     /// 32 × 2 over 4 steps: the run-off left at the root is below 1e-3 of the camber's
     /// own (Brent's tolerance, 1e-4 of β*, times the slope bounds it at ~1e-4 of v(0));
     /// the root has the linear estimate's sign and lies within 50 % of it: the probe at the
-    /// scene's 5e-4 rad is not in the linear range (measured +1.404e-4 against the
-    /// estimate +9.58e-5 rad, ratio 1.47, with V_⊥ ending at the committed exit,
-    /// docs/fem-shell.md §7 (b); before, with the release lag, −5.54e-5 against −4.84e-5:
+    /// scene's 5e-4 rad is not in the linear range (measured +1.423e-4 against the
+    /// estimate +9.65e-5 rad, ratio 1.47, with V_⊥ on the cut cells of the committed
+    /// contact, docs/fem-shell.md §7 (b); +1.404e-4 against +9.58e-5 with whole points;
+    /// before V_⊥ ended at the committed exit, with the release lag, −5.54e-5 against −4.84e-5:
     /// over these 4 steps the swivel's run-off changed sign and now has the sign of the
     /// settled one; with the reference's trapezoidal contact rule, before the Simpson
     /// default, −1.656e-6 against −1.823e-6); the probe is the scene's

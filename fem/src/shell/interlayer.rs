@@ -12,9 +12,11 @@
 //! (ν_n, z_n) off the contour (and a spare 0), its material derivative ∂̊_s r_n by its
 //! components on the contour frame (t_g, n_g, k) (3), the periodic part S̃_n of the
 //! material coordinate, and a contact flag (1: the point was in contact in the converged
-//! configuration), advected like the rest, and the same flag again, kept by each point
-//! ([`CONTACT_HERE`]). V_⊥ acts where both were set: with the foot's flag alone a point
-//! kept its spring for up to cΔt past the exit (the release lag, first order in Δt;
+//! configuration), advected like the rest, and, kept by each point, its committed gap
+//! and its share of the committed contact ([`CONTACT_SHARE`]). V_⊥ acts where the foot's flag is
+//! set, times the share: with the foot's flag alone a point kept its spring for up to
+//! cΔt past the exit (the release lag, first order in Δt), and with a whole point's
+//! weight on or off the contact's edges moved by whole points (first order in h;
 //! docs/fem-shell.md §7 (b)). A point whose foot was not in contact starts with u = 0 (the brush
 //! model: u = 0 where contact is established [T l.329]); the initial zeros of the core
 //! are such states (the configuration is recorded by
@@ -43,19 +45,27 @@ use super::membrane::dot;
 use super::ShellError;
 
 /// Number of history values per interlayer point.
-pub const STATE: usize = 12;
+pub const STATE: usize = 13;
 /// Offsets in the state: u, r_n, ∂̊_s r_n (three each), S̃_n, the contact flag (advected:
-/// the foot's), the point's own contact flag (kept).
+/// the foot's), the point's own gap and share of the contact (kept).
 const U: usize = 0;
 const POSITION: usize = 3;
 const SLOPE: usize = 6;
 const MATERIAL: usize = 9;
 const CONTACT: usize = 10;
-const HERE: usize = 11;
-/// Whether the point itself (not its foot) was in contact at the last commit: kept,
-/// not advected ([`crate::surface::assembly::SurfaceKernel::fixed_history`]), so V_⊥ ends
-/// at the committed exit instead of one transport step cΔt past it (the release lag).
-pub const CONTACT_HERE: usize = HERE;
+/// The point's committed gap γ_n to the drum nearest to it ([`Interlayer::nearest_gap`],
+/// > 0 in contact): the indicator of the cut, set by the core
+/// ([`crate::surface::assembly::CutHistory`]). Kept.
+pub const CONTACT_GAP: usize = 11;
+/// The point's share of the committed contact, set by the core after each advance
+/// ([`crate::surface::assembly::CutHistory`]): in contact, the part of its cell (the
+/// σ-interval its weight stands for) inside the contact, whose edges are the roots of
+/// the finite element solution's gap along σ, plus that part of an outside neighbour's
+/// cell, over its cell's length; 0 out of contact. Kept, not advected
+/// ([`crate::surface::assembly::SurfaceKernel::fixed_history`]), so V_⊥ ends at the
+/// committed exit instead of one transport step cΔt past it (the release lag), and an
+/// edge cuts the cell it lies in instead of switching whole points.
+pub const CONTACT_SHARE: usize = 12;
 /// The contact flag in the state: where it is < ½ u was released (set to 0 out of
 /// contact), so the advection does not interpolate u across it with the cubic
 /// ([`crate::surface::assembly::SurfaceKernel::history_support`]).
@@ -298,9 +308,9 @@ impl Interlayer {
     }
 
     /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS. V_γ where γ > 0 (C¹ in the
-    /// unknowns); V_⊥ where both the foot of the point (the contact flag of the advected
-    /// state) and the point itself ([`CONTACT_HERE`]) were in contact at the last commit,
-    /// against the drum nearest to r, and only with
+    /// unknowns); V_⊥ where the foot of the point (the contact flag of the advected
+    /// state) was in contact at the last commit, times the point's share of the
+    /// committed contact ([`CONTACT_SHARE`]), against the drum nearest to r, and only with
     /// a state (the static evaluation has none) and P_⊥ > 0. Taking the V_⊥ region from
     /// the committed contact keeps each step's energy continuous: with the current
     /// γ > 0 a point at the contact's edge (the tangent point of a tight belt) switches
@@ -311,7 +321,8 @@ impl Interlayer {
     }
 
     /// The density of [`Self::density`] per drum, per reference area of the deformed
-    /// belt (without J): ½Pγ_i² where γ_i > 0, plus ½P_⊥u·u for the drum nearest to r.
+    /// belt (without J): ½Pγ_i² where γ_i > 0, plus ½P_⊥u·u times the point's share
+    /// of the committed contact for the drum nearest to r.
     /// −∂/∂r of drum i's share is the force per area drum i exerts on the belt.
     pub fn shares<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 2] {
         let mut w = [D::zero(); 2];
@@ -325,16 +336,18 @@ impl Interlayer {
                 nearest = Some((gamma.re(), i, e));
             }
         }
-        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty() || state[HERE] < 0.5, self.shear > 0.0) {
+        if let (Some((_, i, e)), false, true) = (nearest, state.is_empty() || state[CONTACT_SHARE] <= 0.0, self.shear > 0.0) {
             let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
-            w[i] += dot(&u, &u) * (0.5 * self.shear);
+            w[i] += dot(&u, &u) * (0.5 * self.shear * state[CONTACT_SHARE]);
         }
         w
     }
 
     /// The state after a converged step: u of the drum in contact (0 out of contact; r
     /// the position, `foot` = r_n(foot)), the `record` (ν, z, ∂̊_s r on (t_g, n_g, k), S̃)
-    /// of the converged configuration, the contact flag.
+    /// of the converged configuration, the contact flag, and as the gap and the share
+    /// the nearest gap and the contact flag (the core then sets both,
+    /// [`CONTACT_GAP`], [`CONTACT_SHARE`]).
     pub fn advance(&self, r: &[f64; 3], (foot, upstream): (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
         let (mut u, mut contact) = ([0.0; 3], 0.0);
         for drum in &self.drums {
@@ -352,7 +365,13 @@ impl Interlayer {
         next[SLOPE..SLOPE + 3].copy_from_slice(&record[2..5]);
         next[MATERIAL] = record[5];
         next[CONTACT] = contact;
-        next[HERE] = contact;
+        next[CONTACT_GAP] = self.nearest_gap(r, time);
+        next[CONTACT_SHARE] = contact;
+    }
+
+    /// The gap γ = R − dist(r, axis) to the drum nearest to r (the larger of the two).
+    pub fn nearest_gap(&self, r: &[f64; 3], time: f64) -> f64 {
+        self.drums.iter().map(|d| d.gap(self.radius, r, time).0).fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// r_n(foot) = r_n(σ_r) + ∂̊_s r_n(σ_r) δs (global) from an (advected) state, the
@@ -411,14 +430,15 @@ mod tests {
         assert!((gamma - 0.01).abs() < 1e-15 && (e[1] - 1.0).abs() < 1e-15);
     }
 
-    /// V_⊥ acts only where the point itself was in contact at the last commit
-    /// ([`CONTACT_HERE`], docs/fem-shell.md §7 (b)): at the top of the driven drum
-    /// (γ = 1 mm) with the foot's flag set and ũ = 1 mm along the belt, the drum turned by
-    /// ωΔt = 0.1, the density is ½Pγ² + ½P_⊥|u|² with the point's own flag set and ½Pγ²
-    /// alone without it (a point just past the exit, whose foot was still in contact);
-    /// `advance` sets the point's own flag from its gap.
+    /// V_⊥ acts with the point's share of the committed contact ([`CONTACT_SHARE`],
+    /// docs/fem-shell.md §7 (b)): at the top of the driven drum (γ = 1 mm) with the
+    /// foot's flag set and ũ = 1 mm along the belt, the drum turned by ωΔt = 0.1, the
+    /// density is ½Pγ² + χ½P_⊥|u|² for the shares χ = 1, ¼ and 0 (a point just past the
+    /// exit, whose foot was still in contact, with none of its cell in contact).
+    /// `advance` records the gap to the nearest drum and the contact flag as the share
+    /// (the core cuts the cells after it: `surface::history`).
     #[test]
-    fn the_shear_spring_ends_where_the_point_itself_left_the_drum() {
+    fn the_shear_spring_acts_on_the_part_of_the_point_cell_in_contact() {
         let drums = [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)];
         let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
         let r = [0.5, 0.299, 0.0];
@@ -430,21 +450,26 @@ mod tests {
         let u = layer.slip(&layer.drums[1], &r, &e, (&r, r), step, &state);
         let spring = 0.5 * layer.shear * dot(&u, &u);
         assert!(spring > 1e-3, "the test's point carries no shear: {u:?}");
-        let here = |flag: f64| {
+        let with = |share: f64| {
             let mut s = state.clone();
-            s[CONTACT_HERE] = flag;
+            s[CONTACT_SHARE] = share;
             layer.shares(&r, (&r, r), step, &s)
         };
-        let (held, left) = (here(1.0), here(0.0));
         let normal = 0.5 * layer.normal * gamma * gamma;
-        assert_eq!(held[0], 0.0);
-        assert_eq!(left, [0.0, normal]);
-        assert!((held[1] - normal - spring).abs() <= 1e-12 * held[1], "{held:?} against ½Pγ² {normal} + ½P⊥u² {spring}");
-        let record = [0.0; 6];
+        for share in [1.0, 0.25] {
+            let w = with(share);
+            assert_eq!(w[0], 0.0);
+            assert!((w[1] - normal - share * spring).abs() <= 1e-12 * w[1], "share {share}: {w:?} against ½Pγ² {normal} + χ½P⊥u² {}", share * spring);
+        }
+        assert_eq!(with(0.0), [0.0, normal]);
         let mut next = vec![0.0; STATE];
-        layer.advance(&r, (&r, r), &record, step, &state, &mut next);
-        assert_eq!(next[CONTACT_HERE], 1.0);
-        layer.advance(&[0.5, 0.31, 0.0], (&r, r), &record, step, &state, &mut next);
-        assert_eq!((next[CONTACT_HERE], next[CONTACT]), (0.0, 0.0));
+        layer.advance(&r, (&r, r), &[0.0; 6], step, &state, &mut next);
+        assert_eq!((next[CONTACT], next[CONTACT_GAP], next[CONTACT_SHARE]), (1.0, gamma, 1.0));
+        // 50 mm along the tangent at the driven drum's top: out of contact, the gap
+        // −(√(R² + d²) − R) to that drum (the nearer one)
+        let d = 0.05;
+        layer.advance(&[0.5 + d, 0.3, 0.0], (&r, r), &[0.0; 6], step, &state, &mut next);
+        assert_eq!((next[CONTACT], next[CONTACT_SHARE]), (0.0, 0.0));
+        assert!((next[CONTACT_GAP] + ((0.09 + d * d) as f64).sqrt() - 0.3).abs() < 1e-15, "gap {}", next[CONTACT_GAP]);
     }
 }

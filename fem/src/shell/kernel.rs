@@ -19,11 +19,11 @@ use num_dual::{hessian, Dual2SVec64, Dual64};
 
 use crate::element::{BfsRectangle, ElementLayout, Field, SHELL};
 use crate::quadrature::Rule;
-use crate::surface::assembly::{PointDerivative, PointVariable, QuadraticTerm, SurfaceKernel, SurfacePoint, SurfaceTerm};
+use crate::surface::assembly::{CutHistory, PointDerivative, PointVariable, QuadraticTerm, SurfaceKernel, SurfacePoint, SurfaceTerm};
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, CONTACT_HERE, DEFORMATION, STATE};
+use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, CONTACT_GAP, CONTACT_SHARE, DEFORMATION, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -607,11 +607,28 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         }
     }
 
-    /// Whether the point itself was in contact (not advected).
+    /// The point's own committed gap and share of the contact (not advected).
     fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
         match (&self.interlayer, term) {
-            (Some(_), INTERLAYER) => CONTACT_HERE..CONTACT_HERE + 1,
+            (Some(_), INTERLAYER) => CONTACT_GAP..CONTACT_SHARE + 1,
             _ => 0..0,
+        }
+    }
+
+    /// V_⊥ counts the part of each point's cell inside the committed contact
+    /// ([`super::interlayer::CONTACT_SHARE`]), cut at the roots of the gap ([`Self::zone`]).
+    fn cut_history(&self, term: usize) -> Option<CutHistory> {
+        match (&self.interlayer, term) {
+            (Some(_), INTERLAYER) => Some(CutHistory { indicator: CONTACT_GAP, share: CONTACT_SHARE }),
+            _ => None,
+        }
+    }
+
+    /// The gap to the nearest drum at the position of the point values `v`.
+    fn zone(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> f64 {
+        match (&self.interlayer, term) {
+            (Some(interlayer), INTERLAYER) => interlayer.nearest_gap(&self.position(at, v), at.time),
+            _ => 0.0,
         }
     }
 
@@ -1030,6 +1047,12 @@ mod tests {
         }
         fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
             self.0.fixed_history(term)
+        }
+        fn cut_history(&self, term: usize) -> Option<CutHistory> {
+            self.0.cut_history(term)
+        }
+        fn zone(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES]) -> f64 {
+            self.0.zone(term, at, v)
         }
     }
 

@@ -830,16 +830,19 @@ mod tests {
     ///   it held where the foot alone had been in contact, a point that had just left
     ///   the drum kept its spring for one step, and the span of cΔt after the exit
     ///   carried about P_⊥b u(L_c) cΔt of the tension change that the closed form puts
-    ///   in the contact: A_fit/A was 0.815 and 0.801 (driven, driver) at π/16. Measured
-    ///   now: 0.948 and 0.921 at π/16, 0.959 and 0.920 at π/32 (unchanged there: on this
-    ///   mesh the lag held no layer point at π/32). What is left is the mesh's (the
+    ///   in the contact: A_fit/A was 0.815 and 0.801 (driven, driver) at π/16. With V_⊥
+    ///   ending at the committed exit, 0.948 and 0.921 at π/16, 0.959 and 0.920 at π/32;
+    ///   with V_⊥ on the cut cells of the committed contact (its edges at the gap's
+    ///   roots, not at whole points, docs/fem-shell.md §7 (b), 6 Dec 2026) **0.983 and
+    ///   0.947 at π/16, 0.996 and 0.946 at π/32**. What is left is the mesh's (the
     ///   driver's: a node-sized jump of u at the entry), so no order in Δt is claimed.
     ///   Asserted: the deficit |1 − A_fit/A| decreases from π/16 to π/32 on the driven
     ///   drum and is below 12 % at π/32 on both.
     /// - **Tension split from the speeds** (the closed form's belt strain relative to
     ///   the drum at entry is T_A/EA − A/ℓ on each drum, and the drum speeds' ratio is
     ///   the ratio of those strains' 1 + ε): δ = (ΔT/EA)(1 + 2/(cosh(L_c/ℓ) − 1)); the
-    ///   run's ΔT within 5 % of it at π/32 (measured 0.2566 N against 0.2534 N, 1.3 %;
+    ///   run's ΔT within 5 % of it at π/32 (measured 0.25335 N against 0.25342 N, 0.03 %;
+    ///   0.2566 N, 1.3 %, before the cut cells;
     ///   the strain measures differ by O(ε) = 1 %, L_c is quantised to the mesh).
     #[test]
     fn unequal_drum_speeds_creep_with_the_shear_lag_closed_form() {

@@ -1250,16 +1250,16 @@ mod tests {
     /// ~2e3 Pa. Asserted:
     /// - below the size at which a layer point at a contact edge changes sides, the
     ///   run-off is linear to round-off: v(2e-7)/v(1e-7) = 2 within 1e-4 (measured
-    ///   2.00000003; the contact sets of all steps are those of the perfect belt);
+    ///   1.9999996; the contact sets of all steps are those of the perfect belt);
     /// - above it, the swivel's run-off halves with the swivel within 3 % (measured 1.973
-    ///   at 2e-6 rad). Across β = 1e-7 … 2e-4 rad v/β takes values from 3.06e-3 to
-    ///   3.14e-3 m/s per rad, not in order of β (2e-6: 3.06e-3, 1e-5: 3.14e-3, 2e-5:
-    ///   3.10e-3, 2e-4: 3.09e-3): the layer's contact region is a set of points, its
-    ///   edges move by whole points as β grows, and each such switch moves v by ~1 %
-    ///   (2026-12-05, with V_⊥ ending at the committed exit, docs/fem-shell.md §7 (b);
-    ///   before, with the release lag, 1.985 at 2e-6 rad and 2.007 at 2e-5 rad);
+    ///   at 2e-6 rad; v/β = 3.08e-3, 3.07e-3, 3.03e-3 m/s per rad at 2e-7, 1e-6,
+    ///   2e-6 rad). With whole points V_⊥'s region moved by whole cells as β grew
+    ///   (v/β 3.06e-3 … 3.14e-3, not in order of β, over 1e-7 … 2e-4 rad); it is now cut
+    ///   at the gap's roots (docs/fem-shell.md §7 (b), 6 Dec 2026), and the ratio did not
+    ///   move: what still switches is per point — u released to 0 at a point that leaves
+    ///   the drum, the advection's linear stencil next to it, the foot's contact flag;
     /// - camber and swivel superpose: v(κ, β) − v(κ, 0) − v(0, β) below 1 % of the
-    ///   larger run-off (measured 0.45 %).
+    ///   larger run-off (measured 0.49 %).
     ///
     /// (The camber's run-off is not as linear at these sizes: v/ΔL falls from
     /// 3.38e-3 to 3.01e-3 1/s between ΔL = 1e-5 and 5e-7 m — docs/fem-shell.md §14; the

@@ -54,6 +54,27 @@ pub struct SurfaceTerm {
     pub history: usize,
 }
 
+/// Two components of a term's state for a zone that cuts the elements
+/// ([`SurfaceKernel::cut_history`]), both set by the core after every advance: the
+/// `indicator` at every point ([`SurfaceKernel::zone`], > 0 in the zone: the
+/// interlayer's gap), and the `share`. Between neighbouring distinct points of a row, one
+/// inside and one outside, the core finds the zone's edge as the root of the indicator
+/// of the finite element solution itself, evaluated along the row between the two
+/// points (Brent); each point inside gets as its share the zone's part of its cell
+/// ([`Rule::cell`]: the σ-interval its weight stands for) plus the zone's part of the
+/// cell of a neighbour outside it (whose own value is not the zone's integrand: u = 0
+/// out of contact), over its cell's length — so it may exceed 1 — and each point outside
+/// 0. The shares times the cells' lengths add up to the zone's length, and an edge
+/// moving through a cell changes them continuously, where whole points count the zone
+/// to within a cell (first order in h).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CutHistory {
+    /// The indicator at the point (> 0 in the zone).
+    pub indicator: usize,
+    /// The share the core sets.
+    pub share: usize,
+}
+
 /// Where and when a density is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePoint {
@@ -174,6 +195,22 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
         let _ = term;
         0..0
     }
+    /// The kept components ([`Self::fixed_history`]) of `term`'s state for an integrand
+    /// cut inside the elements by a committed zone (the interlayer's contact), as
+    /// [`CutHistory`]: the core sets each point's indicator ([`Self::zone`]) and share of
+    /// the zone after every advance ([`crate::surface::history`]). Default: none.
+    fn cut_history(&self, term: usize) -> Option<CutHistory> {
+        let _ = term;
+        None
+    }
+    /// The indicator of [`Self::cut_history`]'s zone (> 0 inside) at any point of an
+    /// element from the point values `v` of the converged configuration: the core
+    /// evaluates it at the term's points and between them, to find the zone's edges.
+    /// Default: 0 (never called without a cut).
+    fn zone(&self, term: usize, at: &SurfacePoint, v: &[f64; P]) -> f64 {
+        let _ = (term, at, v);
+        0.0
+    }
 }
 
 /// The evaluation state: time, step and the (advected) history the densities read.
@@ -196,6 +233,8 @@ pub(crate) struct QuadraturePoint {
     pub(crate) xi: f64,
     pub(crate) eta: f64,
     pub(crate) at: SurfacePoint,
+    /// The σ-interval its σ-weight stands for ([`Rule::cell`]), m.
+    pub(crate) cell: [f64; 2],
     pub(crate) weights: [[f64; PER_FIELD]; 6],
     pub(crate) scale: f64,
 }
@@ -338,7 +377,8 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         rz.points().iter().enumerate().flat_map(move |(b, &(eta, wz))| {
             rs.points().iter().enumerate().map(move |(a, &(xi, ws))| {
                 let [sigma, zeta] = el.point(xi, eta);
-                QuadraturePoint { a, b, xi, eta, at: SurfacePoint { sigma, zeta, element: e, time, dt }, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
+                let cell = rs.cell(a).map(|x| el.point(x, eta)[0]);
+                QuadraturePoint { a, b, xi, eta, at: SurfacePoint { sigma, zeta, element: e, time, dt }, cell, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
             })
         })
     }

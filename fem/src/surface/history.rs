@@ -43,8 +43,21 @@
 //! Where the four stencil points are not all marked as supporting the field, the bounded
 //! components are interpolated linearly between the two bracketing points (second
 //! order, bounded; the cubic elsewhere).
+//!
+//! **Cut cells** ([`SurfaceKernel::cut_history`], [`CutHistory`]): an integrand that a
+//! committed zone cuts inside an element (V_⊥ inside the interlayer's contact) counted
+//! by whole points moves the zone's edges by whole cells, a first-order error in h
+//! (docs/fem-shell.md §7 (b)). After each advance the core places each edge of the zone
+//! between an inside and an outside neighbour of a row at the root of the kernel's
+//! indicator ([`SurfaceKernel::zone`]: the gap) of the finite element solution along the
+//! row; each point inside gets as its share the zone's part of its cell
+//! ([`crate::quadrature::Rule::cell`]) plus that part of an outside neighbour's cell
+//! (whose own value is not the zone's integrand), over its cell's length. The shares add
+//! up to the zone's length, and an edge moving through a cell changes the integral
+//! continuously.
 
-use super::assembly::{Evaluation, SurfaceAssembler, SurfaceKernel};
+use super::assembly::{CutHistory, Evaluation, SurfaceAssembler, SurfaceKernel, SurfacePoint};
+use crate::element::SurfaceElement;
 use super::SurfaceError;
 
 /// The states of one history term.
@@ -71,6 +84,10 @@ pub struct TermStates {
     support: Option<usize>,
     /// Components each point keeps (not advected).
     fixed: std::ops::Range<usize>,
+    /// The components of [`SurfaceKernel::cut_history`].
+    cut: Option<CutHistory>,
+    /// Each column's cell ([`crate::quadrature::Rule::cell`]) as offsets from its σ, m.
+    cells: Vec<[f64; 2]>,
 }
 
 impl TermStates {
@@ -98,6 +115,94 @@ impl TermStates {
     /// Row and column of point (a, b) of element (i, j).
     fn place(&self, i: usize, j: usize, a: usize, b: usize) -> (usize, usize) {
         (j * self.per_zeta + b, i * self.per_sigma + a)
+    }
+
+    /// The length of [from, to] (`from` ≤ `to` ≤ `from` + L) in the zone whose edges
+    /// lie between the distinct points (periodic): `inside` per distinct point, `edges[k]`
+    /// the edge between points k and k + 1 where one of them is inside ([`Self::cut`]).
+    fn zone_length(&self, inside: &[bool], edges: &[f64], from: f64, to: f64, length: f64) -> f64 {
+        let n = self.unique.len() as isize;
+        let index = |k: isize| k.rem_euclid(n) as usize;
+        let x = |k: isize| self.unique[index(k)] + k.div_euclid(n) as f64 * length;
+        // the piece holding `from`: x(k) ≤ from (k = −1 is the last point one period back)
+        let wraps = from.div_euclid(length);
+        let mut k = self.unique.partition_point(|&u| u <= from - wraps * length) as isize - 1 + wraps as isize * n;
+        let mut total = 0.0;
+        while x(k) < to {
+            let (x0, x1) = (x(k), x(k + 1));
+            let edge = edges[index(k)] + (x0 - self.unique[index(k)]);
+            let zone = match (inside[index(k)], inside[index(k + 1)]) {
+                (true, true) => Some((x0, x1)),
+                (false, false) => None,
+                (true, false) => Some((x0, edge)),
+                (false, true) => Some((edge, x1)),
+            };
+            if let Some((a, b)) = zone {
+                total += (b.min(to) - a.max(from)).max(0.0);
+            }
+            k += 1;
+        }
+        total
+    }
+
+    /// Sets every point's share ([`SurfaceKernel::cut_history`], [`CutHistory`]) from its
+    /// row: the edges between inside and outside neighbours (the roots of the indicator
+    /// `at(e, σ, row)` along the row, in the element e of one of the two points that
+    /// holds σ), then the zone's part of the cell of each point inside, and of each
+    /// outside neighbour's cell, given to the inside point next to it.
+    fn cut(&mut self, cut: CutHistory, length: f64, elements: &dyn Fn(usize, usize) -> (usize, [f64; 2]), at: &dyn Fn(usize, f64, usize) -> f64) {
+        let n = self.unique.len();
+        let mut distinct = vec![0; self.columns];
+        for (k, group) in self.groups.iter().enumerate() {
+            for &c in group {
+                distinct[c] = k;
+            }
+        }
+        // the column of group k whose cell reaches furthest downstream (`last`) or upstream
+        let edge = |k: usize, last: bool| -> usize {
+            let group = self.groups[k].iter().copied();
+            if last {
+                group.max_by(|&a, &b| self.cells[a][1].total_cmp(&self.cells[b][1]))
+            } else {
+                group.min_by(|&a, &b| self.cells[a][0].total_cmp(&self.cells[b][0]))
+            }
+            .expect("a group has a column")
+        };
+        for row in 0..self.rows {
+            let values: Vec<f64> = self.groups.iter().map(|g| g.iter().map(|&col| self.get(row, col)[cut.indicator]).sum::<f64>() / g.len() as f64).collect();
+            let inside: Vec<bool> = values.iter().map(|&v| v > 0.0).collect();
+            // the edge between k and k + 1 (a σ in [x_k, x_{k+1}], x_{k+1} unwrapped)
+            let edges: Vec<f64> = (0..n)
+                .map(|k| {
+                    let next = (k + 1) % n;
+                    let (x0, x1) = (self.unique[k], self.unique[next] + if next == 0 { length } else { 0.0 });
+                    if inside[k] == inside[next] {
+                        return x0;
+                    }
+                    // the elements of the two points next to each other, with their σ-ranges
+                    let (first, [_, end]) = elements(edge(k, true), row);
+                    let (second, _) = elements(edge(next, false), row);
+                    let g = |sigma: f64| -> Result<f64, std::convert::Infallible> { Ok(if sigma <= end { at(first, sigma, row) } else { at(second, sigma, row) }) };
+                    let linear = x0 + (x1 - x0) * values[k] / (values[k] - values[next]);
+                    numerics::roots::brent(g, x0, x1, 1e-12 * (x1 - x0)).unwrap_or(linear).clamp(x0, x1)
+                })
+                .collect();
+            let mut counted = vec![0.0; self.columns];
+            for column in 0..self.columns {
+                let ([lo, hi], sigma, k) = (self.cells[column], self.sigma[column], distinct[column]);
+                if inside[k] {
+                    counted[column] += self.zone_length(&inside, &edges, sigma + lo, sigma + hi, length);
+                } else {
+                    counted[edge((k + n - 1) % n, true)] += self.zone_length(&inside, &edges, sigma + lo, sigma, length);
+                    counted[edge((k + 1) % n, false)] += self.zone_length(&inside, &edges, sigma, sigma + hi, length);
+                }
+            }
+            for column in 0..self.columns {
+                let [lo, hi] = self.cells[column];
+                let value = if hi > lo { counted[column] / (hi - lo) } else { f64::from(u8::from(inside[distinct[column]])) };
+                self.values[(row * self.columns + column) * self.width + cut.share] = value;
+            }
+        }
     }
 
     /// The states advected by `shift` = cΔt along σ (module documentation).
@@ -175,12 +280,13 @@ impl SurfaceHistory {
             let [rs, rz] = term.rule;
             let (per_sigma, per_zeta) = (rs.points().len(), rz.points().len());
             let (columns, rows) = (mesh.sigma_elements() * per_sigma, mesh.zeta_elements() * per_zeta);
-            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t), support: asm.kernel().history_support(t), fixed: asm.kernel().fixed_history(t) };
+            let mut states = TermStates { width: term.history, per_sigma, per_zeta, columns, rows, sigma: vec![0.0; columns], unique: Vec::new(), groups: Vec::new(), values: vec![0.0; rows * columns * term.history], bounded: asm.kernel().bounded_history(t), support: asm.kernel().history_support(t), fixed: asm.kernel().fixed_history(t), cut: asm.kernel().cut_history(t), cells: vec![[0.0; 2]; columns] };
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 for point in asm.points(e, t, time, 0.0) {
                     let (row, column) = states.place(i, j, point.a, point.b);
                     states.sigma[column] = point.at.sigma.rem_euclid(length);
+                    states.cells[column] = point.cell.map(|c| c - point.at.sigma);
                     let k = (row * columns + column) * term.history;
                     asm.kernel().initial(t, &point.at, &mut states.values[k..k + term.history]);
                 }
@@ -246,6 +352,7 @@ impl SurfaceHistory {
             let Some(states) = slot else { continue };
             let previous = self.terms[t].as_ref().expect("same terms");
             let width = states.width;
+            let cut = asm.kernel().cut_history(t);
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 let q = asm.dofs().gather(e, z);
@@ -254,7 +361,30 @@ impl SurfaceHistory {
                     let v = asm.values(&point.weights, &asm.quadratic(e, point.xi, point.eta), &q);
                     let k = (row * states.columns + column) * width;
                     asm.kernel().advance(t, &point.at, &v, previous.get(row, column), &mut states.values[k..k + width]);
+                    if let Some(cut) = cut {
+                        states.values[k + cut.indicator] = asm.kernel().zone(t, &point.at, &v);
+                    }
                 }
+            }
+            if let Some(cut) = cut {
+                let (per_sigma, per_zeta, nz) = (states.per_sigma, states.per_zeta, mesh.zeta_elements());
+                let eta_rule = asm.terms()[t].rule[1];
+                // the element of a column in a row, and its σ-range
+                let elements = |column: usize, row: usize| -> (usize, [f64; 2]) {
+                    let e = (column / per_sigma) * nz + row / per_zeta;
+                    let el = mesh.element(e);
+                    (e, [el.origin[0], el.origin[0] + el.size[0]])
+                };
+                // the indicator at σ (mod L) on element e, at the row's η
+                let at = |e: usize, sigma: f64, row: usize| -> f64 {
+                    let el = mesh.element(e);
+                    let xi = 2.0 * (sigma - el.origin[0]).rem_euclid(self.length) / el.size[0] - 1.0;
+                    let eta = eta_rule.points()[row % per_zeta].0;
+                    let [s, zeta] = el.point(xi, eta);
+                    let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
+                    asm.kernel().zone(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v)
+                };
+                states.cut(cut, self.length, &elements, &at);
             }
         }
         next
