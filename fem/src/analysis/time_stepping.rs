@@ -917,11 +917,16 @@ mod tests {
         assert!(moved > 0.5, "the carried value did not move: {moved}");
     }
 
-    /// A kernel whose history term (Simpson in σ) lets the core cut the cells by the
-    /// indicator `gap(σ)` ([`SurfaceKernel::cut_history`], [`SurfaceKernel::zone`]: the
-    /// interlayer's share of the contact, docs/fem-shell.md §7 (b)).
+    /// A kernel whose history term (σ-rule `rule`) lets the core cut the cells by an
+    /// indicator ([`SurfaceKernel::cut_history`], [`SurfaceKernel::zone`]: the
+    /// interlayer's share of the contact, docs/fem-shell.md §7 (b)): `gap(σ)` itself,
+    /// or (`solved`) the solution ν, whose energy ½(ν − gap(σ) − 3ζ)² makes it the
+    /// projection of gap(σ) + 3ζ on the elements — so the edges come from the element
+    /// interpolation at the row's ζ.
     struct Cut {
         gap: fn(f64) -> f64,
+        rule: Rule,
+        solved: bool,
     }
 
     impl SurfaceKernel<1> for Cut {
@@ -932,10 +937,12 @@ mod tests {
             [nu(PointDerivative::Value)]
         }
         fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(2), Rule::Gauss(2)], history: 0 }, SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(2)], history: 2 }]
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [self.rule, Rule::Gauss(2)], history: 2 }]
         }
-        fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
-            v[0] * v[0] * if term == 0 { 0.5 } else { 0.0 }
+        fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
+            let target = if self.solved { (self.gap)(at.sigma) + 3.0 * at.zeta } else { 0.0 };
+            let d = v[0] - target;
+            d * d * if term == 0 { 0.5 } else { 0.0 }
         }
         fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
             if term == 1 {
@@ -947,53 +954,79 @@ mod tests {
         fn cut_history(&self, term: usize) -> Option<CutHistory> {
             (term == 1).then_some(CutHistory { indicator: 0, share: 1 })
         }
-        fn zone(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1]) -> f64 {
-            (self.gap)(at.sigma)
+        fn zone(&self, _term: usize, at: &SurfacePoint, v: &[f64; 1]) -> f64 {
+            if self.solved {
+                v[0]
+            } else {
+                (self.gap)(at.sigma)
+            }
         }
     }
 
     /// The core's cut cells ([`SurfaceKernel::cut_history`]): after a step every point
-    /// in the zone has as its share the zone's part of its Simpson cell plus that part
-    /// of an outside neighbour's cell (outside points: 0), the zone's edges being the
-    /// indicator's roots, so Σ share × cell length over a row is the zone's length to
-    /// the root's tolerance (1e-10 asserted), on a graded mesh, for an indicator linear
-    /// near its roots (one root inside a midpoint's cell, one inside an end point's), a
-    /// flat zone (1e-6) left tangentially (−d², d the distance to the zone: its linear
-    /// interpolant would put the edges at the inside points) and a curved one across
-    /// the loop's end (cos 2πσ − 0.3) — where counting whole points by their own sign
-    /// errs by a fraction of a cell (≥ 1e-3 at 8 elements, each case; measured 9e-3 …).
+    /// in the zone has as its share the zone's part of its cell plus that part of an
+    /// outside neighbour's cell (outside points: 0), the zone's edges being the
+    /// indicator's roots, so Σ share × cell length over a row is the zone's length — on
+    /// a graded 8-element mesh, for the Simpson, trapezoidal and Gauss 2 σ-rules:
+    /// - to the root's tolerance (1e-10) for an indicator of σ linear near its roots (one
+    ///   root inside a midpoint's cell, one inside an end point's), a flat zone (1e-6)
+    ///   left tangentially (−d², d the distance to the zone: its linear interpolant
+    ///   would put the edges at the inside points), and a curved one (cos 2π(σ − φ) − 0.3)
+    ///   across the loop's end (φ = 0) and with an edge in the row's last interval
+    ///   (φ = 0.1615, edge at 0.960) — where counting whole points errs by a fraction of a
+    ///   cell (≥ 1e-3 on the Simpson row, measured 9e-3 … 5e-2);
+    /// - for the indicator read from the solution (the projection of
+    ///   cos 2π(σ − 0.1615) − 0.3 + 3ζ), on each ζ-row of points its own length
+    ///   acos(0.3 − 3ζ)/π within 2e-4 (measured 2.6e-5 and 2.1e-6: the projection's
+    ///   error at 8 elements moves the roots; a wrong element, ξ or η for the root search
+    ///   would move them by ~0.1).
     #[test]
     fn cut_cells_measure_a_zone_by_the_indicator_roots() {
-        let measure = |gap: fn(f64) -> f64| -> (f64, f64) {
+        // Σ share × cell and Σ whole cells of the points inside, per ζ-row b (0, 1)
+        let measure = |kernel: Cut| -> [(f64, f64, f64); 2] {
             let mesh = SurfaceMesh::mapped(1.0, 8, |u| u + 0.25 * (TAU * u).sin() / TAU, [0.0, 0.1], 1).unwrap();
-            let asm = SurfaceAssembler::new(mesh, Cut { gap }, &[]).unwrap();
+            let gap = kernel.gap;
+            let asm = SurfaceAssembler::new(mesh, kernel, &[]).unwrap();
             let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             stepper.step(0.1).unwrap();
             let asm = stepper.assembler();
-            let (mut cut, mut whole) = (0.0, 0.0);
+            let mut out = [(0.0, 0.0, 0.0); 2];
             for e in 0..asm.mesh().len() {
-                // the first ζ-row of points (every row carries the same σ-cut)
-                for point in asm.points(e, 1, 0.0, 0.0).filter(|p| p.b == 0) {
-                    let share = stepper.history().state(1, e, point.a, point.b)[1];
-                    let length = point.cell[1] - point.cell[0];
+                for point in asm.points(e, 1, 0.0, 0.0) {
+                    let state = stepper.history().state(1, e, point.a, point.b);
+                    let (share, length) = (state[1], point.cell[1] - point.cell[0]);
                     // a point out of the zone counts 0, its zone part goes to its neighbour
-                    assert!(share >= 0.0 && (gap(point.at.sigma) > 0.0 || share == 0.0), "share {share} at σ = {}", point.at.sigma);
-                    cut += share * length;
-                    whole += if gap(point.at.sigma) > 0.0 { length } else { 0.0 };
+                    assert!(share >= 0.0 && (state[0] > 0.0 || share == 0.0), "share {share} at σ = {}", point.at.sigma);
+                    let row = &mut out[point.b];
+                    row.0 += share * length;
+                    row.1 += if gap(point.at.sigma) > 0.0 { length } else { 0.0 };
+                    row.2 = point.at.zeta;
                 }
             }
-            (cut, whole)
+            out
         };
         let zone = 0.7291 - 0.3137;
-        let linear = |s: f64| (s - 0.3137).min(0.7291 - s);
-        let flat = |s: f64| if (0.3137..=0.7291).contains(&s) { 1e-6 } else { -(0.3137 - s).max(s - 0.7291).powi(2) };
-        let curved = |s: f64| (TAU * s).cos() - 0.3;
-        for (what, gap, exact) in [("linear", linear as fn(f64) -> f64, zone), ("tangential", flat, zone), ("curved", curved, 0.3f64.acos() / std::f64::consts::PI)] {
-            let (cut, whole) = measure(gap);
-            println!("cut cells, {what}: zone {exact}, cut {cut} (error {:.1e}), whole points {whole}", (cut - exact).abs());
-            assert!((cut - exact).abs() < 1e-10, "{what}: the shares measure {cut} against {exact}");
-            assert!((whole - exact).abs() > 1e-3, "{what}: whole points measure {whole} against {exact}");
+        let curve = 0.3f64.acos() / std::f64::consts::PI;
+        let cases: [(&str, fn(f64) -> f64, f64); 5] = [
+            ("linear", |s| (s - 0.3137).min(0.7291 - s), zone),
+            ("tangential", |s| if (0.3137..=0.7291).contains(&s) { 1e-6 } else { -(0.3137 - s).max(s - 0.7291).powi(2) }, zone),
+            ("curved across the end", |s| (TAU * s).cos() - 0.3, curve),
+            ("curved, an edge in the last interval", |s| (TAU * (s - 0.1615)).cos() - 0.3, curve),
+            ("curved, solved", |s| (TAU * (s - 0.1615)).cos() - 0.3, f64::NAN),
+        ];
+        for rule in [Rule::Simpson, Rule::Trapezoidal, Rule::Gauss(2)] {
+            for (what, gap, exact) in cases {
+                let solved = exact.is_nan();
+                for (cut, whole, zeta) in measure(Cut { gap, rule, solved }) {
+                    let (exact, tolerance) = if solved { ((0.3 - 3.0 * zeta).acos() / std::f64::consts::PI, 2e-4) } else { (exact, 1e-10) };
+                    println!("cut cells, {rule}, {what}, ζ = {zeta:.4}: zone {exact:.6}, cut {cut:.6} (error {:.1e}), whole points {whole:.6}", (cut - exact).abs());
+                    assert!((cut - exact).abs() < tolerance, "{rule}, {what}, ζ = {zeta}: the shares measure {cut} against {exact}");
+                    if rule == Rule::Simpson && !solved {
+                        assert!((whole - exact).abs() > 1e-3, "{what}: whole points measure {whole} against {exact}");
+                    }
+                }
+            }
         }
     }
 

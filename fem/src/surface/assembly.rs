@@ -64,9 +64,10 @@ pub struct SurfaceTerm {
 /// ([`Rule::cell`]: the σ-interval its weight stands for) plus the zone's part of the
 /// cell of a neighbour outside it (whose own value is not the zone's integrand: u = 0
 /// out of contact), over its cell's length — so it may exceed 1 — and each point outside
-/// 0. The shares times the cells' lengths add up to the zone's length, and an edge
-/// moving through a cell changes them continuously, where whole points count the zone
-/// to within a cell (first order in h).
+/// 0. The shares times the cells' lengths add up to the zone's length, continuous as an
+/// edge moves, where whole points count the zone to within a cell (first order in h); a
+/// single share still jumps where an edge crosses a point (the length changes hands
+/// between neighbours: an O(h²) change of the integral).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CutHistory {
     /// The indicator at the point (> 0 in the zone).

@@ -53,8 +53,10 @@
 //! row; each point inside gets as its share the zone's part of its cell
 //! ([`crate::quadrature::Rule::cell`]) plus that part of an outside neighbour's cell
 //! (whose own value is not the zone's integrand), over its cell's length. The shares add
-//! up to the zone's length, and an edge moving through a cell changes the integral
-//! continuously.
+//! up to the zone's length, which changes continuously as an edge moves; a single share
+//! still jumps where an edge crosses a point (the length changes hands between
+//! neighbours), which moves the integral by a cell times the two points' difference of
+//! the integrand — O(h²), where whole points moved it by O(h).
 
 use super::assembly::{CutHistory, Evaluation, SurfaceAssembler, SurfaceKernel, SurfacePoint};
 use crate::element::SurfaceElement;
@@ -352,7 +354,7 @@ impl SurfaceHistory {
             let Some(states) = slot else { continue };
             let previous = self.terms[t].as_ref().expect("same terms");
             let width = states.width;
-            let cut = asm.kernel().cut_history(t);
+            let cut = states.cut;
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 let q = asm.dofs().gather(e, z);
