@@ -995,7 +995,8 @@ mod tests {
             for e in 0..asm.mesh().len() {
                 for point in asm.points(e, 1, 0.0, 0.0) {
                     let state = stepper.history().state(1, e, point.a, point.b);
-                    let (share, length) = (state[1], point.cell[1] - point.cell[0]);
+                    let cell = asm.cell(e, 1, &point);
+                    let (share, length) = (state[1], cell[1] - cell[0]);
                     // a point out of the zone counts 0, its zone part goes to its neighbour
                     assert!(share >= 0.0 && (state[0] > 0.0 || share == 0.0), "share {share} at σ = {}", point.at.sigma);
                     let row = &mut out[point.b];

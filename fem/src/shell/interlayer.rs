@@ -349,9 +349,10 @@ impl Interlayer {
     /// the nearest gap and the contact flag (the core then sets both,
     /// [`CONTACT_GAP`], [`CONTACT_SHARE`]).
     pub fn advance(&self, r: &[f64; 3], (foot, upstream): (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
-        let (mut u, mut contact) = ([0.0; 3], 0.0);
+        let (mut u, mut contact, mut nearest) = ([0.0; 3], 0.0, f64::NEG_INFINITY);
         for drum in &self.drums {
             let (gamma, e) = drum.gap(self.radius, r, time);
+            nearest = nearest.max(gamma);
             if gamma > 0.0 {
                 contact = 1.0;
                 if self.shear > 0.0 {
@@ -365,7 +366,7 @@ impl Interlayer {
         next[SLOPE..SLOPE + 3].copy_from_slice(&record[2..5]);
         next[MATERIAL] = record[5];
         next[CONTACT] = contact;
-        next[CONTACT_GAP] = self.nearest_gap(r, time);
+        next[CONTACT_GAP] = nearest;
         next[CONTACT_SHARE] = contact;
     }
 

@@ -234,8 +234,6 @@ pub(crate) struct QuadraturePoint {
     pub(crate) xi: f64,
     pub(crate) eta: f64,
     pub(crate) at: SurfacePoint,
-    /// The σ-interval its σ-weight stands for ([`Rule::cell`]), m.
-    pub(crate) cell: [f64; 2],
     pub(crate) weights: [[f64; PER_FIELD]; 6],
     pub(crate) scale: f64,
 }
@@ -370,6 +368,14 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         out
     }
 
+    /// The σ-interval (m) that point `point` of `term`'s rule on element e stands for
+    /// ([`Rule::cell`]; the history's cut cells, [`CutHistory`]) — outside
+    /// [`Self::points`], which the element loops call every iteration.
+    pub(crate) fn cell(&self, e: usize, term: usize, point: &QuadraturePoint) -> [f64; 2] {
+        let el: BfsRectangle = self.mesh.element(e);
+        self.terms[term].rule[0].cell(point.a).map(|x| el.point(x, point.eta)[0])
+    }
+
     /// The integration points of `term` on element e at time `time`, step `dt`.
     pub(crate) fn points(&self, e: usize, term: usize, time: f64, dt: f64) -> impl Iterator<Item = QuadraturePoint> + '_ {
         let el: BfsRectangle = self.mesh.element(e);
@@ -378,8 +384,7 @@ impl<K: SurfaceKernel<P>, const P: usize> SurfaceAssembler<K, P> {
         rz.points().iter().enumerate().flat_map(move |(b, &(eta, wz))| {
             rs.points().iter().enumerate().map(move |(a, &(xi, ws))| {
                 let [sigma, zeta] = el.point(xi, eta);
-                let cell = rs.cell(a).map(|x| el.point(x, eta)[0]);
-                QuadraturePoint { a, b, xi, eta, at: SurfacePoint { sigma, zeta, element: e, time, dt }, cell, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
+                QuadraturePoint { a, b, xi, eta, at: SurfacePoint { sigma, zeta, element: e, time, dt }, weights: el.derivative_weights(xi, eta), scale: ws * wz * area }
             })
         })
     }

@@ -288,7 +288,7 @@ impl SurfaceHistory {
                 for point in asm.points(e, t, time, 0.0) {
                     let (row, column) = states.place(i, j, point.a, point.b);
                     states.sigma[column] = point.at.sigma.rem_euclid(length);
-                    states.cells[column] = point.cell.map(|c| c - point.at.sigma);
+                    states.cells[column] = asm.cell(e, t, &point).map(|c| c - point.at.sigma);
                     let k = (row * columns + column) * term.history;
                     asm.kernel().initial(t, &point.at, &mut states.values[k..k + term.history]);
                 }
