@@ -27,10 +27,11 @@
 //! docs/fem-shell.md (S2′)):
 //!
 //!   r_n(foot) ≈ r_n(σ_r) + ∂̊_s r_n(σ_r) δs   ([`Interlayer::foot`]),
-//!   u_{n+1} = [ũ + r_{n+1} − r_n(foot) − (M_i r_n(foot) − r_n(foot))]_⊥,
+//!   u_{n+1} = [M_i ũ + r_{n+1} − r_n(foot) − (M_i r_n(foot) − r_n(foot))]_⊥,
 //!
 //! M_i the drum's rigid motion over the step (tilt and spin, [`Drum::motion`]), ⊥ the
-//! projection on the drum's tangent plane at r_{n+1}. A belt that rolls rigidly with the
+//! projection on the drum's tangent plane at r_{n+1}. u is the layer's shear, a vector
+//! in the drum's tangent plane that the drum carries along: M_i turns ũ with it. A belt that rolls rigidly with the
 //! drum has u ≡ 0 exactly (the drum point under the material point is moved, not a
 //! linearised velocity). The gradient of ũ along the foot offset is neglected
 //! (second order: δs is the deviation of the material's travel from cΔt). r_n and
@@ -301,8 +302,13 @@ impl Interlayer {
         let c = drum.centre3();
         let m = drum.motion(time - dt, time, self.turning(time - 0.5 * dt));
         let moved = apply(&m, &std::array::from_fn(|k| foot[k] - c[k]));
-        // ũ + r_{n+1} − r_n(foot) − (R_{n+1} − R_n), R_n = r_n(foot)
-        let raw: [D; 3] = std::array::from_fn(|k| r[k] - moved[k] - c[k] + state[U + k]);
+        // ũ turns with the drum: u is the layer's shear, a vector of the drum's
+        // tangent plane carried by the drum, so M ũ; the plain ũ, projected on the
+        // tangent plane at r, lost the factor cos(ωΔt) of its tangential part every
+        // step, a first-order error in Δt over a wrap (docs/fem-shell.md §7 (f))
+        let carried = apply(&m, &[state[U], state[U + 1], state[U + 2]]);
+        // M ũ + r_{n+1} − r_n(foot) − (R_{n+1} − R_n), R_n = r_n(foot)
+        let raw: [D; 3] = std::array::from_fn(|k| r[k] - moved[k] - c[k] + carried[k]);
         let normal = dot(&raw, e);
         std::array::from_fn(|k| raw[k] - normal * e[k])
     }
@@ -429,6 +435,34 @@ mod tests {
         assert!((0..3).all(|i| (0..3).all(|j| (resting[i][j] - f64::from(u8::from(i == j))).abs() < 1e-15)));
         let (gamma, e): (f64, _) = aligned.gap(0.3, &[0.5f64, 0.29, 0.7], 0.0);
         assert!((gamma - 0.01).abs() < 1e-15 && (e[1] - 1.0).abs() < 1e-15);
+    }
+
+    /// The layer's shear turns with the drum (docs/fem-shell.md §7 (f)): a belt that
+    /// rolls rigidly with the drum over a step keeps its u as the drum carries it,
+    /// u_{n+1} = M ũ_n — length and the angle to the drum's surface kept. Here ũ =
+    /// (1, 0, 0.2) mm at the top of a drum turning by ωΔt = 0.1, ν = −0.1 mm (inside):
+    /// the old update, ũ projected on the new tangent plane without turning it, kept
+    /// cos(ωΔt) = 0.995 of the tangential part (a deficit of 5e-3, asserted 1e-14).
+    #[test]
+    fn the_shear_turns_with_the_drum_when_the_belt_rolls_with_it() {
+        let drum = Drum { centre: [0.5, 0.0], speed: 1.0, tilt_x: Schedule::constant(0.0), tilt_y: Schedule::constant(0.0) };
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums: [Drum::aligned([-0.5, 0.0], 1.0), drum.clone()], radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let (time, dt) = (1.0, 0.1);
+        let foot = [0.5, 0.2999, 0.0];
+        let mut state = vec![0.0; STATE];
+        state[U..U + 3].copy_from_slice(&[1e-3, 0.0, 2e-4]);
+        state[CONTACT] = 1.0;
+        let m = drum.motion(time - dt, time, true);
+        let c = [0.5, 0.0, 0.0];
+        let rolled = apply(&m, &[foot[0] - c[0], foot[1] - c[1], foot[2]]);
+        let r: [f64; 3] = std::array::from_fn(|k| rolled[k] + c[k]);
+        let (gamma, e): (f64, _) = drum.gap(layer.radius, &r, time);
+        assert!(gamma > 0.0);
+        let u = layer.slip(&drum, &r, &e, (&foot, foot), (time, dt), &state);
+        let turned = apply(&m, &[1e-3, 0.0, 2e-4]);
+        assert!((0..3).all(|k| (u[k] - turned[k]).abs() < 1e-14 * 1e-3), "u {u:?} against M ũ {turned:?}");
+        assert!((dot(&u, &u).sqrt() - (1.04e-6f64).sqrt()).abs() < 1e-17, "|u| {:e}", dot(&u, &u).sqrt());
+        assert!(dot(&u, &e).abs() < 1e-18, "u leaves the tangent plane: {u:?}");
     }
 
     /// V_⊥ acts with the point's share of the committed contact ([`CONTACT_SHARE`],
