@@ -624,8 +624,8 @@ fn print_shell_history(run: &Solved) {
             println!("  {name:<24} {:>32.6e} {:>16.6e}", c[first], c[last]);
         }
     }
-    println!("lateral force of each drum on the belt, N (+z)");
-    for name in ["lateral_force_driver", "lateral_force_driven"] {
+    println!("lateral force of each drum on the belt, N (+z); mid-span tensions, N");
+    for name in ["lateral_force_driver", "lateral_force_driven", "tension_upper_mid", "tension_lower_mid"] {
         if let Some(c) = h.channel(name) {
             println!("  {name:<24} {:>32.6e} {:>16.6e}", c[first], c[last]);
         }

@@ -505,6 +505,12 @@ fn push(series: &mut TimeSeries, stepping: &TimeStepping<Shell, SHELL_VALUES>, c
         stepping.assembler().energy(stepping.unknowns(), &at).unwrap_or(f64::NAN)
     });
     named.push(("energy", energy));
+    // the mid-span tensions (the summary's planar names, per step): how the rotating
+    // state's tensions settle (the gravity split creeps over the drums, docs/fem-shell.md §9.4)
+    let [upper, lower, _, _] = stations(contour);
+    let tension = |sigma: f64| station_of(stepping, sigma).map_or(f64::NAN, |s| s.tension);
+    named.push(("tension_upper_mid", tension(upper)));
+    named.push(("tension_lower_mid", tension(lower)));
     named.push(("stage", stage));
     series.push(stepping.time(), &named);
     forces.map(|([a, b], gross)| Balance { time: stepping.time(), net: a + b, gross })
@@ -1302,6 +1308,13 @@ mod tests {
         assert!(solved.checks.iter().any(|c| c.contains("mirror symmetry")), "{:?}", solved.checks);
         assert_eq!(solved.history.len(), 1 + 1 + 6);
         assert_eq!(solved.history.frames.len(), 3);
+        // the mid-span tensions per sample: the last is the summary's (the same state),
+        // the first the static one
+        for (name, end) in [("tension_upper_mid", solved.summary.tension_upper_mid), ("tension_lower_mid", solved.summary.tension_lower_mid)] {
+            let channel = solved.history.channel(name).unwrap();
+            assert_eq!(channel.last().copied(), end, "{name}");
+            assert!(channel.iter().all(|t| t.is_finite() && *t > 0.0), "{name}: {channel:?}");
+        }
         // the driven drum faster by δ = 1e-6 (64 × 2: at 32 × 2 this steel belt's span
         // tensions ratchet even at equal speeds, docs/fem-shell.md §9.4): the layer creeps
         // and the upper span (the driven drum's entry) tightens against the same run at
