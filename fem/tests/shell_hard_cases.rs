@@ -24,9 +24,8 @@ use fem::shell::scene::{solve, ShellSolution};
 use fem::shell::ShellError;
 use serde_json::{json, Value};
 
-/// Δt for ωΔt = π/16 at the shipped scene's ω = 2 rad/s: the step these tests' measured
-/// numbers were made at (the default until 5 Dec 2026; now π/32, docs/fem-shell.md §9.4).
-const PI16: f64 = std::f64::consts::PI / 32.0;
+/// Δt for ωΔt = π/16 at the shipped scene's ω = 2 rad/s.
+use fem::shell::scene::PI16_STEP as PI16;
 
 /// The shipped scene at 64 × 2 over 4 steps of rotation.
 fn base() -> Value {

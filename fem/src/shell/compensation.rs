@@ -234,9 +234,8 @@ mod tests {
     use super::*;
     use serde_json::json;
 
-    /// Δt for ωΔt = π/16 at the shipped scene's ω = 2 rad/s: the step these tests' measured
-    /// numbers were made at (the default until 5 Dec 2026; now π/32, docs/fem-shell.md §9.4).
-    const PI16: f64 = std::f64::consts::PI / 32.0;
+    /// Δt for ωΔt = π/16 at the shipped scene's ω = 2 rad/s.
+    use crate::shell::scene::PI16_STEP as PI16;
 
     /// E-5 on the shipped belt (camber ΔL = 1e-5 m, swivel history up to 5e-4 rad) at
     /// 32 × 2 over 4 steps: the run-off left at the root is below 1e-3 of the camber's
