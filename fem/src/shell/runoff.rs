@@ -174,6 +174,72 @@ pub fn lateral_offset(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> f64 {
     sum / area
 }
 
+/// The contact length per drum, m: the interlayer's committed contact area
+/// Σ share × weight over its history points (the cut cells, docs/fem-shell.md §7 (b))
+/// over 2b — the mean of the two drums.
+pub fn contact_length(stepping: &TimeStepping<Shell, SHELL_VALUES>, width: f64) -> f64 {
+    let asm = stepping.assembler();
+    let layer = super::kernel::INTERLAYER;
+    let area: f64 = (0..asm.mesh().len())
+        .flat_map(|e| asm.points(e, layer, 0.0, 0.0).map(move |p| (e, p)))
+        .map(|(e, p)| stepping.history().state(layer, e, p.a, p.b)[super::interlayer::CONTACT_SHARE] * p.scale)
+        .sum();
+    area / (2.0 * width)
+}
+
+/// The steady creep of a belt with gravity on two drums turning at ω₁ and ω₂ = ω₁(1 + δ)
+/// (docs/fem-shell.md §9.4, "The gravity split in rotation"): membrane belt, no slip
+/// limit, quasistatic.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Creep {
+    /// EA = Ehb, N.
+    pub axial: f64,
+    /// ρg, the belt's weight per length, N/m.
+    pub weight: f64,
+    /// R, the contact radius, m.
+    pub radius: f64,
+    /// b, m.
+    pub width: f64,
+    /// P, N/m³.
+    pub normal: f64,
+    /// P_⊥, N/m³.
+    pub shear: f64,
+}
+
+impl Creep {
+    /// τ_u − τ_l, N, of the steady state (τ = N − ρgy: at rest one value along the belt,
+    /// so this is the split's change from rest), the contact `lc` on each drum placed
+    /// symmetrically on its half circle, the driven drum faster by δ = `delta`. On each
+    /// wrap, x from the entry: the balance τ' = P_⊥b u, the kinematics
+    /// u' = C₁τ + C₂ρgy − ε_d (the belt's strain and its sinking into the layer by
+    /// γ = (N + ρgy)/(RbP), which makes it roll at the smaller radius R − γ),
+    /// C₁ = 1/EA + 1/(R²bP), C₂ = 1/EA + 2/(R²bP); so τ'' − τ/ℓ² = P_⊥b(C₂ρgy − ε_d),
+    /// ℓ² = 1/(P_⊥bC₁), τ'(0) = 0 (u = 0 at the entry). The driven drum (y = R cos ψ)
+    /// takes τ_u to τ_l, the driver (y = −R cos ψ) τ_l to τ_u, with ε_d + δ on the driven
+    /// drum: two linear equations for τ_u − τ_l and ε_d. With ρg = 0 and P → ∞ this is
+    /// E-7's δEA/(1 + 2/(cosh(L_c/ℓ) − 1)) with the sign of τ_l − τ_u.
+    pub fn split(&self, lc: f64, delta: f64) -> f64 {
+        let (r, w) = (self.radius, self.width);
+        let c1 = 1.0 / self.axial + 1.0 / (r * r * w * self.normal);
+        let c2 = 1.0 / self.axial + 2.0 / (r * r * w * self.normal);
+        let ell = (1.0 / (self.shear * w * c1)).sqrt();
+        let (kappa, load, trim) = (r * r / (r * r + ell * ell), self.weight * c2 / c1, 0.5 * (std::f64::consts::PI * r - lc) / r);
+        // τ(L_c) from τ(0) = entry, e = ε_d/C₁, y = s R cos(x/R + trim):
+        // τ = a cosh(x/ℓ) + b sinh(x/ℓ) + e + K cos(x/R + trim), K = −s ρg(C₂/C₁) R κ
+        let exit = |entry: f64, e: f64, s: f64| {
+            let k = -s * load * r * kappa;
+            let b = ell * k * trim.sin() / r;
+            let a = entry - e - k * trim.cos();
+            a * (lc / ell).cosh() + b * (lc / ell).sinh() + e + k * (lc / r + trim).cos()
+        };
+        // linear in (τ_u, e) with τ_l = 0: the driven exit is τ_l, the driver's τ_u
+        let f = |tu: f64, e: f64| [exit(tu, e + delta / c1, 1.0), exit(0.0, e, -1.0) - tu];
+        let (f0, fu, fe) = (f(0.0, 0.0), f(1.0, 0.0), f(0.0, 1.0));
+        let (a11, a12, a21, a22) = (fu[0] - f0[0], fe[0] - f0[0], fu[1] - f0[1], fe[1] - f0[1]);
+        (-f0[0] * a22 + a12 * f0[1]) / (a11 * a22 - a12 * a21)
+    }
+}
+
 /// The least-squares slope of the last `last` samples of `channel` over `time` (a
 /// drift velocity, m/s); None with fewer than two samples.
 pub fn drift_velocity(time: &[f64], channel: &[f64], last: usize) -> Option<f64> {
@@ -873,31 +939,25 @@ mod tests {
         assert!(split > 0.0 && (split / predicted - 1.0).abs() < 0.05, "tension split {split} N against {predicted} N from the speed ratio");
     }
 
-    /// τ_u − τ_l of the steady creep at equal drum speeds with gravity
-    /// (docs/fem-shell.md §9.4, "The gravity split in rotation"): on each wrap, x from the
-    /// entry over the contact length `lc` placed symmetrically on the half circle,
-    /// τ = N − ρgy with τ'' − τ/ℓ² = P_⊥b(C₂ρgy − ε_d), τ'(0) = 0, C₁ = 1/EA + 1/(R²bP),
-    /// C₂ = 1/EA + 2/(R²bP), ℓ² = 1/(P_⊥bC₁); the driven drum's wrap from τ_u to τ_l
-    /// with y = R cos ψ, the driver's from τ_l to τ_u with y = −R cos ψ, one ε_d for both
-    /// (equal speeds). Inputs: EA, ρg (N/m), R, b, P, P_⊥, L_c.
-    fn gravity_split(ea: f64, rho_g: f64, radius: f64, width: f64, normal: f64, shear: f64, lc: f64) -> f64 {
-        let c1 = 1.0 / ea + 1.0 / (radius * radius * width * normal);
-        let c2 = 1.0 / ea + 2.0 / (radius * radius * width * normal);
-        let ell = (1.0 / (shear * width * c1)).sqrt();
-        let (kappa, load, trim) = (radius * radius / (radius * radius + ell * ell), rho_g * c2 / c1, 0.5 * (std::f64::consts::PI * radius - lc) / radius);
-        // τ(L_c) from τ(0) = entry, the drum strain term e = ε_d/C₁, y = s R cos(x/R + trim):
-        // τ = a cosh(x/ℓ) + b sinh(x/ℓ) + e + K cos(x/R + trim), K = −s ρg(C₂/C₁) R κ
-        let exit = |entry: f64, e: f64, s: f64| {
-            let k = -s * load * radius * kappa;
-            let b = ell * k * trim.sin() / radius;
-            let a = entry - e - k * trim.cos();
-            a * (lc / ell).cosh() + b * (lc / ell).sinh() + e + k * (lc / radius + trim).cos()
-        };
-        // linear in (τ_u, e) with τ_l = 0: driven exit = 0, driver exit = τ_u
-        let f = |tu: f64, e: f64| [exit(tu, e, 1.0), exit(0.0, e, -1.0) - tu];
-        let (f0, fu, fe) = (f(0.0, 0.0), f(1.0, 0.0), f(0.0, 1.0));
-        let (a11, a12, a21, a22) = (fu[0] - f0[0], fe[0] - f0[0], fu[1] - f0[1], fe[1] - f0[1]);
-        (-f0[0] * a22 + a12 * f0[1]) / (a11 * a22 - a12 * a21)
+    /// [`Creep::split`] in its limits: without gravity and with a rigid normal layer
+    /// (P → ∞) it is E-7's δEA/(1 + 2/(cosh(L_c/ℓ) − 1)), ℓ = √(EA/(P_⊥b)), the upper
+    /// span the tighter for a faster driven drum; without a speed difference it is
+    /// linear in ρg and odd in nothing else (doubling ρg doubles it), and a faster driven
+    /// drum adds E-7's split to the gravity's (superposition, the equations are linear).
+    #[test]
+    fn the_creep_closed_form_has_the_shear_lag_limit_and_superposes() {
+        let (ea, b, r, shear, lc) = (200.0, 0.2, 0.3, 6250.0, 0.9);
+        let rigid = Creep { axial: ea, weight: 0.0, radius: r, width: b, normal: 1e30, shear };
+        let ell = (ea / (shear * b)).sqrt();
+        let e7 = 2e-3 * ea / (1.0 + 2.0 / ((lc / ell).cosh() - 1.0));
+        assert!((rigid.split(lc, 2e-3) / e7 - 1.0).abs() < 1e-9, "{} against E-7's {e7}", rigid.split(lc, 2e-3));
+        assert!(rigid.split(lc, 0.0).abs() < 1e-15);
+        let heavy = Creep { weight: 0.2, normal: 1e6, ..rigid };
+        let g = heavy.split(lc, 0.0);
+        assert!(g < 0.0, "the creep lowers the upper span's τ: {g}");
+        assert!((Creep { weight: 0.4, ..heavy }.split(lc, 0.0) / g - 2.0).abs() < 1e-9);
+        let both = heavy.split(lc, 2e-3);
+        assert!((both - g - Creep { weight: 0.0, ..heavy }.split(lc, 2e-3)).abs() < 1e-12 * both.abs());
     }
 
     /// The gravity split in rotation (docs/fem-shell.md §9.4): the tight belt of E-7
@@ -905,7 +965,7 @@ mod tests {
     /// drum speeds, 64 rod elements × 2, one revolution at π/32. At rest τ = T − ρgy is
     /// one value on both spans (asserted to 2 % of ρg·2R; measured −1.2e-3 N, 1 %);
     /// turning, the equal drum speeds make the layer creep, and τ_u − τ_l settles at
-    /// [`gravity_split`]'s closed form. Measured from the run: τ_u − τ_l =
+    /// [`Creep::split`]'s closed form. Measured from the run: τ_u − τ_l =
     /// T_u − T_l − ρg(y_u − y_l) at the mid-spans, L_c the mean contact length of the
     /// two drums from the cut cells. Measured −0.03623 N against −0.03849 N (L_c =
     /// 0.884 m; 5.9 %); 128 rod elements give −0.03678 N, but their contact is longer,
@@ -934,12 +994,9 @@ mod tests {
         let steps = (b.length / (run.speed * b.contour.radius()) / r.dt).ceil() as usize;
         r.rotate(steps).unwrap();
         let (turning, split) = tau(&r);
-        // the contact per drum: its area Σ share × weight over the history points (the
-        // cut cells, docs/fem-shell.md §7 (b)) over b, the mean of the two drums
-        let (asm, layer) = (r.stepping.assembler(), super::super::kernel::INTERLAYER);
-        let area: f64 = (0..asm.mesh().len()).flat_map(|e| asm.points(e, layer, 0.0, 0.0).map(move |p| (e, p))).map(|(e, p)| r.stepping.history().state(layer, e, p.a, p.b)[super::super::interlayer::CONTACT_SHARE] * p.scale).sum();
-        let lc = area / (2.0 * b.width);
-        let closed = gravity_split(ea, rho_g, b.contour.radius(), b.width, b.normal_stiffness, LAG_SHEAR, lc);
+        let lc = contact_length(&r.stepping, b.width);
+        let creep = Creep { axial: ea, weight: rho_g, radius: b.contour.radius(), width: b.width, normal: b.normal_stiffness, shear: LAG_SHEAR };
+        let closed = creep.split(lc, 0.0);
         println!("T_u − T_l {static_split:.6} → {split:.6} N; τ_u − τ_l {at_rest:.3e} → {turning:.6} N against {closed:.6} N (L_c {lc:.4} m)");
         assert!(at_rest.abs() < 0.02 * rho_g * 2.0 * b.contour.radius(), "at rest τ differs between the spans: {at_rest} N");
         assert!((turning / closed - 1.0).abs() < 0.12, "τ_u − τ_l = {turning} N against {closed} N");
