@@ -780,8 +780,7 @@ pub(crate) mod tests {
         let mut stage = solved.release(shear, newton()).unwrap();
         assert_eq!(stage.assembler().unknowns(), solved.stepping.assembler().unknowns() + 2);
         let wraps = 2.0 * std::f64::consts::PI * b.contour.radius() * b.width;
-        let asm = stage.assembler();
-        let area: f64 = (0..asm.mesh().len()).flat_map(|e| asm.points(e, crate::shell::kernel::INTERLAYER, 0.0, 0.0).map(move |p| (e, p))).map(|(e, p)| stage.history().state(crate::shell::kernel::INTERLAYER, e, p.a, p.b)[crate::shell::interlayer::CONTACT_SHARE] * p.scale).sum();
+        let area = crate::shell::runoff::contact_area(&stage);
         println!("contact area {area:e} m² = {} × 2πRb", area / wraps);
         // whole trapezoidal points counted 0.85 (the end nodes' outer half cells)
         assert!((0.7..0.82).contains(&(area / wraps)), "contact area {area} against the wraps' {wraps}");

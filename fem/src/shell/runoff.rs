@@ -174,17 +174,20 @@ pub fn lateral_offset(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> f64 {
     sum / area
 }
 
-/// The contact length per drum, m: the interlayer's committed contact area
-/// Σ share × weight over its history points (the cut cells, docs/fem-shell.md §7 (b))
-/// over 2b — the mean of the two drums.
-pub fn contact_length(stepping: &TimeStepping<Shell, SHELL_VALUES>, width: f64) -> f64 {
+/// The interlayer's committed contact area, m²: Σ share × weight over its history
+/// points (the cut cells, docs/fem-shell.md §7 (b)), both drums.
+pub fn contact_area(stepping: &TimeStepping<Shell, SHELL_VALUES>) -> f64 {
     let asm = stepping.assembler();
     let layer = super::kernel::INTERLAYER;
-    let area: f64 = (0..asm.mesh().len())
+    (0..asm.mesh().len())
         .flat_map(|e| asm.points(e, layer, 0.0, 0.0).map(move |p| (e, p)))
         .map(|(e, p)| stepping.history().state(layer, e, p.a, p.b)[super::interlayer::CONTACT_SHARE] * p.scale)
-        .sum();
-    area / (2.0 * width)
+        .sum()
+}
+
+/// The contact length per drum, m: [`contact_area`] over 2b — the mean of the two drums.
+pub fn contact_length(stepping: &TimeStepping<Shell, SHELL_VALUES>, width: f64) -> f64 {
+    contact_area(stepping) / (2.0 * width)
 }
 
 /// The steady creep of a belt with gravity on two drums turning at ω₁ and ω₂ = ω₁(1 + δ)
