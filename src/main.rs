@@ -135,11 +135,29 @@ struct StudyArgs {
     #[arg(long, value_enum, default_value_t = ReferenceArg::Bvp)]
     reference: ReferenceArg,
     /// Shell scenes only: the levels n_σ×n_ζ, coarsest first (e.g. 64x8,128x8,256x8 or
-    /// 64x2,128x4,256x8), each with Δt scaled like the σ spacing; the reference is the
+    /// 64x2,128x4,256x8), each with Δt scaled like the σ spacing (see `--refine`); the reference is the
     /// Richardson extrapolation of the three finest. Default: the scene's mesh, then
     /// twice and four times its n_σ at its n_ζ.
     #[arg(long, value_delimiter = ',', value_name = "NσxNζ,…")]
     levels: Vec<String>,
+    /// Shell scenes only: what the levels refine. `both`: σ and Δt together (the limit
+    /// in space and time); `mesh`: the levels' meshes at the scene's Δt (the limit in
+    /// space at that step); `step`: the scene's Δt, then a half and a quarter of it, on
+    /// one mesh — the one `--levels` entry, else the scene's (the time-continuous limit
+    /// on that mesh).
+    #[arg(long, value_enum, default_value_t = RefineArg::Both)]
+    refine: RefineArg,
+}
+
+/// What a shell study's levels refine (`--refine`).
+#[derive(Clone, Copy, PartialEq, Eq, ValueEnum)]
+enum RefineArg {
+    /// σ and Δt together, Δt scaled like the σ spacing.
+    Both,
+    /// The mesh at the scene's time step.
+    Mesh,
+    /// The time step on one mesh.
+    Step,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -911,6 +929,9 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
     if !args.levels.is_empty() {
         return Err(CliError::FlagNotForScene { flag: "levels", theory: scene.belt.theory.to_string() }.into());
     }
+    if args.refine != RefineArg::Both {
+        return Err(CliError::FlagNotForScene { flag: "refine", theory: scene.belt.theory.to_string() }.into());
+    }
     let mut plan = verification::study::StudyPlan::convergence(scene);
     if !args.tolerances.is_empty() {
         plan = plan.with_tolerances(&args.tolerances);
@@ -939,7 +960,9 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
 }
 
 /// The study of a shell scene (`StudyPlan::shell`): its levels from `--levels` or the
-/// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ); the flags of the 1-D
+/// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ), refined as `--refine`
+/// says (σ with Δt, σ alone at the scene's Δt, or the scene's Δt halved twice on one
+/// mesh: docs/verification.md "The shell's study"); the flags of the 1-D
 /// studies are refused by name. `converge` and `report` find a cambered belt's
 /// compensating swivel too (`StudyPlan::with_compensation`; the gate does not).
 fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
@@ -951,12 +974,27 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
     unused(matches!(args.reference, ReferenceArg::ClosedForm), "reference closed-form", SHELL, "the shell has no closed form; its reference is the Richardson extrapolation of its three finest levels")?;
     // the run a solve makes (n_ζ defaulted by the edge layer)
     let own = verification::run::ShellFe::run_of(scene);
-    let sizes: Vec<(usize, usize)> = if args.levels.is_empty() {
-        (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect()
-    } else {
-        args.levels.iter().map(|l| parse_level(l)).collect::<Result<_, _>>()?
+    let sizes: Vec<(usize, usize)> = args.levels.iter().map(|l| parse_level(l)).collect::<Result<_, _>>()?;
+    let levels: Vec<Discretisation> = match args.refine {
+        RefineArg::Step => {
+            let (sigma, zeta) = match sizes.as_slice() {
+                [] => (own.elements_sigma, own.elements_zeta),
+                [one] => *one,
+                _ => return Err(CliError::OutOfRange { flag: "levels", value: args.levels.join(","), range: "with --refine step one mesh n_σxn_ζ (the study halves the scene's time step on it twice)".to_string() }.into()),
+            };
+            (0..3).map(|k| Discretisation::Mesh2d { sigma, zeta, time_step: own.time_step / f64::from(1u32 << k) }).collect()
+        }
+        RefineArg::Both | RefineArg::Mesh => {
+            let sizes = if sizes.is_empty() { (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect() } else { sizes };
+            sizes
+                .into_iter()
+                .map(|(ns, nz)| match args.refine {
+                    RefineArg::Mesh => Discretisation::Mesh2d { sigma: ns, zeta: nz, time_step: own.time_step },
+                    _ => verification::run::ShellFe::level(scene, ns, nz),
+                })
+                .collect()
+        }
     };
-    let levels: Vec<Discretisation> = sizes.into_iter().map(|(ns, nz)| verification::run::ShellFe::level(scene, ns, nz)).collect();
     // each level is a valid scene (n_ζ even, the step count within range): refused
     // before anything runs, not as a failed run minutes later
     for &level in &levels {

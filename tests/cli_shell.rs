@@ -282,6 +282,8 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     refused(&["converge", SCENE, "--levels", "32x1,64x1,128x1", "--json", j], &["the level 32×1", "fem.elements_zeta", "even"]);
     refused(&["converge", SCENE, "--levels", "64by2", "--json", j], &["--levels = 64by2"]);
     refused(&["converge", "scenes/rod-hanging.json", "--levels", "64x2,128x2,256x2", "--json", j], &["--levels is for shell scenes"]);
+    refused(&["converge", "scenes/rod-hanging.json", "--refine", "step", "--json", j], &["--refine is for shell scenes"]);
+    refused(&["converge", SCENE, "--refine", "step", "--levels", "64x2,128x2", "--json", j], &["with --refine step one mesh"]);
     refused(&["solve", SCENE, "--elements", "32", "--json", j], &["--elements is not used", "elements_sigma"]);
     refused(&["solve", "scenes/rod-hanging.json", "--vtk", temp("cli-shell-refusals", "vtk").to_str().unwrap(), "--json", j], &["--vtk is for shell scenes", "kirchhoff"]);
     refused(&["solve", "scenes/rod-hanging.json", "--measured", "x.csv", "--json", j], &["--measured is for shell scenes"]);
@@ -396,4 +398,51 @@ fn shell_converge_extrapolates_its_levels_and_holds_them_against_the_extrapolati
     assert!(out.contains("the compensating swivel (spec E-5) of the driven drum at the coarsest level"), "{out}");
     assert_eq!(estimates.len(), extrapolated + usize::from(value(reference, "driven_speed").is_some()), "{estimates:?}");
     eprintln!("shell study: {extrapolated} extrapolated, {refused} refused");
+}
+
+/// `converge --refine step` and `--refine mesh` on a shell scene (issue 15: the run-off
+/// "refined together and separately"): the step alone halved twice on one mesh, or the
+/// mesh alone at the scene's step; the study says which limit the sequence converges to,
+/// and the Richardson extrapolation is of that sequence.
+#[test]
+fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    v["fem"]["steps"] = serde_json::json!(2);
+    v["fem"]["frame_every"] = serde_json::json!(0);
+    // no camber: no compensating swivel to search (its own test is above)
+    v["belt"].as_object_mut().unwrap().remove("camber");
+    let short = temp("cli-shell-refine", "short.json");
+    std::fs::write(&short, v.to_string()).unwrap();
+    let dt = v["fem"]["time_step"].as_f64().unwrap();
+    for (refine, levels, expected, note) in [
+        ("step", "32x2", [(32, dt), (32, dt / 2.0), (32, dt / 4.0)], "the time step alone is refined, on the mesh 32×2"),
+        ("mesh", "32x2,64x2,128x2", [(32, dt), (64, dt), (128, dt)], "the mesh alone is refined, at Δt ="),
+    ] {
+        let json = temp("cli-shell-refine", &format!("{refine}.json"));
+        let _ = std::fs::remove_file(&json);
+        let o = beltcheck(&["converge", short.to_str().unwrap(), "--refine", refine, "--levels", levels, "--samples", "256", "--json", json.to_str().unwrap()]);
+        assert!(o.status.success(), "{refine}: {}", stderr(&o));
+        assert!(stdout(&o).contains(note), "{refine}: {}", stdout(&o));
+        assert_eq!(stdout(&o).contains("fem shell-bfs — time-step sequence on one mesh"), refine == "step", "{}", stdout(&o));
+        let study: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        let rows = study["series"][0]["rows"].as_array().unwrap();
+        assert_eq!(rows.len(), 3);
+        for (row, (ns, step)) in rows.iter().zip(expected) {
+            let d = &row["run"]["discretisation"]["mesh2d"];
+            assert_eq!(d["sigma"], ns, "{refine}");
+            assert!((d["time_step"].as_f64().unwrap() - step).abs() <= 1e-15 * dt, "{refine}: {d}");
+            assert_eq!(row["run"]["status"], "solved", "{}", row["run"]);
+        }
+        // the extrapolation is of this sequence (ratio 2): the recomputed Richardson value
+        // of the upper mid-span height, when it is in the asymptotic range
+        let y = |k: usize| rows[k]["run"]["summary"]["y_upper_mid"].as_f64().unwrap();
+        let (d21, d32) = (y(1) - y(0), y(2) - y(1));
+        if let Some(got) = study["reference"]["summary"]["y_upper_mid"].as_f64() {
+            let p = (d21.abs() / d32.abs()).ln() / 2f64.ln();
+            let qr = y(2) + d32 / (2f64.powf(p) - 1.0);
+            assert!((got - qr).abs() <= 1e-12 * qr.abs(), "{refine}: {got} against {qr}");
+        } else {
+            assert!(d21 * d32 <= 0.0 || d32.abs() >= d21.abs(), "{refine}: asymptotic ({d21:e}, {d32:e}) but not extrapolated");
+        }
+    }
 }

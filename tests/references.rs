@@ -12,6 +12,7 @@
 //!
 //! Run in release mode (`cargo test --release --test references`).
 
+use drive::result::Refinement;
 use drive::scene::Scene;
 use verification::reference::Reference;
 use verification::run::{BvpVariant, Discretisation, Scheme};
@@ -75,9 +76,25 @@ fn two_d_discretisation_prints_and_serialises() {
     assert_eq!(serde_json::from_value::<Discretisation>(json).unwrap(), d);
     let fine = Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.005 };
     assert_eq!(d.refinement_ratio(fine), Some(2.0));
-    // refined in space only or time only: no single h to extrapolate in
-    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.01 }), None);
-    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 64, zeta: 4, time_step: 0.005 }), None);
+    assert_eq!(d.refinement(fine), Some((Refinement::Together, 2.0)));
+    // refined in space only (to the limit in space at that step) or time only (to the
+    // time-continuous limit on that mesh)
+    assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.01 }), Some((Refinement::Mesh, 2.0)));
+    assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.01 }), Some((Refinement::Mesh, 2.0)));
+    assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 64, zeta: 4, time_step: 0.0025 }), Some((Refinement::Step, 4.0)));
+    // σ and Δt by different ratios, or a step refined while ζ alone changes: none
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.0025 }), None);
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 64, zeta: 8, time_step: 0.005 }), None);
+    assert_eq!(d.refinement_ratio(d), None);
+    // a study's levels refine in one way throughout
+    let at = |sigma: usize, time_step: f64| Discretisation::Mesh2d { sigma, zeta: 4, time_step };
+    assert_eq!(verification::study::shell_refinement(&[at(64, 0.01), at(64, 0.005), at(64, 0.0025)]), Some(Refinement::Step));
+    assert_eq!(verification::study::shell_refinement(&[at(64, 0.01), at(128, 0.01), at(256, 0.01)]), Some(Refinement::Mesh));
+    assert_eq!(verification::study::shell_refinement(&[at(64, 0.01), at(128, 0.005), at(256, 0.0025)]), Some(Refinement::Together));
+    let mixed = [at(64, 0.01), at(128, 0.01), at(128, 0.005)];
+    assert_eq!(verification::study::shell_refinement(&mixed), None);
+    assert!(matches!(verification::study::StudyPlan::shell(mixed.to_vec()).validate(), Err(verification::study::PlanError::ShellLevels(_))));
+    assert!(verification::study::StudyPlan::shell(vec![at(64, 0.01), at(64, 0.005), at(64, 0.0025)]).validate().is_ok());
     // σ and Δt refined together at one n_ζ: a sequence of that n_ζ (the study says so)
     assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.005 }), Some(2.0));
     // ζ refined by another ratio than σ and Δt: none

@@ -59,7 +59,7 @@ pub mod view;
 pub use contour::{Contour, OpenContour, OpenRegion, Path, Pulley, Region};
 pub use pending::{not_yet_solvable, NotYetSolvable, Solver, Unsolved};
 pub use error::{ResultError, SceneError};
-pub use result::{Cost, CostPhases, Discretisation, Fields, Frame, History, MeasuredComparison, RunResult, SurfaceFields, TimeSeries, FIELD_NORM_NAMES, SURFACE_FIELD_NAMES};
+pub use result::{Cost, CostPhases, Discretisation, Fields, Refinement, Frame, History, MeasuredComparison, RunResult, SurfaceFields, TimeSeries, FIELD_NORM_NAMES, SURFACE_FIELD_NAMES};
 pub use scene::{
     Analysis, Belt, BvpMethod, BvpSettings, Camber, Contact, DriveGeometry, Effects, ElasticLayer, End,
     FemSettings, GateSettings, Layout, OnePulleyLoad, Plate, Scene, Section, ShellRun, Steering, SteeringDrum, Theory,

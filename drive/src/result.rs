@@ -409,28 +409,68 @@ pub enum Discretisation {
     },
 }
 
+/// What a refinement from one discretisation to the next refines
+/// ([`Discretisation::refinement`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Refinement {
+    /// Every discretisation parameter by one ratio (a 1-D mesh; a 2-D mesh with its time
+    /// step): the sequence converges to the model's solution.
+    Together,
+    /// A 2-D mesh at one time step: the sequence converges to the limit in space at that
+    /// step.
+    Mesh,
+    /// The time step on one 2-D mesh: the sequence converges to the time-continuous
+    /// limit on that mesh.
+    Step,
+}
+
+impl Refinement {
+    /// What the limit of a sequence so refined is, for a study's text.
+    pub fn limit(self) -> &'static str {
+        match self {
+            Refinement::Together => "the limit in space and time",
+            Refinement::Mesh => "the limit in space at the levels' time step",
+            Refinement::Step => "the time-continuous limit on the levels' mesh",
+        }
+    }
+}
+
 impl Discretisation {
-    /// The refinement ratio r > 1 from `self` to the finer `fine`: n_fine/n for 1-D
-    /// meshes; for 2-D meshes the common ratio of the σ element counts and of the time
-    /// steps (Δt/Δt_fine), which must agree to 1e-9 — a refinement in space alone or time
-    /// alone has no single h to extrapolate in —, with the ζ element count refined by the
-    /// same ratio or held (a sequence at one n_ζ converges to that n_ζ's limit: the error
-    /// across the width is then not in what the sequence measures, and a study says so).
-    /// `None` for tolerances, mixed kinds, ratios ≤ 1 or that differ.
+    /// The refinement ratio r > 1 from `self` to the finer `fine`
+    /// ([`Discretisation::refinement`] without its kind).
     pub fn refinement_ratio(self, fine: Discretisation) -> Option<f64> {
-        let r = match (self, fine) {
-            (Discretisation::Elements(a), Discretisation::Elements(b)) => b as f64 / a as f64,
+        self.refinement(fine).map(|(_, r)| r)
+    }
+
+    /// How `fine` refines `self`, and by which ratio r > 1: n_fine/n for 1-D meshes
+    /// ([`Refinement::Together`]: a 1-D mesh has one h); for 2-D meshes either σ and Δt
+    /// together (their ratios agree to 1e-9: the limit of space and time), or σ alone at
+    /// one Δt ([`Refinement::Mesh`]: the limit in space at that step), or Δt alone on one
+    /// mesh ([`Refinement::Step`]: the time-continuous limit on that mesh). ζ is refined
+    /// with σ by the same ratio or held (a sequence at one n_ζ converges to that n_ζ's
+    /// limit: the error across the width is then not in what the sequence measures, and
+    /// a study says so); a step refinement holds both counts. `None` for tolerances,
+    /// mixed kinds, ratios ≤ 1 or that differ.
+    pub fn refinement(self, fine: Discretisation) -> Option<(Refinement, f64)> {
+        let (kind, r) = match (self, fine) {
+            (Discretisation::Elements(a), Discretisation::Elements(b)) => (Refinement::Together, b as f64 / a as f64),
             (Discretisation::Mesh2d { sigma: s0, zeta: z0, time_step: t0 }, Discretisation::Mesh2d { sigma: s1, zeta: z1, time_step: t1 }) => {
                 let (rs, rz, rt) = (s1 as f64 / s0 as f64, z1 as f64 / z0 as f64, t0 / t1);
                 let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-                if !((close(rs, rz) || z0 == z1) && close(rs, rt)) {
+                let zeta_follows = close(rs, rz) || z0 == z1;
+                if s0 == s1 && z0 == z1 {
+                    (Refinement::Step, rt)
+                } else if zeta_follows && close(rt, 1.0) {
+                    (Refinement::Mesh, rs)
+                } else if zeta_follows && close(rs, rt) {
+                    (Refinement::Together, rs)
+                } else {
                     return None;
                 }
-                rs
             }
             _ => return None,
         };
-        (r.is_finite() && r > 1.0).then_some(r)
+        (r.is_finite() && r > 1.0).then_some((kind, r))
     }
 
     /// The element count along σ of a mesh (the x-axis of convergence plots); `None`

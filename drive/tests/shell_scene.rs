@@ -51,6 +51,21 @@ fn shipped_shell_scenes_read_and_round_trip() {
     }
 }
 
+/// The long study scenes (docs/fem-shell.md §14) read and round-trip; the taut
+/// swivel's belt is shorter than the taut loop and has no weight, so that its span
+/// tensions come from the stretch alone and stay equal in rotation (§9.4).
+#[test]
+fn study_scenes_read_and_round_trip() {
+    for text in [include_str!("../../scenes/studies/shell-runoff-ten-revolutions.json"), include_str!("../../scenes/studies/shell-runoff-taut-swivel.json")] {
+        let s = Scene::from_json_str(text).unwrap();
+        assert_eq!(s.belt.theory, drive::Theory::Shell);
+        roundtrip(&s);
+        assert_eq!(s.shell_run().steps, 2000, "ten revolutions at ωΔt = π/32");
+    }
+    let taut = Scene::from_json_str(include_str!("../../scenes/studies/shell-runoff-taut-swivel.json")).unwrap();
+    assert!(taut.slack_ratio() < 1.0 && taut.effects.gravity.is_none(), "L/L_geom = {}", taut.slack_ratio());
+}
+
 #[test]
 fn both_drum_speeds_and_the_steering_histories_are_read() {
     let mut v = ci();

@@ -18,6 +18,7 @@ use plotters::coord::ranged1d::ValueFormatter;
 use plotters::coord::CoordTranslate;
 use plotters::prelude::*;
 
+use drive::result::Refinement;
 use drive::scene::Scene;
 use drive::view::ContactState;
 
@@ -833,10 +834,21 @@ pub(crate) fn area_message(area: &Area, title: &str, text: &str) -> Result<(), S
 }
 
 /// Left: FE error vs elements (log–log) per formulation for the headline measures, with
-/// reference slopes h¹, h², h⁴ below the first point. Right: BVP error vs the
+/// reference slopes h¹, h², h⁴ below the first point (against the step's refinement
+/// Δt₀/Δt for a shell study that refines only Δt). Right: BVP error vs the
 /// requested tolerance per variant, with the line error = tolerance.
 pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     let measures = headline(study);
+    // the abscissa: the element count, or for a shell study that refines only the time
+    // step on one mesh the step's refinement Δt₀/Δt (Δt₀ the coarsest level's)
+    let first_step = study.plan.shell_levels().and_then(|l| l.first().copied());
+    let (x_of, x_name): (Box<dyn Fn(Discretisation) -> Option<usize>>, &str) = match (study.plan.shell_refinement(), first_step) {
+        (Some(Refinement::Step), Some(Discretisation::Mesh2d { time_step: t0, .. })) => (
+            Box::new(move |d| if let Discretisation::Mesh2d { time_step, .. } = d { Some((t0 / time_step).round() as usize) } else { None }),
+            "time-step refinement Δt₀/Δt",
+        ),
+        _ => (Box::new(|d: Discretisation| d.elements_along()), "elements"),
+    };
     render("convergence", 620, |root| {
         let (left, right) = root.split_horizontally(WIDTH / 2);
         // FE panel.
@@ -845,7 +857,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
         let mut xs = Vec::new();
         for &i in &fe {
             for (r, row) in study.series[i].rows.iter().enumerate() {
-                if let Some(n) = row.run.discretisation.elements_along() {
+                if let Some(n) = x_of(row.run.discretisation) {
                     xs.push(n as f64);
                     for (m, _) in &measures {
                         if let Some(e) = row_error(&study.series[i], r, *m) {
@@ -861,7 +873,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             } else {
                 "no FE run produced errors\nagainst the reference"
             };
-            area_message(&left, &format!("{} — FE: error vs elements", scene.name), why)?;
+            area_message(&left, &format!("{} — FE: error vs {x_name}", scene.name), why)?;
         } else {
             // x: log₂ of the element count on a linear axis, labelled with the counts.
             let (n0, n1) = range_of(xs.iter());
@@ -870,7 +882,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             // the first formulation and run over the mesh range.
             let first = fe.iter().find_map(|&i| {
                 let s = &study.series[i];
-                (0..s.rows.len()).find_map(|r| s.rows[r].run.discretisation.elements_along().and_then(|n| row_error(s, r, None).map(|e| (n as f64, e))))
+                (0..s.rows.len()).find_map(|r| x_of(s.rows[r].run.discretisation).and_then(|n| row_error(s, r, None).map(|e| (n as f64, e))))
             });
             let slopes: Vec<(f64, Vec<(f64, f64)>)> = first
                 .map(|(na, ea)| {
@@ -884,7 +896,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             let entries = 2 * fe.len() + slopes.len();
             let y0 = y0 / 10f64.powf((y1 / y0).log10() * (0.05 * entries as f64).min(0.6));
             let mut chart = ChartBuilder::on(&left)
-                .caption(format!("{} — FE: error vs elements", scene.name), ("sans-serif", 20))
+                .caption(format!("{} — FE: error vs {x_name}", scene.name), ("sans-serif", 20))
                 .margin(12)
                 .x_label_area_size(50)
                 .y_label_area_size(80)
@@ -892,7 +904,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 .map_err(err)?;
             let count_label = |v: &f64| if (v - v.round()).abs() < 1e-9 { format!("{}", 2f64.powf(v.round()) as u64) } else { String::new() };
             grid_style(&mut chart.configure_mesh(), 15)
-                .x_desc("elements (log scale)")
+                .x_desc(format!("{x_name} (log scale)"))
                 .y_desc("relative error")
                 .x_labels(((x1 - x0).ceil() as usize + 1) * 2)
                 .x_label_formatter(&count_label)
@@ -905,14 +917,14 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 chart
                     .draw_series(DashedLineSeries::new(line, 6, 6, BLACK.mix(shade).stroke_width(1)))
                     .map_err(err)?
-                    .label(format!("slope h^{p}"))
+                    .label(if x_name == "elements" { format!("slope h^{p}") } else { format!("slope Δt^{p}") })
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.mix(shade).stroke_width(1)));
             }
             for &i in &fe {
                 let col = series_color(study, i);
                 let s = &study.series[i];
                 for (mi, (m, mlabel)) in measures.iter().enumerate() {
-                    let pts = error_points(s, *m, |d| d.elements_along().map(|n| (n as f64).log2()));
+                    let pts = error_points(s, *m, |d| x_of(d).map(|n| (n as f64).log2()));
                     if !pts.is_empty() {
                         let (marker, dashed) = Marker::of_measure(mi);
                         marked_line(&mut chart, &pts, col, marker, dashed, format!("{} — {mlabel}", s.method))?;

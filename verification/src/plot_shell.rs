@@ -202,19 +202,13 @@ mod tests {
         }
     }
 
-    /// A shell study made of three synthetic levels (no solve): q(n) = 1 + 1/n² for the
-    /// mid-span heights, an oscillating tension, a lateral offset z̄ = v (t − t₀) per
-    /// level and one frame of surface fields on the finest. `report` writes the run-off
-    /// and contact-map plots in place of shape and force, the reference's estimates
-    /// (the exact limit), and no mutual-convergence table.
-    #[test]
-    fn a_shell_study_reports_its_run_off_its_contact_maps_and_its_estimates() {
-        use crate::run::{Discretisation, Family, Run, RunCost, RunData, Samples};
-        use crate::study::{Study, StudyPlan};
-        let scene = drive::Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
-        let levels: Vec<Discretisation> = [32usize, 64, 128].iter().map(|&n| crate::run::ShellFe::level(&scene, n, 2)).collect();
-        let plan = StudyPlan::shell(levels.clone());
-        let runs: Vec<Run> = levels
+    /// The runs of a synthetic shell study at `levels` (three; no solve): q = 1 + 1/n²
+    /// for the mid-span heights with n = 32, 64, 128 by level, an oscillating tension, a
+    /// lateral offset z̄ = v (t − t₀) per level and one frame of surface fields on the
+    /// finest.
+    fn synthetic_runs(levels: &[crate::run::Discretisation]) -> Vec<crate::run::Run> {
+        use crate::run::{Family, Run, RunCost, RunData, Samples};
+        levels
             .iter()
             .enumerate()
             .map(|(k, &d)| {
@@ -247,7 +241,54 @@ mod tests {
                 };
                 Run { method: crate::run::SHELL_FE.into(), family: Family::Fem, discretisation: d, wall_seconds: 1.0, outcome: Ok(data) }
             })
-            .collect();
+            .collect()
+    }
+
+    /// A shell study that refines only the time step on one mesh (`--refine step`):
+    /// its convergence plot is over the step's refinement Δt₀/Δt (not the element
+    /// count, which is one), the study notes the limit it converges to, and the report's
+    /// command reproduces it.
+    #[test]
+    fn a_study_of_the_time_step_alone_plots_over_the_step_and_says_what_it_converges_to() {
+        use crate::run::Discretisation;
+        use crate::study::{Study, StudyPlan};
+        let scene = drive::Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
+        let levels: Vec<Discretisation> = (0..3).map(|k| Discretisation::Mesh2d { sigma: 32, zeta: 2, time_step: 0.1 / f64::from(1u32 << k) }).collect();
+        let plan = StudyPlan::shell(levels.clone());
+        plan.validate().unwrap();
+        assert_eq!(plan.shell_refinement(), Some(drive::result::Refinement::Step));
+        let notes = crate::study::shell_level_notes(&levels);
+        assert!(notes.len() == 1 && notes[0].starts_with("the time step alone is refined, on the mesh 32×2: the sequence converges to the time-continuous limit on that mesh"), "{notes:?}");
+        let computed = plan.reference.richardson(&synthetic_runs(&levels));
+        let y = computed.estimates.iter().find(|e| e.quantity == "y_upper_mid").expect("y extrapolated");
+        assert!((y.value - 1.0).abs() < 1e-12 && (y.order.unwrap() - 2.0).abs() < 1e-9, "{y:?}");
+        let study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), crate::run::Family::Fem, synthetic_runs(&levels))]);
+        let svg = crate::plot::convergence_svg(&scene, &study).unwrap();
+        assert!(svg.contains("error vs time-step refinement Δt₀/Δt") && svg.contains("slope Δt^2"), "the step's axis");
+        let texts: Vec<&str> = svg.split("</text>").filter_map(|t| t.rsplit_once('>').map(|(_, x)| x.trim())).collect();
+        for tick in ["1", "2", "4"] {
+            assert!(texts.contains(&tick), "tick {tick} of Δt₀/Δt in {texts:?}");
+        }
+        let dir = std::env::temp_dir().join(format!("beltcheck-report-shell-step-{}", std::process::id()));
+        crate::report::write_scene_report(&scene, std::path::Path::new("scenes/shell-runoff.json"), &study, &dir).unwrap();
+        let md = std::fs::read_to_string(dir.join("shell-runoff").join("report.md")).unwrap();
+        assert!(md.contains("beltcheck converge scenes/shell-runoff.json --refine step --levels 32x2"), "{md}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// A shell study made of three synthetic levels (no solve): q(n) = 1 + 1/n² for the
+    /// mid-span heights, an oscillating tension, a lateral offset z̄ = v (t − t₀) per
+    /// level and one frame of surface fields on the finest. `report` writes the run-off
+    /// and contact-map plots in place of shape and force, the reference's estimates
+    /// (the exact limit), and no mutual-convergence table.
+    #[test]
+    fn a_shell_study_reports_its_run_off_its_contact_maps_and_its_estimates() {
+        use crate::run::{Discretisation, Family};
+        use crate::study::{Study, StudyPlan};
+        let scene = drive::Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
+        let levels: Vec<Discretisation> = [32usize, 64, 128].iter().map(|&n| crate::run::ShellFe::level(&scene, n, 2)).collect();
+        let plan = StudyPlan::shell(levels.clone());
+        let runs = synthetic_runs(&levels);
         let computed = plan.reference.richardson(&runs);
         let mut study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), Family::Fem, runs)]);
         study.compensation = Some(fem::shell::compensation::Compensation {

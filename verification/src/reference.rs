@@ -90,7 +90,7 @@ pub enum RichardsonError {
         levels: usize,
     },
     /// The three finest levels are not refined by one constant ratio (or mix kinds).
-    #[error("the three finest levels {} are not refined by one constant ratio > 1", list(.levels))]
+    #[error("the three finest levels {} are not refined in one way by one constant ratio > 1", list(.levels))]
     NotUniform {
         /// The three finest levels.
         levels: Vec<Discretisation>,
@@ -275,8 +275,8 @@ fn richardson_data(runs: &[Run], estimates: &mut Vec<Estimate>, notes: &mut Vec<
     }
     let three = &runs[n - 3..];
     let levels: Vec<Discretisation> = three.iter().map(|r| r.discretisation).collect();
-    let ratio = match (levels[0].refinement_ratio(levels[1]), levels[1].refinement_ratio(levels[2])) {
-        (Some(a), Some(b)) if (a - b).abs() <= 1e-9 * b => b,
+    let ratio = match (levels[0].refinement(levels[1]), levels[1].refinement(levels[2])) {
+        (Some((k1, a)), Some((k2, b))) if k1 == k2 && (a - b).abs() <= 1e-9 * b => b,
         _ => return Err(RichardsonError::NotUniform { levels }),
     };
     let mut data = Vec::new();

@@ -16,6 +16,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use drive::result::Refinement;
 use drive::scene::{Scene, Theory};
 use serde::{Deserialize, Serialize};
 
@@ -274,7 +275,18 @@ pub fn write_scene_report(scene: &Scene, scene_file: &Path, study: &Study, dir: 
 fn command_of(scene_file: &Path, study: &Study) -> String {
     let mut c = format!("beltcheck converge {}", scene_file.display());
     if let Some(levels) = study.plan.shell_levels() {
-        let sizes: Vec<String> = levels.iter().filter_map(|d| if let Discretisation::Mesh2d { sigma, zeta, .. } = d { Some(format!("{sigma}x{zeta}")) } else { None }).collect();
+        let mut sizes: Vec<String> = levels.iter().filter_map(|d| if let Discretisation::Mesh2d { sigma, zeta, .. } = d { Some(format!("{sigma}x{zeta}")) } else { None }).collect();
+        match study.plan.shell_refinement() {
+            // one mesh, its time step halved twice from the scene's
+            Some(Refinement::Step) => {
+                sizes.truncate(1);
+                let _ = write!(c, " --refine step");
+            }
+            Some(Refinement::Mesh) => {
+                let _ = write!(c, " --refine mesh");
+            }
+            _ => {}
+        }
         let _ = write!(c, " --levels {}", sizes.join(","));
         return c;
     }
@@ -423,7 +435,7 @@ The constant swivel of the steering drum that cancels the camber's run-off (spec
     }
     let _ = writeln!(
         m,
-        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(n_k/n_(k−1)). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
+        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(r), r the refinement ratio (n_k/n_(k−1), or Δt_(k−1)/Δt_k for a shell study of the step). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
         study.quantities.iter().filter(|q| q.is_scalar()).count(),
         study.plan.samples
     );

@@ -15,6 +15,7 @@
 //! Runs are executed one after another so that their wall times are comparable.
 
 use bvp::collocation::Scheme;
+use drive::result::Refinement;
 use drive::scene::Scene;
 use serde::Serialize;
 
@@ -130,9 +131,10 @@ pub enum PlanError {
     #[error("element counts must lie in {MIN_ELEMENTS} … {MAX_ELEMENTS} and increase strictly, got {0:?}")]
     Meshes(Vec<usize>),
     /// The levels of a shell study are not three or more 2-D meshes, each refined from
-    /// the one before with σ and Δt by one ratio > 1 and n_ζ by it or held (or the plan
+    /// the one before in one way throughout ([`drive::result::Refinement`]) by one ratio
+    /// > 1, n_ζ with σ by it or held (or the plan
     /// also names BVP or 1-D FE runs, which a shell scene has none of).
-    #[error("a shell study needs three or more levels n_σ × n_ζ with Δt, each refined from the one before with σ and Δt by one ratio > 1 (the same ratio over the three finest, for the Richardson extrapolation) and n_ζ by that ratio or held, and nothing else; got {}", crate::reference::list(.0))]
+    #[error("a shell study needs three or more levels n_σ × n_ζ with Δt, each refined from the one before in one way throughout — σ and Δt together, σ alone at one Δt, or Δt alone on one mesh — by one ratio > 1 (the same ratio over the three finest, for the Richardson extrapolation), n_ζ with σ by that ratio or held, and nothing else; got {}", crate::reference::list(.0))]
     ShellLevels(Vec<Discretisation>),
     /// A shell scene with a plan that is not a shell study, or a shell study of a scene
     /// that is not a shell.
@@ -164,6 +166,40 @@ pub enum PlanError {
     },
 }
 
+/// How a shell study's `levels` are refined ([`Discretisation::refinement`]): the one kind
+/// every level shares with the one before it, `None` when there are fewer than two levels
+/// or the kinds differ (no one limit to extrapolate to).
+pub fn shell_refinement(levels: &[Discretisation]) -> Option<Refinement> {
+    let kinds: Vec<Option<Refinement>> = levels.windows(2).map(|w| w[0].refinement(w[1]).map(|(k, _)| k)).collect();
+    let first = *kinds.first()?;
+    kinds.iter().all(|&k| k == first).then_some(first).flatten()
+}
+
+/// What a shell study's levels leave out of its estimates, for its notes: the error in
+/// space when only Δt is refined, the step's error when only the mesh is, the error
+/// across the width when n_ζ is held while σ is refined.
+pub fn shell_level_notes(levels: &[Discretisation]) -> Vec<String> {
+    let mut notes = Vec::new();
+    match (shell_refinement(levels), levels.last()) {
+        (Some(Refinement::Step), Some(&Discretisation::Mesh2d { sigma, zeta, .. })) => notes.push(format!(
+            "the time step alone is refined, on the mesh {sigma}×{zeta}: the sequence converges to the time-continuous limit on that mesh, so the error in space is not in the estimates (refine the mesh, --refine both or mesh, to include it)"
+        )),
+        (Some(Refinement::Mesh), Some(&Discretisation::Mesh2d { time_step, .. })) => notes.push(format!(
+            "the mesh alone is refined, at Δt = {} s: the sequence converges to the limit in space at that step, so the step's error is not in the estimates (refine Δt too, --refine both or step, to include it)",
+            drive::error::num(&time_step)
+        )),
+        _ => {}
+    }
+    if let (Some(Discretisation::Mesh2d { zeta: first, sigma: s0, .. }), Some(Discretisation::Mesh2d { zeta: last, sigma: s1, .. })) = (levels.first(), levels.last()) {
+        if first == last && s0 != s1 {
+            notes.push(format!(
+                "n_ζ is held at {last} over the levels: the sequence converges to that n_ζ's limit, so the error across the width is not in the estimates (refine ζ with σ to include it)"
+            ));
+        }
+    }
+    notes
+}
+
 impl StudyPlan {
     /// The convergence study of `converge` and `report`: reference gauss6 at 1e-11;
     /// gauss4 over 1e-4 … 1e-8, gauss6 and shooting over 1e-4 … 1e-10; FE formulations
@@ -192,8 +228,9 @@ impl StudyPlan {
 
     /// The convergence study of a shell scene (issue 15; docs/verification.md "The
     /// shell's study"): no BVP exists, so the shell FE ([`crate::run::ShellFe`]) runs at
-    /// `levels` — n_σ × n_ζ with Δt, coarsest first, σ and Δt refined together by one
-    /// ratio, n_ζ by the same ratio or held — and the reference is the Richardson
+    /// `levels` — n_σ × n_ζ with Δt, coarsest first, refined in one way throughout by one
+    /// ratio ([`shell_refinement`]: σ and Δt together, σ alone or Δt alone; n_ζ with σ by
+    /// the same ratio or held) — and the reference is the Richardson
     /// extrapolation of its three finest runs ([`Reference::Richardson`] of
     /// [`SHELL_FORMULATION`]). The study computes each level once: the series is the
     /// reference's own runs, held against the extrapolated values.
@@ -213,6 +250,12 @@ impl StudyPlan {
     pub fn with_compensation(mut self) -> StudyPlan {
         self.compensate = true;
         self
+    }
+
+    /// How the levels of a shell study are refined ([`shell_refinement`]), if this is one
+    /// and they are refined in one way throughout.
+    pub fn shell_refinement(&self) -> Option<Refinement> {
+        self.shell_levels().and_then(shell_refinement)
     }
 
     /// The levels of a shell study ([`StudyPlan::shell`]), if this is one.
@@ -291,7 +334,7 @@ impl StudyPlan {
         if let Some(levels) = self.shell_levels() {
             let shell_levels_valid = levels.len() >= 3
                 && levels.iter().all(|d| matches!(d, Discretisation::Mesh2d { .. }) && d.check().is_ok())
-                && levels.windows(2).all(|w| w[0].refinement_ratio(w[1]).is_some())
+                && shell_refinement(levels).is_some()
                 && levels.windows(3).last().is_some_and(|w| match (w[0].refinement_ratio(w[1]), w[1].refinement_ratio(w[2])) {
                     (Some(a), Some(b)) => (a - b).abs() <= 1e-9 * b,
                     _ => false,
@@ -515,13 +558,7 @@ impl Study {
         }
         progress(&Progress { done: total, total, label: String::new() });
         let mut computed = plan.reference.richardson(&runs);
-        if let (Some(Discretisation::Mesh2d { zeta: first, .. }), Some(Discretisation::Mesh2d { zeta: last, .. })) = (levels.first(), levels.last()) {
-            if first == last {
-                computed.notes.push(format!(
-                    "n_ζ is held at {last} over the levels: the sequence converges to that n_ζ's limit, so the error across the width is not in the estimates (refine ζ with σ to include it)"
-                ));
-            }
-        }
+        computed.notes.extend(shell_level_notes(levels));
         let mut study = Study::of_runs(scene, plan, computed, vec![(SHELL_FE.to_string(), Family::Fem, runs)]);
         if let (Some(&Discretisation::Mesh2d { sigma, zeta, time_step }), Ok(shell)) = (levels.first(), fem::shell::scene::ShellScene::from_scene(scene)) {
             if plan.compensate && shell.turning && shell.camber != 0.0 {
