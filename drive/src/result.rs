@@ -424,17 +424,6 @@ pub enum Refinement {
     Step,
 }
 
-impl Refinement {
-    /// What the limit of a sequence so refined is, for a study's text.
-    pub fn limit(self) -> &'static str {
-        match self {
-            Refinement::Together => "the limit in space and time",
-            Refinement::Mesh => "the limit in space at the levels' time step",
-            Refinement::Step => "the time-continuous limit on the levels' mesh",
-        }
-    }
-}
-
 impl Discretisation {
     /// The refinement ratio r > 1 from `self` to the finer `fine`
     /// ([`Discretisation::refinement`] without its kind).
