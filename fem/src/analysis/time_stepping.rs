@@ -937,7 +937,7 @@ mod tests {
             [nu(PointDerivative::Value)]
         }
         fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [self.rule, Rule::Gauss(2)], history: 2 }]
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [self.rule, Rule::Gauss(2)], history: 3 }]
         }
         fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
             let target = if self.solved { (self.gap)(at.sigma) + 3.0 * at.zeta } else { 0.0 };
@@ -946,13 +946,13 @@ mod tests {
         }
         fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
             if term == 1 {
-                0..2
+                0..3
             } else {
                 0..0
             }
         }
         fn cut_history(&self, term: usize) -> Option<CutHistory> {
-            (term == 1).then_some(CutHistory { indicator: 0, share: 1 })
+            (term == 1).then_some(CutHistory { indicator: 0, share: 1, entry: Some(2) })
         }
         fn zone(&self, _term: usize, at: &SurfacePoint, v: &[f64; 1]) -> f64 {
             if self.solved {
@@ -979,13 +979,17 @@ mod tests {
     ///   cos 2π(σ − 0.1615) − 0.3 + 3ζ), on each ζ-row of points its own length
     ///   acos(0.3 − 3ζ)/π within 2e-4 (measured 2.6e-5 and 2.1e-6: the projection's
     ///   error at 8 elements moves the roots; a wrong element, ξ or η for the root search
-    ///   would move them by ~0.1).
+    ///   would move them by ~0.1);
+    /// - each point inside holds its distance from the zone's upstream edge
+    ///   ([`CutHistory::entry`]): the point less the distance is a root of the indicator
+    ///   (to 1e-9) with the zone downstream of it, less than the zone's length away; the
+    ///   points outside hold 0.
     #[test]
     fn cut_cells_measure_a_zone_by_the_indicator_roots() {
         // Σ share × cell and Σ whole cells of the points inside, per ζ-row b (0, 1)
         let measure = |kernel: Cut| -> [(f64, f64, f64); 2] {
             let mesh = SurfaceMesh::mapped(1.0, 8, |u| u + 0.25 * (TAU * u).sin() / TAU, [0.0, 0.1], 1).unwrap();
-            let gap = kernel.gap;
+            let (gap, kernel_solved) = (kernel.gap, kernel.solved);
             let asm = SurfaceAssembler::new(mesh, kernel, &[]).unwrap();
             let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
@@ -999,6 +1003,19 @@ mod tests {
                     let (share, length) = (state[1], cell[1] - cell[0]);
                     // a point out of the zone counts 0, its zone part goes to its neighbour
                     assert!(share >= 0.0 && (state[0] > 0.0 || share == 0.0), "share {share} at σ = {}", point.at.sigma);
+                    // the distance from the upstream edge (−σ: the kernel's transport is
+                    // 0, taken as +σ)
+                    let distance = state[2];
+                    if state[0] > 0.0 {
+                        let edge = (point.at.sigma - distance).rem_euclid(1.0);
+                        assert!(distance <= 0.75, "σ = {}: {distance} from the edge at {edge}", point.at.sigma);
+                        if !kernel_solved {
+                            // a root of the indicator, the zone downstream of it
+                            assert!(gap(edge).abs() < 1e-9 && gap(edge + 1e-6) > 0.0, "σ = {}: the edge {edge}, gap {:e}", point.at.sigma, gap(edge));
+                        }
+                    } else {
+                        assert_eq!(distance, 0.0, "σ = {} outside", point.at.sigma);
+                    }
                     let row = &mut out[point.b];
                     row.0 += share * length;
                     row.1 += if gap(point.at.sigma) > 0.0 { length } else { 0.0 };

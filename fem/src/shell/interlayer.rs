@@ -46,9 +46,10 @@ use super::membrane::dot;
 use super::ShellError;
 
 /// Number of history values per interlayer point.
-pub const STATE: usize = 13;
+pub const STATE: usize = 14;
 /// Offsets in the state: u, r_n, ∂̊_s r_n (three each), S̃_n, the contact flag (advected:
-/// the foot's), the point's own gap and share of the contact (kept).
+/// the foot's), the point's own gap, share of the contact and distance from its entry
+/// (kept).
 const U: usize = 0;
 const POSITION: usize = 3;
 const SLOPE: usize = 6;
@@ -67,6 +68,15 @@ pub const CONTACT_GAP: usize = 11;
 /// committed exit instead of one transport step cΔt past it (the release lag), and an
 /// edge cuts the cell it lies in instead of switching whole points.
 pub const CONTACT_SHARE: usize = 12;
+/// The point's distance along σ from the committed contact's entry (the edge the drums
+/// carry the belt in through), set by the core after each advance
+/// ([`crate::surface::assembly::CutHistory::entry`]); 0 out of contact. Kept. While the
+/// drums turn, it decides whether the point's foot, the step's travel cΔt upstream, was
+/// in the committed contact ([`Interlayer::slip`]): a distance from the gap's root,
+/// continuous as the entry moves, where the advected flag's ½-crossing decided before
+/// and switched a point near an entry between taking the contact edge's slip and
+/// starting from u = 0 (docs/fem-shell.md §7 (b), §14).
+pub const CONTACT_ENTRY: usize = 13;
 /// The contact flag in the state: where it is < ½ u was released (set to 0 out of
 /// contact), so the advection does not interpolate u across it with the cubic
 /// ([`crate::surface::assembly::SurfaceKernel::history_support`]).
@@ -289,14 +299,22 @@ impl Interlayer {
 
     /// The tangential deformation u_{n+1} against drum `drum` of a point at r (module
     /// documentation), from the (advected) state and r_n(foot) ([`Interlayer::foot`]), at the end
-    /// `time` of a step `dt` (`(time, dt)`); e the drum's radial direction at r. Zero where the foot was
-    /// not in contact (flag < ½ after the advection's interpolation, or the foot outside
-    /// the drum at t_n: the flag's cubic interpolation spreads it upstream of an entry).
+    /// `time` of a step `dt` (`(time, dt)`); e the drum's radial direction at r. Zero where the
+    /// foot was not in the committed contact: while the drums turn, where the point lies less
+    /// than the step's travel |c|Δt past the contact's entry ([`CONTACT_ENTRY`], measured from
+    /// the root of the committed gap); at rest (the foot is the point), where its advected
+    /// flag is < ½ or r_n(σ_r) is outside the drum at t_n.
     pub fn slip<D: Scalar>(&self, drum: &Drum, r: &[D; 3], e: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 3] {
-        // the foot in contact: the committed flag (interpolated by the advection, so
-        // also ≥ ½ just upstream of a contact's entry) and the gap of r_n(σ_r) at t_n (not
-        // of r_n(foot): its tangential extrapolation leaves the drum by δs²/2R)
-        if state[CONTACT] < 0.5 || drum.gap(self.radius, &upstream, time - dt).0 <= 0.0 {
+        let shift = self.transport_at(time - 0.5 * dt) * dt;
+        // Turning, the distance from the committed entry: the advected flag (the foot's,
+        // interpolated by the core's cubic) crosses ½ somewhere near the entry, and a
+        // point whose foot lay in the contact edge's layer took that layer's slip or none
+        // of it by which side of the crossing its foot fell — jumps of the rotating span
+        // tensions with Δt (docs/fem-shell.md §14). At rest, the flag and the gap of
+        // r_n(σ_r) at t_n (not of r_n(foot): its tangential extrapolation leaves the drum
+        // by δs²/2R).
+        let foot_inside = if shift == 0.0 { state[CONTACT] >= 0.5 && drum.gap(self.radius, &upstream, time - dt).0 > 0.0 } else { state[CONTACT_ENTRY] >= shift.abs() };
+        if !foot_inside {
             return [D::zero(); 3];
         }
         let c = drum.centre3();
@@ -330,7 +348,7 @@ impl Interlayer {
     /// belt (without J): ½Pγ_i² where γ_i > 0, plus ½P_⊥u·u times the point's share
     /// of the committed contact for the drum nearest to r.
     /// −∂/∂r of drum i's share is the force per area drum i exerts on the belt.
-    pub fn shares<D: Scalar>(&self, r: &[D; 3], (foot, upstream): (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 2] {
+    pub fn shares<D: Scalar>(&self, r: &[D; 3], foot: (&[D; 3], [f64; 3]), (time, dt): (f64, f64), state: &[f64]) -> [D; 2] {
         let mut w = [D::zero(); 2];
         let mut nearest: Option<(f64, usize, [D; 3])> = None;
         for (i, drum) in self.drums.iter().enumerate() {
@@ -343,7 +361,7 @@ impl Interlayer {
             }
         }
         if let (Some((_, i, e)), false, true) = (nearest, state.is_empty() || state[CONTACT_SHARE] <= 0.0, self.shear > 0.0) {
-            let u = self.slip(&self.drums[i], r, &e, (foot, upstream), (time, dt), state);
+            let u = self.slip(&self.drums[i], r, &e, foot, (time, dt), state);
             w[i] += dot(&u, &u) * (0.5 * self.shear * state[CONTACT_SHARE]);
         }
         w
@@ -354,7 +372,7 @@ impl Interlayer {
     /// of the converged configuration, the contact flag, and as the gap and the share
     /// the nearest gap and the contact flag (the core then sets both,
     /// [`CONTACT_GAP`], [`CONTACT_SHARE`]).
-    pub fn advance(&self, r: &[f64; 3], (foot, upstream): (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
+    pub fn advance(&self, r: &[f64; 3], foot: (&[f64; 3], [f64; 3]), record: &[f64; 6], (time, dt): (f64, f64), previous: &[f64], next: &mut [f64]) {
         let (mut u, mut contact, mut nearest) = ([0.0; 3], 0.0, f64::NEG_INFINITY);
         for drum in &self.drums {
             let (gamma, e) = drum.gap(self.radius, r, time);
@@ -362,7 +380,7 @@ impl Interlayer {
             if gamma > 0.0 {
                 contact = 1.0;
                 if self.shear > 0.0 {
-                    u = self.slip(drum, r, &e, (foot, upstream), (time, dt), previous);
+                    u = self.slip(drum, r, &e, foot, (time, dt), previous);
                 }
             }
         }
@@ -374,6 +392,7 @@ impl Interlayer {
         next[CONTACT] = contact;
         next[CONTACT_GAP] = nearest;
         next[CONTACT_SHARE] = contact;
+        next[CONTACT_ENTRY] = 0.0;
     }
 
     /// The gap γ = R − dist(r, axis) to the drum nearest to r (the larger of the two).
@@ -452,6 +471,8 @@ mod tests {
         let mut state = vec![0.0; STATE];
         state[U..U + 3].copy_from_slice(&[1e-3, 0.0, 2e-4]);
         state[CONTACT] = 1.0;
+        // deep in the contact: more than the step's travel cΔt = 0.03 m past the entry
+        state[CONTACT_ENTRY] = 0.1;
         let m = drum.motion(time - dt, time, true);
         let c = [0.5, 0.0, 0.0];
         let rolled = apply(&m, &[foot[0] - c[0], foot[1] - c[1], foot[2]]);
@@ -480,6 +501,8 @@ mod tests {
         let mut state = vec![0.0; STATE];
         state[U] = 1e-3;
         state[CONTACT] = 1.0;
+        // deep in the contact: more than the step's travel cΔt = 0.03 m past the entry
+        state[CONTACT_ENTRY] = 0.1;
         let step = (1.0, 0.1);
         let (gamma, e): (f64, _) = layer.drums[1].gap(layer.radius, &r, step.0);
         let u = layer.slip(&layer.drums[1], &r, &e, (&r, r), step, &state);
@@ -506,5 +529,50 @@ mod tests {
         layer.advance(&[0.5 + d, 0.3, 0.0], (&r, r), &[0.0; 6], step, &state, &mut next);
         assert_eq!((next[CONTACT], next[CONTACT_SHARE]), (0.0, 0.0));
         assert!((next[CONTACT_GAP] + ((0.09 + d * d) as f64).sqrt() - 0.3).abs() < 1e-15, "gap {}", next[CONTACT_GAP]);
+    }
+
+    /// Whether a point's foot was in the committed contact: while the drums turn, by the
+    /// point's distance d from the committed entry ([`CONTACT_ENTRY`]) against the step's
+    /// travel |c|Δt = 0.03 m, whatever the advected flag says; at rest by the flag and the
+    /// gap of r_n(σ_r). At the driven drum's top (R = 0.3 m, ω = 1 rad/s, Δt = 0.1 s):
+    /// - d = 0.01 m with the flag set (its cubic interpolation ≥ ½ just upstream of the
+    ///   entry) and r_n(σ_r) inside the drum: u = 0 — the material entered during the
+    ///   step;
+    /// - d = 0.03 m with the flag unset: the recursion from the foot, ũ + r − M r_n(foot)
+    ///   projected on the tangent plane (here ũ = 0), to round-off;
+    /// - at rest the point itself: with the flag set and r_n(σ_r) on the drum, the
+    ///   recursion whatever d is; with the flag unset, 0.
+    #[test]
+    fn the_foot_is_in_contact_by_its_distance_from_the_entry_while_the_drums_turn() {
+        let drums = [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)];
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let (step, radius) = ((1.0, 0.1), 0.3);
+        let at = |arc: f64| [0.5 + radius * (arc / radius).sin(), radius * (arc / radius).cos(), 1e-4];
+        let recursion = |layer: &Interlayer, r: &[f64; 3], foot: &[f64; 3], turning: bool| -> [f64; 3] {
+            let (_, e) = layer.drums[1].gap(layer.radius, r, step.0);
+            let m = layer.drums[1].motion(step.0 - step.1, step.0, turning);
+            let moved = apply(&m, &[foot[0] - 0.5, foot[1], foot[2]]);
+            let raw: [f64; 3] = std::array::from_fn(|k| r[k] - moved[k] - [0.5, 0.0, 0.0][k]);
+            std::array::from_fn(|k| raw[k] - dot(&raw, &e) * e[k])
+        };
+        let slip = |layer: &Interlayer, r: &[f64; 3], foot: &[f64; 3], flag: f64, d: f64| {
+            let mut state = vec![0.0; STATE];
+            (state[CONTACT], state[CONTACT_ENTRY]) = (flag, d);
+            let (_, e) = layer.drums[1].gap(layer.radius, r, step.0);
+            layer.slip(&layer.drums[1], r, &e, (foot, *foot), step, &state)
+        };
+        // 0.01 m past the entry, with the flag set and r_n(σ_r) inside the drum (what the
+        // flag's criterion took for a foot in contact, with u = the recursion ≠ 0)
+        let (r, foot) = (at(0.01), [0.5, radius - 1e-6, 0.0]);
+        assert!(recursion(&layer, &r, &foot, true).iter().any(|x| x.abs() > 1e-6));
+        assert_eq!(slip(&layer, &r, &foot, 1.0, 0.01), [0.0; 3]);
+        // 0.03 m past the entry: the foot at the entry, on the drum
+        let (r, foot) = (at(0.03), [0.5, radius - 1e-6, 0.0]);
+        let (u, expected) = (slip(&layer, &r, &foot, 0.0, 0.03), recursion(&layer, &r, &foot, true));
+        assert!(expected.iter().any(|x| x.abs() > 1e-6) && u == expected, "{u:?} against {expected:?}");
+        let resting = Interlayer { start: f64::INFINITY, ..layer.clone() };
+        let (u, expected) = (slip(&resting, &r, &foot, 1.0, 0.0), recursion(&resting, &r, &foot, false));
+        assert!(expected.iter().any(|x| x.abs() > 1e-6) && u == expected, "at rest: {u:?} against {expected:?}");
+        assert_eq!(slip(&resting, &r, &foot, 0.0, 0.03), [0.0; 3]);
     }
 }

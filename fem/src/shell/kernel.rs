@@ -23,7 +23,7 @@ use crate::surface::assembly::{CutHistory, PointDerivative, PointVariable, Quadr
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, CONTACT_FLAG, CONTACT_GAP, CONTACT_SHARE, DEFORMATION, STATE};
+use super::interlayer::{Interlayer, Schedule, CONTACT_ENTRY, CONTACT_FLAG, CONTACT_GAP, CONTACT_SHARE, DEFORMATION, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -607,10 +607,11 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         }
     }
 
-    /// The point's own committed gap and share of the contact (not advected).
+    /// The point's own committed gap, share of the contact and distance from its entry
+    /// (not advected).
     fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
         match (&self.interlayer, term) {
-            (Some(_), INTERLAYER) => CONTACT_GAP..CONTACT_SHARE + 1,
+            (Some(_), INTERLAYER) => CONTACT_GAP..CONTACT_ENTRY + 1,
             _ => 0..0,
         }
     }
@@ -619,7 +620,7 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     /// ([`super::interlayer::CONTACT_SHARE`]), cut at the roots of the gap ([`Self::zone`]).
     fn cut_history(&self, term: usize) -> Option<CutHistory> {
         match (&self.interlayer, term) {
-            (Some(_), INTERLAYER) => Some(CutHistory { indicator: CONTACT_GAP, share: CONTACT_SHARE }),
+            (Some(_), INTERLAYER) => Some(CutHistory { indicator: CONTACT_GAP, share: CONTACT_SHARE, entry: Some(CONTACT_ENTRY) }),
             _ => None,
         }
     }

@@ -67,13 +67,23 @@ pub struct SurfaceTerm {
 /// 0. The shares times the cells' lengths add up to the zone's length, continuous as an
 /// edge moves, where whole points count the zone to within a cell (first order in h); a
 /// single share still jumps where an edge crosses a point (the length changes hands
-/// between neighbours: an O(h²) change of the integral).
+/// between neighbours: an O(h²) change of the integral). With `entry`, the core also
+/// sets at each point inside its distance along the row from the zone's upstream edge
+/// (the edge the transport carries the material in through; the distance may wrap
+/// around the loop), 0 outside, and the row's length where the whole row is inside:
+/// how far the material at the point has travelled inside the zone, which a kernel
+/// needs to tell material that has been inside for a whole step from material that
+/// entered during it (the interlayer's contact of a point's foot, docs/fem-shell.md
+/// §7 (b)): a distance from the committed edge, continuous as the edge moves, where an
+/// interpolated indicator switches where it crosses a level.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct CutHistory {
     /// The indicator at the point (> 0 in the zone).
     pub indicator: usize,
     /// The share the core sets.
     pub share: usize,
+    /// The distance from the zone's upstream edge the core sets, if any.
+    pub entry: Option<usize>,
 }
 
 /// Where and when a density is evaluated.

@@ -151,8 +151,10 @@ impl TermStates {
     /// row: the edges between inside and outside neighbours (the roots of the indicator
     /// `at(e, σ, row)` along the row, in the element e of one of the two points that
     /// holds σ), then the zone's part of the cell of each point inside, and of each
-    /// outside neighbour's cell, given to the inside point next to it.
-    fn cut(&mut self, cut: CutHistory, length: f64, elements: &dyn Fn(usize, usize) -> (usize, [f64; 2]), at: &dyn Fn(usize, f64, usize) -> f64) {
+    /// outside neighbour's cell, given to the inside point next to it; with
+    /// [`CutHistory::entry`], each point's distance from the zone's upstream edge, upstream
+    /// meaning towards −σ for a `downstream` transport along +σ and towards +σ otherwise.
+    fn cut(&mut self, cut: CutHistory, length: f64, downstream: bool, elements: &dyn Fn(usize, usize) -> (usize, [f64; 2]), at: &dyn Fn(usize, f64, usize) -> f64) {
         let n = self.unique.len();
         let mut distinct = vec![0; self.columns];
         for (k, group) in self.groups.iter().enumerate() {
@@ -204,7 +206,43 @@ impl TermStates {
                 let value = if hi > lo { counted[column] / (hi - lo) } else { f64::from(u8::from(inside[distinct[column]])) };
                 self.values[(row * self.columns + column) * self.width + cut.share] = value;
             }
+            if let Some(entry) = cut.entry {
+                let travelled = Self::travelled(&self.unique, &inside, &edges, length, downstream);
+                for column in 0..self.columns {
+                    self.values[(row * self.columns + column) * self.width + entry] = travelled[distinct[column]];
+                }
+            }
         }
+    }
+
+    /// Each distinct point's distance from the zone's upstream edge along the row
+    /// (periodic, `x` the points' σ, `edges[k]` the edge between points k and k + 1 where
+    /// one of them is inside): 0 outside, `length` everywhere if no point is outside.
+    /// Upstream is towards −σ if `downstream` (transport along +σ), else towards +σ.
+    fn travelled(x: &[f64], inside: &[bool], edges: &[f64], length: f64, downstream: bool) -> Vec<f64> {
+        let n = x.len();
+        let Some(outside) = inside.iter().position(|&i| !i) else {
+            return vec![length; n];
+        };
+        let mut out = vec![0.0; n];
+        // the distance travelled inside so far, None outside
+        let mut travelled: Option<f64> = None;
+        // walk once around the loop with the transport, from a point outside
+        for step in 1..=n {
+            let (k, previous) = if downstream { ((outside + step) % n, (outside + step - 1) % n) } else { ((outside + n - step % n) % n, (outside + n - (step - 1)) % n) };
+            // the spacing from `previous` to k along the walk (unwrapped)
+            let gap = if downstream { x[k] - x[previous] } else { x[previous] - x[k] };
+            let gap = if gap < 0.0 { gap + length } else { gap };
+            travelled = match (inside[k], travelled) {
+                (false, _) => None,
+                (true, Some(t)) => Some(t + gap),
+                // the first point inside: from the edge between the two, `edges` being
+                // indexed by the lower point of a pair and lying in its interval
+                (true, None) => Some(if downstream { (gap - (edges[previous] - x[previous])).max(0.0) } else { (edges[k] - x[k]).max(0.0) }),
+            };
+            out[k] = travelled.unwrap_or(0.0);
+        }
+        out
     }
 
     /// The states advected by `shift` = cΔt along σ (module documentation).
@@ -386,9 +424,48 @@ impl SurfaceHistory {
                     let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
                     asm.kernel().zone(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v)
                 };
-                states.cut(cut, self.length, &elements, &at);
+                let downstream = asm.kernel().belt_speed(ev.time + 0.5 * ev.dt) >= 0.0;
+                states.cut(cut, self.length, downstream, &elements, &at);
             }
         }
         next
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`TermStates::travelled`]: each point's distance from the zone's upstream edge,
+    /// walked with the transport (+σ) or against it, across the loop's end, 0 outside,
+    /// the row's length where no point is outside; the edges off the points (one at a
+    /// point: distance 0). A walk from the wrong edge would give the exit's distances
+    /// (0.35 … 0.05 for 0.05 … 0.35).
+    #[test]
+    fn travelled_is_the_distance_from_the_upstream_edge() {
+        let x: Vec<f64> = (0..10).map(|k| 0.1 * k as f64).collect();
+        let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(p, q)| (p - q).abs() < 1e-12);
+        let mut inside = vec![false; 10];
+        let mut edges = x.clone();
+        for k in 3..=6 {
+            inside[k] = true;
+        }
+        (edges[2], edges[6]) = (0.25, 0.65);
+        let plus = TermStates::travelled(&x, &inside, &edges, 1.0, true);
+        assert!(close(&plus, &[0.0, 0.0, 0.0, 0.05, 0.15, 0.25, 0.35, 0.0, 0.0, 0.0]), "{plus:?}");
+        let minus = TermStates::travelled(&x, &inside, &edges, 1.0, false);
+        assert!(close(&minus, &[0.0, 0.0, 0.0, 0.35, 0.25, 0.15, 0.05, 0.0, 0.0, 0.0]), "{minus:?}");
+        // across the loop's end: inside 0.8, 0.9, 0.0, 0.1; the edge before 0.8 at a point
+        let mut inside = vec![false; 10];
+        for k in [8, 9, 0, 1] {
+            inside[k] = true;
+        }
+        let mut edges = x.clone();
+        (edges[7], edges[1]) = (0.8, 0.12);
+        let plus = TermStates::travelled(&x, &inside, &edges, 1.0, true);
+        assert!(close(&plus, &[0.2, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1]), "{plus:?}");
+        let minus = TermStates::travelled(&x, &inside, &edges, 1.0, false);
+        assert!(close(&minus, &[0.12, 0.02, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.32, 0.22]), "{minus:?}");
+        assert_eq!(TermStates::travelled(&x, &[true; 10], &x, 1.0, true), vec![1.0; 10]);
     }
 }
