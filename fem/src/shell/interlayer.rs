@@ -332,8 +332,8 @@ impl Interlayer {
     }
 
     /// V_γ + V_⊥ per dσ dζ at a point at r with J = ∂σS. V_γ where γ > 0 (C¹ in the
-    /// unknowns); V_⊥ where the foot of the point (the contact flag of the advected
-    /// state) was in contact at the last commit, times the point's share of the
+    /// unknowns); V_⊥ where the foot of the point was in contact at the last commit (as
+    /// [`Interlayer::slip`] decides), times the point's share of the
     /// committed contact ([`CONTACT_SHARE`]), against the drum nearest to r, and only with
     /// a state (the static evaluation has none) and P_⊥ > 0. Taking the V_⊥ region from
     /// the committed contact keeps each step's energy continuous: with the current

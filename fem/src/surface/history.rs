@@ -228,8 +228,9 @@ impl TermStates {
         // the distance travelled inside so far, None outside
         let mut travelled: Option<f64> = None;
         // walk once around the loop with the transport, from a point outside
+        let walk = |step: usize| if downstream { (outside + step) % n } else { (outside + n - step % n) % n };
         for step in 1..=n {
-            let (k, previous) = if downstream { ((outside + step) % n, (outside + step - 1) % n) } else { ((outside + n - step % n) % n, (outside + n - (step - 1)) % n) };
+            let (k, previous) = (walk(step), walk(step - 1));
             // the spacing from `previous` to k along the walk (unwrapped)
             let gap = if downstream { x[k] - x[previous] } else { x[previous] - x[k] };
             let gap = if gap < 0.0 { gap + length } else { gap };
