@@ -952,7 +952,7 @@ mod tests {
             }
         }
         fn cut_history(&self, term: usize) -> Option<CutHistory> {
-            (term == 1).then_some(CutHistory { indicator: 0, share: 1, entry: Some(2) })
+            (term == 1).then_some(CutHistory { indicator: 0, share: 1, entry: Some(2), record: 0..0 })
         }
         fn zone(&self, _term: usize, at: &SurfacePoint, v: &[f64; 1]) -> f64 {
             if self.solved {

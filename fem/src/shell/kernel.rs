@@ -23,7 +23,7 @@ use crate::surface::assembly::{CutHistory, PointDerivative, PointVariable, Quadr
 use crate::surface::mesh::SurfaceMesh;
 use crate::Scalar;
 
-use super::interlayer::{Interlayer, Schedule, CONTACT_ENTRY, CONTACT_FLAG, CONTACT_GAP, CONTACT_SHARE, DEFORMATION, STATE};
+use super::interlayer::{Foot, Interlayer, Schedule, CONTACT_ENTRY, CONTACT_FLAG, CONTACT_GAP, CONTACT_SHARE, DEFORMATION, ENTRY_RECORD, STATE};
 use super::membrane::{self, quadratic_energy, response, ShellSection};
 use super::transition::{material_derivatives, Column, ShellElement, TransitionSides, NU, S, Z};
 use super::ShellError;
@@ -258,9 +258,9 @@ impl Shell {
     /// `[driver, driven]` ([`Interlayer::shares`]); zeros without an interlayer.
     pub(crate) fn interlayer_shares<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> [D; 2] {
         let Some(interlayer) = &self.interlayer else { return [D::zero(); 2] };
-        let (foot, upstream) = self.foot(at, v, state);
+        let foot = self.foot(at, v, state);
         let jacobian = v[0] + self.gauge;
-        interlayer.shares(&self.position(at, v), (&foot, upstream), (at.time, at.dt), state).map(|w| w * jacobian)
+        interlayer.shares(&self.position(at, v), &foot, (at.time, at.dt), state).map(|w| w * jacobian)
     }
 
     /// r_n(foot) of (S13) at the point from the (advected) interlayer state: the
@@ -270,13 +270,14 @@ impl Shell {
     /// S = c₀(σ − d(t)) + S̃, d(t) the drums' travel ∫c dt, so the c₀cΔt of one step's
     /// transport cancels in δs and a belt rolling with the drums keeps S̃ — the step's
     /// Newton starts at the rigid rolling, not one step's travel (~h_arc) behind it.
-    fn foot<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> ([D; 3], [f64; 3]) {
+    fn foot<D: Scalar>(&self, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> Foot<D> {
         if state.is_empty() {
-            return ([D::zero(); 3], [0.0; 3]);
+            return Foot { position: [D::zero(); 3], upstream: [0.0; 3], material: v[13], gauge: self.gauge, own: [0.0; 3] };
         }
         let shift = self.belt_speed(at.time - 0.5 * at.dt) * at.dt;
         let offset = v[13] - Interlayer::material(state);
-        Interlayer::foot(state, &self.frame(at.sigma - shift), offset)
+        let (position, upstream) = Interlayer::foot(state, &self.frame(at.sigma - shift), offset);
+        Foot { position, upstream, material: v[13], gauge: self.gauge, own: Interlayer::own_position(state, &self.frame(at.sigma)) }
     }
 
     /// Green's membrane strain [E_ss, E_sζ, E_ζζ] in the initial frame (S8) at `at`.
@@ -525,8 +526,8 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     fn density<D: Scalar>(&self, term: usize, at: &SurfacePoint, v: &[D; SHELL_VALUES], state: &[f64]) -> D {
         if term == INTERLAYER {
             let interlayer = self.interlayer.as_ref().expect("the term exists with an interlayer");
-            let (foot, upstream) = self.foot(at, v, state);
-            return interlayer.density(&self.position(at, v), (&foot, upstream), v[0] + self.gauge, (at.time, at.dt), state);
+            let foot = self.foot(at, v, state);
+            return interlayer.density(&self.position(at, v), &foot, v[0] + self.gauge, (at.time, at.dt), state);
         }
         let area = (v[0] + self.gauge) * self.fibre_length(at.zeta, at.time);
         if term == MEMBRANE {
@@ -577,8 +578,8 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
             (Some(interlayer), INTERLAYER) => {
                 let [a, _] = material_derivatives(self.column(at.element).alpha, &self.fields(v));
                 let record = [v[2], v[14], a[0], a[1], a[2], v[13]];
-                let (foot, upstream) = self.foot(at, v, previous);
-                interlayer.advance(&self.position(at, v), (&foot, upstream), &record, (at.time, at.dt), previous, next);
+                let foot = self.foot(at, v, previous);
+                interlayer.advance(&self.position(at, v), &foot, &record, (at.time, at.dt), previous, next);
             }
             _ => next.copy_from_slice(previous),
         }
@@ -607,11 +608,11 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
         }
     }
 
-    /// The point's own committed gap, share of the contact and distance from its entry
-    /// (not advected).
+    /// The point's own committed gap, share of the contact, distance from its entry, the
+    /// record at that entry and its own S̃_n (not advected).
     fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
         match (&self.interlayer, term) {
-            (Some(_), INTERLAYER) => CONTACT_GAP..CONTACT_ENTRY + 1,
+            (Some(_), INTERLAYER) => CONTACT_GAP..STATE,
             _ => 0..0,
         }
     }
@@ -620,8 +621,17 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
     /// ([`super::interlayer::CONTACT_SHARE`]), cut at the roots of the gap ([`Self::zone`]).
     fn cut_history(&self, term: usize) -> Option<CutHistory> {
         match (&self.interlayer, term) {
-            (Some(_), INTERLAYER) => Some(CutHistory { indicator: CONTACT_GAP, share: CONTACT_SHARE, entry: Some(CONTACT_ENTRY) }),
+            (Some(_), INTERLAYER) => Some(CutHistory { indicator: CONTACT_GAP, share: CONTACT_SHARE, entry: Some(CONTACT_ENTRY), record: ENTRY_RECORD }),
             _ => None,
+        }
+    }
+
+    /// The belt's position and S̃ where it meets the drum (the interlayer's
+    /// [`super::interlayer::ENTRY_RECORD`]).
+    fn edge_record(&self, term: usize, at: &SurfacePoint, v: &[f64; SHELL_VALUES], out: &mut [f64]) {
+        if let (Some(_), INTERLAYER) = (&self.interlayer, term) {
+            out[..3].copy_from_slice(&self.position(at, v));
+            out[3] = v[13];
         }
     }
 

@@ -1303,18 +1303,24 @@ mod tests {
     /// span takes most of the taut-belt estimate Eβb/2H = 1e7 Pa in its sag, and no edge
     /// slackens) and is far from linear (v(β)/v(β/2) = 1.88 there); 2e-6 rad changes it by
     /// ~2e3 Pa. Asserted:
-    /// - below the size at which a layer point at a contact edge changes sides, the
-    ///   run-off is linear to round-off: v(2e-7)/v(1e-7) = 2 within 1e-4 (measured
-    ///   1.9999996; the contact sets of all steps are those of the perfect belt);
-    /// - above it, the swivel's run-off halves with the swivel within 3 % (measured 1.973
-    ///   at 2e-6 rad; v/β = 3.08e-3, 3.07e-3, 3.03e-3 m/s per rad at 2e-7, 1e-6,
-    ///   2e-6 rad). With whole points V_⊥'s region moved by whole cells as β grew
-    ///   (v/β 3.06e-3 … 3.14e-3, not in order of β, over 1e-7 … 2e-4 rad); it is now cut
-    ///   at the gap's roots (docs/fem-shell.md §7 (b), 6 Dec 2026), and the ratio did not
-    ///   move: what still switches is per point — u released to 0 at a point that leaves
-    ///   the drum, the advection's linear stencil next to it, the foot's contact flag;
+    /// - below the size at which a per-point switch of the scheme changes, the run-off
+    ///   is linear to round-off: v(1e-7)/v(5e-8) = 2 within 1e-4 (measured 2.0000002;
+    ///   v/β = 3.1102e-3 m/s per rad from 1e-9 to 1e-7 rad, to 2e-5);
+    /// - above it, the swivel's run-off halves with the swivel within 5 % (measured 1.962
+    ///   at 2e-6 rad; v/β = 3.079e-3, 3.036e-3, 2.979e-3 m/s per rad at 2e-7, 1e-6,
+    ///   2e-6 rad). The first switch, between 1e-7 and 2e-7 rad, is the quasi-monotone
+    ///   clip of the advected u (docs/fem-shell.md §7 (d)): where it is tight, at the
+    ///   extrema of a component of u, its active set changes with β; without the clip
+    ///   v(2e-7)/v(1e-7) = 2.0000000 (measured by switching it off, 6 Dec 2026). Since the
+    ///   entering material carries its slip (§7 (g)) the clip is tight next to the entry,
+    ///   where u was 0 before (there the first switch lay above 2e-7 rad: 1.9999996, and
+    ///   the ratio at 2e-6 rad was 1.973). With whole points V_⊥'s region moved by whole
+    ///   cells as β grew (v/β 3.06e-3 … 3.14e-3, not in order of β, over 1e-7 … 2e-4
+    ///   rad); it is cut at the gap's roots (§7 (b)). What else switches is per point —
+    ///   u released to 0 at a point that leaves the drum, the advection's linear stencil
+    ///   next to it;
     /// - camber and swivel superpose: v(κ, β) − v(κ, 0) − v(0, β) below 1 % of the
-    ///   larger run-off (measured 0.49 %).
+    ///   larger run-off (measured 0.42 %).
     ///
     /// (The camber's run-off is not as linear at these sizes: v/ΔL falls from
     /// 3.38e-3 to 3.01e-3 1/s between ΔL = 1e-5 and 5e-7 m — docs/fem-shell.md §14; the
@@ -1332,11 +1338,11 @@ mod tests {
             solve(&read(&v)).unwrap().summary.runoff_velocity.unwrap()
         };
         let (camber, swivel, both, half) = (velocity(1e-6, 0.0), velocity(0.0, 2e-6), velocity(1e-6, 2e-6), velocity(0.0, 1e-6));
-        let (tiny, tiny_half) = (velocity(0.0, 2e-7), velocity(0.0, 1e-7));
+        let (tiny, tiny_half) = (velocity(0.0, 1e-7), velocity(0.0, 5e-8));
         eprintln!("v(κ, 0) {camber:e}, v(0, β) {swivel:e}, v(κ, β) {both:e}, v(0, β/2) {half:e}, v(0, β/10) {tiny:e}, v(0, β/20) {tiny_half:e} m/s");
         assert!(camber.abs() > 1e-10 && swivel.abs() > 1e-10 && tiny.abs() > 1e-11, "{camber:e} {swivel:e} {tiny:e}");
         assert!((tiny / tiny_half - 2.0).abs() <= 1e-4, "v(β/10)/v(β/20) = {}", tiny / tiny_half);
-        assert!((swivel / half - 2.0).abs() <= 3e-2, "v(β)/v(β/2) = {}", swivel / half);
+        assert!((swivel / half - 2.0).abs() <= 5e-2, "v(β)/v(β/2) = {}", swivel / half);
         let cross = both - camber - swivel;
         assert!(cross.abs() <= 1e-2 * camber.abs().max(swivel.abs()), "superposition: {both:e} against {:e} m/s", camber + swivel);
     }

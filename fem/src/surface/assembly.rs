@@ -75,8 +75,12 @@ pub struct SurfaceTerm {
 /// needs to tell material that has been inside for a whole step from material that
 /// entered during it (the interlayer's contact of a point's foot, docs/fem-shell.md
 /// §7 (b)): a distance from the committed edge, continuous as the edge moves, where an
-/// interpolated indicator switches where it crosses a level.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// interpolated indicator switches where it crosses a level. With a non-empty `record`,
+/// the core also sets at each point inside the kernel's [`SurfaceKernel::edge_record`]
+/// evaluated at that upstream edge (0 outside and where the whole row is inside): what
+/// the material that entered during the step met at the edge (the interlayer: the
+/// belt's position and material coordinate there, docs/fem-shell.md §7 (g)).
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct CutHistory {
     /// The indicator at the point (> 0 in the zone).
     pub indicator: usize,
@@ -84,6 +88,9 @@ pub struct CutHistory {
     pub share: usize,
     /// The distance from the zone's upstream edge the core sets, if any.
     pub entry: Option<usize>,
+    /// The components the core sets to the kernel's record at the upstream edge (empty:
+    /// none).
+    pub record: std::ops::Range<usize>,
 }
 
 /// Where and when a density is evaluated.
@@ -221,6 +228,13 @@ pub trait SurfaceKernel<const P: usize>: Send + Sync {
     fn zone(&self, term: usize, at: &SurfacePoint, v: &[f64; P]) -> f64 {
         let _ = (term, at, v);
         0.0
+    }
+    /// The values the core keeps at every point inside [`Self::cut_history`]'s zone from
+    /// the zone's upstream edge ([`CutHistory::record`]), evaluated there from the point
+    /// values `v` of the converged configuration into `out`. Default: nothing (never
+    /// called without a record).
+    fn edge_record(&self, term: usize, at: &SurfacePoint, v: &[f64; P], out: &mut [f64]) {
+        let _ = (term, at, v, out);
     }
 }
 

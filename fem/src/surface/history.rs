@@ -154,7 +154,7 @@ impl TermStates {
     /// outside neighbour's cell, given to the inside point next to it; with
     /// [`CutHistory::entry`], each point's distance from the zone's upstream edge, upstream
     /// meaning towards −σ for a `downstream` transport along +σ and towards +σ otherwise.
-    fn cut(&mut self, cut: CutHistory, length: f64, downstream: bool, elements: &dyn Fn(usize, usize) -> (usize, [f64; 2]), at: &dyn Fn(usize, f64, usize) -> f64) {
+    fn cut(&mut self, cut: &CutHistory, length: f64, downstream: bool, elements: &dyn Fn(usize, usize) -> (usize, [f64; 2]), at: &dyn Fn(usize, f64, usize) -> f64, record: &dyn Fn(usize, f64, usize, &mut [f64])) {
         let n = self.unique.len();
         let mut distinct = vec![0; self.columns];
         for (k, group) in self.groups.iter().enumerate() {
@@ -176,21 +176,23 @@ impl TermStates {
             let values: Vec<f64> = self.groups.iter().map(|g| g.iter().map(|&col| self.get(row, col)[cut.indicator]).sum::<f64>() / g.len() as f64).collect();
             let inside: Vec<bool> = values.iter().map(|&v| v > 0.0).collect();
             // the edge between k and k + 1 (a σ in [x_k, x_{k+1}], x_{k+1} unwrapped)
-            let edges: Vec<f64> = (0..n)
+            // and the element holding it
+            let (edges, holders): (Vec<f64>, Vec<usize>) = (0..n)
                 .map(|k| {
                     let next = (k + 1) % n;
                     let (x0, x1) = (self.unique[k], self.unique[next] + if next == 0 { length } else { 0.0 });
                     if inside[k] == inside[next] {
-                        return x0;
+                        return (x0, 0);
                     }
                     // the elements of the two points next to each other, with their σ-ranges
                     let (first, [_, end]) = elements(edge(k, true), row);
                     let (second, _) = elements(edge(next, false), row);
                     let g = |sigma: f64| -> Result<f64, std::convert::Infallible> { Ok(if sigma <= end { at(first, sigma, row) } else { at(second, sigma, row) }) };
                     let linear = x0 + (x1 - x0) * values[k] / (values[k] - values[next]);
-                    numerics::roots::brent(g, x0, x1, 1e-12 * (x1 - x0)).unwrap_or(linear).clamp(x0, x1)
+                    let root = numerics::roots::brent(g, x0, x1, 1e-12 * (x1 - x0)).unwrap_or(linear).clamp(x0, x1);
+                    (root, if root <= end { first } else { second })
                 })
-                .collect();
+                .unzip();
             let mut counted = vec![0.0; self.columns];
             for column in 0..self.columns {
                 let ([lo, hi], sigma, k) = (self.cells[column], self.sigma[column], distinct[column]);
@@ -206,10 +208,30 @@ impl TermStates {
                 let value = if hi > lo { counted[column] / (hi - lo) } else { f64::from(u8::from(inside[distinct[column]])) };
                 self.values[(row * self.columns + column) * self.width + cut.share] = value;
             }
-            if let Some(entry) = cut.entry {
+            if cut.entry.is_some() || !cut.record.is_empty() {
                 let travelled = Self::travelled(&self.unique, &inside, &edges, length, downstream);
+                // the kernel's record at each upstream edge, once per edge
+                let mut records: Vec<Option<Vec<f64>>> = vec![None; n];
                 for column in 0..self.columns {
-                    self.values[(row * self.columns + column) * self.width + entry] = travelled[distinct[column]];
+                    let (distance, upstream) = travelled[distinct[column]];
+                    let base = (row * self.columns + column) * self.width;
+                    if let Some(entry) = cut.entry {
+                        self.values[base + entry] = distance;
+                    }
+                    if cut.record.is_empty() {
+                        continue;
+                    }
+                    let values = match upstream {
+                        Some(j) => records[j]
+                            .get_or_insert_with(|| {
+                                let mut out = vec![0.0; cut.record.len()];
+                                record(holders[j], edges[j].rem_euclid(length), row, &mut out);
+                                out
+                            })
+                            .clone(),
+                        None => vec![0.0; cut.record.len()],
+                    };
+                    self.values[base + cut.record.start..base + cut.record.end].copy_from_slice(&values);
                 }
             }
         }
@@ -217,16 +239,17 @@ impl TermStates {
 
     /// Each distinct point's distance from the zone's upstream edge along the row
     /// (periodic, `x` the points' σ, `edges[k]` the edge between points k and k + 1 where
-    /// one of them is inside): 0 outside, `length` everywhere if no point is outside.
-    /// Upstream is towards −σ if `downstream` (transport along +σ), else towards +σ.
-    fn travelled(x: &[f64], inside: &[bool], edges: &[f64], length: f64, downstream: bool) -> Vec<f64> {
+    /// one of them is inside), and the index k of that edge: 0 and None outside, `length`
+    /// and None everywhere if no point is outside. Upstream is towards −σ if `downstream`
+    /// (transport along +σ), else towards +σ.
+    fn travelled(x: &[f64], inside: &[bool], edges: &[f64], length: f64, downstream: bool) -> Vec<(f64, Option<usize>)> {
         let n = x.len();
         let Some(outside) = inside.iter().position(|&i| !i) else {
-            return vec![length; n];
+            return vec![(length, None); n];
         };
-        let mut out = vec![0.0; n];
-        // the distance travelled inside so far, None outside
-        let mut travelled: Option<f64> = None;
+        let mut out = vec![(0.0, None); n];
+        // the distance travelled inside so far and the edge, None outside
+        let mut travelled: Option<(f64, usize)> = None;
         // walk once around the loop with the transport, from a point outside
         let walk = |step: usize| if downstream { (outside + step) % n } else { (outside + n - step % n) % n };
         for step in 1..=n {
@@ -236,12 +259,12 @@ impl TermStates {
             let gap = if gap < 0.0 { gap + length } else { gap };
             travelled = match (inside[k], travelled) {
                 (false, _) => None,
-                (true, Some(t)) => Some(t + gap),
+                (true, Some((t, edge))) => Some((t + gap, edge)),
                 // the first point inside: from the edge between the two, `edges` being
                 // indexed by the lower point of a pair and lying in its interval
-                (true, None) => Some(if downstream { (gap - (edges[previous] - x[previous])).max(0.0) } else { (edges[k] - x[k]).max(0.0) }),
+                (true, None) => Some(if downstream { ((gap - (edges[previous] - x[previous])).max(0.0), previous) } else { ((edges[k] - x[k]).max(0.0), k) }),
             };
-            out[k] = travelled.unwrap_or(0.0);
+            out[k] = travelled.map_or((0.0, None), |(t, edge)| (t, Some(edge)));
         }
         out
     }
@@ -393,7 +416,7 @@ impl SurfaceHistory {
             let Some(states) = slot else { continue };
             let previous = self.terms[t].as_ref().expect("same terms");
             let width = states.width;
-            let cut = states.cut;
+            let cut = states.cut.clone();
             for e in 0..mesh.len() {
                 let (i, j) = mesh.element_position(e);
                 let q = asm.dofs().gather(e, z);
@@ -402,7 +425,7 @@ impl SurfaceHistory {
                     let v = asm.values(&point.weights, &asm.quadratic(e, point.xi, point.eta), &q);
                     let k = (row * states.columns + column) * width;
                     asm.kernel().advance(t, &point.at, &v, previous.get(row, column), &mut states.values[k..k + width]);
-                    if let Some(cut) = cut {
+                    if let Some(cut) = &cut {
                         states.values[k + cut.indicator] = asm.kernel().zone(t, &point.at, &v);
                     }
                 }
@@ -425,8 +448,17 @@ impl SurfaceHistory {
                     let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
                     asm.kernel().zone(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v)
                 };
+                // the kernel's record at σ (mod L) on element e, at the row's η
+                let record = |e: usize, sigma: f64, row: usize, out: &mut [f64]| {
+                    let el = mesh.element(e);
+                    let xi = 2.0 * (sigma - el.origin[0]).rem_euclid(self.length) / el.size[0] - 1.0;
+                    let eta = eta_rule.points()[row % per_zeta].0;
+                    let [s, zeta] = el.point(xi, eta);
+                    let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
+                    asm.kernel().edge_record(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v, out);
+                };
                 let downstream = asm.kernel().belt_speed(ev.time + 0.5 * ev.dt) >= 0.0;
-                states.cut(cut, self.length, downstream, &elements, &at);
+                states.cut(&cut, self.length, downstream, &elements, &at, &record);
             }
         }
         next
@@ -441,11 +473,12 @@ mod tests {
     /// walked with the transport (+σ) or against it, across the loop's end, 0 outside,
     /// the row's length where no point is outside; the edges off the points (one at a
     /// point: distance 0). A walk from the wrong edge would give the exit's distances
-    /// (0.35 … 0.05 for 0.05 … 0.35).
+    /// (0.35 … 0.05 for 0.05 … 0.35). Each point names the edge it is measured from.
     #[test]
     fn travelled_is_the_distance_from_the_upstream_edge() {
         let x: Vec<f64> = (0..10).map(|k| 0.1 * k as f64).collect();
         let close = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(p, q)| (p - q).abs() < 1e-12);
+        let distance = |t: &[(f64, Option<usize>)]| t.iter().map(|p| p.0).collect::<Vec<_>>();
         let mut inside = vec![false; 10];
         let mut edges = x.clone();
         for k in 3..=6 {
@@ -453,9 +486,11 @@ mod tests {
         }
         (edges[2], edges[6]) = (0.25, 0.65);
         let plus = TermStates::travelled(&x, &inside, &edges, 1.0, true);
-        assert!(close(&plus, &[0.0, 0.0, 0.0, 0.05, 0.15, 0.25, 0.35, 0.0, 0.0, 0.0]), "{plus:?}");
+        assert!(close(&distance(&plus), &[0.0, 0.0, 0.0, 0.05, 0.15, 0.25, 0.35, 0.0, 0.0, 0.0]), "{plus:?}");
+        assert!(plus.iter().enumerate().all(|(k, p)| p.1 == inside[k].then_some(2)), "{plus:?}");
         let minus = TermStates::travelled(&x, &inside, &edges, 1.0, false);
-        assert!(close(&minus, &[0.0, 0.0, 0.0, 0.35, 0.25, 0.15, 0.05, 0.0, 0.0, 0.0]), "{minus:?}");
+        assert!(close(&distance(&minus), &[0.0, 0.0, 0.0, 0.35, 0.25, 0.15, 0.05, 0.0, 0.0, 0.0]), "{minus:?}");
+        assert!(minus.iter().enumerate().all(|(k, p)| p.1 == inside[k].then_some(6)), "{minus:?}");
         // across the loop's end: inside 0.8, 0.9, 0.0, 0.1; the edge before 0.8 at a point
         let mut inside = vec![false; 10];
         for k in [8, 9, 0, 1] {
@@ -464,9 +499,11 @@ mod tests {
         let mut edges = x.clone();
         (edges[7], edges[1]) = (0.8, 0.12);
         let plus = TermStates::travelled(&x, &inside, &edges, 1.0, true);
-        assert!(close(&plus, &[0.2, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1]), "{plus:?}");
+        assert!(close(&distance(&plus), &[0.2, 0.3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1]), "{plus:?}");
+        assert!(plus.iter().enumerate().all(|(k, p)| p.1 == inside[k].then_some(7)), "{plus:?}");
         let minus = TermStates::travelled(&x, &inside, &edges, 1.0, false);
-        assert!(close(&minus, &[0.12, 0.02, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.32, 0.22]), "{minus:?}");
-        assert_eq!(TermStates::travelled(&x, &[true; 10], &x, 1.0, true), vec![1.0; 10]);
+        assert!(close(&distance(&minus), &[0.12, 0.02, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.32, 0.22]), "{minus:?}");
+        assert!(minus.iter().enumerate().all(|(k, p)| p.1 == inside[k].then_some(1)), "{minus:?}");
+        assert_eq!(TermStates::travelled(&x, &[true; 10], &x, 1.0, true), vec![(1.0, None); 10]);
     }
 }
