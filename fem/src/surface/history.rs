@@ -210,28 +210,31 @@ impl TermStates {
             }
             if cut.entry.is_some() || !cut.record.is_empty() {
                 let travelled = Self::travelled(&self.unique, &inside, &edges, length, downstream);
-                // the kernel's record at each upstream edge, once per edge
-                let mut records: Vec<Option<Vec<f64>>> = vec![None; n];
+                // the kernel's record at each upstream edge, once per edge (zero outside)
+                let width = cut.record.len();
+                let mut records = vec![0.0; n * width];
+                let mut recorded = vec![false; n];
                 for column in 0..self.columns {
                     let (distance, upstream) = travelled[distinct[column]];
                     let base = (row * self.columns + column) * self.width;
                     if let Some(entry) = cut.entry {
                         self.values[base + entry] = distance;
                     }
-                    if cut.record.is_empty() {
+                    if width == 0 {
                         continue;
                     }
-                    let values = match upstream {
-                        Some(j) => records[j]
-                            .get_or_insert_with(|| {
-                                let mut out = vec![0.0; cut.record.len()];
-                                record(holders[j], edges[j].rem_euclid(length), row, &mut out);
-                                out
-                            })
-                            .clone(),
-                        None => vec![0.0; cut.record.len()],
-                    };
-                    self.values[base + cut.record.start..base + cut.record.end].copy_from_slice(&values);
+                    let target = &mut self.values[base + cut.record.start..base + cut.record.end];
+                    match upstream {
+                        Some(j) => {
+                            let slot = &mut records[j * width..(j + 1) * width];
+                            if !recorded[j] {
+                                record(holders[j], edges[j].rem_euclid(length), row, slot);
+                                recorded[j] = true;
+                            }
+                            target.copy_from_slice(slot);
+                        }
+                        None => target.fill(0.0),
+                    }
                 }
             }
         }
@@ -439,23 +442,23 @@ impl SurfaceHistory {
                     let el = mesh.element(e);
                     (e, [el.origin[0], el.origin[0] + el.size[0]])
                 };
-                // the indicator at σ (mod L) on element e, at the row's η
-                let at = |e: usize, sigma: f64, row: usize| -> f64 {
+                // the point at σ (mod L) on element e, at the row's η, and the fields there
+                let point = |e: usize, sigma: f64, row: usize| {
                     let el = mesh.element(e);
                     let xi = 2.0 * (sigma - el.origin[0]).rem_euclid(self.length) / el.size[0] - 1.0;
                     let eta = eta_rule.points()[row % per_zeta].0;
                     let [s, zeta] = el.point(xi, eta);
                     let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
-                    asm.kernel().zone(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v)
+                    (SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, v)
                 };
-                // the kernel's record at σ (mod L) on element e, at the row's η
+                // the indicator there, and the kernel's record there
+                let at = |e: usize, sigma: f64, row: usize| -> f64 {
+                    let (p, v) = point(e, sigma, row);
+                    asm.kernel().zone(t, &p, &v)
+                };
                 let record = |e: usize, sigma: f64, row: usize, out: &mut [f64]| {
-                    let el = mesh.element(e);
-                    let xi = 2.0 * (sigma - el.origin[0]).rem_euclid(self.length) / el.size[0] - 1.0;
-                    let eta = eta_rule.points()[row % per_zeta].0;
-                    let [s, zeta] = el.point(xi, eta);
-                    let v = asm.values(&el.derivative_weights(xi, eta), &asm.quadratic(e, xi, eta), &asm.dofs().gather(e, z));
-                    asm.kernel().edge_record(t, &SurfacePoint { sigma: s, zeta, element: e, time: ev.time, dt: ev.dt }, &v, out);
+                    let (p, v) = point(e, sigma, row);
+                    asm.kernel().edge_record(t, &p, &v, out);
                 };
                 let downstream = asm.kernel().belt_speed(ev.time + 0.5 * ev.dt) >= 0.0;
                 states.cut(&cut, self.length, downstream, &elements, &at, &record);
