@@ -1309,9 +1309,10 @@ mod tests {
     /// - above it, the swivel's run-off halves with the swivel within 5 % (measured 1.962
     ///   at 2e-6 rad; v/β = 3.079e-3, 3.036e-3, 2.979e-3 m/s per rad at 2e-7, 1e-6,
     ///   2e-6 rad). The first switch, between 1e-7 and 2e-7 rad, is the quasi-monotone
-    ///   clip of the advected u (docs/fem-shell.md §7 (d)): where it is tight, at the
-    ///   extrema of a component of u, its active set changes with β; without the clip
-    ///   v(2e-7)/v(1e-7) = 2.0000000 (measured by switching it off, 6 Dec 2026). Since the
+    ///   clip of the advected u (docs/fem-shell.md §7 (d)): where it is tight its active
+    ///   set changes with β; without the clip v(2e-7)/v(1e-7) = 2.0000000 (measured by
+    ///   switching it off, 6 Dec 2026). It is not tight at a smooth extremum: a clip that
+    ///   leaves those alone gives 1.97985 against 1.97990 (docs/fem-shell.md §9.4). Since the
     ///   entering material carries its slip (§7 (g)) the clip is tight next to the entry,
     ///   where u was 0 before (there the first switch lay above 2e-7 rad: 1.9999996, and
     ///   the ratio at 2e-6 rad was 1.973). With whole points V_⊥'s region moved by whole
