@@ -909,9 +909,9 @@ mod tests {
     /// - **Rate independence** (the quasistatic model, V-11): A_fit/A at π/16 and π/32
     ///   within 0.01 of each other on both drums (measured 0.0042, 0.0070), and the
     ///   tension split within 1e-3 of itself (measured 0.261015 and 0.261211 N, 7.5e-4;
-    ///   0.261188 N at π/64, and 0.262998 N at π/128: a step of +0.7 % there, not
-    ///   explained — the same to 8 digits with Newton's tolerance at 1e-6, 1e-8 and
-    ///   1e-11, so not the solver's stop; docs/fem-shell.md §9.4). Before §7 (g) the
+    ///   0.261188 N at π/64, 0.260794 N at π/128 — 0.262998 N until the foot between
+    ///   the entry and the first node inside was interpolated from the entry,
+    ///   docs/fem-shell.md §7 (h), §9.4). Before §7 (g) the
     ///   split was 0.257881 and 0.257842 N; without the drum's turn of ũ 0.2494 and
     ///   0.2534 N, 1.6e-2 apart, and the driven amplitude 0.983 and 0.996.
     /// - **Tension split from the speeds** (the closed form's belt strain relative to

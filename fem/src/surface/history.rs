@@ -44,6 +44,20 @@
 //! components are interpolated linearly between the two bracketing points (second
 //! order, bounded; the cubic elsewhere).
 //!
+//! **Entering the zone**: with both a support and a cut ([`CutHistory::entry`]), a
+//! bracket whose upstream point is outside the zone and whose downstream point is inside
+//! holds the zone's entry, at the inside point's committed distance from it. The bounded
+//! components are then interpolated from the entry (the released value there) to the
+//! inside point, and a foot before the entry takes the released value. From the point
+//! before the entry instead, a value that accumulates from the entry (the interlayer's
+//! u: the slip since the material touched the drum) counts the time the material would
+//! have needed from that point: the first point inside holds (x₁ − x₀)/(x₁ − x_e) of its
+//! value in the steady state, and the recursion carries the excess over the zone. That
+//! bias appears only once the step is short enough for the first point's foot to lie
+//! past the entry (|c|Δt < x₁ − x_e; before, the kernel's own entering formula serves the
+//! point), so it switched on at some step of a refinement at fixed mesh
+//! (docs/fem-shell.md §7 (h)).
+//!
 //! **Cut cells** ([`SurfaceKernel::cut_history`], [`CutHistory`]): an integrand that a
 //! committed zone cuts inside an element (V_⊥ inside the interlayer's contact) counted
 //! by whole points moves the zone's edges by whole cells, a first-order error in h
@@ -304,13 +318,31 @@ impl TermStates {
             let ks = stencil.map(|k| k.rem_euclid(n as isize) as usize);
             // the bracket's linear weight of its downstream point
             let linear = (foot - xs[1]) / (xs[2] - xs[1]);
+            let entry = self.cut.as_ref().and_then(|cut| cut.entry);
             for row in 0..self.rows {
                 let supported = self.support.is_none_or(|s| ks.iter().all(|&k| mean(row, k, s) >= 0.5));
+                // the zone's upstream edge inside the bracket: the weight from the edge
+                // (module documentation, "Entering the zone")
+                let weight = match (self.support, entry) {
+                    (Some(s), Some(d)) if !supported => {
+                        let inside = [mean(row, ks[1], s) >= 0.5, mean(row, ks[2], s) >= 0.5];
+                        if shift > 0.0 && inside == [false, true] {
+                            let edge = xs[2] - mean(row, ks[2], d);
+                            if edge > xs[1] { ((foot - edge) / (xs[2] - edge)).clamp(0.0, 1.0) } else { linear }
+                        } else if shift < 0.0 && inside == [true, false] {
+                            let edge = xs[1] + mean(row, ks[1], d);
+                            if edge < xs[2] { ((foot - xs[1]) / (edge - xs[1])).clamp(0.0, 1.0) } else { linear }
+                        } else {
+                            linear
+                        }
+                    }
+                    _ => linear,
+                };
                 for c in 0..self.width {
                     let mut v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
                     if self.bounded.contains(&c) {
                         let (a, b) = (mean(row, ks[1], c), mean(row, ks[2], c));
-                        v = if supported { v.clamp(a.min(b), a.max(b)) } else { a + (b - a) * linear };
+                        v = if supported { v.clamp(a.min(b), a.max(b)) } else { a + (b - a) * weight };
                     }
                     if self.fixed.contains(&c) {
                         v = self.get(row, column)[c];
