@@ -1242,6 +1242,9 @@ mod tests {
     struct Accumulated {
         zone: [f64; 2],
         support: bool,
+        /// The zone cut by the core ([`CutHistory`]: the indicator (σ − a)(b − σ), its
+        /// share, each point's distance from the entry, as state values 2, 3, 4).
+        cut: bool,
     }
 
     impl SurfaceKernel<1> for Accumulated {
@@ -1252,10 +1255,23 @@ mod tests {
             [nu(PointDerivative::Value)]
         }
         fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Trapezoidal, Rule::Gauss(2)], history: 2 }]
+            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Trapezoidal, Rule::Gauss(2)], history: 5 }]
         }
         fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
             v[0] * v[0] * if term == 0 { 0.5 } else { 0.0 }
+        }
+        fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
+            if term == 1 {
+                2..5
+            } else {
+                0..0
+            }
+        }
+        fn cut_history(&self, term: usize) -> Option<CutHistory> {
+            (self.cut && term == 1).then_some(CutHistory { indicator: 2, share: 3, entry: Some(4), record: 0..0 })
+        }
+        fn zone(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1]) -> f64 {
+            (at.sigma - self.zone[0]) * (self.zone[1] - at.sigma)
         }
         fn advance(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1], previous: &[f64], next: &mut [f64]) {
             let inside = at.sigma >= self.zone[0] && at.sigma <= self.zone[1];
@@ -1300,7 +1316,7 @@ mod tests {
         let mesh = SurfaceMesh::new(1.0, sigma, vec![0.0, 0.1]).unwrap();
         let mut peaks = vec![];
         for support in [false, true] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.05, 0.605], support }, &[]).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.05, 0.605], support, cut: false }, &[]).unwrap();
             let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             let mut peak = 0.0f64;
@@ -1324,61 +1340,7 @@ mod tests {
         assert!(peaks[1] <= 12.0 * (1.0 + 1e-3), "with the support the value exceeds the transport's bound 12: {}", peaks[1]);
     }
 
-    /// [`Accumulated`] with its zone [0.25, 0.85] cut by the core ([`CutHistory`]: the
-    /// indicator (σ − 0.25)(0.85 − σ), its share, each point's distance from the entry),
-    /// or (`cut` false) without: the entry at 0.25 lies inside the bracket [0.2, 0.3] of
-    /// the first point inside.
-    struct Entering {
-        cut: bool,
-    }
-
-    impl SurfaceKernel<1> for Entering {
-        fn layout(&self) -> ElementLayout {
-            SHELL
-        }
-        fn variables(&self) -> [PointVariable; 1] {
-            [nu(PointDerivative::Value)]
-        }
-        fn terms(&self) -> Vec<SurfaceTerm> {
-            vec![SurfaceTerm { rule: [Rule::Gauss(4), Rule::Gauss(4)], history: 0 }, SurfaceTerm { rule: [Rule::Trapezoidal, Rule::Gauss(2)], history: 5 }]
-        }
-        fn density<D: Scalar>(&self, term: usize, _at: &SurfacePoint, v: &[D; 1], _state: &[f64]) -> D {
-            v[0] * v[0] * if term == 0 { 0.5 } else { 0.0 }
-        }
-        fn advance(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1], previous: &[f64], next: &mut [f64]) {
-            let inside = (0.25..=0.85).contains(&at.sigma);
-            next[0] = if inside { previous[0] + 1.0 } else { 0.0 };
-            next[1] = f64::from(u8::from(inside));
-        }
-        fn belt_speed(&self, _time: f64) -> f64 {
-            1.0
-        }
-        fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
-            if term == 1 {
-                0..1
-            } else {
-                0..0
-            }
-        }
-        fn history_support(&self, term: usize) -> Option<usize> {
-            (term == 1).then_some(1)
-        }
-        fn fixed_history(&self, term: usize) -> std::ops::Range<usize> {
-            if term == 1 {
-                2..5
-            } else {
-                0..0
-            }
-        }
-        fn cut_history(&self, term: usize) -> Option<CutHistory> {
-            (self.cut && term == 1).then_some(CutHistory { indicator: 2, share: 3, entry: Some(4), record: 0..0 })
-        }
-        fn zone(&self, _term: usize, at: &SurfacePoint, _v: &[f64; 1]) -> f64 {
-            (at.sigma - 0.25) * (0.85 - at.sigma)
-        }
-    }
-
-    /// A value accumulated from the entry of a zone (h ← h̃ + 1 per step inside) whose
+    /// [`Accumulated`] (with its support) from the entry of a zone (h ← h̃ + 1 per step inside) whose
     /// entry, 0.25, lies between two points (every 0.1), at a Courant number of 0.2
     /// (shift 0.02 per step): the material at σ has been inside for (σ − 0.25)/0.02
     /// steps. The foot of the first point inside, 0.28, lies between the entry and
@@ -1398,7 +1360,7 @@ mod tests {
         let mesh = SurfaceMesh::new(1.0, (0..10).map(|k| 0.1 * f64::from(k)).collect(), vec![0.0, 0.1]).unwrap();
         let mut errors = vec![];
         for cut in [false, true] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Entering { cut }, &[]).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.25, 0.85], support: true, cut }, &[]).unwrap();
             let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             for _ in 0..100 {
