@@ -1245,6 +1245,8 @@ mod tests {
         /// The zone cut by the core ([`CutHistory`]: the indicator (σ − a)(b − σ), its
         /// share, each point's distance from the entry, as state values 2, 3, 4).
         cut: bool,
+        /// The belt speed c (the transport's direction: along +σ for c > 0).
+        speed: f64,
     }
 
     impl SurfaceKernel<1> for Accumulated {
@@ -1279,7 +1281,7 @@ mod tests {
             next[1] = f64::from(u8::from(inside));
         }
         fn belt_speed(&self, _time: f64) -> f64 {
-            1.0
+            self.speed
         }
         fn bounded_history(&self, term: usize) -> std::ops::Range<usize> {
             if term == 1 {
@@ -1316,7 +1318,7 @@ mod tests {
         let mesh = SurfaceMesh::new(1.0, sigma, vec![0.0, 0.1]).unwrap();
         let mut peaks = vec![];
         for support in [false, true] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.05, 0.605], support, cut: false }, &[]).unwrap();
+            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.05, 0.605], support, cut: false, speed: 1.0 }, &[]).unwrap();
             let n = asm.unknowns();
             let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
             let mut peak = 0.0f64;
@@ -1354,26 +1356,31 @@ mod tests {
     /// which the linear and the cubic interpolation keep). As the step
     /// falls at a fixed mesh the foot of the first point inside passes the entry, and
     /// the bracket's bias switched on at that step: E-7's tension split jumped by 0.7 %
-    /// from ωΔt = π/64 to π/128 (docs/fem-shell.md §7 (h)).
+    /// from ωΔt = π/64 to π/128 (docs/fem-shell.md §7 (h)). The same mirrored, the
+    /// transport along −σ (c = −1, zone [0.15, 0.75], entry 0.75 between 0.7 and 0.8,
+    /// the first point inside 0.7 with its foot 0.72): the other branch of the core's
+    /// entry bracket, with the same bias without it and the same count with it.
     #[test]
     fn accumulated_value_counts_from_an_entry_between_points() {
         let mesh = SurfaceMesh::new(1.0, (0..10).map(|k| 0.1 * f64::from(k)).collect(), vec![0.0, 0.1]).unwrap();
-        let mut errors = vec![];
-        for cut in [false, true] {
-            let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone: [0.25, 0.85], support: true, cut }, &[]).unwrap();
-            let n = asm.unknowns();
-            let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
-            for _ in 0..100 {
-                stepper.step(0.02).unwrap();
+        for (speed, zone, entry) in [(1.0, [0.25, 0.85], 0.25), (-1.0, [0.15, 0.75], 0.75)] {
+            let mut errors = vec![];
+            for cut in [false, true] {
+                let asm = SurfaceAssembler::new(mesh.clone(), Accumulated { zone, support: true, cut, speed }, &[]).unwrap();
+                let n = asm.unknowns();
+                let mut stepper = TimeStepping::new(asm, vec![0.0; n], 0.0, newton()).unwrap();
+                for _ in 0..100 {
+                    stepper.step(0.02).unwrap();
+                }
+                let states = stepper.history().term(1).unwrap();
+                let profile: Vec<(f64, f64)> = (0..states.shape().1).step_by(2).map(|j| (states.column_sigma()[j], states.get(0, j)[0])).collect();
+                let error = profile.iter().filter(|(s, _)| (zone[0]..=zone[1]).contains(s)).fold(0.0f64, |m, &(s, h)| m.max((h - (s - entry).abs() / 0.02).abs()));
+                println!("accumulated from an entry between points, c = {speed}, cut {cut}: profile {profile:?}, largest error {error}");
+                errors.push(error);
             }
-            let states = stepper.history().term(1).unwrap();
-            let profile: Vec<(f64, f64)> = (0..states.shape().1).step_by(2).map(|j| (states.column_sigma()[j], states.get(0, j)[0])).collect();
-            let error = profile.iter().filter(|(s, _)| (0.25..=0.85).contains(s)).fold(0.0f64, |m, &(s, h)| m.max((h - (s - 0.25) / 0.02).abs()));
-            println!("accumulated from an entry between points, cut {cut}: profile {profile:?}, largest error {error}");
-            errors.push(error);
+            assert!(errors[0] > 2.0, "c = {speed}: the bracket from the point before the entry did not bias the count: {}", errors[0]);
+            assert!(errors[1] <= 1e-3, "c = {speed}: counted from the entry, the value is off the steps inside by {}", errors[1]);
         }
-        assert!(errors[0] > 2.0, "the bracket from the point before the entry did not bias the count: {}", errors[0]);
-        assert!(errors[1] <= 1e-3, "counted from the entry, the value is off the steps inside by {}", errors[1]);
     }
 }
 
