@@ -22,22 +22,16 @@
 //!
 //! **Bounded components** ([`SurfaceKernel::bounded_history`]): a component that the
 //! kernel carries from step to step by its own recursion (h_{n+1} = h̃_n + increment, the
-//! interlayer's u) is kept within the range of its values at the two points bracketing
-//! the foot, widened by twice the excess a parabola through three consecutive stencil
-//! points can have over that range ([`parabola_excess`], |f[x_i, x_{i+1}, x_{i+2}]|(x₂ − x₁)²/2).
+//! interlayer's u) is clipped to the range of its values at the two points bracketing
+//! the foot (the quasi-monotone semi-Lagrangian scheme of Bermejo & Staniforth 1992).
 //! On a non-uniform arrangement the cubic Lagrange weights are not bounded by 1: with
 //! the next spacing downstream short (x_{k+2} − x_{k+1} ≪ x_{k+1} − x_k) the point's own
 //! weight exceeds 1 and a state that is re-interpolated at the same place every step
 //! grows geometrically (docs/fem-shell.md §9.3: 1.6 per step at a contact exit next to
-//! an element of 1/6 the length; that case is now the released points' below). The
-//! plain clip to the bracket (the quasi-monotone semi-Lagrangian scheme of Bermejo &
-//! Staniforth 1992, used until 2026-12-07) also cut smooth extrema and the kink where
-//! entering material starts its slip, and whether it cut at a point switched with the
-//! data: the shell's run-off was then linear in a small swivel only below ~1.2e-7 rad
-//! (docs/fem-shell.md §14, E-5). The widened range holds what a field smooth on the
-//! stencil's scale does between its points (the cubic differs from either parabola by
-//! O(h³)), so it leaves those alone, and still bounds the overshoot by the data's
-//! curvature: none where the stencil's data are linear.
+//! an element of 1/6 the length). Clipped, max|h̃| ≤ max|h| over the row for any
+//! spacing and shift; where the field is smooth and monotone across the bracket the
+//! clip is inactive and the cubic's accuracy is kept; across a jump (u released to 0 at
+//! a contact exit) it removes the overshoot.
 //!
 //! **Released points** ([`SurfaceKernel::history_support`]): a bounded component that
 //! the kernel sets to 0 outside a zone (u out of contact) jumps there, and the clip alone
@@ -100,8 +94,7 @@ pub struct TermStates {
     groups: Vec<Vec<usize>>,
     /// (row · columns + column) · width + k.
     values: Vec<f64>,
-    /// Components kept by the advection within the bracketing values, widened by
-    /// [`parabola_excess`].
+    /// Components clipped to the bracketing values in the advection.
     bounded: std::ops::Range<usize>,
     /// The component marking where the bounded ones are a field (≥ ½).
     support: Option<usize>,
@@ -346,17 +339,10 @@ impl TermStates {
                     _ => linear,
                 };
                 for c in 0..self.width {
-                    let values: [f64; 4] = std::array::from_fn(|r| mean(row, ks[r], c));
-                    let mut v: f64 = (0..4).map(|r| weights[r] * values[r]).sum();
+                    let mut v: f64 = (0..4).map(|r| weights[r] * mean(row, ks[r], c)).sum();
                     if self.bounded.contains(&c) {
-                        let (a, b) = (values[1], values[2]);
-                        v = if supported {
-                            // a jump can only sit in a stencil of a kernel without a support
-                            let excess = if self.support.is_some() { parabola_excess(&xs, &values) } else { 0.0 };
-                            v.clamp(a.min(b) - excess, a.max(b) + excess)
-                        } else {
-                            a + (b - a) * weight
-                        };
+                        let (a, b) = (mean(row, ks[1], c), mean(row, ks[2], c));
+                        v = if supported { v.clamp(a.min(b), a.max(b)) } else { a + (b - a) * weight };
                     }
                     if self.fixed.contains(&c) {
                         v = self.get(row, column)[c];
@@ -367,20 +353,6 @@ impl TermStates {
         }
         out
     }
-}
-
-/// The range by which a smooth field may pass the values at the bracket [x₁, x₂] of a
-/// cubic stencil x₀ < x₁ < x₂ < x₃ (module documentation, "Bounded components"): twice
-/// the largest excess over its end values that a parabola through three consecutive
-/// stencil points can have on the bracket, 2 · |f[x_i, x_{i+1}, x_{i+2}]| (x₂ − x₁)²/4
-/// (the parabola's second derivative 2f[·] times h²/8), the larger of i = 0, 1. The
-/// factor 2 keeps the range clear of smooth data: at a peak in the middle of the bracket
-/// the cubic passes the parabola's own excess by O(h⁴), so a range of exactly that
-/// excess would still cut there. Zero for linear data.
-pub(crate) fn parabola_excess(xs: &[f64; 4], values: &[f64; 4]) -> f64 {
-    let divided = |i: usize| ((values[i + 2] - values[i + 1]) / (xs[i + 2] - xs[i + 1]) - (values[i + 1] - values[i]) / (xs[i + 1] - xs[i])) / (xs[i + 2] - xs[i]);
-    let h = xs[2] - xs[1];
-    divided(0).abs().max(divided(1).abs()) * h * h / 2.0
 }
 
 /// The history states of every term of a kernel (None for a term without history).
@@ -537,43 +509,6 @@ mod tests {
     /// the row's length where no point is outside; the edges off the points (one at a
     /// point: distance 0). A walk from the wrong edge would give the exit's distances
     /// (0.35 … 0.05 for 0.05 … 0.35). Each point names the edge it is measured from.
-    /// [`parabola_excess`]: zero for linear data on any spacing; for a parabola with its
-    /// vertex in the middle of a uniform bracket, twice the vertex's excess over the
-    /// bracket's values; and for samples of a smooth extremum
-    /// (cos x on non-uniform stencils around its peak, every foot in the bracket) the
-    /// cubic Lagrange value stays inside the widened range while it passes the plain
-    /// bracket — the cut that the clip to the bracket made at every smooth extremum.
-    #[test]
-    fn parabola_excess_passes_smooth_extrema_and_vanishes_for_linear_data() {
-        let xs = [0.0, 0.3, 0.45, 1.0];
-        assert!(parabola_excess(&xs, &xs.map(|x| 2.0 - 3.0 * x)).abs() < 1e-15);
-        // p(x) = −(x − 1.5)² on 0, 1, 2, 3: the bracket's values are −0.25, the vertex 0,
-        // the range twice that
-        let uniform = [0.0, 1.0, 2.0, 3.0];
-        assert!((parabola_excess(&uniform, &uniform.map(|x: f64| -(x - 1.5).powi(2))) - 0.5).abs() < 1e-15);
-        let cubic = |xs: &[f64; 4], values: &[f64; 4], foot: f64| -> f64 {
-            (0..4).map(|r| values[r] * (0..4).filter(|&s| s != r).map(|s| (foot - xs[s]) / (xs[r] - xs[s])).product::<f64>()).sum()
-        };
-        let mut cut = 0;
-        for (h, ratio) in [(0.1, 1.0), (0.1, 1.5), (0.2, 0.7), (0.05, 2.0)] {
-            for shift in [-0.9, -0.5, -0.2, 0.0, 0.3, 0.6] {
-                // x₁ < 0 < x₂ around the peak of cos, spacings growing by `ratio`
-                let (x1, x2) = (-h * (0.5 + 0.4 * shift), h * ratio * (0.5 - 0.4 * shift));
-                let xs = [x1 - h / ratio, x1, x2, x2 + h * ratio * ratio];
-                let values = xs.map(f64::cos);
-                let excess = parabola_excess(&xs, &values);
-                for k in 1..20 {
-                    let foot = x1 + (x2 - x1) * f64::from(k) / 20.0;
-                    let v = cubic(&xs, &values, foot);
-                    let (lo, hi) = (values[1].min(values[2]), values[1].max(values[2]));
-                    assert!(v >= lo - excess && v <= hi + excess, "h {h}, ratio {ratio}, foot {foot}: {v} outside [{lo}, {hi}] ± {excess}");
-                    cut += usize::from(v > hi);
-                }
-            }
-        }
-        assert!(cut > 100, "the plain bracket cut {cut} of 456 values");
-    }
-
     #[test]
     fn travelled_is_the_distance_from_the_upstream_edge() {
         let x: Vec<f64> = (0..10).map(|k| 0.1 * k as f64).collect();
