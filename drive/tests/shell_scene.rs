@@ -53,15 +53,24 @@ fn shipped_shell_scenes_read_and_round_trip() {
 
 /// The long study scenes (docs/fem-shell.md §14) read and round-trip; the taut
 /// swivel's belt is shorter than the taut loop and has no weight, so that its span
-/// tensions come from the stretch alone and stay equal in rotation (§9.4).
+/// tensions come from the stretch alone and stay equal in rotation (§9.4); the 256 × 8
+/// level is the shipped scene itself on a finer mesh over ten revolutions.
 #[test]
 fn study_scenes_read_and_round_trip() {
-    for text in [include_str!("../../scenes/studies/shell-runoff-ten-revolutions.json"), include_str!("../../scenes/studies/shell-runoff-taut-swivel.json")] {
+    let converged = include_str!("../../scenes/studies/shell-runoff-ten-revolutions-256x8.json");
+    for text in [include_str!("../../scenes/studies/shell-runoff-ten-revolutions.json"), include_str!("../../scenes/studies/shell-runoff-taut-swivel.json"), converged] {
         let s = Scene::from_json_str(text).unwrap();
         assert_eq!(s.belt.theory, drive::Theory::Shell);
         roundtrip(&s);
         assert_eq!(s.shell_run().steps, 2000, "ten revolutions at ωΔt = π/32");
     }
+    // the level the shipped scene's run-off is stated on (§14 "The shipped scene on §7 (h)"):
+    // the shipped belt and imperfections, 256 × 8 on the graded ζ-mesh
+    let (level, shipped) = (Scene::from_json_str(converged).unwrap(), Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap());
+    let run = level.shell_run();
+    assert_eq!((run.elements_sigma, run.elements_zeta, run.zeta_mesh), (256, 8, drive::scene::ShellZetaMesh::Graded));
+    assert_eq!((&level.belt, &level.drive, &level.effects), (&shipped.belt, &shipped.drive, &shipped.effects));
+    assert_eq!(run.time_step, shipped.shell_run().time_step);
     let taut = Scene::from_json_str(include_str!("../../scenes/studies/shell-runoff-taut-swivel.json")).unwrap();
     assert!(taut.slack_ratio() < 1.0 && taut.effects.gravity.is_none(), "L/L_geom = {}", taut.slack_ratio());
 }
