@@ -137,16 +137,22 @@ struct StudyArgs {
     /// Shell scenes only: the levels n_σ×n_ζ, coarsest first (e.g. 64x8,128x8,256x8 or
     /// 64x2,128x4,256x8), each with Δt scaled like the σ spacing (see `--refine`); the reference is the
     /// Richardson extrapolation of the three finest. Default: the scene's mesh, then
-    /// twice and four times its n_σ at its n_ζ.
+    /// twice and four times its n_σ at its n_ζ (with `--refine width`, its n_ζ).
     #[arg(long, value_delimiter = ',', value_name = "NσxNζ,…")]
     levels: Vec<String>,
     /// Shell scenes only: what the levels refine. `both`: σ and Δt together (the limit
     /// in space and time); `mesh`: the levels' meshes at the scene's Δt (the limit in
     /// space at that step); `step`: the scene's Δt, then a half and a quarter of it, on
     /// one mesh — the one `--levels` entry, else the scene's (the time-continuous limit
-    /// on that mesh).
+    /// on that mesh); `width`: n_ζ alone, the levels at one n_σ and the scene's Δt (the
+    /// limit across the width on that σ-mesh).
     #[arg(long, value_enum, default_value_t = RefineArg::Both)]
     refine: RefineArg,
+    /// Shell scenes only: skip the cambered belt's compensating swivel (a root over
+    /// whole solves, about six at the coarsest level: on a long run they cost more than
+    /// the study); the study then names it as not searched.
+    #[arg(long)]
+    no_compensation: bool,
 }
 
 /// What a shell study's levels refine (`--refine`).
@@ -158,6 +164,8 @@ enum RefineArg {
     Mesh,
     /// The time step on one mesh.
     Step,
+    /// The elements across the width on one σ-mesh at the scene's time step.
+    Width,
 }
 
 #[derive(Clone, Copy, ValueEnum)]
@@ -908,6 +916,14 @@ fn study_with_progress(scene: &Scene, plan: &verification::study::StudyPlan, bar
     Ok(verification::study::Study::run(scene, plan, &mut update)?)
 }
 
+/// A note on `study` when `--no-compensation` skipped a cambered, turning shell's
+/// compensating swivel, so that its absence from the study is stated, not silent.
+fn note_skipped_compensation(scene: &Scene, args: &StudyArgs, study: &mut verification::study::Study) {
+    if args.no_compensation && scene.belt.camber.is_some() && scene.drive.driver_speed != 0.0 {
+        study.notes.push("the compensating swivel (spec E-5) was not searched (--no-compensation)".to_string());
+    }
+}
+
 fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
     if !SAMPLES_RANGE.contains(&args.samples) {
         return Err(CliError::OutOfRange { flag: "samples", value: args.samples.to_string(), range: format!("{} … {} σ samples", SAMPLES_RANGE.start(), SAMPLES_RANGE.end()) }.into());
@@ -931,6 +947,9 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
     }
     if args.refine != RefineArg::Both {
         return Err(CliError::FlagNotForScene { flag: "refine", theory: scene.belt.theory.to_string() }.into());
+    }
+    if args.no_compensation {
+        return Err(CliError::FlagNotForScene { flag: "no-compensation", theory: scene.belt.theory.to_string() }.into());
     }
     let mut plan = verification::study::StudyPlan::convergence(scene);
     if !args.tolerances.is_empty() {
@@ -960,9 +979,10 @@ fn study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::St
 }
 
 /// The study of a shell scene (`StudyPlan::shell`): its levels from `--levels` or the
-/// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ), refined as `--refine`
-/// says (σ with Δt, σ alone at the scene's Δt, or the scene's Δt halved twice on one
-/// mesh: docs/verification.md "The shell's study"); the flags of the 1-D
+/// default (the scene's mesh, then 2× and 4× its n_σ at its n_ζ, or for `--refine width`
+/// its n_ζ at its n_σ), refined as `--refine` says (σ with Δt, σ alone at the scene's Δt,
+/// the scene's Δt halved twice on one mesh, or n_ζ alone at the scene's n_σ and Δt:
+/// docs/verification.md "The shell's study"); the flags of the 1-D
 /// studies are refused by name. `converge` and `report` find a cambered belt's
 /// compensating swivel too (`StudyPlan::with_compensation`; the gate does not).
 fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::study::StudyPlan> {
@@ -984,12 +1004,16 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
             };
             (0..3).map(|k| Discretisation::Mesh2d { sigma, zeta, time_step: own.time_step / f64::from(1u32 << k) }).collect()
         }
-        RefineArg::Both | RefineArg::Mesh => {
-            let sizes = if sizes.is_empty() { (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect() } else { sizes };
+        RefineArg::Both | RefineArg::Mesh | RefineArg::Width => {
+            let sizes = match (sizes.is_empty(), args.refine) {
+                (false, _) => sizes,
+                (true, RefineArg::Width) => (0..3).map(|k| (own.elements_sigma, own.elements_zeta << k)).collect(),
+                (true, _) => (0..3).map(|k| (own.elements_sigma << k, own.elements_zeta)).collect(),
+            };
             sizes
                 .into_iter()
                 .map(|(ns, nz)| match args.refine {
-                    RefineArg::Mesh => Discretisation::Mesh2d { sigma: ns, zeta: nz, time_step: own.time_step },
+                    RefineArg::Mesh | RefineArg::Width => Discretisation::Mesh2d { sigma: ns, zeta: nz, time_step: own.time_step },
                     _ => verification::run::ShellFe::level(scene, ns, nz),
                 })
                 .collect()
@@ -1002,7 +1026,10 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
             verification::run::ShellFe::scene_at(scene, sigma, zeta, time_step).with_context(|| format!("--levels: the level {level}"))?;
         }
     }
-    let mut plan = verification::study::StudyPlan::shell(levels).with_compensation();
+    let mut plan = verification::study::StudyPlan::shell(levels);
+    if !args.no_compensation {
+        plan = plan.with_compensation();
+    }
     plan.samples = args.samples;
     plan.validate_for(scene)?;
     Ok(plan)
@@ -1025,7 +1052,8 @@ fn run_converge(args: &ConvergeArgs) -> Result<()> {
     let scene = load_scene(&args.scene)?;
     let plan = study_plan(&scene, &args.study)?;
     let bar = progress_bar();
-    let study = study_with_progress(&scene, &plan, &bar)?;
+    let mut study = study_with_progress(&scene, &plan, &bar)?;
+    note_skipped_compensation(&scene, &args.study, &mut study);
     bar.finish_and_clear();
     print!("{}", verification::table::study_text(&study));
     println!("\nstudy: {} runs in {:.1} s", plan.run_count(), study.wall_seconds);
@@ -1088,7 +1116,8 @@ fn run_report(args: &ReportArgs) -> Result<()> {
     let mut entries = Vec::new();
     let mut unsolved = Vec::new();
     for ((file, scene), plan) in scenes.iter().zip(&plans) {
-        let study = study_with_progress(scene, plan, &bar)?;
+        let mut study = study_with_progress(scene, plan, &bar)?;
+        note_skipped_compensation(scene, &args.study, &mut study);
         if let Err(e) = study.usable() {
             unsolved.push(format!("{}: {:#}", scene.name, anyhow::Error::from(e)));
         }

@@ -284,6 +284,9 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     refused(&["converge", "scenes/rod-hanging.json", "--levels", "64x2,128x2,256x2", "--json", j], &["--levels is for shell scenes"]);
     refused(&["converge", "scenes/rod-hanging.json", "--refine", "step", "--json", j], &["--refine is for shell scenes"]);
     refused(&["converge", SCENE, "--refine", "step", "--levels", "64x2,128x2", "--json", j], &["with --refine step one mesh"]);
+    // the width alone, but σ refined too at the last level: no one limit
+    refused(&["converge", SCENE, "--refine", "width", "--levels", "32x2,32x4,64x8", "--json", j], &["n_ζ alone on one σ-mesh", "three or more levels"]);
+    refused(&["converge", "scenes/rod-hanging.json", "--no-compensation", "--json", j], &["--no-compensation is for shell scenes"]);
     refused(&["solve", SCENE, "--elements", "32", "--json", j], &["--elements is not used", "elements_sigma"]);
     refused(&["solve", "scenes/rod-hanging.json", "--vtk", temp("cli-shell-refusals", "vtk").to_str().unwrap(), "--json", j], &["--vtk is for shell scenes", "kirchhoff"]);
     refused(&["solve", "scenes/rod-hanging.json", "--measured", "x.csv", "--json", j], &["--measured is for shell scenes"]);
@@ -400,10 +403,40 @@ fn shell_converge_extrapolates_its_levels_and_holds_them_against_the_extrapolati
     eprintln!("shell study: {extrapolated} extrapolated, {refused} refused");
 }
 
-/// `converge --refine step` and `--refine mesh` on a shell scene (issue 15: the run-off
-/// "refined together and separately"): the step alone halved twice on one mesh, or the
-/// mesh alone at the scene's step; the study says which limit the sequence converges to,
-/// and the Richardson extrapolation is of that sequence.
+/// `--no-compensation` skips a cambered belt's compensating swivel (about six whole
+/// solves at the coarsest level) and the study says so; without it the same study
+/// searches it (the CI scene shortened to 2 steps, its camber kept).
+#[test]
+fn shell_converge_skips_the_compensating_swivel_when_told_and_says_so() {
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
+    v["fem"]["steps"] = serde_json::json!(2);
+    v["fem"]["frame_every"] = serde_json::json!(0);
+    assert!(v["belt"]["camber"].is_object(), "the CI scene is cambered");
+    let short = temp("cli-shell-no-compensation", "short.json");
+    std::fs::write(&short, v.to_string()).unwrap();
+    for skip in [true, false] {
+        let json = temp("cli-shell-no-compensation", &format!("{skip}.json"));
+        let _ = std::fs::remove_file(&json);
+        let mut a = vec!["converge", short.to_str().unwrap(), "--refine", "width", "--levels", "32x2,32x4,32x8", "--samples", "64", "--json", json.to_str().unwrap()];
+        if skip {
+            a.push("--no-compensation");
+        }
+        let o = beltcheck(&a);
+        assert!(o.status.success(), "{skip}: {}", stderr(&o));
+        let study: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+        assert_eq!(stdout(&o).contains("the compensating swivel (spec E-5) was not searched (--no-compensation)"), skip, "{}", stdout(&o));
+        assert_eq!(study["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("not searched")), skip, "{}", study["notes"]);
+        // searched: a root or a note why none was found
+        let searched = !study["compensation"].is_null() || study["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("could not be found"));
+        assert_eq!(searched, !skip, "{skip}: {}", study["notes"]);
+    }
+}
+
+/// `converge --refine step`, `--refine mesh` and `--refine width` on a shell scene (issue
+/// 15: the run-off "refined together and separately"): the step alone halved twice on
+/// one mesh, the mesh alone at the scene's step, or n_ζ alone on one σ-mesh at that step;
+/// the study says which limit the sequence converges to, and the Richardson
+/// extrapolation is of that sequence.
 #[test]
 fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
     let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
@@ -415,8 +448,9 @@ fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
     std::fs::write(&short, v.to_string()).unwrap();
     let dt = v["fem"]["time_step"].as_f64().unwrap();
     for (refine, levels, expected, note) in [
-        ("step", "32x2", [(32, dt), (32, dt / 2.0), (32, dt / 4.0)], "the time step alone is refined, on the mesh 32×2"),
-        ("mesh", "32x2,64x2,128x2", [(32, dt), (64, dt), (128, dt)], "the mesh alone is refined, at Δt ="),
+        ("step", "32x2", [(32, 2, dt), (32, 2, dt / 2.0), (32, 2, dt / 4.0)], "the time step alone is refined, on the mesh 32×2"),
+        ("mesh", "32x2,64x2,128x2", [(32, 2, dt), (64, 2, dt), (128, 2, dt)], "the mesh alone is refined, at Δt ="),
+        ("width", "32x2,32x4,32x8", [(32, 2, dt), (32, 4, dt), (32, 8, dt)], "the width alone is refined, n_ζ on the σ-mesh of 32 elements at Δt ="),
     ] {
         let json = temp("cli-shell-refine", &format!("{refine}.json"));
         let _ = std::fs::remove_file(&json);
@@ -424,15 +458,18 @@ fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
         assert!(o.status.success(), "{refine}: {}", stderr(&o));
         assert!(stdout(&o).contains(note), "{refine}: {}", stdout(&o));
         assert_eq!(stdout(&o).contains("fem shell-bfs — time-step sequence on one mesh"), refine == "step", "{}", stdout(&o));
+        assert_eq!(stdout(&o).contains("fem shell-bfs — width sequence (n_ζ) on one σ-mesh and step"), refine == "width", "{}", stdout(&o));
         let study: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
         let rows = study["series"][0]["rows"].as_array().unwrap();
         assert_eq!(rows.len(), 3);
-        for (row, (ns, step)) in rows.iter().zip(expected) {
+        for (row, (ns, nz, step)) in rows.iter().zip(expected) {
             let d = &row["run"]["discretisation"]["mesh2d"];
-            assert_eq!(d["sigma"], ns, "{refine}");
+            assert_eq!((&d["sigma"], &d["zeta"]), (&serde_json::json!(ns), &serde_json::json!(nz)), "{refine}");
             assert!((d["time_step"].as_f64().unwrap() - step).abs() <= 1e-15 * dt, "{refine}: {d}");
             assert_eq!(row["run"]["status"], "solved", "{}", row["run"]);
         }
+        // no camber: no compensating swivel searched, and none said to be skipped
+        assert!(study["compensation"].is_null() && !stdout(&o).contains("not searched"), "{refine}");
         // the extrapolation is of this sequence (ratio 2): the recomputed Richardson value
         // of the upper mid-span height, when it is in the asymptotic range
         let y = |k: usize| rows[k]["run"]["summary"]["y_upper_mid"].as_f64().unwrap();

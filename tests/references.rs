@@ -82,6 +82,14 @@ fn two_d_discretisation_prints_and_serialises() {
     assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 128, zeta: 8, time_step: 0.01 }), Some((Refinement::Mesh, 2.0)));
     assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.01 }), Some((Refinement::Mesh, 2.0)));
     assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 64, zeta: 4, time_step: 0.0025 }), Some((Refinement::Step, 4.0)));
+    // n_ζ alone on one σ-mesh at one Δt: the limit across the width (its ratio n_ζ's)
+    assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 64, zeta: 8, time_step: 0.01 }), Some((Refinement::Width, 2.0)));
+    assert_eq!(d.refinement(Discretisation::Mesh2d { sigma: 64, zeta: 6, time_step: 0.01 }), Some((Refinement::Width, 1.5)));
+    assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 64, zeta: 2, time_step: 0.01 }), None);
+    let across = |zeta: usize| Discretisation::Mesh2d { sigma: 128, zeta, time_step: 0.01 };
+    assert_eq!(verification::study::shell_refinement(&[across(4), across(8), across(16)]), Some(Refinement::Width));
+    assert!(verification::study::StudyPlan::shell(vec![across(4), across(8), across(16)]).validate().is_ok());
+    assert!(verification::study::shell_level_notes(&[across(4), across(8), across(16)]).iter().any(|n| n.contains("the width alone is refined")));
     // σ and Δt by different ratios, or a step refined while ζ alone changes: none
     assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 128, zeta: 4, time_step: 0.0025 }), None);
     assert_eq!(d.refinement_ratio(Discretisation::Mesh2d { sigma: 64, zeta: 8, time_step: 0.005 }), None);

@@ -422,6 +422,9 @@ pub enum Refinement {
     /// The time step on one 2-D mesh: the sequence converges to the time-continuous
     /// limit on that mesh.
     Step,
+    /// n_ζ alone, on one σ-mesh at one time step: the sequence converges to the limit
+    /// across the width on that σ-mesh and step.
+    Width,
 }
 
 impl Discretisation {
@@ -435,7 +438,9 @@ impl Discretisation {
     /// ([`Refinement::Together`]: a 1-D mesh has one h); for 2-D meshes either σ and Δt
     /// together (their ratios agree to 1e-9: the limit of space and time), or σ alone at
     /// one Δt ([`Refinement::Mesh`]: the limit in space at that step), or Δt alone on one
-    /// mesh ([`Refinement::Step`]: the time-continuous limit on that mesh). ζ is refined
+    /// mesh ([`Refinement::Step`]: the time-continuous limit on that mesh), or n_ζ alone
+    /// on one σ-mesh at one Δt ([`Refinement::Width`], ratio n_ζ,fine/n_ζ: the limit
+    /// across the width on that σ-mesh and step). Otherwise ζ is refined
     /// with σ by the same ratio or held (a sequence at one n_ζ converges to that n_ζ's
     /// limit: the error across the width is then not in what the sequence measures, and
     /// a study says so); a step refinement holds both counts. `None` for tolerances,
@@ -449,6 +454,8 @@ impl Discretisation {
                 let zeta_follows = close(rs, rz) || z0 == z1;
                 if s0 == s1 && z0 == z1 {
                     (Refinement::Step, rt)
+                } else if s0 == s1 && close(rt, 1.0) {
+                    (Refinement::Width, rz)
                 } else if zeta_follows && close(rt, 1.0) {
                     (Refinement::Mesh, rs)
                 } else if zeta_follows && close(rs, rt) {

@@ -835,7 +835,8 @@ pub(crate) fn area_message(area: &Area, title: &str, text: &str) -> Result<(), S
 
 /// Left: FE error vs elements (log–log) per formulation for the headline measures, with
 /// reference slopes h¹, h², h⁴ below the first point (against the step's refinement
-/// Δt₀/Δt for a shell study that refines only Δt). Right: BVP error vs the
+/// Δt₀/Δt for a shell study that refines only Δt, against n_ζ for one that refines only
+/// the width). Right: BVP error vs the
 /// requested tolerance per variant, with the line error = tolerance.
 pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError> {
     let measures = headline(study);
@@ -847,6 +848,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
             Box::new(move |d| if let Discretisation::Mesh2d { time_step, .. } = d { Some((t0 / time_step).round() as usize) } else { None }),
             "time-step refinement Δt₀/Δt",
         ),
+        (Some(Refinement::Width), _) => (Box::new(|d: Discretisation| if let Discretisation::Mesh2d { zeta, .. } = d { Some(zeta) } else { None }), "elements across the width n_ζ"),
         _ => (Box::new(|d: Discretisation| d.elements_along()), "elements"),
     };
     render("convergence", 620, |root| {

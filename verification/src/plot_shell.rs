@@ -276,6 +276,36 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
+    /// A shell study that refines only the width on one σ-mesh (`--refine width`): its
+    /// convergence plot is over n_ζ (not the σ count, which is one), the study notes the
+    /// limit it converges to and what it leaves out, and the report's command reproduces
+    /// it, with `--no-compensation` for a plan that did not search the swivel.
+    #[test]
+    fn a_study_of_the_width_alone_plots_over_n_zeta_and_says_what_it_converges_to() {
+        use crate::run::Discretisation;
+        use crate::study::{Study, StudyPlan};
+        let scene = drive::Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
+        let levels: Vec<Discretisation> = (0..3).map(|k| Discretisation::Mesh2d { sigma: 32, zeta: 2 << k, time_step: 0.1 }).collect();
+        let plan = StudyPlan::shell(levels.clone());
+        plan.validate().unwrap();
+        assert_eq!(plan.shell_refinement(), Some(drive::result::Refinement::Width));
+        let notes = crate::study::shell_level_notes(&levels);
+        assert!(notes.len() == 1 && notes[0].starts_with("the width alone is refined, n_ζ on the σ-mesh of 32 elements at Δt = 0.1 s"), "{notes:?}");
+        let computed = plan.reference.richardson(&synthetic_runs(&levels));
+        let y = computed.estimates.iter().find(|e| e.quantity == "y_upper_mid").expect("y extrapolated");
+        assert!((y.value - 1.0).abs() < 1e-12 && (y.order.unwrap() - 2.0).abs() < 1e-9, "{y:?}");
+        let study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), crate::run::Family::Fem, synthetic_runs(&levels))]);
+        let svg = crate::plot::convergence_svg(&scene, &study).unwrap();
+        assert!(svg.contains("elements across the width n_ζ"), "the width's axis");
+        let texts: Vec<&str> = svg.split("</text>").filter_map(|t| t.rsplit_once('>').map(|(_, x)| x.trim())).collect();
+        assert!(!texts.contains(&"32"), "no σ count on the axis: {texts:?}");
+        let dir = std::env::temp_dir().join(format!("beltcheck-report-shell-width-{}", std::process::id()));
+        crate::report::write_scene_report(&scene, std::path::Path::new("scenes/shell-runoff.json"), &study, &dir).unwrap();
+        let md = std::fs::read_to_string(dir.join("shell-runoff").join("report.md")).unwrap();
+        assert!(md.contains("beltcheck converge scenes/shell-runoff.json --refine width --levels 32x2,32x4,32x8 --no-compensation`"), "{md}");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     /// A shell study made of three synthetic levels (no solve): q(n) = 1 + 1/n² for the
     /// mid-span heights, an oscillating tension, a lateral offset z̄ = v (t − t₀) per
     /// level and one frame of surface fields on the finest. `report` writes the run-off

@@ -285,9 +285,16 @@ fn command_of(scene_file: &Path, study: &Study) -> String {
             Some(Refinement::Mesh) => {
                 let _ = write!(c, " --refine mesh");
             }
+            Some(Refinement::Width) => {
+                let _ = write!(c, " --refine width");
+            }
             _ => {}
         }
         let _ = write!(c, " --levels {}", sizes.join(","));
+        // a report's shell study asks for the compensating swivel unless told not to
+        if !study.plan.compensate {
+            let _ = write!(c, " --no-compensation");
+        }
         return c;
     }
     if let Formulations::Named(n) = &study.plan.formulations {
@@ -435,7 +442,7 @@ The constant swivel of the steering drum that cancels the camber's run-off (spec
     }
     let _ = writeln!(
         m,
-        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(r), r the refinement ratio (n_k/n_(k−1), or Δt_(k−1)/Δt_k for a shell study of the step). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
+        "Errors are relative to the reference: *scalars* = the largest |q − q_ref|/|q_ref| over the {} summary scalars (polar angles: |q − q_ref| wrapped, over π); field norms ‖f − f_ref‖/‖f_ref‖ (max or L2 over {} uniform σ samples). FE *rate* = log(e_(k−1)/e_k)/log(r), r the refinement ratio (n_k/n_(k−1), or Δt_(k−1)/Δt_k for a shell study of the step, n_ζ,k/n_ζ,(k−1) for one of the width). BVP rows have no rate: an order against a tolerance is not meaningful. \"—\" = not computable.\n",
         study.quantities.iter().filter(|q| q.is_scalar()).count(),
         study.plan.samples
     );

@@ -134,7 +134,7 @@ pub enum PlanError {
     /// the one before in one way throughout ([`drive::result::Refinement`]) by one ratio
     /// > 1, n_ζ with σ by it or held (or the plan
     /// also names BVP or 1-D FE runs, which a shell scene has none of).
-    #[error("a shell study needs three or more levels n_σ × n_ζ with Δt, each refined from the one before in one way throughout — σ and Δt together, σ alone at one Δt, or Δt alone on one mesh — by one ratio > 1 (the same ratio over the three finest, for the Richardson extrapolation), n_ζ with σ by that ratio or held, and nothing else; got {}", crate::reference::list(.0))]
+    #[error("a shell study needs three or more levels n_σ × n_ζ with Δt, each refined from the one before in one way throughout — σ and Δt together, σ alone at one Δt, Δt alone on one mesh, or n_ζ alone on one σ-mesh at one Δt — by one ratio > 1 (the same ratio over the three finest, for the Richardson extrapolation), n_ζ with σ by that ratio or held, and nothing else; got {}", crate::reference::list(.0))]
     ShellLevels(Vec<Discretisation>),
     /// A shell scene with a plan that is not a shell study, or a shell study of a scene
     /// that is not a shell.
@@ -176,8 +176,9 @@ pub fn shell_refinement(levels: &[Discretisation]) -> Option<Refinement> {
 }
 
 /// What a shell study's levels leave out of its estimates, for its notes: the error in
-/// space when only Δt is refined, the step's error when only the mesh is, the error
-/// across the width when n_ζ is held while σ is refined.
+/// space when only Δt is refined, the step's error when only the mesh is, the errors
+/// along σ and in the step when only the width is, the error across the width when n_ζ
+/// is held while σ is refined.
 pub fn shell_level_notes(levels: &[Discretisation]) -> Vec<String> {
     let mut notes = Vec::new();
     match (shell_refinement(levels), levels.last()) {
@@ -186,6 +187,10 @@ pub fn shell_level_notes(levels: &[Discretisation]) -> Vec<String> {
         )),
         (Some(Refinement::Mesh), Some(&Discretisation::Mesh2d { time_step, .. })) => notes.push(format!(
             "the mesh alone is refined, at Δt = {} s: the sequence converges to the limit in space at that step, so the step's error is not in the estimates (refine Δt too, --refine both or step, to include it)",
+            drive::error::num(&time_step)
+        )),
+        (Some(Refinement::Width), Some(&Discretisation::Mesh2d { sigma, time_step, .. })) => notes.push(format!(
+            "the width alone is refined, n_ζ on the σ-mesh of {sigma} elements at Δt = {} s: the sequence converges to the limit across the width on that σ-mesh and step, so the errors along σ and in the step are not in the estimates (--refine mesh and step measure them)",
             drive::error::num(&time_step)
         )),
         _ => {}

@@ -318,7 +318,7 @@ pub fn study_text(study: &Study) -> String {
     out.push_str(&format!("scene {}\n", study.scene));
     out.push_str(&format!("{}\n", reference_line(study)));
     out.push_str(&format!(
-        "errors are relative to the reference: scalars = max over the {} summary scalars of |q − q_ref|/|q_ref|; field norms = ‖f − f_ref‖/‖f_ref‖ over σ ({} samples); rate = log(e_(k−1)/e_k)/log(r), r the refinement ratio (n_k/n_(k−1), or Δt_(k−1)/Δt_k for a shell study of the step)\n",
+        "errors are relative to the reference: scalars = max over the {} summary scalars of |q − q_ref|/|q_ref|; field norms = ‖f − f_ref‖/‖f_ref‖ over σ ({} samples); rate = log(e_(k−1)/e_k)/log(r), r the refinement ratio (n_k/n_(k−1), or Δt_(k−1)/Δt_k for a shell study of the step, n_ζ,k/n_ζ,(k−1) for one of the width)\n",
         study.quantities.iter().filter(|q| q.is_scalar()).count(),
         study.plan.samples
     ));
@@ -342,6 +342,7 @@ pub fn study_text(study: &Study) -> String {
             SeriesStatus::Studied => {
                 let what = match (s.family, study.plan.shell_refinement()) {
                     (Family::Fem, Some(drive::result::Refinement::Step)) => "time-step sequence on one mesh, observed order per refinement",
+                    (Family::Fem, Some(drive::result::Refinement::Width)) => "width sequence (n_ζ) on one σ-mesh and step, observed order per refinement",
                     (Family::Fem, _) => "mesh sequence, observed order per refinement",
                     _ => "tolerance sweep, error and cost (no order vs tolerance)",
                 };
