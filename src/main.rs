@@ -149,7 +149,7 @@ struct StudyArgs {
     #[arg(long, value_enum, default_value_t = RefineArg::Both)]
     refine: RefineArg,
     /// Shell scenes only: skip the cambered belt's compensating swivel (a root over
-    /// whole solves, about six at the coarsest level: on a long run they cost more than
+    /// whole solves, six to eight at the coarsest level: on a long run they cost more than
     /// the study); the study then names it as not searched.
     #[arg(long)]
     no_compensation: bool,
@@ -917,9 +917,10 @@ fn study_with_progress(scene: &Scene, plan: &verification::study::StudyPlan, bar
 }
 
 /// A note on `study` when `--no-compensation` skipped a cambered, turning shell's
-/// compensating swivel, so that its absence from the study is stated, not silent.
+/// compensating swivel (one the study would have searched), so that its absence from
+/// the study is stated, not silent.
 fn note_skipped_compensation(scene: &Scene, args: &StudyArgs, study: &mut verification::study::Study) {
-    if args.no_compensation && scene.belt.camber.is_some() && scene.drive.driver_speed != 0.0 {
+    if args.no_compensation && verification::study::has_compensating_swivel(scene) {
         study.notes.push("the compensating swivel (spec E-5) was not searched (--no-compensation)".to_string());
     }
 }
@@ -1019,11 +1020,30 @@ fn shell_study_plan(scene: &Scene, args: &StudyArgs) -> Result<verification::stu
                 .collect()
         }
     };
+    // levels that refine in another way than `--refine` asked (e.g. one n_σ under
+    // `--refine mesh`): refused, not studied as another kind of limit
+    use drive::result::Refinement;
+    let what = |kind: Refinement| match kind {
+        Refinement::Together => "σ and Δt together",
+        Refinement::Mesh => "σ alone at one Δt",
+        Refinement::Step => "Δt alone on one mesh",
+        Refinement::Width => "n_ζ alone on one σ-mesh at one Δt",
+    };
+    let (asked, flag) = match args.refine {
+        RefineArg::Both => (Refinement::Together, "both"),
+        RefineArg::Mesh => (Refinement::Mesh, "mesh"),
+        RefineArg::Step => (Refinement::Step, "step"),
+        RefineArg::Width => (Refinement::Width, "width"),
+    };
+    if let Some(kind) = verification::study::shell_refinement(&levels).filter(|&k| k != asked) {
+        return Err(CliError::OutOfRange { flag: "levels", value: args.levels.join(","), range: format!("with --refine {flag} levels that refine {}; these refine {}", what(asked), what(kind)) }.into());
+    }
     // each level is a valid scene (n_ζ even, the step count within range): refused
     // before anything runs, not as a failed run minutes later
     for &level in &levels {
         if let Discretisation::Mesh2d { sigma, zeta, time_step } = level {
-            verification::run::ShellFe::scene_at(scene, sigma, zeta, time_step).with_context(|| format!("--levels: the level {level}"))?;
+            let which = if args.levels.is_empty() { "the default levels" } else { "--levels" };
+            verification::run::ShellFe::scene_at(scene, sigma, zeta, time_step).with_context(|| format!("{which}: the level {level}"))?;
         }
     }
     let mut plan = verification::study::StudyPlan::shell(levels);

@@ -287,6 +287,10 @@ fn shell_refusals_name_the_reason_and_write_nothing() {
     // the width alone, but σ refined too at the last level: no one limit
     refused(&["converge", SCENE, "--refine", "width", "--levels", "32x2,32x4,64x8", "--json", j], &["n_ζ alone on one σ-mesh", "three or more levels"]);
     refused(&["converge", "scenes/rod-hanging.json", "--no-compensation", "--json", j], &["--no-compensation is for shell scenes"]);
+    // levels that refine in another way than --refine asks: refused, not studied as that other limit
+    refused(&["converge", SCENE, "--refine", "width", "--levels", "32x2,64x4,128x8", "--json", j], &["with --refine width levels that refine n_ζ alone", "these refine σ alone at one Δt"]);
+    refused(&["converge", SCENE, "--refine", "mesh", "--levels", "32x2,32x4,32x8", "--json", j], &["with --refine mesh levels that refine σ alone", "these refine n_ζ alone"]);
+    refused(&["converge", SCENE, "--levels", "32x2,32x4,32x8", "--json", j], &["with --refine both levels that refine σ and Δt together", "these refine n_ζ alone"]);
     refused(&["solve", SCENE, "--elements", "32", "--json", j], &["--elements is not used", "elements_sigma"]);
     refused(&["solve", "scenes/rod-hanging.json", "--vtk", temp("cli-shell-refusals", "vtk").to_str().unwrap(), "--json", j], &["--vtk is for shell scenes", "kirchhoff"]);
     refused(&["solve", "scenes/rod-hanging.json", "--measured", "x.csv", "--json", j], &["--measured is for shell scenes"]);
@@ -405,7 +409,8 @@ fn shell_converge_extrapolates_its_levels_and_holds_them_against_the_extrapolati
 
 /// `--no-compensation` skips a cambered belt's compensating swivel (about six whole
 /// solves at the coarsest level) and the study says so; without it the same study
-/// searches it (the CI scene shortened to 2 steps, its camber kept).
+/// searches it (the CI scene shortened to 2 steps, its camber kept); with a camber of
+/// zero there is nothing to skip and the study says nothing of it.
 #[test]
 fn shell_converge_skips_the_compensating_swivel_when_told_and_says_so() {
     let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(SCENE).unwrap()).unwrap();
@@ -414,18 +419,22 @@ fn shell_converge_skips_the_compensating_swivel_when_told_and_says_so() {
     assert!(v["belt"]["camber"].is_object(), "the CI scene is cambered");
     let short = temp("cli-shell-no-compensation", "short.json");
     std::fs::write(&short, v.to_string()).unwrap();
-    for skip in [true, false] {
-        let json = temp("cli-shell-no-compensation", &format!("{skip}.json"));
+    // a camber of zero given explicitly: nothing to search, so nothing said to be skipped
+    v["belt"]["camber"] = serde_json::json!({"edge_length_difference": 0.0});
+    let straight = temp("cli-shell-no-compensation", "straight.json");
+    std::fs::write(&straight, v.to_string()).unwrap();
+    for (scene, skip, skipped) in [(&short, true, true), (&short, false, false), (&straight, true, false)] {
+        let json = temp("cli-shell-no-compensation", &format!("{skip}-{skipped}.json"));
         let _ = std::fs::remove_file(&json);
-        let mut a = vec!["converge", short.to_str().unwrap(), "--refine", "width", "--levels", "32x2,32x4,32x8", "--samples", "64", "--json", json.to_str().unwrap()];
+        let mut a = vec!["converge", scene.to_str().unwrap(), "--refine", "width", "--levels", "32x2,32x4,32x8", "--samples", "64", "--json", json.to_str().unwrap()];
         if skip {
             a.push("--no-compensation");
         }
         let o = beltcheck(&a);
         assert!(o.status.success(), "{skip}: {}", stderr(&o));
         let study: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-        assert_eq!(stdout(&o).contains("the compensating swivel (spec E-5) was not searched (--no-compensation)"), skip, "{}", stdout(&o));
-        assert_eq!(study["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("not searched")), skip, "{}", study["notes"]);
+        assert_eq!(stdout(&o).contains("the compensating swivel (spec E-5) was not searched (--no-compensation)"), skipped, "{}", stdout(&o));
+        assert_eq!(study["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("not searched")), skipped, "{}", study["notes"]);
         // searched: a root or a note why none was found
         let searched = !study["compensation"].is_null() || study["notes"].as_array().unwrap().iter().any(|n| n.as_str().unwrap().contains("could not be found"));
         assert_eq!(searched, !skip, "{skip}: {}", study["notes"]);
@@ -454,7 +463,12 @@ fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
     ] {
         let json = temp("cli-shell-refine", &format!("{refine}.json"));
         let _ = std::fs::remove_file(&json);
-        let o = beltcheck(&["converge", short.to_str().unwrap(), "--refine", refine, "--levels", levels, "--samples", "256", "--json", json.to_str().unwrap()]);
+        let mut a = vec!["converge", short.to_str().unwrap(), "--refine", refine, "--levels", levels, "--samples", "256", "--json", json.to_str().unwrap()];
+        if refine == "width" {
+            // nothing to skip on a belt without camber: the study says nothing of it
+            a.push("--no-compensation");
+        }
+        let o = beltcheck(&a);
         assert!(o.status.success(), "{refine}: {}", stderr(&o));
         assert!(stdout(&o).contains(note), "{refine}: {}", stdout(&o));
         assert_eq!(stdout(&o).contains("fem shell-bfs — time-step sequence on one mesh"), refine == "step", "{}", stdout(&o));
@@ -468,7 +482,8 @@ fn shell_converge_refines_the_step_alone_or_the_mesh_alone() {
             assert!((d["time_step"].as_f64().unwrap() - step).abs() <= 1e-15 * dt, "{refine}: {d}");
             assert_eq!(row["run"]["status"], "solved", "{}", row["run"]);
         }
-        // no camber: no compensating swivel searched, and none said to be skipped
+        // no camber: no compensating swivel searched, and none said to be skipped (with
+        // --no-compensation on the width's study)
         assert!(study["compensation"].is_null() && !stdout(&o).contains("not searched"), "{refine}");
         // the extrapolation is of this sequence (ratio 2): the recomputed Richardson value
         // of the upper mid-span height, when it is in the asymptotic range

@@ -919,7 +919,7 @@ pub fn convergence_svg(scene: &Scene, study: &Study) -> Result<String, PlotError
                 chart
                     .draw_series(DashedLineSeries::new(line, 6, 6, BLACK.mix(shade).stroke_width(1)))
                     .map_err(err)?
-                    .label(if x_name == "elements" { format!("slope h^{p}") } else { format!("slope Δt^{p}") })
+                    .label(if x_name.starts_with("time-step") { format!("slope Δt^{p}") } else { format!("slope h^{p}") })
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], BLACK.mix(shade).stroke_width(1)));
             }
             for &i in &fe {

@@ -254,7 +254,7 @@ mod tests {
         use crate::study::{Study, StudyPlan};
         let scene = drive::Scene::from_json_str(include_str!("../../scenes/shell-runoff.json")).unwrap();
         let levels: Vec<Discretisation> = (0..3).map(|k| Discretisation::Mesh2d { sigma: 32, zeta: 2, time_step: 0.1 / f64::from(1u32 << k) }).collect();
-        let plan = StudyPlan::shell(levels.clone());
+        let plan = StudyPlan::shell(levels.clone()).with_compensation();
         plan.validate().unwrap();
         assert_eq!(plan.shell_refinement(), Some(drive::result::Refinement::Step));
         let notes = crate::study::shell_level_notes(&levels);
@@ -272,7 +272,9 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("beltcheck-report-shell-step-{}", std::process::id()));
         crate::report::write_scene_report(&scene, std::path::Path::new("scenes/shell-runoff.json"), &study, &dir).unwrap();
         let md = std::fs::read_to_string(dir.join("shell-runoff").join("report.md")).unwrap();
-        assert!(md.contains("beltcheck converge scenes/shell-runoff.json --refine step --levels 32x2"), "{md}");
+        // a plan that searches the swivel reproduces without --no-compensation
+        assert!(md.contains("beltcheck converge scenes/shell-runoff.json --refine step --levels 32x2`"), "{md}");
+        assert!(md.contains("against the step's refinement Δt₀/Δt"), "the caption names the step's axis");
         let _ = std::fs::remove_dir_all(&dir);
     }
 
@@ -296,13 +298,14 @@ mod tests {
         assert!((y.value - 1.0).abs() < 1e-12 && (y.order.unwrap() - 2.0).abs() < 1e-9, "{y:?}");
         let study = Study::of_runs(&scene, &plan, computed, vec![(crate::run::SHELL_FE.into(), crate::run::Family::Fem, synthetic_runs(&levels))]);
         let svg = crate::plot::convergence_svg(&scene, &study).unwrap();
-        assert!(svg.contains("elements across the width n_ζ"), "the width's axis");
+        assert!(svg.contains("elements across the width n_ζ") && svg.contains("slope h^2") && !svg.contains("slope Δt"), "the width's axis and slopes");
         let texts: Vec<&str> = svg.split("</text>").filter_map(|t| t.rsplit_once('>').map(|(_, x)| x.trim())).collect();
         assert!(!texts.contains(&"32"), "no σ count on the axis: {texts:?}");
         let dir = std::env::temp_dir().join(format!("beltcheck-report-shell-width-{}", std::process::id()));
         crate::report::write_scene_report(&scene, std::path::Path::new("scenes/shell-runoff.json"), &study, &dir).unwrap();
         let md = std::fs::read_to_string(dir.join("shell-runoff").join("report.md")).unwrap();
         assert!(md.contains("beltcheck converge scenes/shell-runoff.json --refine width --levels 32x2,32x4,32x8 --no-compensation`"), "{md}");
+        assert!(md.contains("against the elements across the width n_ζ"), "the caption names the width's axis");
         let _ = std::fs::remove_dir_all(&dir);
     }
 

@@ -403,10 +403,16 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     m.push('\n');
 
     // Plots.
+    let against = match study.plan.shell_refinement() {
+        Some(Refinement::Step) => "against the step's refinement Δt₀/Δt on the one mesh",
+        Some(Refinement::Width) => "against the elements across the width n_ζ on the one σ-mesh",
+        _ => "against elements along σ",
+    };
+    let convergence_caption = format!("Error of each level against the Richardson extrapolation of the three finest, {against}, with reference slopes.");
     let shell_plots = [
         ("Run-off in time", "The belt's lateral offset z̄(t) (the width-averaged lateral position of the belt, docs/fem-shell.md §9.3) and its rate, every level of the study (light to dark: coarse to fine). The reference text gives no measured run-off: `beltcheck solve SCENE --measured FILE.csv` overlays a user's (t, lateral) samples with the difference.", "run-off", "runoff.svg"),
         ("Contact maps", "Contact pressure Pγ and interlayer shear stress P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed tangential displacement at the nearest history point).", "contact maps", "contact-maps.svg"),
-        ("Convergence", "Error of each level against the Richardson extrapolation of the three finest, against elements along σ, with reference slopes.", "convergence", "convergence.svg"),
+        ("Convergence", convergence_caption.as_str(), "convergence", "convergence.svg"),
         ("Work–precision", "Error against wall time, every level of this scene.", "work–precision", "work-precision.svg"),
     ];
     let plots = [

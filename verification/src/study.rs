@@ -175,6 +175,12 @@ pub fn shell_refinement(levels: &[Discretisation]) -> Option<Refinement> {
     kinds.iter().all(|&k| k == first).then_some(first).flatten()
 }
 
+/// Whether `scene` has a compensating swivel for a shell study to search
+/// ([`StudyPlan::compensate`]): a shell with camber on turning drums.
+pub fn has_compensating_swivel(scene: &Scene) -> bool {
+    fem::shell::scene::ShellScene::from_scene(scene).is_ok_and(|shell| shell.turning && shell.camber != 0.0)
+}
+
 /// What a shell study's levels leave out of its estimates, for its notes: the error in
 /// space when only Δt is refined, the step's error when only the mesh is, the errors
 /// along σ and in the step when only the width is, the error across the width when n_ζ
@@ -565,8 +571,8 @@ impl Study {
         let mut computed = plan.reference.richardson(&runs);
         computed.notes.extend(shell_level_notes(levels));
         let mut study = Study::of_runs(scene, plan, computed, vec![(SHELL_FE.to_string(), Family::Fem, runs)]);
-        if let (Some(&Discretisation::Mesh2d { sigma, zeta, time_step }), Ok(shell)) = (levels.first(), fem::shell::scene::ShellScene::from_scene(scene)) {
-            if plan.compensate && shell.turning && shell.camber != 0.0 {
+        if let Some(&Discretisation::Mesh2d { sigma, zeta, time_step }) = levels.first() {
+            if plan.compensate && has_compensating_swivel(scene) {
                 progress(&Progress { done: total, total, label: format!("the compensating swivel at {sigma}×{zeta}") });
                 let found = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| e.to_string()).and_then(|s| fem::shell::compensation::compensating_swivel(&s).map_err(|e| e.to_string()));
                 match found {
