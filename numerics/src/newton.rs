@@ -1438,11 +1438,11 @@ mod tests {
 
     /// Natural monotonicity without the converged iterate's residual: the same iterate
     /// and counters to the bit, one residual pass fewer (from z = 10: damped first steps,
-    /// then the simplified correction below the tolerance taken, and from z = 1.5: a
-    /// first full correction below a loose tolerance).
+    /// then the simplified correction below the tolerance taken, and from z = √2 − 1.4e-5:
+    /// a first full correction below a loose tolerance).
     #[test]
     fn natural_monotonicity_can_skip_the_converged_residual() {
-        for (start, tolerance) in [(10.0, 1e-12), (1.4142, 1e-3)] {
+        for (start, tolerance) in [(10.0, 1e-12), (std::f64::consts::SQRT_2 - 1.4e-5, 1e-3)] {
             let opts = NewtonOptions { tolerance, ..Default::default() };
             let run = |check| {
                 let mut p = Root2 { check, residual_calls: 0, j: 0.0 };
