@@ -979,6 +979,11 @@ pub struct FemSettings {
     /// drifting by 20 % in 24 steps at 64).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub contact_rule: Option<ShellContactRule>,
+    /// Shell only: the ζ-rule of the elastic interlayer's energy across the width:
+    /// `gauss2` (the reference's [T l.420, 432]) to `gauss5`, docs/fem-shell.md §6.
+    /// Default absent = `gauss2`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_rule_width: Option<ShellWidthRule>,
     /// Shell only: the ζ-nodes across the width: `graded` towards the belt's free edges,
     /// where the belt wrapped on a drum has an anticlastic edge layer of the length
     /// ℓ_e = min((D/P)^{1/4}, (4DR²/(Eh))^{1/4}) (3.5 mm for the shipped steel belt), or
@@ -1011,6 +1016,39 @@ pub enum ShellContactRule {
     Trapezoidal,
 }
 
+/// The ζ-rule of the shell's elastic interlayer across the width
+/// (`fem.contact_rule_width`): Gauss–Legendre with 2 to 5 points per ζ-element.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "kebab-case")]
+pub enum ShellWidthRule {
+    /// 2 points: the reference's rule [T l.420, 432].
+    #[default]
+    Gauss2,
+    /// 3 points.
+    Gauss3,
+    /// 4 points.
+    Gauss4,
+    /// 5 points.
+    Gauss5,
+}
+
+impl ShellWidthRule {
+    /// The points per ζ-element.
+    pub const fn points(self) -> u8 {
+        match self {
+            ShellWidthRule::Gauss2 => 2,
+            ShellWidthRule::Gauss3 => 3,
+            ShellWidthRule::Gauss4 => 4,
+            ShellWidthRule::Gauss5 => 5,
+        }
+    }
+
+    /// The rule's name in prose ("Gauss 2").
+    pub fn label(self) -> String {
+        format!("Gauss {}", self.points())
+    }
+}
+
 impl ShellContactRule {
     /// The rule's name in prose ("Simpson", "trapezoidal").
     pub const fn label(self) -> &'static str {
@@ -1039,6 +1077,8 @@ pub struct ShellRun {
     pub frame_every: usize,
     /// The interlayer's σ-rule.
     pub contact_rule: ShellContactRule,
+    /// The interlayer's ζ-rule.
+    pub contact_rule_width: ShellWidthRule,
     /// The ζ-nodes across the width.
     pub zeta_mesh: ShellZetaMesh,
 }
@@ -1123,6 +1163,7 @@ impl Default for FemSettings {
             ramp_steps: None,
             frame_every: None,
             contact_rule: None,
+            contact_rule_width: None,
             zeta_mesh: None,
         }
     }
@@ -1439,13 +1480,14 @@ impl Scene {
             ramp_steps: f.ramp_steps.unwrap_or(1),
             frame_every: f.frame_every.unwrap_or(0),
             contact_rule: f.contact_rule.unwrap_or_default(),
+            contact_rule_width: f.contact_rule_width.unwrap_or_default(),
             zeta_mesh: f.zeta_mesh.unwrap_or_default(),
         }
     }
 
     /// The `fem` block of a shell: only the shell's settings (`elements_sigma`,
     /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`,
-    /// `contact_rule`, `zeta_mesh`);
+    /// `contact_rule`, `contact_rule_width`, `zeta_mesh`);
     /// the rod and string settings are refused by name rather than ignored; the rotation
     /// at most [`MAX_SHELL_STEPS`] steps.
     fn validate_shell_fem(&self, f: &FemSettings) -> Result<(), SceneError> {
@@ -1458,6 +1500,7 @@ impl Scene {
             ("fem.ramp_steps", f.ramp_steps.is_some()),
             ("fem.frame_every", f.frame_every.is_some()),
             ("fem.contact_rule", f.contact_rule.is_some()),
+            ("fem.contact_rule_width", f.contact_rule_width.is_some()),
             ("fem.zeta_mesh", f.zeta_mesh.is_some()),
         ];
         if !shell {
@@ -1479,7 +1522,7 @@ impl Scene {
         if let Some((path, _)) = rod_fields.iter().find(|(_, given)| *given) {
             return Err(SceneError::NotAllowed {
                 path: (*path).into(),
-                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule`, `zeta_mesh` (its contact is the scene's elastic interlayer)".into(),
+                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule`, `contact_rule_width`, `zeta_mesh` (its contact is the scene's elastic interlayer)".into(),
             });
         }
         let steps = self.shell_run().steps;

@@ -291,6 +291,7 @@ pub(crate) const FEM: &[Field] = &[
     opt_in(Cond::Shell, "ramp_steps", Kind::Count, "steps of the ramp of camber and tilt at rest"),
     opt_in(Cond::Shell, "frame_every", Kind::Count, "steps between frames of surface fields"),
     opt_in(Cond::Shell, "contact_rule", Kind::Choice { what: "interlayer σ-rule", variants: &["simpson", "trapezoidal"] }, "σ-rule of the elastic interlayer"),
+    opt_in(Cond::Shell, "contact_rule_width", Kind::Choice { what: "interlayer ζ-rule", variants: &["gauss2", "gauss3", "gauss4", "gauss5"] }, "Gauss points per ζ-element of the elastic interlayer"),
     opt_in(Cond::Shell, "zeta_mesh", Kind::Choice { what: "ζ-mesh across the width", variants: &["graded", "uniform"] }, "ζ-nodes graded towards the belt's edges or uniform"),
 ];
 
@@ -768,6 +769,7 @@ mod tests {
             ramp_steps: Some(2),
             frame_every: Some(4),
             contact_rule: Some(crate::scene::ShellContactRule::Trapezoidal),
+            contact_rule_width: Some(crate::scene::ShellWidthRule::Gauss4),
             zeta_mesh: Some(crate::scene::ShellZetaMesh::Uniform),
             ..Default::default()
         })

@@ -207,6 +207,14 @@ fn shell_fem_settings_are_checked_and_rod_settings_refused() {
     // the interlayer's σ-rule: simpson (default) or trapezoidal, nothing else
     assert_eq!(read(&with("contact_rule", json!("trapezoidal"))).unwrap().shell_run().contact_rule, drive::scene::ShellContactRule::Trapezoidal);
     assert!(read(&with("contact_rule", json!("gauss"))).is_err());
+    // its ζ-rule across the width: gauss2 (default) to gauss5, nothing else, only on a shell
+    for (name, points) in [("gauss2", 2), ("gauss3", 3), ("gauss4", 4), ("gauss5", 5)] {
+        assert_eq!(read(&with("contact_rule_width", json!(name))).unwrap().shell_run().contact_rule_width.points(), points);
+    }
+    assert!(read(&with("contact_rule_width", json!("gauss6"))).is_err());
+    assert!(read(&with("contact_rule_width", json!("simpson"))).is_err());
+    rod["fem"] = json!({"contact_rule_width": "gauss4"});
+    refused(&rod, "fem.contact_rule_width", &["theory `shell`"]);
     // the ζ-mesh: graded (default) or uniform, nothing else, and only on a shell
     assert_eq!(read(&with("zeta_mesh", json!("uniform"))).unwrap().shell_run().zeta_mesh, drive::scene::ShellZetaMesh::Uniform);
     assert_eq!(read(&with("zeta_mesh", json!("graded"))).unwrap().shell_run().zeta_mesh, drive::scene::ShellZetaMesh::Graded);
@@ -224,6 +232,7 @@ fn defaults_of_the_shell_run() {
     let omega = s.drive.driver_speed;
     assert_eq!((run.elements_sigma, run.elements_zeta, run.ramp_steps, run.frame_every), (64, 2, 1, 0));
     assert_eq!(run.contact_rule, drive::scene::ShellContactRule::Simpson);
+    assert_eq!(run.contact_rule_width, drive::scene::ShellWidthRule::Gauss2);
     assert_eq!(run.zeta_mesh, drive::scene::ShellZetaMesh::Graded);
     assert!((run.time_step * omega - std::f64::consts::PI / 32.0).abs() < 1e-15);
     // one revolution of the belt L/(ωR)

@@ -554,7 +554,7 @@ impl Method for ShellFe {
             return Err(RunError::NotApplicable(format!("{SHELL_FE} discretises theory `shell`, the scene's belt is theory `{}`", scene.belt.theory)));
         }
         let scene = ShellFe::scene_at(scene, sigma, zeta, time_step).map_err(|e| RunError::Failed(format!("{SHELL_FE} at {disc}: {e}")))?;
-        let rule = scene.shell_run().contact_rule.label();
+        let (rule, width_rule) = (scene.shell_run().contact_rule.label(), scene.shell_run().contact_rule_width.label());
         let run = fem::shell::scene::solve(&scene).map_err(|e| match e {
             fem::shell::ShellError::NotModelled(m) => RunError::NotApplicable(m),
             other => RunError::Shell(other),
@@ -569,7 +569,7 @@ impl Method for ShellFe {
             terms: vec![
                 "membrane (Simpson × Gauss 3, camber as intrinsic strain)".into(),
                 "bending and gravity (Gauss 3 × 3)".into(),
-                format!("elastic interlayer V_γ, V_⊥ with advected history ({rule} × Gauss 2)"),
+                format!("elastic interlayer V_γ, V_⊥ with advected history ({rule} × {width_rule})"),
             ],
             notes: [vec![format!("stages: static start {stage0:.2} s, ramp {ramp:.2} s, rotation {rotation:.2} s")], run.checks.iter().map(|c| format!("check: {c}")).collect()].concat(),
             warnings: run.warnings,

@@ -67,6 +67,8 @@ pub struct HangingBelt {
     pub normal_stiffness: f64,
     /// The interlayer's σ-rule ([`Interlayer::rule`]).
     pub contact_rule: crate::quadrature::Rule,
+    /// The interlayer's ζ-rule ([`Interlayer::width_rule`]).
+    pub contact_rule_width: crate::quadrature::Rule,
     /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]); false:
     /// uniform pieces between the fitted edges and the transitions.
     pub edge_grading: bool,
@@ -192,6 +194,7 @@ impl HangingBelt {
             transport: 0.0,
             start: f64::NEG_INFINITY,
             rule: self.contact_rule,
+            width_rule: self.contact_rule_width,
         };
         Shell::on_contour(self.section()?, self.length / c.length(), 0.0, c, mesh)?
             .with_gravity(self.density * self.thickness * self.gravity)?
@@ -554,6 +557,7 @@ pub(crate) mod tests {
             gravity: 9.81,
             normal_stiffness: 3.0e7 / b,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
+            contact_rule_width: crate::quadrature::Rule::Gauss(2),
             edge_grading: false,
             width_grading: false,
         }
@@ -669,6 +673,7 @@ pub(crate) mod tests {
             gravity: 9.81,
             normal_stiffness: 1.0e9,
             contact_rule: crate::quadrature::Rule::Simpson,
+            contact_rule_width: crate::quadrature::Rule::Gauss(2),
             edge_grading: true,
             width_grading: true,
         };

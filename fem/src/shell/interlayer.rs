@@ -301,6 +301,11 @@ pub struct Interlayer {
     /// the element edges (docs/fem-shell.md §6: the trapezoidal rule leaves the belt
     /// unsupported between nodes, and a stiff belt's tension shows it).
     pub rule: Rule,
+    /// The ζ-rule of V_γ, V_⊥ across the width: [`Rule::Gauss`] with 2 (the reference's
+    /// [T l.420, 432]) to 5 points (docs/fem-shell.md §6: across the belt's edge layer 2
+    /// points per element under-integrate the layer and slow the convergence across the
+    /// width).
+    pub width_rule: Rule,
 }
 
 impl Interlayer {
@@ -325,6 +330,9 @@ impl Interlayer {
         }
         if self.start.is_nan() || self.start == f64::INFINITY {
             return bad("start of the rotation", self.start);
+        }
+        if !matches!(self.width_rule, Rule::Gauss(2..=5)) {
+            return Err(ShellError::BadParameter { what: "interlayer ζ-rule (Gauss with 2 to 5 points)", value: f64::NAN });
         }
         if !matches!(self.rule, Rule::Simpson | Rule::Trapezoidal) {
             return Err(ShellError::BadParameter { what: "interlayer σ-rule (Simpson or trapezoidal)", value: f64::NAN });
@@ -579,7 +587,7 @@ mod tests {
     #[test]
     fn the_shear_turns_with_the_drum_when_the_belt_rolls_with_it() {
         let drum = Drum { centre: [0.5, 0.0], speed: 1.0, tilt_x: Schedule::constant(0.0), tilt_y: Schedule::constant(0.0) };
-        let layer = Interlayer { normal: 1e6, shear: 1e4, drums: [Drum::aligned([-0.5, 0.0], 1.0), drum.clone()], radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums: [Drum::aligned([-0.5, 0.0], 1.0), drum.clone()], radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson, width_rule: Rule::Gauss(2) };
         let (time, dt) = (1.0, 0.1);
         let foot = [0.5, 0.2999, 0.0];
         let mut state = vec![0.0; STATE];
@@ -610,7 +618,7 @@ mod tests {
     #[test]
     fn the_shear_spring_acts_on_the_part_of_the_point_cell_in_contact() {
         let drums = [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)];
-        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson, width_rule: Rule::Gauss(2) };
         let r = [0.5, 0.299, 0.0];
         let mut state = vec![0.0; STATE];
         state[U] = 1e-3;
@@ -663,7 +671,7 @@ mod tests {
     #[test]
     fn the_foot_is_in_contact_by_its_distance_from_the_entry_while_the_drums_turn() {
         let drums = [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)];
-        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let layer = Interlayer { normal: 1e6, shear: 1e4, drums, radius: 0.3, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson, width_rule: Rule::Gauss(2) };
         let (step, radius) = ((1.0, 0.1), 0.3);
         let at = |arc: f64| [0.5 + radius * (arc / radius).sin(), radius * (arc / radius).cos(), 1e-4];
         let recursion = |layer: &Interlayer, r: &[f64; 3], foot: &[f64; 3], turning: bool| -> [f64; 3] {
@@ -719,7 +727,7 @@ mod tests {
     fn entering_material_carries_the_relative_motion_since_the_entry() {
         use num_dual::Dual64;
         let (step, radius, gauge) = ((1.0, 0.1), 0.3, 1.02);
-        let forward = Interlayer { normal: 1e6, shear: 1e4, drums: [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)], radius, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson };
+        let forward = Interlayer { normal: 1e6, shear: 1e4, drums: [Drum::aligned([-0.5, 0.0], 1.0), Drum::aligned([0.5, 0.0], 1.0)], radius, transport: 0.3, start: f64::NEG_INFINITY, rule: Rule::Simpson, width_rule: Rule::Gauss(2) };
         let backward = Interlayer { drums: [Drum::aligned([-0.5, 0.0], -1.0), Drum::aligned([0.5, 0.0], -1.0)], transport: -0.3, ..forward.clone() };
         // the point `arc` along the driven drum's surface from its top, at lateral z
         let at = |arc: f64, z: f64| [0.5 + radius * (arc / radius).sin(), radius * (arc / radius).cos(), z];

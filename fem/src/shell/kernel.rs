@@ -168,7 +168,7 @@ impl Shell {
     }
 
     /// The shell with the elastic interlayer `interlayer` against its drums (§7, §8):
-    /// a third term ([`INTERLAYER`], the interlayer's σ-rule × Gauss 2, [`STATE`] history values per
+    /// a third term ([`INTERLAYER`], the interlayer's σ-rule × its ζ-rule, [`STATE`] history values per
     /// point); the core advects its history by `interlayer.transport`.
     ///
     /// # Errors
@@ -511,11 +511,11 @@ impl SurfaceKernel<SHELL_VALUES> for Shell {
 
     /// [`MEMBRANE`]: Simpson × Gauss 3 (§7.3); [`BENDING_GRAVITY`]: Gauss 3 × 3
     /// (docs/fem-shell.md §6: the text is silent, the rod's choice); [`INTERLAYER`]: the
-    /// interlayer's σ-rule × Gauss 2.
+    /// interlayer's σ-rule × its ζ-rule (Gauss 2 by default).
     fn terms(&self) -> Vec<SurfaceTerm> {
         let mut terms = vec![SurfaceTerm { rule: [Rule::Simpson, Rule::Gauss(3)], history: 0 }, SurfaceTerm { rule: [Rule::Gauss(3), Rule::Gauss(3)], history: 0 }];
         if let Some(layer) = &self.interlayer {
-            terms.push(SurfaceTerm { rule: [layer.rule, Rule::Gauss(2)], history: STATE });
+            terms.push(SurfaceTerm { rule: [layer.rule, layer.width_rule], history: STATE });
         }
         terms
     }
@@ -978,7 +978,7 @@ mod tests {
             tilt_y: crate::shell::interlayer::Schedule::new(vec![(0.0, 0.0), (1.0, -0.06)]).unwrap(),
         };
         let driven = Drum::aligned(contour.pulley_centre(drive::contour::Pulley::Driven), omega);
-        Interlayer { normal: 1.0e5, shear, drums: [tilted, driven], radius: contour.radius(), transport: omega * contour.radius(), start: f64::NEG_INFINITY, rule: Rule::Trapezoidal }
+        Interlayer { normal: 1.0e5, shear, drums: [tilted, driven], radius: contour.radius(), transport: omega * contour.radius(), start: f64::NEG_INFINITY, rule: Rule::Trapezoidal, width_rule: Rule::Gauss(2) }
     }
 
     /// V-6 for the interlayer alone (A = D = 0, no gravity): closed contour with camber,

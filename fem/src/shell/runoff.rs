@@ -784,6 +784,7 @@ mod tests {
             gravity: 0.0,
             normal_stiffness: 1.0e6,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
+            contact_rule_width: crate::quadrature::Rule::Gauss(2),
             edge_grading: false,
             width_grading: false,
         }
