@@ -7,6 +7,7 @@ use std::sync::Arc;
 use drive::contour::{Pulley, Region};
 use drive::summary::{PulleySummary, Summary};
 use drive::view::{ContactState, SolutionView};
+use numerics::quadrature::lagrange;
 
 use crate::dofs::DofMap;
 use crate::element::{ElementLayout, Field};
@@ -1106,21 +1107,6 @@ fn rising_root(pts: &[(f64, f64)], lower: f64) -> Option<(f64, f64)> {
     }
     let p = slope(t);
     (t.is_finite() && t > lower && t < x0 && p > 0.0 && lagrange(pts, t).abs() < 1e-9 * g_last.abs()).then_some((t, p))
-}
-
-/// The Lagrange interpolant through the points (ξ_i, v_i), at ξ.
-fn lagrange(points: &[(f64, f64)], xi: f64) -> f64 {
-    let mut sum = 0.0;
-    for (i, &(xi_i, v)) in points.iter().enumerate() {
-        let mut w = 1.0;
-        for (j, &(xi_j, _)) in points.iter().enumerate() {
-            if i != j {
-                w *= (xi - xi_j) / (xi_i - xi_j);
-            }
-        }
-        sum += w * v;
-    }
-    sum
 }
 
 /// The nodes inside a contact zone through whose contact forces the augmented

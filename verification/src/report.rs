@@ -411,7 +411,7 @@ pub fn scene_markdown(scene: &Scene, scene_file: &Path, study: &Study) -> String
     let convergence_caption = format!("Error of each level against the Richardson extrapolation of the three finest, {against}, with reference slopes.");
     let shell_plots = [
         ("Run-off in time", "The belt's lateral offset z̄(t) (the width-averaged lateral position of the belt, docs/fem-shell.md §9.3) and its rate, every level of the study (light to dark: coarse to fine). The reference text gives no measured run-off: `beltcheck solve SCENE --measured FILE.csv` overlays a user's (t, lateral) samples with the difference.", "run-off", "runoff.svg"),
-        ("Contact maps", "Contact pressure Pγ and interlayer shear stress P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed tangential displacement at the nearest history point).", "contact maps", "contact-maps.svg"),
+        ("Contact maps", "Contact pressure Pγ and interlayer shear stress P_⊥|u| over (σ, ζ) at the last frame of the finest level (each cell coloured by the mean of its corner nodes; |u| is the interlayer's committed tangential displacement, extrapolated across the width from the Gauss points of each node's ζ-elements).", "contact maps", "contact-maps.svg"),
         ("Convergence", convergence_caption.as_str(), "convergence", "convergence.svg"),
         ("Work–precision", "Error against wall time, every level of this scene.", "work–precision", "work-precision.svg"),
     ];

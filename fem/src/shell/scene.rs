@@ -349,30 +349,46 @@ fn pressure(layer: &Interlayer, r: &[f64; 3], time: f64) -> f64 {
     layer.drums.iter().map(|d| d.gap(layer.radius, r, time).0.max(0.0)).sum::<f64>() * layer.normal
 }
 
-/// |u| (m) of the interlayer at σ-node `i`, ζ-node `j`: the committed state of the
-/// nearest history point — the interlayer's σ-rule (trapezoidal or Simpson) has a point
-/// on every σ-node (element i's first column, ξ = −1; columns are numbered element by
-/// element, the rule's points per element each), × the 2 Gauss points of each
-/// ζ-element, so a ζ-node takes the mean of the nearest
-/// Gauss point of its one or two neighbouring ζ-elements (within (1 − 1/√3)/2 of an
-/// element's width). 0 without an interlayer history.
+/// |u| (m) of the interlayer at σ-node `i`, ζ-node `j`: the committed u recovered at the
+/// node from the history points (docs/fem-shell.md §14). Along σ the interlayer's
+/// σ-rule (trapezoidal or Simpson) has a point on every σ-node (element i's first
+/// column, ξ = −1), so no interpolation is needed there. Across the width its ζ-rule
+/// (Gauss, `fem.contact_rule_width`) has no point on a node: each neighbouring
+/// ζ-element extrapolates its points' u to the node by the Lagrange polynomial through
+/// them (degree n − 1; the standard recovery of Gauss-point values at nodes), and the
+/// node takes the mean of its one or two elements' vectors. Where the contact flag of one
+/// of an element's points says u was released there (0 out of contact: a jump, not a
+/// field to extrapolate), that element gives its point nearest the node instead.
+/// 0 without an interlayer history.
 fn interlayer_shear(stepping: &TimeStepping<Shell, SHELL_VALUES>, i: usize, j: usize) -> f64 {
-    let Some(states) = stepping.history().term(super::kernel::INTERLAYER) else { return 0.0 };
+    let (Some(states), Some(layer)) = (stepping.history().term(super::kernel::INTERLAYER), stepping.assembler().kernel().interlayer()) else { return 0.0 };
     let mesh = stepping.assembler().mesh();
     let n_zeta = mesh.zeta_nodes().len() - 1;
-    let (rows_total, columns) = states.shape();
+    let (rows, columns) = states.shape();
+    let (per_sigma, per_zeta) = states.points_per_element();
+    let xi = layer.width_rule.points();
     // element i's first column (ξ = −1) sits at σ-node i
-    let column = i * (columns / mesh.sigma_elements().max(1));
+    let column = i * per_sigma;
     debug_assert!(states.column_sigma().get(column).is_none_or(|&s| (s - mesh.sigma_nodes()[i]).abs() <= 1e-12 * (1.0 + s.abs())), "column {column} is not at σ-node {i}");
-    let rows: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
-    let magnitude = |row: usize| {
-        if row >= rows_total || column >= columns {
-            return 0.0;
+    if column >= columns || xi.len() != per_zeta || rows != n_zeta * per_zeta {
+        return 0.0;
+    }
+    // u of ζ-element e extrapolated to its end ξ = ±1
+    let from_element = |e: usize, end: f64| -> [f64; 3] {
+        let states_of: Vec<&[f64]> = (0..per_zeta).map(|b| states.get(e * per_zeta + b, column)).collect();
+        if states_of.iter().any(|state| state[super::interlayer::CONTACT_FLAG] < 0.5) {
+            let nearest = if end > 0.0 { per_zeta - 1 } else { 0 };
+            return Interlayer::deformation(states_of[nearest]);
         }
-        let u = super::interlayer::Interlayer::deformation(states.get(row, column));
-        (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
+        std::array::from_fn(|k| {
+            let points: Vec<(f64, f64)> = xi.iter().zip(&states_of).map(|(p, state)| (p.0, Interlayer::deformation(state)[k])).collect();
+            numerics::quadrature::lagrange(&points, end)
+        })
     };
-    rows.iter().map(|&r| magnitude(r)).sum::<f64>() / rows.len().max(1) as f64
+    let ends: Vec<[f64; 3]> = [(j > 0).then(|| from_element(j - 1, 1.0)), (j < n_zeta).then(|| from_element(j, -1.0))].into_iter().flatten().collect();
+    let count = ends.len().max(1) as f64;
+    let u: [f64; 3] = std::array::from_fn(|k| ends.iter().map(|e| e[k]).sum::<f64>() / count);
+    (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt()
 }
 
 /// The frame of surface fields on the mesh's nodes.
@@ -1176,11 +1192,11 @@ mod tests {
     /// stages (0)–(2) over 1 ramp step and 3 steps of rotation, the interlayer by `rule`:
     /// the scene, the contour and the stepping at the end (the scene pipeline's stages,
     /// unrecorded).
-    fn swivelled_run(rule: &str) -> (serde_json::Value, Contour, TimeStepping<Shell, SHELL_VALUES>) {
+    fn swivelled_run(rule: &str, width_rule: &str) -> (serde_json::Value, Contour, TimeStepping<Shell, SHELL_VALUES>) {
         let mut v = shipped();
         v["belt"].as_object_mut().unwrap().remove("camber");
         v["drive"]["steering"] = json!({"drum": "driven", "tilt_y": [[0.0, 2e-3]]});
-        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule, "time_step": PI16});
+        v["fem"] = json!({"elements_sigma": 32, "elements_zeta": 2, "steps": 3, "ramp_steps": 1, "contact_rule": rule, "contact_rule_width": width_rule, "time_step": PI16});
         let data = ShellScene::from_scene(&read(&v)).unwrap();
         let run = data.run;
         let solved = data.belt.solve(run.elements_sigma, run.elements_zeta, static_newton()).unwrap();
@@ -1201,12 +1217,18 @@ mod tests {
     /// P_⊥|u| over all columns is the larger of the two drums' peaks (every column is
     /// looked at), and each drum's peak is the largest over the columns on its side of
     /// x = 0 (the drums' centres are at x = ∓H/2); (b) the frame's `interlayer_shear` at
-    /// each σ-node is the mean |u| of the nearest ζ-Gauss rows at the column whose σ is
-    /// that node's, found by searching `column_sigma`, not by index arithmetic.
+    /// each σ-node is read at the column whose σ is that node's, found by searching
+    /// `column_sigma`, not by index arithmetic, and across the width from the rows of the
+    /// node's one or two ζ-elements under the ζ-rule in use: each element's u
+    /// extrapolated to the node through its n Gauss points where all are in contact (its
+    /// nearest point's where one is released), the vectors averaged. Under Gauss 4 (a
+    /// later review found the frame reading rows 2j − 1 and 2j, the 2-point rule's, under
+    /// any ζ-rule: the wrong points of the wrong elements). Both paths occur.
     #[test]
     fn interlayer_outputs_read_each_column_at_its_own_sigma() {
-        for rule in ["simpson", "trapezoidal"] {
-            let (_, contour, stepping) = swivelled_run(rule);
+        for (rule, width) in [("simpson", 2u8), ("trapezoidal", 2), ("simpson", 4)] {
+            let (_, contour, stepping) = swivelled_run(rule, &format!("gauss{width}"));
+            let rule = format!("{rule} × gauss{width}");
             let states = stepping.history().term(super::super::kernel::INTERLAYER).unwrap().clone();
             let shear = stepping.assembler().kernel().interlayer().unwrap().shear;
             let (rows, columns) = states.shape();
@@ -1230,14 +1252,35 @@ mod tests {
             let fields = frame(&stepping).unwrap();
             let field = &fields.values["interlayer_shear"];
             let n_zeta = fields.zeta.len() - 1;
+            let mut paths = [0usize; 2];
             for (i, &s) in fields.sigma.iter().enumerate() {
                 let c = states.column_sigma().iter().position(|&q| (q - s).abs() <= 1e-12 * (1.0 + s.abs())).unwrap_or_else(|| panic!("{rule}: no column at σ-node {s}"));
                 for j in 0..=n_zeta {
-                    let near: Vec<usize> = [(j > 0).then(|| 2 * (j - 1) + 1), (j < n_zeta).then(|| 2 * j)].into_iter().flatten().collect();
-                    let expected = near.iter().map(|&r| magnitude(r, c)).sum::<f64>() / near.len() as f64;
-                    assert_eq!(field[i][j], expected, "{rule}: σ-node {i}, ζ-node {j}");
+                    let n = usize::from(width);
+                    assert_eq!(rows, n * n_zeta, "{rule}: rows");
+                    let xi = numerics::quadrature::Rule::Gauss(width).points();
+                    let mut element = |e: usize, end: f64| -> [f64; 3] {
+                        let u: Vec<[f64; 3]> = (0..n).map(|b| Interlayer::deformation(states.get(e * n + b, c))).collect();
+                        if (0..n).any(|b| states.get(e * n + b, c)[super::super::interlayer::CONTACT_FLAG] < 0.5) {
+                            paths[0] += 1;
+                            return u[if end > 0.0 { n - 1 } else { 0 }];
+                        }
+                        paths[1] += 1;
+                        std::array::from_fn(|k| numerics::quadrature::lagrange(&xi.iter().zip(&u).map(|(p, u)| (p.0, u[k])).collect::<Vec<_>>(), end))
+                    };
+                    let mut ends: Vec<[f64; 3]> = Vec::new();
+                    if j > 0 {
+                        ends.push(element(j - 1, 1.0));
+                    }
+                    if j < n_zeta {
+                        ends.push(element(j, -1.0));
+                    }
+                    let u: Vec<f64> = (0..3).map(|k| ends.iter().map(|e| e[k]).sum::<f64>() / ends.len() as f64).collect();
+                    let expected = (u[0] * u[0] + u[1] * u[1] + u[2] * u[2]).sqrt();
+                    assert!((field[i][j] - expected).abs() <= 1e-15 * expected, "{rule}: σ-node {i}, ζ-node {j}: {} against {expected}", field[i][j]);
                 }
             }
+            assert!(paths[0] > 0 && paths[1] > 0, "{rule}: released and extrapolated elements {paths:?}");
         }
     }
 
@@ -1254,7 +1297,7 @@ mod tests {
     /// carries them.
     #[test]
     fn drums_lateral_forces_are_the_energy_derivative_and_balance() {
-        let (v, _, stepping) = swivelled_run("simpson");
+        let (v, _, stepping) = swivelled_run("simpson", "gauss2");
         let asm = stepping.assembler();
         let shell = asm.kernel();
         let ev = stepping.step_evaluation();

@@ -117,6 +117,13 @@ impl TermStates {
         (self.rows, self.columns)
     }
 
+    /// Points per element of the σ- and of the ζ-rule: element (i, j)'s point (a, b) is
+    /// at row j · per_ζ + b, column i · per_σ + a (points in the rule's order, ξ
+    /// increasing).
+    pub fn points_per_element(&self) -> (usize, usize) {
+        (self.per_sigma, self.per_zeta)
+    }
+
     /// σ of each column (mod L), m.
     pub fn column_sigma(&self) -> &[f64] {
         &self.sigma
