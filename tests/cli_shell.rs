@@ -194,8 +194,14 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
     assert!((h.frames[0].time - h.time[first]).abs() < 1e-12 && h.frames.last().unwrap().time == *h.time.last().unwrap());
 
     // the peak interlayer shear per drum: P_⊥ × the largest |u| of the history points
-    // nearest each drum, so at least P_⊥ × the frame's |u| (a node's |u| is the mean of
-    // its neighbouring points') on the nodes nearer that drum, and positive once turning
+    // nearest each drum, positive once turning. The frame's |u| on the nodes nearer that
+    // drum is each neighbouring ζ-element's points extrapolated to the node (the mean of
+    // one or two; the nearest point where one is out of contact): under the default
+    // 2-point rule at most Σ|ℓ_b(±1)| = √3 times the largest point's, so the peak is at
+    // least P_⊥ × that over √3. The extrapolation reaches the free edge, where |u| is
+    // largest, so the nodes exceed the points there (measured on this scene: the driven
+    // drum's nodes 420.6 against its points' 378.0 Pa, 1.11×); they stay within 2× of it
+    // (the edge element is the graded mesh's narrowest, a fraction of the edge layer).
     let drive::scene::Contact::ElasticLayer(layer) = &s.effects.contact else { panic!("the CI scene has an elastic interlayer") };
     let p_t = layer.tangential_stiffness;
     let last = h.frames.last().unwrap().surface.as_ref().unwrap();
@@ -211,9 +217,8 @@ fn shell_runoff_solves_and_writes_result_measured_and_vtk() {
         let peak = h.channel(name).unwrap_or_else(|| panic!("{name} missing"));
         assert_eq!(peak[0], 0.0, "{name}: no shear at the static start");
         let end = *peak.last().unwrap();
-        assert!(end > 0.0 && end >= p_t * node_peak[k] * (1.0 - 1e-12), "{name}: {end} against P_⊥·max|u| of the nodes {}", p_t * node_peak[k]);
-        // and not far above it: the nodes' mean of two points is at least half the larger
-        assert!(end <= 2.0 * p_t * node_peak[k] * (1.0 + 1e-12), "{name}: {end} against the nodes' {}", p_t * node_peak[k]);
+        assert!(end > 0.0 && 3f64.sqrt() * end >= p_t * node_peak[k] * (1.0 - 1e-12), "{name}: {end} against P_⊥·max|u| of the nodes {} over √3", p_t * node_peak[k]);
+        assert!(end >= 0.5 * p_t * node_peak[k] && end <= 2.0 * p_t * node_peak[k], "{name}: {end} against the nodes' {}", p_t * node_peak[k]);
     }
 
     // the measurement: model at the measured times, the difference model − measured
