@@ -145,12 +145,6 @@ impl fmt::Display for Rule {
 mod tests {
     use super::*;
 
-    /// Each rule integrates ξ^k exactly for k ≤ its degree (∫ξ^k = 2/(k+1) for even k,
-    /// 0 for odd), and not for degree + 1 (every rule here has odd degree 2n − 1 or 3 or
-    /// 1, so degree + 1 is even and the error is the rule's nonzero error constant: at
-    /// least 1e-3, far above round-off).
-    /// The cells tile [−1, 1] in order, each as long as its weight and holding its point;
-    /// Simpson's are [−1, −⅔], [−⅔, ⅔], [⅔, 1].
     /// The interpolant through a rule's points reproduces every polynomial of degree
     /// n − 1 at any ξ, the ends included (the frame's extrapolation of Gauss-point
     /// states to the nodes), to round-off; through two points it is the line
@@ -175,6 +169,12 @@ mod tests {
         assert!((lagrange(&line, -1.0) - 5.0).abs() < 1e-15 && (lagrange(&line, 1.0) - 1.0).abs() < 1e-15);
     }
 
+    /// Each rule integrates ξ^k exactly for k ≤ its degree (∫ξ^k = 2/(k+1) for even k,
+    /// 0 for odd), and not for degree + 1 (every rule here has odd degree 2n − 1 or 3 or
+    /// 1, so degree + 1 is even and the error is the rule's nonzero error constant: at
+    /// least 1e-3, far above round-off).
+    /// The cells tile [−1, 1] in order, each as long as its weight and holding its point;
+    /// Simpson's are [−1, −⅔], [−⅔, ⅔], [⅔, 1].
     #[test]
     fn cells_tile_the_interval_by_the_weights() {
         for rule in [Rule::Gauss(1), Rule::Gauss(2), Rule::Gauss(3), Rule::Gauss(4), Rule::Gauss(5), Rule::Simpson, Rule::Trapezoidal] {
