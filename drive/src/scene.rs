@@ -992,6 +992,40 @@ pub struct FemSettings {
     /// edges and the centre line).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub zeta_mesh: Option<ShellZetaMesh>,
+    /// Shell only: the grading of the σ-mesh towards the drums' contact edges, where the
+    /// interlayer's contact starts and ends over the plate's foundation length
+    /// ℓ_c = (D/P)^{1/4} (3.4 mm for the shipped steel belt): element density
+    /// 1 + `ratio`·exp(−d/(`width`·ℓ_c)) at the distance d from an edge,
+    /// docs/fem-shell.md §9.1 and §14 "Grading the σ-mesh harder". Default absent =
+    /// ratio 8, width 2.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma_grading: Option<ShellSigmaGrading>,
+}
+
+/// The grading of the shell's σ-mesh towards the contact edges (`fem.sigma_grading`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct ShellSigmaGrading {
+    /// Peak refinement, ≥ 0: the elements at a contact edge are about 1 + `ratio` times
+    /// shorter than far from it (0: pieces of equal elements between the fitted contact
+    /// edges and the transitions). Default 8.
+    pub ratio: f64,
+    /// Decay length of the refinement in foundation lengths ℓ_c, > 0. Default 2.
+    pub width: f64,
+}
+
+impl ShellSigmaGrading {
+    /// The largest `ratio` a scene may ask for: 1000 times shorter elements at the edges.
+    pub const MAX_RATIO: f64 = 1000.0;
+    /// The largest `width`, in ℓ_c: 1000 ℓ_c is 3.4 m for the steel belt, longer than
+    /// its loop.
+    pub const MAX_WIDTH: f64 = 1000.0;
+}
+
+impl Default for ShellSigmaGrading {
+    fn default() -> Self {
+        ShellSigmaGrading { ratio: 8.0, width: 2.0 }
+    }
 }
 
 /// The shell's ζ-nodes across the width (`fem.zeta_mesh`).
@@ -1081,6 +1115,8 @@ pub struct ShellRun {
     pub contact_rule_width: ShellWidthRule,
     /// The ζ-nodes across the width.
     pub zeta_mesh: ShellZetaMesh,
+    /// The σ-mesh's grading towards the contact edges.
+    pub sigma_grading: ShellSigmaGrading,
 }
 
 /// Default shell drum rotation per step ωΔt, rad (π/32): half an arc element of a
@@ -1165,6 +1201,7 @@ impl Default for FemSettings {
             contact_rule: None,
             contact_rule_width: None,
             zeta_mesh: None,
+            sigma_grading: None,
         }
     }
 }
@@ -1482,12 +1519,14 @@ impl Scene {
             contact_rule: f.contact_rule.unwrap_or_default(),
             contact_rule_width: f.contact_rule_width.unwrap_or_default(),
             zeta_mesh: f.zeta_mesh.unwrap_or_default(),
+            sigma_grading: f.sigma_grading.unwrap_or_default(),
         }
     }
 
     /// The `fem` block of a shell: only the shell's settings (`elements_sigma`,
     /// `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`,
-    /// `contact_rule`, `contact_rule_width`, `zeta_mesh`);
+    /// `contact_rule`, `contact_rule_width`, `zeta_mesh`, `sigma_grading`, the grading's
+    /// ratio in [0, 1000] and width in (0, 1000]);
     /// the rod and string settings are refused by name rather than ignored; the rotation
     /// at most [`MAX_SHELL_STEPS`] steps.
     fn validate_shell_fem(&self, f: &FemSettings) -> Result<(), SceneError> {
@@ -1502,6 +1541,7 @@ impl Scene {
             ("fem.contact_rule", f.contact_rule.is_some()),
             ("fem.contact_rule_width", f.contact_rule_width.is_some()),
             ("fem.zeta_mesh", f.zeta_mesh.is_some()),
+            ("fem.sigma_grading", f.sigma_grading.is_some()),
         ];
         if !shell {
             if let Some((path, _)) = shell_fields.iter().find(|(_, given)| *given) {
@@ -1522,8 +1562,17 @@ impl Scene {
         if let Some((path, _)) = rod_fields.iter().find(|(_, given)| *given) {
             return Err(SceneError::NotAllowed {
                 path: (*path).into(),
-                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule`, `contact_rule_width`, `zeta_mesh` (its contact is the scene's elastic interlayer)".into(),
+                reason: "a setting of the rod and string FE, not read by the shell's: the shell takes `elements_sigma`, `elements_zeta`, `time_step`, `steps` or `duration`, `ramp_steps`, `frame_every`, `contact_rule`, `contact_rule_width`, `zeta_mesh`, `sigma_grading` (its contact is the scene's elastic interlayer)".into(),
             });
+        }
+        if let Some(g) = f.sigma_grading {
+            // NaN fails both comparisons
+            if !(g.ratio >= 0.0 && g.ratio <= ShellSigmaGrading::MAX_RATIO) {
+                return Err(SceneError::OutOfRange { path: "fem.sigma_grading.ratio".into(), value: g.ratio, range: format!("from 0 to {} (the elements at a contact edge are 1 + ratio times shorter than far from it)", ShellSigmaGrading::MAX_RATIO) });
+            }
+            if !(g.width > 0.0 && g.width <= ShellSigmaGrading::MAX_WIDTH) {
+                return Err(SceneError::OutOfRange { path: "fem.sigma_grading.width".into(), value: g.width, range: format!("above 0, at most {} (foundation lengths ℓ_c = (D/P)^{{1/4}})", ShellSigmaGrading::MAX_WIDTH) });
+            }
         }
         let steps = self.shell_run().steps;
         if steps > MAX_SHELL_STEPS {

@@ -293,6 +293,12 @@ pub(crate) const FEM: &[Field] = &[
     opt_in(Cond::Shell, "contact_rule", Kind::Choice { what: "interlayer σ-rule", variants: &["simpson", "trapezoidal"] }, "σ-rule of the elastic interlayer"),
     opt_in(Cond::Shell, "contact_rule_width", Kind::Choice { what: "interlayer ζ-rule", variants: &["gauss2", "gauss3", "gauss4", "gauss5"] }, "Gauss points per ζ-element of the elastic interlayer"),
     opt_in(Cond::Shell, "zeta_mesh", Kind::Choice { what: "ζ-mesh across the width", variants: &["graded", "uniform"] }, "ζ-nodes graded towards the belt's edges or uniform"),
+    opt_in(Cond::Shell, "sigma_grading", Kind::Object(SIGMA_GRADING), "grading of the σ-mesh towards the drums' contact edges"),
+];
+
+const SIGMA_GRADING: &[Field] = &[
+    opt("ratio", Kind::Number, "peak refinement at a contact edge (elements 1 + ratio times shorter; default 8)"),
+    opt("width", Kind::Number, "decay length of the refinement in foundation lengths (D/P)^(1/4) (default 2)"),
 ];
 
 pub(crate) const GATE: &[Field] = &[
@@ -771,6 +777,7 @@ mod tests {
             contact_rule: Some(crate::scene::ShellContactRule::Trapezoidal),
             contact_rule_width: Some(crate::scene::ShellWidthRule::Gauss4),
             zeta_mesh: Some(crate::scene::ShellZetaMesh::Uniform),
+            sigma_grading: Some(crate::scene::ShellSigmaGrading { ratio: 24.0, width: 6.0 }),
             ..Default::default()
         })
         .unwrap();

@@ -221,6 +221,22 @@ fn shell_fem_settings_are_checked_and_rod_settings_refused() {
     assert!(read(&with("zeta_mesh", json!("chebyshev"))).is_err());
     rod["fem"] = json!({"zeta_mesh": "uniform"});
     refused(&rod, "fem.zeta_mesh", &["theory `shell`"]);
+    // the σ-mesh's grading towards the contact edges: either number may be left out,
+    // the ratio in [0, 1000], the width in (0, 1000] ℓ_c, nothing else, only on a shell
+    let grading = |g: Value| read(&with("sigma_grading", g)).ok().map(|s| s.shell_run().sigma_grading);
+    let given = |ratio: f64, width: f64| Some(drive::scene::ShellSigmaGrading { ratio, width });
+    assert_eq!(grading(json!({"ratio": 24.0, "width": 6.0})), given(24.0, 6.0));
+    assert_eq!(grading(json!({"ratio": 24.0})), given(24.0, 2.0));
+    assert_eq!(grading(json!({"width": 0.5})), given(8.0, 0.5));
+    assert_eq!(grading(json!({"ratio": 0.0})), given(0.0, 2.0));
+    refused(&with("sigma_grading", json!({"ratio": -1.0})), "fem.sigma_grading.ratio", &["from 0 to 1000"]);
+    refused(&with("sigma_grading", json!({"ratio": 2000.0})), "fem.sigma_grading.ratio", &["from 0 to 1000"]);
+    refused(&with("sigma_grading", json!({"width": 0.0})), "fem.sigma_grading.width", &["above 0", "ℓ_c"]);
+    refused(&with("sigma_grading", json!({"width": 1e4})), "fem.sigma_grading.width", &["at most 1000"]);
+    assert!(grading(json!({"ratio": 24.0, "sharpness": 2.0})).is_none());
+    assert!(grading(json!(24.0)).is_none());
+    rod["fem"] = json!({"sigma_grading": {"ratio": 24.0}});
+    refused(&rod, "fem.sigma_grading", &["theory `shell`"]);
 }
 
 #[test]
@@ -234,6 +250,7 @@ fn defaults_of_the_shell_run() {
     assert_eq!(run.contact_rule, drive::scene::ShellContactRule::Simpson);
     assert_eq!(run.contact_rule_width, drive::scene::ShellWidthRule::Gauss2);
     assert_eq!(run.zeta_mesh, drive::scene::ShellZetaMesh::Graded);
+    assert_eq!(run.sigma_grading, drive::scene::ShellSigmaGrading { ratio: 8.0, width: 2.0 });
     assert!((run.time_step * omega - std::f64::consts::PI / 32.0).abs() < 1e-15);
     // one revolution of the belt L/(ωR)
     let revolution = s.belt.length / (omega * s.drive.pulley_radius);

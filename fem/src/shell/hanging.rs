@@ -40,6 +40,23 @@ use super::membrane::ShellSection;
 use super::ShellError;
 use crate::static_homotopy::{GRADING_RATIO, GRADING_WIDTH};
 
+/// The grading of the σ-mesh towards the drums' contact edges ([`HangingBelt::edge_grading`],
+/// the scene's `fem.sigma_grading`): peak refinement `ratio` (elements about 1 + `ratio`
+/// times shorter at an edge) decaying over `width` foundation lengths ℓ_c = (D/P)^{1/4}.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EdgeGrading {
+    /// Peak refinement, ≥ 0.
+    pub ratio: f64,
+    /// Decay length in ℓ_c, > 0.
+    pub width: f64,
+}
+
+impl EdgeGrading {
+    /// [`GRADING_RATIO`] over [`GRADING_WIDTH`] ℓ_c: the Cosserat rod's constants (the
+    /// default of every shell scene).
+    pub const DEFAULT: EdgeGrading = EdgeGrading { ratio: GRADING_RATIO, width: GRADING_WIDTH };
+}
+
 /// The data of the hanging belt (SI): a closed belt of unstressed length L, width b
 /// (ζ ∈ [−b/2, b/2]), thickness h, isotropic (E, ν_P), density ρ_s, on the contour of
 /// two drums (R to the mid-surface, R = R_d + h/2; centre distance H), gravity g,
@@ -69,9 +86,9 @@ pub struct HangingBelt {
     pub contact_rule: crate::quadrature::Rule,
     /// The interlayer's ζ-rule ([`Interlayer::width_rule`]).
     pub contact_rule_width: crate::quadrature::Rule,
-    /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]); false:
+    /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]); `None`:
     /// uniform pieces between the fitted edges and the transitions.
-    pub edge_grading: bool,
+    pub edge_grading: Option<EdgeGrading>,
     /// Grade the ζ-mesh towards the belt's free edges ([`Self::width_grading`]); false:
     /// uniform across the width.
     pub width_grading: bool,
@@ -215,11 +232,12 @@ impl HangingBelt {
     }
 
     /// The grading of the σ-mesh towards the contact edges when [`Self::edge_grading`] is
-    /// set: density 1 + [`GRADING_RATIO`]·exp(−d/([`GRADING_WIDTH`]·ℓ_c)) at the distance d
-    /// from an edge ([`Self::contact_layer`]; the Cosserat rod's constants over its shear
-    /// layer), a fixed map, so the meshes of a sequence refine one map; `None` otherwise.
+    /// set: density 1 + ratio·exp(−d/(width·ℓ_c)) at the distance d from an edge
+    /// ([`Self::contact_layer`]; by default the Cosserat rod's constants over its shear
+    /// layer, [`EdgeGrading::DEFAULT`]), a fixed map, so the meshes of a sequence refine
+    /// one map; `None` otherwise.
     pub fn edge_grading(&self) -> Option<crate::mesh::Grading> {
-        self.edge_grading.then(|| crate::mesh::Grading { width: GRADING_WIDTH * self.contact_layer(), ratio: GRADING_RATIO })
+        self.edge_grading.map(|g| crate::mesh::Grading { width: g.width * self.contact_layer(), ratio: g.ratio })
     }
 
     /// ℓ_e = min(ℓ_c, (4DR²/(Eh))^{1/4}), m: the length of the anticlastic layer at the
@@ -558,7 +576,7 @@ pub(crate) mod tests {
             normal_stiffness: 3.0e7 / b,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
             contact_rule_width: crate::quadrature::Rule::Gauss(2),
-            edge_grading: false,
+            edge_grading: None,
             width_grading: false,
         }
     }
@@ -674,11 +692,11 @@ pub(crate) mod tests {
             normal_stiffness: 1.0e9,
             contact_rule: crate::quadrature::Rule::Simpson,
             contact_rule_width: crate::quadrature::Rule::Gauss(2),
-            edge_grading: true,
+            edge_grading: Some(EdgeGrading::DEFAULT),
             width_grading: true,
         };
         // the rod on its own (ungraded) fitted mesh, as `beltcheck solve --method fem` runs it
-        let (rod, _) = HangingBelt { edge_grading: false, ..steel }.planar(512).unwrap();
+        let (rod, _) = HangingBelt { edge_grading: None, ..steel }.planar(512).unwrap();
         let r = rod.summary();
         let reference = [(r.y_upper_mid.unwrap(), r.tension_upper_mid.unwrap()), (r.y_lower_mid.unwrap(), r.tension_lower_mid.unwrap())];
         let shell = steel.solve(128, 2, newton()).unwrap().mid_spans().unwrap();
@@ -687,14 +705,15 @@ pub(crate) mod tests {
         }
         let coarse = |belt: HangingBelt| belt.solve(32, 2, newton()).unwrap().mid_spans().unwrap()[0].tension;
         let t = reference[0].1;
-        let (trapezoidal, defaults) = (coarse(HangingBelt { contact_rule: crate::quadrature::Rule::Trapezoidal, edge_grading: false, ..steel }), coarse(steel));
+        let (trapezoidal, defaults) = (coarse(HangingBelt { contact_rule: crate::quadrature::Rule::Trapezoidal, edge_grading: None, ..steel }), coarse(steel));
         assert!(trapezoidal < 0.5 * t && (defaults - t).abs() < 0.05 * t, "32 × 2: trapezoidal {trapezoidal} N, defaults {defaults} N, rod {t} N");
     }
 
     /// `SolverSettings::grading` on a Kirchhoff rod (none of its own) and the belt's
     /// `edge_grading`: the fitted mesh of the planar start is graded towards the rod's
     /// contact edges — the elements touching the node nearest each edge are on average
-    /// less than half as long as on the ungraded fitted mesh (ratio 8 over 2ℓ_c); a
+    /// less than half as long as on the ungraded fitted mesh (ratio 8 over 2ℓ_c), and
+    /// below 0.7 of that at ratio 24; a
     /// grading without a positive width is refused by
     /// `SolverSettings::validate`.
     #[test]
@@ -715,10 +734,17 @@ pub(crate) mod tests {
             touching.iter().sum::<f64>() / touching.len() as f64
         };
         let uniform = at_edges(&SolverSettings::default());
-        let grading = HangingBelt { edge_grading: true, ..b }.edge_grading();
+        let grading = HangingBelt { edge_grading: Some(EdgeGrading::DEFAULT), ..b }.edge_grading();
         assert_eq!(grading.map(|g| g.width), Some(2.0 * b.contact_layer()));
         let graded = at_edges(&SolverSettings { grading, ..SolverSettings::default() });
         assert!(graded < 0.5 * uniform, "mean element at the contact edges: uniform {uniform} m, graded {graded} m");
+        // harder (the scene's `fem.sigma_grading`): ratio 24 shortens the elements at the
+        // edges, by less than (1 + 8)/(1 + 24) = 0.36 at 128 elements, where they are as
+        // long as the decay length 2ℓ_c (measured 0.60: 2.33 → 1.41 mm); below 0.7
+        let harder = HangingBelt { edge_grading: Some(EdgeGrading { ratio: 24.0, width: 2.0 }), ..b }.edge_grading();
+        assert_eq!(harder.map(|g| (g.width, g.ratio)), Some((2.0 * b.contact_layer(), 24.0)));
+        let sharper = at_edges(&SolverSettings { grading: harder, ..SolverSettings::default() });
+        assert!(sharper < 0.7 * graded, "mean element at the contact edges: ratio 8 {graded} m, ratio 24 {sharper} m");
         let bad = SolverSettings { grading: Some(crate::mesh::Grading { width: 0.0, ratio: 8.0 }), ..SolverSettings::default() };
         assert!(bad.validate().is_err());
     }

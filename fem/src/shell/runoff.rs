@@ -785,7 +785,7 @@ mod tests {
             normal_stiffness: 1.0e6,
             contact_rule: crate::quadrature::Rule::Trapezoidal,
             contact_rule_width: crate::quadrature::Rule::Gauss(2),
-            edge_grading: false,
+            edge_grading: None,
             width_grading: false,
         }
     }
