@@ -739,8 +739,9 @@ pub(crate) mod tests {
         let graded = at_edges(&SolverSettings { grading, ..SolverSettings::default() });
         assert!(graded < 0.5 * uniform, "mean element at the contact edges: uniform {uniform} m, graded {graded} m");
         // harder (the scene's `fem.sigma_grading`): ratio 24 shortens the elements at the
-        // edges, by less than (1 + 8)/(1 + 24) = 0.36 at 128 elements, where they are as
-        // long as the decay length 2ℓ_c (measured 0.60: 2.33 → 1.41 mm); below 0.7
+        // edges, by less than (1 + 8)/(1 + 24) = 0.36 at 128 elements, where the default's
+        // are already a third of the decay length 2ℓ_c = 6.8 mm and the mean over the two
+        // touching elements reaches past it (measured 0.60: 2.33 → 1.41 mm); below 0.7
         let harder = HangingBelt { edge_grading: Some(EdgeGrading { ratio: 24.0, width: 2.0 }), ..b }.edge_grading();
         assert_eq!(harder.map(|g| (g.width, g.ratio)), Some((2.0 * b.contact_layer(), 24.0)));
         let sharper = at_edges(&SolverSettings { grading: harder, ..SolverSettings::default() });
