@@ -23,7 +23,7 @@
 //! rod lacks (Green's strain, the plate's ζ-response, the penalty per area).
 
 use drive::contour::{Contour, Pulley};
-use drive::scene::Theory;
+use drive::scene::{ShellSigmaGrading, Theory};
 use numerics::newton::{NewtonOptions, NewtonStats};
 
 use crate::element::Field;
@@ -39,23 +39,6 @@ use super::kernel::{Shell, SHELL_VALUES};
 use super::membrane::ShellSection;
 use super::ShellError;
 use crate::static_homotopy::{GRADING_RATIO, GRADING_WIDTH};
-
-/// The grading of the σ-mesh towards the drums' contact edges ([`HangingBelt::edge_grading`],
-/// the scene's `fem.sigma_grading`): peak refinement `ratio` (elements about 1 + `ratio`
-/// times shorter at an edge) decaying over `width` foundation lengths ℓ_c = (D/P)^{1/4}.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EdgeGrading {
-    /// Peak refinement, ≥ 0.
-    pub ratio: f64,
-    /// Decay length in ℓ_c, > 0.
-    pub width: f64,
-}
-
-impl EdgeGrading {
-    /// [`GRADING_RATIO`] over [`GRADING_WIDTH`] ℓ_c: the Cosserat rod's constants (the
-    /// default of every shell scene).
-    pub const DEFAULT: EdgeGrading = EdgeGrading { ratio: GRADING_RATIO, width: GRADING_WIDTH };
-}
 
 /// The data of the hanging belt (SI): a closed belt of unstressed length L, width b
 /// (ζ ∈ [−b/2, b/2]), thickness h, isotropic (E, ν_P), density ρ_s, on the contour of
@@ -86,9 +69,11 @@ pub struct HangingBelt {
     pub contact_rule: crate::quadrature::Rule,
     /// The interlayer's ζ-rule ([`Interlayer::width_rule`]).
     pub contact_rule_width: crate::quadrature::Rule,
-    /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]); `None`:
-    /// uniform pieces between the fitted edges and the transitions.
-    pub edge_grading: Option<EdgeGrading>,
+    /// Grade the σ-mesh towards the contact edges ([`Self::edge_grading`]) — the scene's
+    /// `fem.sigma_grading`, peak refinement `ratio` over `width` foundation lengths ℓ_c,
+    /// whose default is [`GRADING_RATIO`] over [`GRADING_WIDTH`] ℓ_c, the Cosserat rod's
+    /// constants; `None`: uniform pieces between the fitted edges and the transitions.
+    pub edge_grading: Option<ShellSigmaGrading>,
     /// Grade the ζ-mesh towards the belt's free edges ([`Self::width_grading`]); false:
     /// uniform across the width.
     pub width_grading: bool,
@@ -234,7 +219,7 @@ impl HangingBelt {
     /// The grading of the σ-mesh towards the contact edges when [`Self::edge_grading`] is
     /// set: density 1 + ratio·exp(−d/(width·ℓ_c)) at the distance d from an edge
     /// ([`Self::contact_layer`]; by default the Cosserat rod's constants over its shear
-    /// layer, [`EdgeGrading::DEFAULT`]), a fixed map, so the meshes of a sequence refine
+    /// layer, `ShellSigmaGrading::default()`), a fixed map, so the meshes of a sequence refine
     /// one map; `None` otherwise.
     pub fn edge_grading(&self) -> Option<crate::mesh::Grading> {
         self.edge_grading.map(|g| crate::mesh::Grading { width: g.width * self.contact_layer(), ratio: g.ratio })
@@ -692,7 +677,7 @@ pub(crate) mod tests {
             normal_stiffness: 1.0e9,
             contact_rule: crate::quadrature::Rule::Simpson,
             contact_rule_width: crate::quadrature::Rule::Gauss(2),
-            edge_grading: Some(EdgeGrading::DEFAULT),
+            edge_grading: Some(ShellSigmaGrading::default()),
             width_grading: true,
         };
         // the rod on its own (ungraded) fitted mesh, as `beltcheck solve --method fem` runs it
@@ -734,7 +719,7 @@ pub(crate) mod tests {
             touching.iter().sum::<f64>() / touching.len() as f64
         };
         let uniform = at_edges(&SolverSettings::default());
-        let grading = HangingBelt { edge_grading: Some(EdgeGrading::DEFAULT), ..b }.edge_grading();
+        let grading = HangingBelt { edge_grading: Some(ShellSigmaGrading::default()), ..b }.edge_grading();
         assert_eq!(grading.map(|g| g.width), Some(2.0 * b.contact_layer()));
         let graded = at_edges(&SolverSettings { grading, ..SolverSettings::default() });
         assert!(graded < 0.5 * uniform, "mean element at the contact edges: uniform {uniform} m, graded {graded} m");
@@ -742,7 +727,7 @@ pub(crate) mod tests {
         // edges, by less than (1 + 8)/(1 + 24) = 0.36 at 128 elements, where the default's
         // are already a third of the decay length 2ℓ_c = 6.8 mm and the mean over the two
         // touching elements reaches past it (measured 0.60: 2.33 → 1.41 mm); below 0.7
-        let harder = HangingBelt { edge_grading: Some(EdgeGrading { ratio: 24.0, width: 2.0 }), ..b }.edge_grading();
+        let harder = HangingBelt { edge_grading: Some(ShellSigmaGrading { ratio: 24.0, width: 2.0 }), ..b }.edge_grading();
         assert_eq!(harder.map(|g| (g.width, g.ratio)), Some((2.0 * b.contact_layer(), 24.0)));
         let sharper = at_edges(&SolverSettings { grading: harder, ..SolverSettings::default() });
         assert!(sharper < 0.7 * graded, "mean element at the contact edges: ratio 8 {graded} m, ratio 24 {sharper} m");

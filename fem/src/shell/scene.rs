@@ -195,10 +195,7 @@ impl ShellScene {
                 ShellContactRule::Trapezoidal => crate::quadrature::Rule::Trapezoidal,
             },
             contact_rule_width: crate::quadrature::Rule::Gauss(scene.shell_run().contact_rule_width.points()),
-            edge_grading: Some({
-                let g = scene.shell_run().sigma_grading;
-                super::hanging::EdgeGrading { ratio: g.ratio, width: g.width }
-            }),
+            edge_grading: Some(scene.shell_run().sigma_grading),
             width_grading: scene.shell_run().zeta_mesh == ShellZetaMesh::Graded,
         };
         let camber = scene.belt.camber.map_or(0.0, |c| c.curvature_for(plate.width, scene.belt.length));
@@ -955,11 +952,12 @@ mod tests {
     fn scene_data_is_read_and_what_is_not_modelled_refused() {
         let v = shipped();
         let d = ShellScene::from_scene(&read(&v)).unwrap();
-        assert_eq!(d.belt.edge_grading, Some(super::super::hanging::EdgeGrading::DEFAULT));
+        // the scene's default grading is the Cosserat rod's (the constants the rest of fem grades by)
+        assert_eq!(d.belt.edge_grading, Some(drive::scene::ShellSigmaGrading { ratio: crate::static_homotopy::GRADING_RATIO, width: GRADING_WIDTH }));
         let mut harder = v.clone();
         harder["fem"]["sigma_grading"] = json!({"ratio": 24.0, "width": 6.0});
         let h = ShellScene::from_scene(&read(&harder)).unwrap().belt;
-        assert_eq!(h.edge_grading, Some(super::super::hanging::EdgeGrading { ratio: 24.0, width: 6.0 }));
+        assert_eq!(h.edge_grading, Some(drive::scene::ShellSigmaGrading { ratio: 24.0, width: 6.0 }));
         assert_eq!(h.edge_grading().map(|g| (g.ratio, g.width)), Some((24.0, 6.0 * h.contact_layer())));
         let (b, l) = (v["belt"]["width"].as_f64().unwrap(), v["belt"]["length"].as_f64().unwrap());
         let dl = v["belt"]["camber"]["edge_length_difference"].as_f64().unwrap();
